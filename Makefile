@@ -1,0 +1,30 @@
+# auszug: two set-up commands, `make run` and `make test`, both work on a fresh machine.
+PY      ?= python3
+VENV    := .venv
+BIN     := $(VENV)/bin
+STAMP   := $(VENV)/.installed
+OUT     ?= out
+
+.PHONY: run test install bench clean
+
+$(STAMP): pyproject.toml
+	$(PY) -m pip install --quiet --disable-pip-version-check uv || $(PY) -m pip install --quiet --user uv
+	$(PY) -m uv venv --quiet --allow-existing --python $(PY) $(VENV)
+	$(PY) -m uv pip install --quiet --python $(BIN)/python -e ".[dev]"
+	touch $(STAMP)
+
+install: $(STAMP)
+
+## run: set up, then build and render the bundled teaching sheet and Basel drawings into ./out
+run: $(STAMP)
+	$(BIN)/auszug demo -o $(OUT)
+
+## test: set up, then run every test
+test: $(STAMP)
+	$(BIN)/python -m pytest -n 2 -q
+
+bench: $(STAMP)
+	$(BIN)/python benchmarks/bench_engine.py
+
+clean:
+	rm -rf $(VENV) $(OUT) .pytest_cache

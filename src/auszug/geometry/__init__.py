@@ -1,0 +1,22 @@
+"""Pure numpy geometry kernel: lines, arcs, Beziers, intersections, symmetry, reverse curves.
+
+No I/O, no printing, no global state beyond the tolerances in :data:`TOL`.
+"""
+
+from auszug.geometry._tolerance import TOL, Tolerances, tolerances
+from auszug.geometry.arc import Arc, arc_from_tangent, arc_through
+from auszug.geometry.curve import Curve, cross2, rot90
+from auszug.geometry.line import Line
+
+__all__ = [
+    "TOL",
+    "Tolerances",
+    "tolerances",
+    "Curve",
+    "Line",
+    "Arc",
+    "arc_from_tangent",
+    "arc_through",
+    "cross2",
+    "rot90",
+]

@@ -6,6 +6,7 @@ No I/O, no printing, no global state beyond the tolerances in :data:`TOL`.
 from auszug.geometry._tolerance import TOL, Tolerances, tolerances
 from auszug.geometry.arc import Arc, arc_from_tangent, arc_through
 from auszug.geometry.curve import Curve, cross2, rot90
+from auszug.geometry.intersect import Intersection, intersect, intersect_many
 from auszug.geometry.line import Line
 
 __all__ = [
@@ -19,4 +20,7 @@ __all__ = [
     "arc_through",
     "cross2",
     "rot90",
+    "Intersection",
+    "intersect",
+    "intersect_many",
 ]

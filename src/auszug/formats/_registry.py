@@ -1,0 +1,125 @@
+"""Format registry: one module per file format registers its reader and writer.
+
+Readers take text (or bytes) and a name for messages and return an object;
+writers take an object and return text or bytes. Only :func:`load` and
+:func:`save` touch paths; :func:`save` writes a temporary file in the target
+folder and renames it, so a failed write never leaves a half-written file.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable
+
+from auszug.errors import FormatError
+
+__all__ = ["FileFormat", "register", "formats", "format_for", "load", "save", "atomic_write"]
+
+
+@dataclass(frozen=True)
+class FileFormat:
+    """A registered file format.
+
+    Attributes
+    ----------
+    name : str
+        Short name (``"uc"``, ``"json"``, ...).
+    suffixes : tuple of str
+        File name endings, longest match wins (``".network.json"`` beats ``".json"``).
+    kind : str
+        What it holds: ``"drawing"``, ``"network"``, ``"figure"``, ``"mesh"``.
+    reader : callable or None
+        ``reader(text, name) -> object``.
+    writer : callable or None
+        ``writer(obj, name) -> str | bytes``.
+    binary : bool
+        Whether the file is bytes.
+    """
+
+    name: str
+    suffixes: tuple[str, ...]
+    kind: str
+    reader: Callable[[Any, str], Any] | None = None
+    writer: Callable[[Any, str], str | bytes] | None = None
+    binary: bool = False
+
+
+_FORMATS: dict[str, FileFormat] = {}
+
+
+def register(fmt: FileFormat) -> FileFormat:
+    """Add ``fmt`` to the registry (replacing one of the same name)."""
+    _FORMATS[fmt.name] = fmt
+    return fmt
+
+
+def formats() -> dict[str, FileFormat]:
+    """All registered formats by name."""
+    from auszug import formats as _pkg  # noqa: F401  (imports register the built-ins)
+
+    return dict(_FORMATS)
+
+
+def format_for(path: str | os.PathLike[str], kind: str | None = None, *, want: str = "read") -> FileFormat:
+    """The registered format for ``path`` by its ending (optionally of one kind)."""
+    name = os.fspath(path).lower()
+    best: tuple[int, FileFormat] | None = None
+    for fmt in formats().values():
+        if kind is not None and fmt.kind != kind:
+            continue
+        if want == "read" and fmt.reader is None or want == "write" and fmt.writer is None:
+            continue
+        for suf in fmt.suffixes:
+            if name.endswith(suf) and (best is None or len(suf) > best[0]):
+                best = (len(suf), fmt)
+    if best is None:
+        known = sorted({s for f in formats().values() if kind in (None, f.kind) for s in f.suffixes})
+        raise FormatError(f"unknown file type; expected one of {', '.join(known)}", os.fspath(path))
+    return best[1]
+
+
+def load(path: str | os.PathLike[str], kind: str | None = "drawing") -> Any:
+    """Read ``path`` with the format its name says."""
+    p = Path(path)
+    fmt = format_for(p, kind)
+    try:
+        data: Any = p.read_bytes() if fmt.binary else p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise FormatError("no such file", str(p)) from None
+    except IsADirectoryError:
+        raise FormatError("is a folder, not a file", str(p)) from None
+    except UnicodeDecodeError as e:
+        raise FormatError(f"not a text file ({e.reason} at byte {e.start})", str(p)) from None
+    assert fmt.reader is not None
+    return fmt.reader(data, str(p))
+
+
+def save(obj: Any, path: str | os.PathLike[str], kind: str | None = None) -> Path:
+    """Write ``obj`` to ``path`` in the format its name says, atomically."""
+    p = Path(path)
+    fmt = format_for(p, kind, want="write")
+    assert fmt.writer is not None
+    data = fmt.writer(obj, p.name)
+    atomic_write(p, data)
+    return p
+
+
+def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> None:
+    """Write ``data`` to a temporary file beside ``path``, then rename it over ``path``."""
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    raw = data.encode("utf-8") if isinstance(data, str) else data
+    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(raw)
+        os.replace(tmp, p)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise

@@ -1,0 +1,341 @@
+"""The drawing model: basic curves with symmetry, marks, heights, layers.
+
+A :class:`Drawing` is what a user gives (paper sec. 4.2): a set of basic curves,
+each with its own symmetry group, plus heights. It is an immutable value; the
+editing operations of :mod:`auszug.microarch.edit` return new drawings.
+
+A basic curve is a polyline of top-view *segments* (lines, arcs given by a
+tangent handle, or cubic Beziers) between *vertices*; each vertex carries a mark
+that fixes its height:
+
+``"ground"``
+    on its layer's bottom (the paper's circle and diamond marks);
+``"apex"``
+    at the curve's apex height;
+``"free"``
+    a free end: the segment from an apex to it descends (suppl. C).
+
+A segment from a ground vertex to an apex vertex (either direction) is an
+**ogee**; from an apex to a free vertex a **free end**; between two vertices of
+equal mark a **level** segment (horizontal, found in legacy drawings).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Literal, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from auszug.errors import DrawingError, GeometryError
+from auszug.geometry import Curve, Line, arc_from_tangent
+
+__all__ = [
+    "Mark",
+    "AxisRule",
+    "Segment",
+    "Symmetry",
+    "BasicCurve",
+    "Drawing",
+]
+
+Mark = Literal["ground", "apex", "free"]
+AxisRule = Literal["first point", "last point", "y axis", "fixed"]
+MARKS: tuple[str, ...] = ("ground", "apex", "free")
+
+Array = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Segment:
+    """How one top-view segment between two vertices is drawn.
+
+    Attributes
+    ----------
+    kind : {"line", "arc", "bezier"}
+        ``"arc"``: one circular arc whose tangent at the segment's first vertex
+        points to ``handles[0]`` (the corpus' A, T, B form; a line if collinear).
+        ``"bezier"``: cubic with absolute inner control points ``handles[0:2]``.
+    handles : tuple of (2,) tuples
+        Absolute positions (drawing units).
+    """
+
+    kind: Literal["line", "arc", "bezier"] = "line"
+    handles: tuple[tuple[float, float], ...] = ()
+
+    def __post_init__(self) -> None:
+        need = {"line": 0, "arc": 1, "bezier": 2}.get(self.kind)
+        if need is None:
+            raise DrawingError(f"segment kind must be line, arc or bezier, got {self.kind!r}")
+        if len(self.handles) != need:
+            raise DrawingError(f"a {self.kind} segment needs {need} handle(s), got {len(self.handles)}")
+        hs = tuple((float(h[0]), float(h[1])) for h in self.handles)
+        if not all(math.isfinite(c) for h in hs for c in h):
+            raise DrawingError("segment handles must be finite numbers")
+        object.__setattr__(self, "handles", hs)
+
+    def curve(self, p0: ArrayLike, p1: ArrayLike) -> Curve:
+        """The top-view curve from ``p0`` to ``p1``."""
+        if self.kind == "line":
+            return Line(p0, p1)
+        if self.kind == "arc":
+            return arc_from_tangent(p0, self.handles[0], p1)
+        from auszug.geometry.bezier import CubicBezier
+
+        return CubicBezier(p0, self.handles[0], self.handles[1], p1)
+
+
+@dataclass(frozen=True)
+class Symmetry:
+    """A basic curve's symmetry: C_n(center), optionally with the mirror sigma_d.
+
+    Attributes
+    ----------
+    fold : int
+        n >= 1, rotations by 2 pi k / n about ``center``.
+    mirror : bool
+        Whether the mirror through ``center`` along ``axis`` belongs to the group.
+    axis : (2,) tuple
+        Direction of the mirror axis (any non-zero length; the axis passes
+        through ``center``).
+    center : (2,) tuple
+        Centre of rotation (the corpus always uses the origin).
+    axis_rule : {"first point", "last point", "y axis", "fixed"}
+        Editing hint: what the axis follows when the curve's points move.
+    """
+
+    fold: int = 1
+    mirror: bool = False
+    axis: tuple[float, float] = (0.0, 1.0)
+    center: tuple[float, float] = (0.0, 0.0)
+    axis_rule: AxisRule = "fixed"
+
+    def __post_init__(self) -> None:
+        if isinstance(self.fold, bool) or int(self.fold) != self.fold or self.fold < 1:
+            raise DrawingError(f"rotation fold must be an integer >= 1, got {self.fold!r}")
+        object.__setattr__(self, "fold", int(self.fold))
+        ax = (float(self.axis[0]), float(self.axis[1]))
+        ce = (float(self.center[0]), float(self.center[1]))
+        if not all(math.isfinite(v) for v in ax + ce):
+            raise DrawingError("symmetry axis and centre must be finite")
+        if self.mirror and math.hypot(*ax) <= 1e-12:
+            raise DrawingError("mirror axis has zero length (reflection point at the centre)")
+        if self.axis_rule not in ("first point", "last point", "y axis", "fixed"):
+            raise DrawingError(f"unknown mirror axis rule {self.axis_rule!r}")
+        object.__setattr__(self, "axis", ax)
+        object.__setattr__(self, "center", ce)
+
+    @property
+    def order(self) -> int:
+        """Number of group elements (replicas of a basic curve, itself included)."""
+        return self.fold * (2 if self.mirror else 1)
+
+    def matrices(self) -> Array:
+        """Linear parts about :attr:`center`, shape (order, 2, 2).
+
+        Ordered r0, r0m, r1, r1m, ... (``m`` = mirror applied before the rotation)
+        when mirrored, else r0, r1, ...
+        """
+        k = np.arange(self.fold)
+        a = 2.0 * np.pi * k / self.fold
+        c, s = np.cos(a), np.sin(a)
+        rot = np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
+        if not self.mirror:
+            return rot
+        d = np.asarray(self.axis) / math.hypot(*self.axis)
+        q = 2.0 * np.outer(d, d) - np.eye(2)
+        out = np.empty((2 * self.fold, 2, 2))
+        out[0::2] = rot
+        out[1::2] = rot @ q
+        return out
+
+    def labels(self) -> list[str]:
+        """Replica labels in the order of :meth:`matrices`: ``r0``, ``r0m``, ``r1``, ..."""
+        if self.mirror:
+            return [f"r{k}{m}" for k in range(self.fold) for m in ("", "m")]
+        return [f"r{k}" for k in range(self.fold)]
+
+    def apply(self, points: ArrayLike) -> Array:
+        """All images of ``points`` (..., 2) -> (order, ..., 2)."""
+        p = np.asarray(points, dtype=float)
+        c = np.asarray(self.center)
+        return np.einsum("kij,...j->k...i", self.matrices(), p - c) + c
+
+
+@dataclass(frozen=True)
+class BasicCurve:
+    """One basic curve of a drawing (paper sec. 4.2) with its heights.
+
+    Attributes
+    ----------
+    vertices : tuple of (x, y)
+        m >= 2 top-view vertices (drawing units).
+    segments : tuple of Segment
+        m - 1 segments joining consecutive vertices.
+    marks : tuple of Mark
+        One per vertex.
+    symmetry : Symmetry
+    layer : int
+        Layer index (>= 0).
+    height : float or None
+        Absolute height of the apex vertices; ``None``: the drawing's default.
+    prc : tuple of (float or None)
+        Per segment: the point of reverse curvature of an ogee segment as a
+        fraction in (0, 1) of its top-view arc length, measured from its ground
+        end; ``None`` means automatic (Algorithm 1). Ignored for other kinds.
+    decoration : bool
+        Split the lower side-view arc of the ogee into two arcs of equal radius.
+    decoration_at : float or None
+        Where the two decoration arcs meet, as a fraction of the ogee's top-view
+        arc length from its bottom (below the PRC); ``None``: half way to the PRC.
+    post_top : float or None
+        Absolute height of a vertical post rising from the apex.
+    name : str
+        Optional label.
+    """
+
+    vertices: tuple[tuple[float, float], ...]
+    segments: tuple[Segment, ...]
+    marks: tuple[str, ...]
+    symmetry: Symmetry = field(default_factory=Symmetry)
+    layer: int = 0
+    height: float | None = None
+    prc: tuple[float | None, ...] = ()
+    decoration: bool = False
+    decoration_at: float | None = None
+    post_top: float | None = None
+    name: str = ""
+
+    def __post_init__(self) -> None:
+        vs = tuple((float(v[0]), float(v[1])) for v in self.vertices)
+        if len(vs) < 2:
+            raise DrawingError(f"a basic curve needs at least 2 points, got {len(vs)}")
+        if not all(math.isfinite(c) for v in vs for c in v):
+            raise DrawingError("curve points must be finite numbers")
+        object.__setattr__(self, "vertices", vs)
+        segs = tuple(self.segments)
+        if len(segs) != len(vs) - 1:
+            raise DrawingError(f"{len(vs)} points need {len(vs) - 1} segments, got {len(segs)}")
+        object.__setattr__(self, "segments", segs)
+        if len(self.marks) != len(vs):
+            raise DrawingError(f"{len(vs)} points need {len(vs)} marks, got {len(self.marks)}")
+        for mk in self.marks:
+            if mk not in MARKS:
+                raise DrawingError(f"unknown point mark {mk!r}; expected one of {MARKS}")
+        object.__setattr__(self, "marks", tuple(self.marks))
+        prc = tuple(self.prc) if self.prc else (None,) * len(segs)
+        if len(prc) != len(segs):
+            raise DrawingError(f"need one PRC entry per segment ({len(segs)}), got {len(prc)}")
+        for f in prc:
+            if f is not None and not (0.0 < float(f) < 1.0):
+                raise DrawingError(f"PRC fraction must lie strictly between 0 and 1, got {f}")
+        object.__setattr__(self, "prc", tuple(None if f is None else float(f) for f in prc))
+        if self.decoration_at is not None and not 0.0 < float(self.decoration_at) < 1.0:
+            raise DrawingError(f"decoration point must lie strictly inside the curve, got {self.decoration_at}")
+        if isinstance(self.layer, bool) or int(self.layer) != self.layer or self.layer < 0:
+            raise DrawingError(f"layer must be an integer >= 0, got {self.layer!r}")
+        object.__setattr__(self, "layer", int(self.layer))
+        for nm in ("height", "post_top"):
+            v = getattr(self, nm)
+            if v is not None:
+                if not math.isfinite(float(v)):
+                    raise DrawingError(f"{nm} must be finite, got {v}")
+                object.__setattr__(self, nm, float(v))
+        for i in range(len(vs) - 1):
+            if math.hypot(vs[i + 1][0] - vs[i][0], vs[i + 1][1] - vs[i][1]) <= 1e-12:
+                raise DrawingError(f"points {i} and {i + 1} coincide: zero-length segment")
+        for i, (a, b) in enumerate(zip(self.marks[:-1], self.marks[1:])):
+            if {a, b} == {"ground", "free"}:
+                raise DrawingError(f"segment {i} joins a ground point to a free end; "
+                                   "a free end must follow an apex")
+
+    # -- derived -----------------------------------------------------------------------
+    def segment_kind(self, i: int) -> Literal["ogee", "free_end", "level"]:
+        """What segment ``i`` is, from the marks of its end vertices."""
+        a, b = self.marks[i], self.marks[i + 1]
+        if {a, b} == {"ground", "apex"}:
+            return "ogee"
+        if {a, b} == {"apex", "free"}:
+            return "free_end"
+        return "level"
+
+    def top_curve(self, i: int) -> Curve:
+        """Top-view curve of segment ``i`` from vertex i to vertex i + 1."""
+        try:
+            return self.segments[i].curve(self.vertices[i], self.vertices[i + 1])
+        except GeometryError as e:
+            raise DrawingError(f"segment {i}: {e}") from None
+
+    def with_(self, **changes: object) -> "BasicCurve":
+        """A copy with some fields replaced (validated again)."""
+        return replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class Drawing:
+    """A top-view drawing: basic curves, layers and heights (paper sec. 4.2-4.3).
+
+    Attributes
+    ----------
+    curves : tuple of BasicCurve
+    layer_bottoms : tuple of float
+        Absolute bottom height of every layer 0..L-1 (L = max layer + 1). Empty:
+        derived (bottom(0) = 0, bottom(l) = highest apex of layer l - 1).
+    name : str
+        Drawing name (file stem).
+    default_apex : float or None
+        Apex height of curves that store none; ``None``: the bottom of the next
+        layer, or bottom + 1 for the top layer.
+    """
+
+    curves: tuple[BasicCurve, ...]
+    layer_bottoms: tuple[float, ...] = ()
+    name: str = ""
+    default_apex: float | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "curves", tuple(self.curves))
+        lb = tuple(float(z) for z in self.layer_bottoms)
+        if not all(math.isfinite(z) for z in lb):
+            raise DrawingError("layer bottoms must be finite numbers")
+        object.__setattr__(self, "layer_bottoms", lb)
+
+    @property
+    def n_layers(self) -> int:
+        """Number of layers: max layer index + 1."""
+        return max((c.layer for c in self.curves), default=0) + 1
+
+    def bottoms(self) -> tuple[float, ...]:
+        """Bottom height of every layer, derived where not stored."""
+        n = max((c.layer for c in self.curves), default=0) + 1
+        if len(self.layer_bottoms) >= n:
+            return self.layer_bottoms[:n]
+        out = list(self.layer_bottoms)
+        while len(out) < n:
+            lower = len(out) - 1
+            if lower < 0:
+                out.append(0.0)
+                continue
+            hs = [c.height for c in self.curves if c.layer == lower and c.height is not None]
+            out.append(max(hs) if hs else out[-1] + 1.0)
+        return tuple(out)
+
+    def apex_height(self, i: int, bottoms: Sequence[float] | None = None) -> float:
+        """Absolute apex height of curve ``i`` (stored or default)."""
+        c = self.curves[i]
+        if c.height is not None:
+            return c.height
+        if self.default_apex is not None:
+            return self.default_apex
+        b = self.bottoms() if bottoms is None else bottoms
+        if c.layer + 1 < len(b):
+            return b[c.layer + 1]
+        return b[c.layer] + 1.0
+
+    def with_curve(self, i: int, curve: BasicCurve) -> "Drawing":
+        """A copy with curve ``i`` replaced."""
+        cs = list(self.curves)
+        cs[i] = curve
+        return replace(self, curves=tuple(cs))

@@ -1,0 +1,442 @@
+"""From a drawing to the 3D curve network (paper sec. 4.3-4.4, Eq. (1)).
+
+:func:`build` turns every segment of every basic curve into a 3D piece,
+``(x(u), y(u), h(g^{-1}(p(u))))``: the top view is kept exactly and the height
+comes from the segment's side view (an ogee biarc, a mirrored ogee for a free
+end, a constant for a level segment). Replicas are the images of the basic
+pieces under their curve's symmetry group; they are stored as 2x2 transforms,
+and their points are computed on demand in one vectorised product.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Iterator, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from auszug.errors import DrawingError
+from auszug.geometry import TOL, Curve
+from auszug.microarch import sideview as sv
+from auszug.microarch.model import BasicCurve, Drawing
+
+__all__ = ["Parameterization", "Piece", "NetworkCurve", "Network", "build"]
+
+Array = NDArray[np.float64]
+Parameterization = Literal["arclength", "u", "orthographic"]
+PARAMETERIZATIONS = ("arclength", "u", "orthographic")
+
+
+@dataclass(frozen=True, eq=False)
+class Piece:
+    """One 3D piece of a basic curve (before replication).
+
+    Attributes
+    ----------
+    basic : int
+        Index of the basic curve in the drawing.
+    segment : int
+        Index of the segment in the basic curve (-1 for posts and pillars).
+    kind : {"ogee", "free_end", "level", "decoration", "post", "pillar"}
+    top : Curve or None
+        Top view, oriented from the piece's start (its bottom for an ogee, the
+        apex for a free end). ``None`` for vertical posts and pillars.
+    side : SideView or None
+        Height over the side-view coordinate g (``None``: constant or vertical).
+    g_of_t : callable
+        Maps the top curve's parameter t to g.
+    points : (n, 3) ndarray
+        Samples from start to end (z = height).
+    prc : (3,) ndarray or None
+        The point of reverse curvature (ogee pieces).
+    prc_fraction : float or None
+        PRC as a fraction of the top-view arc length from the start.
+    decoration_point : tuple or None
+        ``(u, z)`` where the two equal-radius decoration arcs meet.
+    part_of : int or None
+        For a decoration piece: index (in :attr:`Network.pieces`) of the ogee
+        piece that contains it.
+    """
+
+    basic: int
+    segment: int
+    kind: str
+    top: Curve | None
+    side: sv.SideView | None
+    g_scale: tuple[str, float, float, float]
+    points: Array
+    prc: Array | None = None
+    prc_fraction: float | None = None
+    decoration_point: tuple[float, float] | None = None
+    part_of: int | None = None
+    z_const: float = 0.0
+
+    def g_of_t(self, t: ArrayLike) -> Array:
+        """Side-view coordinate g at top-view parameter(s) t."""
+        mode, a, b, c = self.g_scale
+        t = np.asarray(t, dtype=float)
+        if mode == "arclength":
+            return self.top.u_at_t(t) * a  # type: ignore[union-attr]
+        if mode == "u":
+            return t
+        p = self.top.point(t)  # type: ignore[union-attr]
+        return c * ((p[..., 0]) * a + (p[..., 1]) * b) - c * self._g0
+
+    @property
+    def _g0(self) -> float:
+        mode, a, b, c = self.g_scale
+        p = self.top.start  # type: ignore[union-attr]
+        return float(p[0] * a + p[1] * b)
+
+    def height_at_t(self, t: ArrayLike) -> Array:
+        """Height at top-view parameter(s) t."""
+        if self.side is None:
+            return np.full(np.shape(t), self.z_const)
+        return self.side.height(self.g_of_t(t))
+
+    def point3(self, u: ArrayLike) -> Array:
+        """3D point(s) at normalised top-view arc length u, shape (..., 3)."""
+        if self.top is None:
+            u = np.asarray(u, dtype=float)
+            return self.points[0] + u[..., None] * (self.points[-1] - self.points[0])
+        t = self.top.t_at_u(u)
+        xy = self.top.point(t)
+        return np.concatenate([xy, self.height_at_t(t)[..., None]], axis=-1)
+
+
+@dataclass(frozen=True)
+class NetworkCurve:
+    """One curve of the network: a piece of a basic curve under one symmetry element."""
+
+    id: str
+    basic: int
+    layer: int
+    kind: str
+    rotation: int
+    mirrored: bool
+    transform: Array
+    points: Array
+    prc: Array | None
+    piece: int
+    segment: int
+
+
+@dataclass(frozen=True, eq=False)
+class Network:
+    """The 3D curve network of a drawing.
+
+    Attributes
+    ----------
+    drawing : Drawing
+    pieces : list of Piece
+        Basic pieces, ordered by basic curve, then segment; posts and pillars last per curve.
+    bottoms : tuple of float
+        Layer bottom heights.
+    apex_heights : tuple of float
+        Per basic curve.
+    parameterization : str
+    prc_choices : dict
+        ``(curve, segment) -> PrcChoice`` for PRCs chosen by Algorithm 1.
+    """
+
+    drawing: Drawing
+    pieces: list[Piece]
+    bottoms: tuple[float, ...]
+    apex_heights: tuple[float, ...]
+    parameterization: str = "arclength"
+    prc_choices: dict = field(default_factory=dict)
+
+    def group(self, basic: int) -> tuple[Array, list[str]]:
+        """Replica transforms (k, 2, 2) and labels of basic curve ``basic``."""
+        s = self.drawing.curves[basic].symmetry
+        return s.matrices(), s.labels()
+
+    def ogee_of(self, basic: int) -> Piece:
+        """The first ogee piece of basic curve ``basic``."""
+        for p in self.pieces:
+            if p.basic == basic and p.kind == "ogee":
+                return p
+        raise DrawingError(f"curve {basic} has no ogee segment")
+
+    def replicate(self, piece: Piece) -> Array:
+        """All replicas of a piece's points: (k, n, 3)."""
+        sym = self.drawing.curves[piece.basic].symmetry
+        m = sym.matrices()
+        c = np.asarray(sym.center)
+        xy = np.einsum("kij,nj->kni", m, piece.points[:, :2] - c) + c
+        z = np.broadcast_to(piece.points[:, 2], xy.shape[:2])[..., None]
+        return np.concatenate([xy, z], axis=-1)
+
+    def curves(self) -> Iterator[NetworkCurve]:
+        """Every curve of the network (all pieces under all symmetry elements)."""
+        first_ogee: dict[int, int] = {}
+        for pi, p in enumerate(self.pieces):
+            if p.kind == "ogee" and p.basic not in first_ogee:
+                first_ogee[p.basic] = pi
+        for pi, p in enumerate(self.pieces):
+            sym = self.drawing.curves[p.basic].symmetry
+            mats = sym.matrices()
+            labels = sym.labels()
+            c = np.asarray(sym.center)
+            pts = self.replicate(p)
+            prc = None
+            if p.prc is not None:
+                prc_xy = np.einsum("kij,j->ki", mats, p.prc[:2] - c) + c
+            for k, lab in enumerate(labels):
+                suffix = "" if first_ogee.get(p.basic) == pi else f".{p.kind}{p.segment if p.segment >= 0 else ''}"
+                if p.prc is not None:
+                    prc = np.array([prc_xy[k, 0], prc_xy[k, 1], p.prc[2]])
+                yield NetworkCurve(
+                    id=f"{p.basic}/{lab}{suffix}",
+                    basic=p.basic,
+                    layer=self.drawing.curves[p.basic].layer,
+                    kind=p.kind,
+                    rotation=k // 2 if sym.mirror else k,
+                    mirrored=bool(sym.mirror and k % 2 == 1),
+                    transform=mats[k],
+                    points=pts[k],
+                    prc=prc,
+                    piece=pi,
+                    segment=p.segment,
+                )
+
+    def bounds(self) -> Array:
+        """Axis-aligned bounds of all curves, shape (2, 3): min and max corner."""
+        allp = np.concatenate([self.replicate(p).reshape(-1, 3) for p in self.pieces])
+        return np.stack([allp.min(0), allp.max(0)])
+
+
+def _g_setup(top: Curve, mode: str, theta: float) -> tuple[tuple[str, float, float, float], float]:
+    """Side-view coordinate rule for a top curve: (mode, a, b, sign) and the extent G."""
+    if mode == "arclength":
+        L = top.length()
+        return ("arclength", L, 0.0, 1.0), L
+    if mode == "u":
+        return ("u", 1.0, 0.0, 1.0), 1.0
+    a, b = math.cos(theta), math.sin(theta)
+    t = np.linspace(0.0, 1.0, 129)
+    p = top.point(t)
+    g = p[:, 0] * a + p[:, 1] * b
+    d = np.diff(g)
+    sign = 1.0 if g[-1] >= g[0] else -1.0
+    if np.any(d * sign <= 0.0):
+        raise DrawingError(
+            f"the orthographic side view at angle {math.degrees(theta):g} deg is not one-to-one "
+            "on this curve; use the arc-length parameterisation")
+    return ("orthographic", a, b, sign), abs(float(g[-1] - g[0]))
+
+
+def _t_of_g(piece: Piece, g: float) -> float:
+    """Inverse of the side-view coordinate map on the piece's top curve."""
+    from scipy.optimize import brentq
+
+    g0 = float(piece.g_of_t(0.0))
+    g1 = float(piece.g_of_t(1.0))
+    if g <= g0:
+        return 0.0
+    if g >= g1:
+        return 1.0
+    return float(brentq(lambda t: float(piece.g_of_t(t)) - g, 0.0, 1.0, xtol=1e-15))
+
+
+def _sample_piece(top: Curve, side: sv.SideView | None, gs: tuple, n: int, z_const: float = 0.0) -> Array:
+    u = np.linspace(0.0, 1.0, n)
+    t = top.t_at_u(u)
+    xy = top.point(t)
+    if side is None:
+        z = np.full(n, z_const)
+    else:
+        tmp = Piece(0, 0, "", top, side, gs, np.empty((0, 3)))
+        z = side.height(tmp.g_of_t(t))
+    return np.concatenate([xy, z[:, None]], axis=1)
+
+
+def build(
+    drawing: Drawing,
+    parameterization: Parameterization = "arclength",
+    theta: float = 0.0,
+    samples: int | None = None,
+) -> Network:
+    """Reconstruct the 3D curve network of ``drawing``.
+
+    Parameters
+    ----------
+    drawing : Drawing
+    parameterization : {"arclength", "u", "orthographic"}
+        The choice of p(u) in Eq. (1): top-view arc length (default, view
+        independent), the top curve's own parameter, or the orthographic
+        projection onto the vertical plane at angle ``theta`` to the x-axis.
+    theta : float
+        Angle (radians) for the orthographic choice.
+    samples : int, optional
+        Samples per piece (default ``TOL.samples``, at least 2).
+
+    Returns
+    -------
+    Network
+
+    Raises
+    ------
+    DrawingError
+        For invalid heights (an apex at or below its bottom, a post below its
+        apex), a PRC outside its curve, or a parameterisation that is not
+        one-to-one.
+    """
+    if parameterization not in PARAMETERIZATIONS:
+        raise DrawingError(f"parameterization must be one of {PARAMETERIZATIONS}, got {parameterization!r}")
+    n = int(samples or TOL.samples)
+    if n < 2:
+        raise DrawingError(f"need at least 2 samples per piece, got {n}")
+    bottoms = drawing.bottoms()
+    apex = tuple(drawing.apex_height(i, bottoms) for i in range(len(drawing.curves)))
+    pieces: list[Piece] = []
+    choices: dict = {}
+    auto: dict[tuple[int, int], float] = {}
+    if any(
+        c.prc[si] is None and c.segment_kind(si) == "ogee"
+        for c in drawing.curves
+        for si in range(len(c.segments))
+    ):
+        from auszug.microarch.prc import algorithm1
+
+        for key, ch in algorithm1(drawing).items():
+            choices[key] = ch
+            auto[key] = ch.fraction
+    for ci, c in enumerate(drawing.curves):
+        pieces.extend(_build_curve(drawing, ci, c, bottoms, apex[ci], auto, parameterization, theta, n))
+    net = Network(drawing, pieces, bottoms, apex, parameterization, choices)
+    _add_pillars(net, n)
+    return net
+
+
+def _heights(c: BasicCurve, bottom: float, apex: float, where: str) -> list[float]:
+    if not apex > bottom:
+        raise DrawingError(f"apex height {apex:g} is not above its layer bottom {bottom:g}", where)
+    return [bottom if m == "ground" else apex for m in c.marks]
+
+
+def _build_curve(
+    drawing: Drawing,
+    ci: int,
+    c: BasicCurve,
+    bottoms: tuple[float, ...],
+    apex: float,
+    auto: dict[tuple[int, int], float],
+    mode: str,
+    theta: float,
+    n: int,
+) -> list[Piece]:
+    where = f"curve {ci}"
+    bottom = bottoms[c.layer]
+    zs = _heights(c, bottom, apex, where)
+    out: list[Piece] = []
+    ogee_sides: dict[int, sv.SideView] = {}
+    kinds = [c.segment_kind(i) for i in range(len(c.segments))]
+    order = [i for i in range(len(kinds)) if kinds[i] == "ogee"] + [
+        i for i in range(len(kinds)) if kinds[i] != "ogee"
+    ]
+    built: dict[int, list[Piece]] = {}
+    for si in order:
+        kind = kinds[si]
+        top = c.top_curve(si)
+        try:
+            if kind == "ogee":
+                flip = c.marks[si] == "apex"
+                if flip:
+                    top = top.reversed()
+                gs, G = _g_setup(top, mode, theta)
+                f = c.prc[si] if c.prc[si] is not None else auto[(ci, si)]
+                t_c = float(top.t_at_u(f))
+                tmp = Piece(ci, si, kind, top, None, gs, np.empty((0, 3)))
+                g_c = float(tmp.g_of_t(t_c))
+                side = sv.ogee(G, bottom, apex, g_c)
+                deco = None
+                pieces_here = []
+                if c.decoration:
+                    f_d = c.decoration_at if c.decoration_at is not None else f / 2.0
+                    g_d = float(tmp.g_of_t(float(top.t_at_u(f_d))))
+                    side, (g_d, z_d) = sv.decorated(side, g_d)
+                    deco = (float(top.u_at_t(_t_of_g(tmp, g_d))), z_d)
+                ogee_sides[si] = side
+                prc = np.array([*top.point(t_c), float(side.height(g_c))])
+                pts = _sample_piece(top, side, gs, n)
+                pc = Piece(ci, si, "ogee", top, side, gs, pts, prc, float(f), deco)
+                pieces_here.append(pc)
+                if deco is not None:
+                    # the decoration: the two equal arcs below the PRC (also part of the ogee)
+                    dpts = pc.point3(np.linspace(0.0, 1.0, n) * f)
+                    pieces_here.append(Piece(ci, si, "decoration", top, side, gs, dpts, None, None, deco))
+                built[si] = pieces_here
+            elif kind == "free_end":
+                flip = c.marks[si] == "free"
+                if flip:
+                    top = top.reversed()
+                apex_vertex = si + 1 if flip else si
+                # the ogee that ends at this apex
+                nb = [j for j in (apex_vertex - 1, apex_vertex) if 0 <= j < len(kinds) and kinds[j] == "ogee"]
+                if not nb:
+                    raise DrawingError(f"segment {si} is a free end that follows no ogee")
+                side = sv.free_end(ogee_sides[nb[0]])
+                gs, G = _g_setup(top, mode, theta)
+                if G > side.extent * (1.0 + 1e-12):
+                    raise DrawingError(
+                        f"the free end (side-view extent {G:g}) is longer than the diameter "
+                        f"{side.extent:g} of the ogee's upper arc it continues")
+                pts = _sample_piece(top, side, gs, n)
+                built[si] = [Piece(ci, si, "free_end", top, side, gs, pts)]
+            else:
+                z = zs[si]
+                gs, _ = _g_setup(top, "arclength", theta)
+                pts = _sample_piece(top, None, gs, n, z_const=z)
+                built[si] = [Piece(ci, si, "level", top, None, gs, pts, z_const=z)]
+        except DrawingError as e:
+            raise DrawingError(e.problem, f"{where}, segment {si}") from None
+    for si in range(len(kinds)):
+        out.extend(built[si])
+    if c.post_top is not None:
+        tops = [i for i, m in enumerate(c.marks) if m == "apex"]
+        if c.post_top <= apex:
+            raise DrawingError(f"post top {c.post_top:g} is not above the apex {apex:g}", where)
+        for vi in tops:
+            x, y = c.vertices[vi]
+            pts = np.array([[x, y, apex], [x, y, c.post_top]])
+            out.append(Piece(ci, -1, "post", None, None, ("u", 1, 0, 1), pts))
+    return out
+
+
+def _add_pillars(net: Network, n: int) -> None:
+    """Vertical pillars under the ground points of curves above layer 0.
+
+    A pillar drops from a ground point of layer l > 0 to the highest point of
+    the layer l - 1 network directly below it, or to the bottom of layer l - 1.
+    """
+    d = net.drawing
+    tol = 1e-7
+    new: list[Piece] = []
+    for ci, c in enumerate(d.curves):
+        if c.layer == 0:
+            continue
+        z_top = net.bottoms[c.layer]
+        below = [p for p in net.pieces if p.top is not None and d.curves[p.basic].layer == c.layer - 1]
+        for vi, mk in enumerate(c.marks):
+            if mk != "ground":
+                continue
+            q = np.asarray(c.vertices[vi])
+            z_bot = net.bottoms[c.layer - 1]
+            for p in below:
+                sym = d.curves[p.basic].symmetry
+                cen = np.asarray(sym.center)
+                # pre-images of q under the group: q hits a replica iff m^T (q - c) + c is on the basic piece
+                pre = np.einsum("kji,j->ki", sym.matrices(), q - cen) + cen
+                for qq in pre:
+                    t = p.top.project(qq) if hasattr(p.top, "project") else None
+                    if t is None:
+                        continue
+                    if np.hypot(*(p.top.point(t) - qq)) <= tol:
+                        z_bot = max(z_bot, float(p.height_at_t(t)))
+            if z_top - z_bot > tol:
+                pts = np.array([[q[0], q[1], z_bot], [q[0], q[1], z_top]])
+                new.append(Piece(ci, -1, "pillar", None, None, ("u", 1, 0, 1), pts))
+    net.pieces.extend(new)

@@ -34,12 +34,16 @@ class SideView:
     radii : (k,) ndarray
     upper : (k,) ndarray of float
         +1 where the arc is on the upper half of its circle, -1 on the lower.
+    vertical : (k,) ndarray
+        g of a point where each arc's circle has a vertical tangent (c_g - r or
+        c_g + r): heights are measured from there, exactly.
     """
 
     breaks: Array
     centers: Array
     radii: Array
     upper: Array
+    vertical: Array
 
     @property
     def extent(self) -> float:
@@ -47,11 +51,17 @@ class SideView:
         return float(self.breaks[-1])
 
     def height(self, g: ArrayLike) -> Array:
-        """Heights z at side-view coordinates ``g`` (clamped to [0, G]), shape preserved."""
+        """Heights z at side-view coordinates ``g`` (clamped to [0, G]), shape preserved.
+
+        Evaluated as c_z +- sqrt(d (2 r - d)), d the horizontal distance from the
+        circle's nearest vertical-tangent point, so heights at the vertical end
+        tangents are exact (no cancellation in r^2 - (g - c_g)^2).
+        """
         g = np.clip(np.asarray(g, dtype=float), 0.0, self.breaks[-1])
         i = np.clip(np.searchsorted(self.breaks, g, side="right") - 1, 0, len(self.radii) - 1)
-        dg = g - self.centers[i, 0]
-        return self.centers[i, 1] + self.upper[i] * np.sqrt(np.maximum(self.radii[i] ** 2 - dg * dg, 0.0))
+        r = self.radii[i]
+        d = np.abs(g - self.vertical[i])
+        return self.centers[i, 1] + self.upper[i] * np.sqrt(np.maximum(d * (2.0 * r - d), 0.0))
 
 
 def _arc_radius(dg: float, dz: float) -> float:
@@ -99,6 +109,7 @@ def ogee(extent: float, z0: float, z1: float, g_prc: float) -> SideView:
         centers=np.array([[ra, z0], [extent - rb, z1]]),
         radii=np.array([ra, rb]),
         upper=np.array([1.0, -1.0]),
+        vertical=np.array([0.0, extent]),
     )
 
 
@@ -190,6 +201,7 @@ def decorated(base: SideView, g_split: float) -> tuple[SideView, tuple[float, fl
         centers=np.array([o1, o2, base.centers[1]]),
         radii=np.array([r, r, base.radii[1]]),
         upper=np.array([1.0, 1.0, -1.0]),
+        vertical=np.array([0.0, o2[0] - r, base.vertical[1]]),
     )
     return sv, (float(d[0]), float(d[1]))
 
@@ -209,4 +221,5 @@ def free_end(base: SideView) -> SideView:
         centers=np.array([[rb, z1]]),
         radii=np.array([rb]),
         upper=np.array([-1.0]),
+        vertical=np.array([0.0]),
     )

@@ -1,0 +1,206 @@
+"""Top-view intersections and the point of reverse curvature (paper sec. 4.3.1, Algorithm 1).
+
+An intersection between a basic curve and one of its own replicas is *true*
+(the two 3D curves meet) exactly when both curves pass it at the same
+parameter, t = t', because replicas share the height function; intersections
+between different basic curves can always be made true (independent heights).
+
+:func:`algorithm1` follows the paper's Algorithm 1 for every ogee segment:
+the true intersection with the segment's own replicas closest to its midpoint;
+else the intersection with the other basic curves (and their replicas) closest
+to the midpoint; else the midpoint. "Closest" is measured in normalised arc
+length. Intersections at the segment's own end points are not candidates (a
+PRC must lie strictly inside the curve). The paper states the algorithm for a
+single layer; we look for other curves on the segment's own layer only, since
+curves of other layers do not meet it in 3D.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from auszug.geometry import TOL, Curve
+from auszug.geometry.intersect import intersect_many
+from auszug.microarch.model import Drawing
+
+__all__ = ["TopIntersection", "PrcChoice", "intersections", "algorithm1", "oriented_segments"]
+
+Array = NDArray[np.float64]
+Branch = Literal["own replicas", "other curves", "midpoint"]
+
+
+@dataclass(frozen=True)
+class TopIntersection:
+    """A top-view intersection of a basic segment with a replica of a segment.
+
+    Attributes
+    ----------
+    curve, segment : int
+        The basic curve and its segment.
+    other_curve, other_segment : int
+        The curve and segment whose replica is met.
+    replica : str
+        Label of that replica (``r<k>`` or ``r<k>m``).
+    u, u_other : float
+        Normalised arc length on the segment and on the replica, each measured
+        from the segment's start (its ground end for an ogee).
+    point : (2,) ndarray
+        Where they meet (drawing units).
+    same_family : bool
+        Whether the replica is one of the segment's own replicas.
+    true : bool
+        Whether the 3D curves meet there: ``u == u_other`` (within
+        ``TOL.param_equal``) for the own family, always for other curves.
+    """
+
+    curve: int
+    segment: int
+    other_curve: int
+    other_segment: int
+    replica: str
+    u: float
+    u_other: float
+    point: Array
+    same_family: bool
+    true: bool
+
+
+@dataclass(frozen=True)
+class PrcChoice:
+    """What Algorithm 1 chose for one ogee segment.
+
+    Attributes
+    ----------
+    curve, segment : int
+    fraction : float
+        The PRC as a fraction of the segment's top-view arc length from its ground end.
+    branch : {"own replicas", "other curves", "midpoint"}
+        Which branch of Algorithm 1 chose it.
+    point : (2,) ndarray
+        The PRC in the top view.
+    intersection : TopIntersection or None
+        The chosen intersection (``None`` for the midpoint).
+    """
+
+    curve: int
+    segment: int
+    fraction: float
+    branch: Branch
+    point: Array
+    intersection: TopIntersection | None
+
+
+def oriented_segments(drawing: Drawing) -> list[tuple[int, int, Curve]]:
+    """Every segment's top curve, oriented from its ground end for ogees.
+
+    Returns
+    -------
+    list of (curve index, segment index, Curve)
+    """
+    out = []
+    for ci, c in enumerate(drawing.curves):
+        for si in range(len(c.segments)):
+            top = c.top_curve(si)
+            if c.segment_kind(si) == "ogee" and c.marks[si] == "apex":
+                top = top.reversed()
+            elif c.segment_kind(si) == "free_end" and c.marks[si] == "free":
+                top = top.reversed()
+            out.append((ci, si, top))
+    return out
+
+
+def _same_curve(a: Curve, b: Curve, tol: float) -> bool:
+    """Whether two curves are the same point set (either orientation)."""
+    pa = a.point(np.array([0.0, 0.5, 1.0]))
+    pb = b.point(np.array([0.0, 0.5, 1.0]))
+    return bool(np.all(np.abs(pa - pb) <= tol) or np.all(np.abs(pa - pb[::-1]) <= tol))
+
+
+def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopIntersection]:
+    """All top-view intersections of every basic segment with every replica of every segment.
+
+    Intersections of a segment with a replica identical to itself, and with its
+    own untransformed copy, are left out. (Every other intersection of the
+    drawing is an image of one of these under a symmetry.)
+
+    Parameters
+    ----------
+    drawing : Drawing
+    layer_only : bool
+        Only replicas of curves on the same layer as the basic segment.
+
+    Returns
+    -------
+    list of TopIntersection
+    """
+    tol = TOL
+    segs = oriented_segments(drawing)
+    reps: list[tuple[int, int, str, Curve, int]] = []   # curve, segment, label, curve, group index
+    for ci, si, top in segs:
+        sym = drawing.curves[ci].symmetry
+        cen = np.asarray(sym.center)
+        for k, (m, lab) in enumerate(zip(sym.matrices(), sym.labels())):
+            reps.append((ci, si, lab, top.transformed(m, cen - m @ cen), k))
+    basics = [top for _, _, top in segs]
+    hits = intersect_many(basics, [r[3] for r in reps])
+    scale = max(1.0, float(np.max(np.abs([t.start for t in basics] + [t.end for t in basics]))))
+    out = []
+    for (i, j), found in sorted(hits.items()):
+        ci, si, top = segs[i]
+        cj, sj, lab, rep, k = reps[j]
+        same_family = ci == cj and si == sj
+        if same_family and (k == 0 or _same_curve(top, rep, 1e-9 * scale)):
+            continue
+        if layer_only and drawing.curves[ci].layer != drawing.curves[cj].layer:
+            continue
+        for h in found:
+            u = float(top.u_at_t(h.t1))
+            u2 = float(rep.u_at_t(h.t2))
+            true = (abs(u - u2) <= tol.param_equal) if same_family else True
+            out.append(TopIntersection(ci, si, cj, sj, lab, u, u2, h.point, same_family, true))
+    return out
+
+
+def algorithm1(drawing: Drawing) -> dict[tuple[int, int], PrcChoice]:
+    """Algorithm 1 of the paper for every ogee segment of ``drawing``.
+
+    Returns
+    -------
+    dict of (curve, segment) to PrcChoice
+        One entry per ogee segment (also for those whose PRC is stored: the
+        drawing's stored choice is the user's and is honoured by
+        :func:`~auszug.microarch.network.build`; this is what Algorithm 1 would
+        pick).
+
+    Examples
+    --------
+    >>> from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry
+    >>> from auszug.microarch.prc import algorithm1
+    >>> c = BasicCurve(((1.0, 0.0), (-0.5, 0.5)), (Segment("line"),), ("ground", "apex"),
+    ...                Symmetry(fold=1, mirror=True, axis=(0.0, 1.0)))
+    >>> ch = algorithm1(Drawing((c,)))[(0, 0)]
+    >>> ch.branch, round(ch.fraction, 12)   # meets its mirror image at x = 0
+    ('own replicas', 0.666666666667)
+    """
+    eps = TOL.param_equal
+    allx = intersections(drawing, layer_only=True)
+    out: dict[tuple[int, int], PrcChoice] = {}
+    segs = oriented_segments(drawing)
+    for ci, si, top in segs:
+        if drawing.curves[ci].segment_kind(si) != "ogee":
+            continue
+        mine = [x for x in allx if x.curve == ci and x.segment == si and eps < x.u < 1.0 - eps]
+        own = [x for x in mine if x.same_family and x.true]
+        other = [x for x in mine if not x.same_family]
+        for branch, cands in (("own replicas", own), ("other curves", other)):
+            if cands:
+                best = min(cands, key=lambda x: (abs(x.u - 0.5), x.u))
+                out[(ci, si)] = PrcChoice(ci, si, best.u, branch, np.asarray(best.point), best)
+                break
+        else:
+            out[(ci, si)] = PrcChoice(ci, si, 0.5, "midpoint", top.point_at(0.5), None)
+    return out

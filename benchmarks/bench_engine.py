@@ -1,0 +1,101 @@
+"""Engine speed (issue: microarchitecture engine, sec. 7). Prints a table; not a test.
+
+1. Rebuilding the whole network after one edit, in-process, per corpus drawing:
+   a top-view point drag (move the end point of curve 0 by a small step, as a
+   mouse drag does) and an apex-height drag, each followed by a full `build`.
+   Target: median <= 0.5 ms, worst <= 3 ms. The authors' demo: 1.2 ms (point)
+   and 4.2 ms (apex) per edit, 0.04 ms of it geometry.
+2. The whole corpus built into network JSON by ONE `auszug build` call, wall
+   clock, interpreter start included. Target: < 2 s.
+
+Usage: python benchmarks/bench_engine.py [--corpus DIR] [--reps N] [--markdown]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from auszug.errors import AuszugError
+from auszug.formats import load
+from auszug.microarch import build, edit
+
+HERE = Path(__file__).resolve().parent
+DEFAULT_CORPUS = HERE.parent.parent / "shared" / "corpus"
+ANCHOR = {"point drag": 1.2, "apex drag": 4.2}
+
+
+def per_edit(drawing, reps: int) -> dict[str, float]:
+    """Median time (ms) of edit + full rebuild, for two kinds of edit."""
+    c = drawing.curves[0]
+    x, y = c.vertices[-1]
+    h = drawing.apex_height(0)
+    out = {}
+    for name, make in (
+        ("point drag", lambda k: edit.move_vertex(drawing, 0, len(c.vertices) - 1, (x + 1e-3 * (k % 7), y))),
+        ("apex drag", lambda k: edit.set_apex_height(drawing, 0, h * (1.0 + 0.01 * (k % 7)))),
+    ):
+        for k in range(5):  # warm up
+            build(make(k))
+        ts = []
+        for k in range(reps):
+            t0 = time.perf_counter()
+            build(make(k))
+            ts.append(time.perf_counter() - t0)
+        out[name] = statistics.median(ts) * 1e3
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--corpus", type=Path, default=DEFAULT_CORPUS)
+    ap.add_argument("--reps", type=int, default=60)
+    ap.add_argument("--markdown", action="store_true", help="print RESULTS.md-ready markdown")
+    a = ap.parse_args(argv)
+    files = sorted(a.corpus.rglob("*.uc"))
+    rows = []
+    for f in files:
+        try:
+            d = load(f)
+            r = per_edit(d, a.reps)
+        except AuszugError as e:
+            print(f"skip {f}: {e}", file=sys.stderr)
+            continue
+        rows.append((str(f.relative_to(a.corpus)), r))
+    print(f"# machine: {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
+          f"{platform.platform()}; {time.strftime('%Y-%m-%d')}")
+    print(f"# {len(rows)} drawings, median of {a.reps} repetitions each\n")
+    print("| edit + full rebuild | median of drawings (ms) | worst drawing (ms) | target | authors' demo (ms) |")
+    print("|---|---|---|---|---|")
+    for name in ("point drag", "apex drag"):
+        v = [r[name] for _, r in rows]
+        worst = max(rows, key=lambda x: x[1][name])
+        print(f"| {name} | {statistics.median(v):.3f} | {max(v):.3f} ({worst[0]}) | median <= 0.5, worst <= 3 | "
+              f"{ANCHOR[name]} |")
+    exe = Path(sys.executable).with_name("auszug")
+    with tempfile.TemporaryDirectory() as tmp:
+        walls = []
+        for _ in range(3):
+            t0 = time.perf_counter()
+            p = subprocess.run([str(exe), "build", str(a.corpus), "-o", tmp], capture_output=True, text=True)
+            walls.append(time.perf_counter() - t0)
+            if p.returncode != 0:
+                print(p.stderr, file=sys.stderr)
+                return 1
+        n_out = len(list(Path(tmp).rglob("*.network.json")))
+    print(f"\n| whole corpus, one `auszug build` call | {n_out} files | best of 3: {min(walls):.2f} s "
+          f"(all: {', '.join(f'{w:.2f}' for w in walls)}) | target < 2 s |")
+    if a.markdown:
+        print("\nper drawing (ms): " + "; ".join(f"{n}: {r['point drag']:.2f}/{r['apex drag']:.2f}" for n, r in rows))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -184,7 +184,13 @@ class Network:
             prc = None
             if p.prc is not None:
                 prc_xy = np.einsum("kij,j->ki", mats, p.prc[:2] - c) + c
+            seen: list[Array] = []
             for k, lab in enumerate(labels):
+                if p.top is None:
+                    # a post or pillar on a mirror axis is its own mirror image: list it once
+                    if any(np.array_equal(pts[k], q) or np.allclose(pts[k], q, rtol=0, atol=1e-12) for q in seen):
+                        continue
+                    seen.append(pts[k])
                 suffix = "" if first_ogee.get(p.basic) == pi else f".{p.kind}{p.segment if p.segment >= 0 else ''}"
                 if p.prc is not None:
                     prc = np.array([prc_xy[k, 0], prc_xy[k, 1], p.prc[2]])
@@ -406,37 +412,44 @@ def _build_curve(
     return out
 
 
+PILLAR_SNAP = 0.01
+
+
 def _add_pillars(net: Network, n: int) -> None:
     """Vertical pillars under the ground points of curves above layer 0.
 
-    A pillar drops from a ground point of layer l > 0 to the highest point of
-    the layer l - 1 network directly below it, or to the bottom of layer l - 1.
+    A pillar drops from a ground point of layer l > 0 to the highest curve of
+    the layers below that passes under it, or else to the bottom of layer 0.
+    Ground points of traced drawings sit on lower curves only approximately, so
+    a curve passing within ``PILLAR_SNAP`` of the drawing's size counts (its
+    height at the nearest point is taken), as in the authors' demo.
     """
     d = net.drawing
-    tol = 1e-7
+    pts_all = np.array([v for c in d.curves for v in c.vertices])
+    size = max(1e-12, float(np.abs(pts_all).max()))
+    tol = PILLAR_SNAP * size
     new: list[Piece] = []
     for ci, c in enumerate(d.curves):
         if c.layer == 0:
             continue
         z_top = net.bottoms[c.layer]
-        below = [p for p in net.pieces if p.top is not None and d.curves[p.basic].layer == c.layer - 1]
+        below = [p for p in net.pieces if p.top is not None and d.curves[p.basic].layer < c.layer]
         for vi, mk in enumerate(c.marks):
             if mk != "ground":
                 continue
             q = np.asarray(c.vertices[vi])
-            z_bot = net.bottoms[c.layer - 1]
+            z_bot = net.bottoms[0]
             for p in below:
                 sym = d.curves[p.basic].symmetry
                 cen = np.asarray(sym.center)
-                # pre-images of q under the group: q hits a replica iff m^T (q - c) + c is on the basic piece
-                pre = np.einsum("kji,j->ki", sym.matrices(), q - cen) + cen
-                for qq in pre:
-                    t = p.top.project(qq) if hasattr(p.top, "project") else None
-                    if t is None:
-                        continue
+                # q lies on a replica iff its pre-image m^T (q - c) + c lies on the basic piece
+                for qq in np.einsum("kji,j->ki", sym.matrices(), q - cen) + cen:
+                    t = p.top.project(qq)
                     if np.hypot(*(p.top.point(t) - qq)) <= tol:
-                        z_bot = max(z_bot, float(p.height_at_t(t)))
-            if z_top - z_bot > tol:
+                        z = float(p.height_at_t(t))
+                        if z <= z_top + tol:
+                            z_bot = max(z_bot, z)
+            if z_top - z_bot > 1e-9 * size:
                 pts = np.array([[q[0], q[1], z_bot], [q[0], q[1], z_top]])
                 new.append(Piece(ci, -1, "pillar", None, None, ("u", 1, 0, 1), pts))
     net.pieces.extend(new)

@@ -1,6 +1,10 @@
 """File formats: one module per format, registered by extension; :func:`load` / :func:`save` dispatch."""
 
 from auszug.formats import uc as _uc  # noqa: F401  (registers .uc)
+from auszug.formats import network_json as _network_json  # noqa: F401  (registers .network.json)
+from auszug.formats import obj as _obj  # noqa: F401  (registers .obj polylines)
+from auszug.formats import svg as _svg  # noqa: F401  (registers .svg top/side views)
+from auszug.formats import figure as _figure  # noqa: F401  (registers .png/.pdf/.svg figures)
 from auszug.formats._registry import FileFormat, atomic_write, format_for, formats, load, register, save
 
 __all__ = ["FileFormat", "atomic_write", "format_for", "formats", "load", "register", "save"]

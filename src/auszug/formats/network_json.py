@@ -1,0 +1,303 @@
+"""Network JSON (``.network.json``): the 3D curve network as sampled polylines.
+
+The document is the exchange format of ``auszug build``; its required keys are
+fixed (more may be added, never removed)::
+
+    {"format": "auszug.network", "version": 1, "source": "<drawing file name>", "up": "z",
+     "layers": [{"index": 0, "bottom": 0.0}, ...],
+     "curves": [{"id": "0/r1m", "basic": 0, "layer": 0, "kind": "ogee", "rotation": 1,
+                 "mirrored": true, "transform": [[a, b], [c, d]],
+                 "points": [[x, y, z], ...], "prc": [x, y, z] or null}, ...]}
+
+``points`` run from the curve's start (the ground end of an ogee) to its end
+(the apex); z is the height. ``transform`` is the 2x2 linear part of the
+symmetry element about the basic curve's symmetry centre (``center``, the
+origin in every corpus drawing) that maps the basic curve's top view
+(``r0``) onto this replica: ``xy = transform @ (xy0 - center) + center``.
+
+Extra keys: top level ``parameterization``, ``samples``, ``basic_curves``
+(symmetry, heights per basic curve) and ``prc_choices`` (which branch of
+Algorithm 1 chose an automatic PRC); per curve ``segment``, ``piece`` and
+``center``.
+
+Floats are written with Python's shortest round-trip representation, so a
+read gives back exactly the numbers that were written.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from auszug.errors import FormatError
+from auszug.formats._registry import FileFormat, register
+
+if TYPE_CHECKING:
+    from auszug.microarch.network import Network
+
+__all__ = ["NetworkFile", "FORMAT", "VERSION", "KINDS", "to_dict", "dumps", "loads", "unpack"]
+
+FORMAT = "auszug.network"
+VERSION = 1
+KINDS = ("ogee", "free_end", "decoration", "post", "pillar", "level")
+
+
+@dataclass(frozen=True)
+class NetworkFile:
+    """What a network file holds: a network and the name of the drawing it was built from.
+
+    The network writers (JSON, OBJ, SVG, figures) accept either this or a bare
+    :class:`~auszug.microarch.network.Network` (whose drawing name then stands
+    in for the source).
+
+    Attributes
+    ----------
+    network : Network
+    source : str
+        File name of the drawing (``"tn-1.uc"``).
+    """
+
+    network: "Network"
+    source: str = ""
+
+
+def unpack(obj: Any) -> tuple["Network", str]:
+    """``(network, source)`` of a :class:`NetworkFile` or a bare network."""
+    from auszug.microarch.network import Network
+
+    if isinstance(obj, NetworkFile):
+        net, source = obj.network, obj.source
+    else:
+        net, source = obj, ""
+    if not isinstance(net, Network):
+        raise TypeError(f"expected a Network or NetworkFile, got {type(obj).__name__}")
+    return net, source or net.drawing.name
+
+
+def _plain(v: Any) -> Any:
+    """JSON-ready copy of dataclasses, numpy values, tuples and dicts."""
+    if dataclasses.is_dataclass(v) and not isinstance(v, type):
+        return {f.name: _plain(getattr(v, f.name)) for f in dataclasses.fields(v)}
+    if isinstance(v, np.ndarray):
+        return v.tolist()
+    if isinstance(v, np.generic):
+        return v.item()
+    if isinstance(v, dict):
+        return {str(k): _plain(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_plain(x) for x in v]
+    return v
+
+
+def to_dict(network: "Network", source: str = "") -> dict[str, Any]:
+    """The network JSON document of ``network`` as plain Python data.
+
+    Parameters
+    ----------
+    network : Network
+    source : str
+        File name of the drawing it was built from (default: the drawing's name).
+
+    Returns
+    -------
+    dict
+        See the module docstring for the keys.
+
+    Raises
+    ------
+    FormatError
+        If a coordinate is not finite (JSON has no NaN).
+    """
+    d = network.drawing
+    curves = []
+    for c in network.curves():
+        if not np.all(np.isfinite(c.points)):
+            raise FormatError(f"curve {c.id} has non-finite coordinates; cannot write JSON", source)
+        curves.append({
+            "id": c.id,
+            "basic": int(c.basic),
+            "layer": int(c.layer),
+            "kind": c.kind,
+            "rotation": int(c.rotation),
+            "mirrored": bool(c.mirrored),
+            "transform": np.asarray(c.transform, dtype=float).tolist(),
+            "points": np.asarray(c.points, dtype=float).tolist(),
+            "prc": None if c.prc is None else np.asarray(c.prc, dtype=float).tolist(),
+            "segment": int(c.segment),
+            "piece": int(c.piece),
+            "center": list(d.curves[c.basic].symmetry.center),
+        })
+    basics = []
+    for i, b in enumerate(d.curves):
+        s = b.symmetry
+        basics.append({
+            "index": i,
+            "layer": b.layer,
+            "fold": s.fold,
+            "mirror": s.mirror,
+            "axis": list(s.axis) if s.mirror else None,
+            "center": list(s.center),
+            "vertices": [list(v) for v in b.vertices],
+            "marks": list(b.marks),
+            "apex": float(network.apex_heights[i]),
+            "post_top": b.post_top,
+            "decoration": b.decoration,
+        })
+    choices = [
+        {"curve": int(k[0]), "segment": int(k[1]), **_plain(_choice_fields(v))}
+        for k, v in sorted(network.prc_choices.items())
+    ]
+    doc: dict[str, Any] = {
+        "format": FORMAT,
+        "version": VERSION,
+        "source": source or d.name,
+        "up": "z",
+        "parameterization": network.parameterization,
+        "samples": max((len(p.points) for p in network.pieces if p.top is not None), default=0),
+        "layers": [{"index": i, "bottom": float(z)} for i, z in enumerate(network.bottoms)],
+        "basic_curves": basics,
+        "prc_choices": choices,
+        "curves": curves,
+    }
+    return doc
+
+
+def _choice_fields(ch: Any) -> dict[str, Any]:
+    """An Algorithm 1 choice as a flat record (its intersection reduced to the essentials)."""
+    if dataclasses.is_dataclass(ch):
+        rec = {f.name: getattr(ch, f.name) for f in dataclasses.fields(ch)}
+    elif isinstance(ch, dict):
+        rec = dict(ch)
+    else:
+        rec = {"value": ch}
+    rec.pop("curve", None)
+    rec.pop("segment", None)
+    return rec
+
+
+def dumps(network: "Network", source: str = "") -> str:
+    """Network JSON text: one top-level key per line, one list entry (layer, curve, ...) per line.
+
+    Examples
+    --------
+    >>> from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry, build
+    >>> c = BasicCurve(((1.0, 0.0), (0.0, 0.0)), (Segment(),), ("ground", "apex"),
+    ...                Symmetry(2), height=1.0, prc=(0.5,))
+    >>> doc = loads(dumps(build(Drawing((c,)), samples=65), "demo.uc"))
+    >>> doc["source"], [c["id"] for c in doc["curves"]], len(doc["curves"][0]["points"])
+    ('demo.uc', ['0/r0', '0/r1'], 65)
+    """
+    doc = to_dict(network, source)
+    out = []
+    for key, v in doc.items():
+        if isinstance(v, list) and v:
+            rows = ",\n".join("  " + _compact(x) for x in v)
+            out.append(f" {json.dumps(key)}: [\n{rows}\n ]")
+        else:
+            out.append(f" {json.dumps(key)}: {_compact(v)}")
+    return "{\n" + ",\n".join(out) + "\n}\n"
+
+
+def _compact(v: Any) -> str:
+    return json.dumps(v, separators=(", ", ": "), allow_nan=False)
+
+
+def _write(obj: Any, name: str) -> str:
+    net, source = unpack(obj)
+    return dumps(net, source)
+
+
+# -- reading ---------------------------------------------------------------------------------
+def _number(v: Any) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _integer(v: Any) -> bool:
+    return isinstance(v, int) and not isinstance(v, bool)
+
+
+def _vector(v: Any, n: int) -> bool:
+    return isinstance(v, list) and len(v) == n and all(_number(x) for x in v)
+
+
+def loads(text: str, name: str = "<string>") -> dict[str, Any]:
+    """Parse and validate network JSON text; return the document as a dict.
+
+    Parameters
+    ----------
+    text : str
+    name : str
+        File name for messages.
+
+    Raises
+    ------
+    FormatError
+        Naming the file, the line (for JSON syntax errors) and the first key
+        that does not hold what the format expects.
+    """
+    try:
+        doc = json.loads(text)
+    except json.JSONDecodeError as e:
+        raise FormatError(f"not JSON: {e.msg} (column {e.colno})", name, e.lineno) from None
+
+    def bad(where: str, expected: str) -> FormatError:
+        return FormatError(f"{where}: expected {expected}", name)
+
+    if not isinstance(doc, dict):
+        raise bad("document", "a JSON object")
+    if doc.get("format") != FORMAT:
+        raise bad("format", f'"{FORMAT}", got {doc.get("format")!r}')
+    if doc.get("version") != VERSION or not _integer(doc.get("version")):
+        raise bad("version", f"{VERSION}, got {doc.get('version')!r}")
+    if not isinstance(doc.get("source"), str):
+        raise bad("source", "the drawing's file name (a string)")
+    if doc.get("up") != "z":
+        raise bad("up", f'"z", got {doc.get("up")!r}')
+    layers = doc.get("layers")
+    if not isinstance(layers, list):
+        raise bad("layers", "a list")
+    for i, lay in enumerate(layers):
+        if not (isinstance(lay, dict) and lay.get("index") == i and _integer(lay.get("index"))
+                and _number(lay.get("bottom"))):
+            raise bad(f"layers[{i}]", f'{{"index": {i}, "bottom": <number>}}')
+    curves = doc.get("curves")
+    if not isinstance(curves, list):
+        raise bad("curves", "a list")
+    seen: set[str] = set()
+    for i, c in enumerate(curves):
+        w = f"curves[{i}]"
+        if not isinstance(c, dict):
+            raise bad(w, "an object")
+        if not isinstance(c.get("id"), str) or not c["id"]:
+            raise bad(f"{w}.id", "a non-empty string")
+        if c["id"] in seen:
+            raise bad(f"{w}.id", f"a unique id; {c['id']!r} appears twice")
+        seen.add(c["id"])
+        for key in ("basic", "rotation"):
+            if not _integer(c.get(key)) or c[key] < 0:
+                raise bad(f"{w}.{key}", "an integer >= 0")
+        if not _integer(c.get("layer")) or not 0 <= c["layer"] < len(layers):
+            raise bad(f"{w}.layer", f"a layer index in 0..{len(layers) - 1}")
+        if c.get("kind") not in KINDS:
+            raise bad(f"{w}.kind", f"one of {', '.join(KINDS)}, got {c.get('kind')!r}")
+        if not isinstance(c.get("mirrored"), bool):
+            raise bad(f"{w}.mirrored", "true or false")
+        t = c.get("transform")
+        if not (isinstance(t, list) and len(t) == 2 and all(_vector(r, 2) for r in t)):
+            raise bad(f"{w}.transform", "a 2x2 matrix [[a, b], [c, d]]")
+        pts = c.get("points")
+        if not (isinstance(pts, list) and len(pts) >= 2 and all(_vector(p, 3) for p in pts)):
+            raise bad(f"{w}.points", "a list of at least 2 [x, y, z] points")
+        if c.get("prc", None) is not None and not _vector(c["prc"], 3):
+            raise bad(f"{w}.prc", "null or an [x, y, z] point")
+        if "prc" not in c:
+            raise bad(f"{w}.prc", "null or an [x, y, z] point (the key is required)")
+    return doc
+
+
+register(FileFormat("network_json", (".network.json",), "network", reader=loads, writer=_write))

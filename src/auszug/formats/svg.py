@@ -1,0 +1,158 @@
+"""SVG drawing of a network (``.svg``): its top view and its side view, side by side.
+
+The top view is the orthographic projection onto the ground plane (x, y); the
+side view is the orthographic projection onto the vertical x-z plane, seen
+from -y (x to the right, height up). Both panels share one scale, so lengths
+compare across them. The file is plain SVG 1.1 with a ``viewBox`` in drawing
+units: it scales without loss and needs no fonts beyond a generic sans-serif.
+
+Structure (what tests and stylesheets can rely on)::
+
+    <svg>
+      <g id="top-view" class="view">
+        <g id="top-view-curve-0" class="basic-curve" data-basic="0" stroke="#...">
+          <polyline class="ogee replica" data-curve="0/r1m" points="..."/> ...
+          <circle class="prc" .../> ...
+        </g> ...                       one group per basic curve
+      </g>
+      <g id="side-view" class="view"> ... the same ... </g>
+    </svg>
+
+Every replica is drawn in its basic curve's colour; the basic curve itself
+(``r0``) is drawn a little heavier, on top. Round markers are the points of
+reverse curvature.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+from xml.sax.saxutils import escape, quoteattr
+
+import numpy as np
+from numpy.typing import NDArray
+
+from auszug.formats._registry import FileFormat, register
+from auszug.formats.network_json import unpack
+
+__all__ = ["PALETTE", "colour", "dumps"]
+
+#: One colour per basic curve, cycled (colour-blind safe: Okabe-Ito, then Tol's muted set).
+PALETTE: tuple[str, ...] = (
+    "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9",
+    "#882255", "#117733", "#332288", "#999933", "#AA4499", "#44AA99",
+)
+
+
+def colour(basic: int) -> str:
+    """The colour of basic curve ``basic`` (hex ``#RRGGBB``).
+
+    Examples
+    --------
+    >>> colour(0), colour(len(PALETTE))
+    ('#0072B2', '#0072B2')
+    """
+    return PALETTE[basic % len(PALETTE)]
+
+
+def _symmetry_text(c: Any) -> str:
+    s = c.symmetry
+    return f"C{s.fold}" + (" + mirror" if s.mirror else "")
+
+
+def dumps(network: Any, source: str = "", width_px: float = 1000.0) -> str:
+    """SVG text of the network's top and side views.
+
+    Parameters
+    ----------
+    network : Network or NetworkFile
+    source : str
+        Drawing file name for the title (default: from ``network``).
+    width_px : float
+        Nominal width in pixels (the drawing scales freely).
+    """
+    net, src = unpack(network)
+    source = source or src
+    curves = list(net.curves())
+    nb = len(net.drawing.curves)
+    if curves:
+        allp = np.concatenate([c.points for c in curves])
+        lo, hi = allp.min(0), allp.max(0)
+    else:
+        lo, hi = np.zeros(3), np.ones(3)
+    size = float(max(hi - lo)) or 1.0
+    ext = np.maximum(hi - lo, 1e-3 * size)
+    m = 0.08 * size                         # margin
+    th = 0.09 * size                        # title band
+    font = 0.045 * size
+    dec = max(0, 4 - math.floor(math.log10(size)))
+    ox_side = ext[0] + 3.0 * m              # x offset of the side panel
+    W = ox_side + ext[0] + m
+    H = th + max(ext[1], ext[2]) + 2.0 * m
+    y0 = th + m
+
+    def top_xy(p: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.stack([p[..., 0] - lo[0] + m, hi[1] - p[..., 1] + y0], -1)
+
+    def side_xy(p: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.stack([p[..., 0] - lo[0] + ox_side, hi[2] - p[..., 2] + y0], -1)
+
+    def pts_attr(q: NDArray[np.float64]) -> str:
+        return " ".join(f"{x:.{dec}f},{y:.{dec}f}" for x, y in q.tolist())
+
+    r_prc = 0.011 * size
+    out = [
+        '<?xml version="1.0" encoding="UTF-8"?>',
+        f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" '
+        f'viewBox="0 0 {W:.{dec}f} {H:.{dec}f}" width="{width_px:.0f}" height="{width_px * H / W:.0f}">',
+        f"<title>{escape(f'auszug network: {source}')}</title>",
+        f"<desc>Top view (x, y) and side view (x, z; orthographic onto the x-z plane), "
+        f"{len(curves)} curves of {nb} basic curves; z up, drawing units.</desc>",
+        "<style>"
+        "polyline{fill:none;stroke-linecap:round;stroke-linejoin:round;"
+        "vector-effect:non-scaling-stroke;stroke-width:1.1px;stroke-opacity:0.8}"
+        "polyline.basic{stroke-width:2px;stroke-opacity:1}"
+        ".prc{stroke:#fff;stroke-width:0.8px;vector-effect:non-scaling-stroke}"
+        ".ground{stroke:#bbb;stroke-width:1px;stroke-dasharray:4 3;vector-effect:non-scaling-stroke}"
+        f"text{{font-family:sans-serif;font-size:{font:.{dec}f}px;fill:#333}}"
+        "</style>",
+        f'<rect width="{W:.{dec}f}" height="{H:.{dec}f}" fill="#fff"/>',
+    ]
+    for view, proj, title in (("top-view", top_xy, "top view"), ("side-view", side_xy, "side view")):
+        out.append(f'<g id="{view}" class="view">')
+        tx = m if view == "top-view" else ox_side
+        out.append(f'<text x="{tx:.{dec}f}" y="{th * 0.75:.{dec}f}">{title}</text>')
+        if view == "side-view":
+            for z in net.bottoms:
+                y = hi[2] - z + y0
+                out.append(f'<line class="ground" x1="{ox_side - 0.5 * m:.{dec}f}" '
+                           f'x2="{ox_side + ext[0] + 0.5 * m:.{dec}f}" '
+                           f'y1="{y:.{dec}f}" y2="{y:.{dec}f}"/>')
+        for b in range(nb):
+            mine = [c for c in curves if c.basic == b]
+            bc = net.drawing.curves[b]
+            out.append(f'<g id="{view}-curve-{b}" class="basic-curve" data-basic="{b}" '
+                       f'stroke="{colour(b)}" fill="{colour(b)}">')
+            out.append(f"<title>curve {b}: {_symmetry_text(bc)}, layer {bc.layer}</title>")
+            # replicas first, the basic curve (r0) last so it lies on top
+            mine.sort(key=lambda c: (c.rotation == 0 and not c.mirrored))
+            for c in mine:
+                cls = f"{c.kind} {'basic' if c.rotation == 0 and not c.mirrored else 'replica'}"
+                out.append(f'<polyline class="{cls}" data-curve={quoteattr(c.id)} '
+                           f'points="{pts_attr(proj(np.asarray(c.points)))}"/>')
+            for c in mine:
+                if c.prc is not None:
+                    x, y = proj(np.asarray(c.prc)).tolist()
+                    out.append(f'<circle class="prc" data-curve={quoteattr(c.id)} '
+                               f'cx="{x:.{dec}f}" cy="{y:.{dec}f}" r="{r_prc:.{dec}f}"/>')
+            out.append("</g>")
+        out.append("</g>")
+    out.append("</svg>")
+    return "\n".join(out) + "\n"
+
+
+def _write(obj: Any, name: str) -> str:
+    return dumps(obj)
+
+
+register(FileFormat("svg", (".svg",), "network", writer=_write))

@@ -1,0 +1,102 @@
+"""The ``auszug`` command line.
+
+One module per subcommand, each providing ``HELP`` (a one-line summary),
+``add_args(parser)`` and ``run(args) -> int``. :func:`main` parses the
+arguments and reports every deliberate auszug error as
+``auszug: FILE:LINE: problem`` on stderr with exit code 2 and no traceback.
+The command modules import numpy, matplotlib and rich only when they run, so
+``auszug --help`` and ``auszug build`` start fast. No geometry happens here:
+commands call :mod:`auszug.microarch` and :mod:`auszug.formats`.
+
+Examples
+--------
+>>> from auszug.cli import main
+>>> main(["--version"])  # doctest: +ELLIPSIS
+auszug ...
+0
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from typing import Sequence
+
+__all__ = ["COMMANDS", "make_parser", "main"]
+
+#: Subcommands in the order ``auszug --help`` lists them.
+COMMANDS: tuple[str, ...] = ("build", "info", "render", "convert", "demo")
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("auszug")
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree
+        return "unknown"
+
+
+class _VersionAction(argparse.Action):
+    """``--version`` that looks the version up only when asked."""
+
+    def __init__(self, option_strings: list[str], dest: str = argparse.SUPPRESS, **kw: object):
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS,
+                         help="print the version and exit")
+
+    def __call__(self, parser, namespace, values, option_string=None):  # type: ignore[no-untyped-def]
+        print(f"auszug {_version()}")
+        parser.exit(0)
+
+
+def make_parser() -> argparse.ArgumentParser:
+    """The argument parser with every subcommand."""
+    parser = argparse.ArgumentParser(
+        prog="auszug",
+        description="Gothic microarchitecture: from symmetric top-view drawings to 3D ogee curve networks.",
+        epilog="Run 'auszug COMMAND --help' for the options of a command.",
+    )
+    parser.add_argument("--version", action=_VersionAction)
+    sub = parser.add_subparsers(title="commands", metavar="COMMAND")
+    for name in COMMANDS:
+        mod = importlib.import_module(f"auszug.cli.{name}")
+        p = sub.add_parser(name, help=mod.HELP, description=mod.__doc__,
+                           formatter_class=argparse.RawDescriptionHelpFormatter)
+        mod.add_args(p)
+        p.set_defaults(_run=mod.run)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line with ``argv`` (default: ``sys.argv[1:]``); return the exit code.
+
+    Exit codes: 0 success, 2 bad input or usage (message on stderr), 130 interrupted.
+    """
+    from auszug.errors import AuszugError
+
+    parser = make_parser()
+    try:
+        args = parser.parse_args(None if argv is None else list(argv))
+    except SystemExit as e:  # --help, --version and usage errors
+        return e.code if isinstance(e.code, int) else (0 if e.code is None else 2)
+    if not hasattr(args, "_run"):
+        parser.print_usage(sys.stderr)
+        print("auszug: error: a command is required", file=sys.stderr)
+        return 2
+    try:
+        return int(args._run(args))
+    except AuszugError as e:
+        print(f"auszug: {e}", file=sys.stderr)
+        return 2
+    except OSError as e:
+        where = f"{e.filename}: " if e.filename else ""
+        print(f"auszug: {where}{e.strerror or e}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("auszug: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

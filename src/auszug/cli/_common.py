@@ -1,0 +1,157 @@
+"""Helpers shared by the commands: options, reading drawings, finding drawings in folders.
+
+Nothing here computes geometry; building a network is one call to
+:func:`auszug.microarch.build`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+from contextlib import contextmanager
+from pathlib import Path
+from typing import TYPE_CHECKING, Iterator, Sequence
+
+from auszug.errors import AuszugError, FormatError
+
+if TYPE_CHECKING:
+    from auszug.formats.network_json import NetworkFile
+    from auszug.microarch.model import Drawing
+
+PARAMETERIZATIONS = ("arclength", "u", "orthographic")
+#: ``--format`` names of the network formats and the file ending each writes.
+NETWORK_SUFFIX = {"json": ".network.json", "obj": ".obj", "svg": ".svg"}
+
+
+def at_least(minimum: int):  # type: ignore[no-untyped-def]
+    """An argparse type: an integer >= ``minimum``."""
+
+    def parse(text: str) -> int:
+        try:
+            v = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+        if v < minimum:
+            raise argparse.ArgumentTypeError(f"expected a whole number >= {minimum}, got {v}")
+        return v
+
+    return parse
+
+
+def finite(text: str) -> float:
+    """An argparse type: a finite number."""
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not math.isfinite(v):
+        raise argparse.ArgumentTypeError(f"expected a finite number, got {text!r}")
+    return v
+
+
+def add_network_args(parser: argparse.ArgumentParser) -> None:
+    """The options of :func:`auszug.microarch.build`: --param, --theta, --samples."""
+    g = parser.add_argument_group("reconstruction")
+    g.add_argument("--param", choices=PARAMETERIZATIONS, default="arclength",
+                   help="side-view coordinate p(u) of Eq. (1): top-view arc length (default), "
+                        "the top curve's own parameter, or the orthographic projection at --theta")
+    g.add_argument("--theta", type=finite, default=0.0, metavar="DEG",
+                   help="angle of the vertical projection plane to the x-axis for "
+                        "--param orthographic, in degrees (default 0)")
+    g.add_argument("--samples", type=at_least(2), default=None, metavar="N",
+                   help="samples per curve piece (default 65)")
+
+
+@contextmanager
+def about(path: str | os.PathLike[str]) -> Iterator[None]:
+    """Name ``path`` in auszug errors raised inside the block that do not name a file yet."""
+    try:
+        yield
+    except FormatError as e:
+        if e.path is None:
+            raise FormatError(e.problem, os.fspath(path), e.line) from None
+        raise
+    except AuszugError as e:
+        raise FormatError(str(e), os.fspath(path)) from None
+
+
+def read_drawing(path: str | os.PathLike[str]) -> "Drawing":
+    """Read a drawing file in any registered drawing format."""
+    from auszug.formats import load
+
+    with about(path):
+        return load(path, kind="drawing")
+
+
+def build_network(drawing: "Drawing", source: str | os.PathLike[str], args: argparse.Namespace) -> "NetworkFile":
+    """The network of ``drawing`` with the --param/--theta/--samples options in ``args``."""
+    from auszug.formats.network_json import NetworkFile
+    from auszug.microarch.network import build
+
+    with about(source):
+        net = build(drawing, args.param, math.radians(args.theta), args.samples)
+    return NetworkFile(net, Path(source).name)
+
+
+def network_of(path: str | os.PathLike[str], args: argparse.Namespace) -> "NetworkFile":
+    """Read the drawing at ``path`` and build its network."""
+    return build_network(read_drawing(path), path, args)
+
+
+def drawing_suffix(path: str | os.PathLike[str]) -> str | None:
+    """The drawing-format ending of ``path`` (``".uc"``), or None if it is no drawing file.
+
+    A name counts as a drawing when the longest registered ending it has
+    belongs to a drawing format: ``x.network.json`` is a network, not a
+    ``.json`` drawing.
+    """
+    from auszug.formats import format_for
+
+    name = os.fspath(path).lower()
+    try:
+        fmt = format_for(name, None)
+    except FormatError:
+        return None
+    if fmt.kind != "drawing":
+        return None
+    return max((s for s in fmt.suffixes if name.endswith(s)), key=len)
+
+
+def stem(path: str | os.PathLike[str]) -> str:
+    """File name without its drawing ending: ``U.XI.28.fixed.uc`` -> ``U.XI.28.fixed``."""
+    name = Path(path).name
+    suf = drawing_suffix(name)
+    return name[: len(name) - len(suf)] if suf else Path(name).stem
+
+
+def find_drawings(inputs: Sequence[str]) -> list[tuple[Path, Path]]:
+    """Drawing files named by ``inputs`` (files or folders searched recursively).
+
+    Returns
+    -------
+    list of (path, relative folder)
+        Each drawing and the folder, relative to the input folder it was found
+        in, where its outputs go (``.`` for files named directly).
+
+    Raises
+    ------
+    FormatError
+        For a path that does not exist, or a folder without drawings.
+    """
+    out: list[tuple[Path, Path]] = []
+    for arg in inputs:
+        p = Path(arg)
+        if p.is_dir():
+            found = sorted(q for q in p.rglob("*") if q.is_file() and drawing_suffix(q.name))
+            if not found:
+                from auszug.formats import formats
+
+                sufs = sorted({s for f in formats().values() if f.kind == "drawing" for s in f.suffixes})
+                raise FormatError(f"no drawings ({', '.join(sufs)}) in this folder", arg)
+            out.extend((q, q.parent.relative_to(p)) for q in found)
+        elif p.exists():
+            out.append((p, Path(".")))
+        else:
+            raise FormatError("no such file or folder", arg)
+    return out

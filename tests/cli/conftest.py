@@ -1,0 +1,62 @@
+"""Fixtures of the CLI tests: in-process runs of ``main`` and small good and bad drawings."""
+
+from __future__ import annotations
+
+import struct
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+from auszug.cli import main
+from tests.conftest import CORPUS
+
+TN = CORPUS / "teaching-sheet"
+
+BAD_LINE = 4
+BAD_UC = "numCurves 1\nunitCurve 4 1\nptPos 0 0\nptPos 1 x\nptPos 2 0\n"
+#: Reads fine, fails when built: the apex lies below the bottom (a drawing error).
+LOW_APEX_UC = "numCurves 1\nunitCurve 4 0\nptPos 0 1\nptPos 1 1.5\nptPos 1 2\nheight -1\n"
+
+
+@dataclass
+class Result:
+    code: int
+    out: str
+    err: str
+
+
+@pytest.fixture
+def cli(capsys):
+    """``cli(*args)`` runs ``main(args)`` in-process and returns code, stdout, stderr."""
+
+    def run(*args: str | Path) -> Result:
+        code = main([str(a) for a in args])
+        cap = capsys.readouterr()
+        return Result(code, cap.out, cap.err)
+
+    return run
+
+
+@pytest.fixture
+def bad_uc(tmp_path) -> Path:
+    p = tmp_path / "bad.uc"
+    p.write_text(BAD_UC)
+    return p
+
+
+@pytest.fixture
+def low_apex_uc(tmp_path) -> Path:
+    p = tmp_path / "low.uc"
+    p.write_text(LOW_APEX_UC)
+    return p
+
+
+def png_size(data: bytes) -> tuple[int, int]:
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    return struct.unpack(">II", data[16:24])
+
+
+def files_in(folder: Path) -> list[str]:
+    """Every file below ``folder`` as sorted relative paths (temporary files included)."""
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*") if p.is_file())

@@ -20,7 +20,9 @@ Structure (what tests and stylesheets can rely on)::
 
 Every replica is drawn in its basic curve's colour; the basic curve itself
 (``r0``) is drawn a little heavier, on top. Round markers are the points of
-reverse curvature.
+reverse curvature. Styling is in presentation attributes only (no CSS, no
+``vector-effect``), with line widths in drawing units worked out from the
+nominal pixel width, so every renderer draws the same picture.
 """
 
 from __future__ import annotations
@@ -100,51 +102,56 @@ def dumps(network: Any, source: str = "", width_px: float = 1000.0) -> str:
     def pts_attr(q: NDArray[np.float64]) -> str:
         return " ".join(f"{x:.{dec}f},{y:.{dec}f}" for x, y in q.tolist())
 
-    r_prc = 0.011 * size
+    px = W / width_px                       # one nominal pixel in drawing units
+    r_prc = 3.5 * px
+    lw, lw_basic, lw_thin = 1.1 * px, 2.0 * px, 0.8 * px
+
+    def f(v: float) -> str:
+        return f"{v:.{dec + 1}f}"
+
     out = [
         '<?xml version="1.0" encoding="UTF-8"?>',
         f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" '
-        f'viewBox="0 0 {W:.{dec}f} {H:.{dec}f}" width="{width_px:.0f}" height="{width_px * H / W:.0f}">',
+        f'viewBox="0 0 {f(W)} {f(H)}" width="{width_px:.0f}" height="{width_px * H / W:.0f}">',
         f"<title>{escape(f'auszug network: {source}')}</title>",
         f"<desc>Top view (x, y) and side view (x, z; orthographic onto the x-z plane), "
         f"{len(curves)} curves of {nb} basic curves; z up, drawing units.</desc>",
-        "<style>"
-        "polyline{fill:none;stroke-linecap:round;stroke-linejoin:round;"
-        "vector-effect:non-scaling-stroke;stroke-width:1.1px;stroke-opacity:0.8}"
-        "polyline.basic{stroke-width:2px;stroke-opacity:1}"
-        ".prc{stroke:#fff;stroke-width:0.8px;vector-effect:non-scaling-stroke}"
-        ".ground{stroke:#bbb;stroke-width:1px;stroke-dasharray:4 3;vector-effect:non-scaling-stroke}"
-        f"text{{font-family:sans-serif;font-size:{font:.{dec}f}px;fill:#333}}"
-        "</style>",
-        f'<rect width="{W:.{dec}f}" height="{H:.{dec}f}" fill="#fff"/>',
+        f'<rect width="{f(W)}" height="{f(H)}" fill="#ffffff"/>',
     ]
-    for view, proj, title in (("top-view", top_xy, "top view"), ("side-view", side_xy, "side view")):
+    # text is laid out in pixels and scaled into drawing units: renderers hint glyphs at
+    # the laid-out size, and a font size of 0.1 units would come out garbled
+    text_attrs = f'font-family="sans-serif" font-size="{font / px:.1f}" fill="#444444"'
+    for view, proj, title in (("top-view", top_xy, "top view"), ("side-view", side_xy, "side view (x-z plane)")):
         out.append(f'<g id="{view}" class="view">')
         tx = m if view == "top-view" else ox_side
-        out.append(f'<text x="{tx:.{dec}f}" y="{th * 0.75:.{dec}f}">{title}</text>')
+        out.append(f'<text transform="translate({f(tx)} {f(th * 0.75)}) scale({px:.6g})" '
+                   f'{text_attrs}>{title}</text>')
         if view == "side-view":
             for z in net.bottoms:
                 y = hi[2] - z + y0
-                out.append(f'<line class="ground" x1="{ox_side - 0.5 * m:.{dec}f}" '
-                           f'x2="{ox_side + ext[0] + 0.5 * m:.{dec}f}" '
-                           f'y1="{y:.{dec}f}" y2="{y:.{dec}f}"/>')
+                out.append(f'<line class="ground" x1="{f(ox_side - 0.5 * m)}" x2="{f(ox_side + ext[0] + 0.5 * m)}" '
+                           f'y1="{f(y)}" y2="{f(y)}" stroke="#bbbbbb" stroke-width="{f(lw_thin)}" '
+                           f'stroke-dasharray="{f(4 * px)} {f(3 * px)}"/>')
         for b in range(nb):
             mine = [c for c in curves if c.basic == b]
             bc = net.drawing.curves[b]
-            out.append(f'<g id="{view}-curve-{b}" class="basic-curve" data-basic="{b}" '
-                       f'stroke="{colour(b)}" fill="{colour(b)}">')
+            col = colour(b)
+            out.append(f'<g id="{view}-curve-{b}" class="basic-curve" data-basic="{b}" stroke="{col}" '
+                       f'fill="none" stroke-width="{f(lw)}" stroke-linecap="round" stroke-linejoin="round">')
             out.append(f"<title>curve {b}: {_symmetry_text(bc)}, layer {bc.layer}</title>")
             # replicas first, the basic curve (r0) last so it lies on top
             mine.sort(key=lambda c: (c.rotation == 0 and not c.mirrored))
             for c in mine:
-                cls = f"{c.kind} {'basic' if c.rotation == 0 and not c.mirrored else 'replica'}"
-                out.append(f'<polyline class="{cls}" data-curve={quoteattr(c.id)} '
+                basic = c.rotation == 0 and not c.mirrored
+                style = f'stroke-width="{f(lw_basic)}"' if basic else 'stroke-opacity="0.8"'
+                out.append(f'<polyline class="{c.kind} {"basic" if basic else "replica"}" '
+                           f'data-curve={quoteattr(c.id)} {style} '
                            f'points="{pts_attr(proj(np.asarray(c.points)))}"/>')
             for c in mine:
                 if c.prc is not None:
                     x, y = proj(np.asarray(c.prc)).tolist()
-                    out.append(f'<circle class="prc" data-curve={quoteattr(c.id)} '
-                               f'cx="{x:.{dec}f}" cy="{y:.{dec}f}" r="{r_prc:.{dec}f}"/>')
+                    out.append(f'<circle class="prc" data-curve={quoteattr(c.id)} cx="{f(x)}" cy="{f(y)}" '
+                               f'r="{f(r_prc)}" fill="{col}" stroke="#ffffff" stroke-width="{f(lw_thin)}"/>')
             out.append("</g>")
         out.append("</g>")
     out.append("</svg>")

@@ -2,6 +2,7 @@
 
 from auszug.formats import uc as _uc  # noqa: F401  (registers .uc)
 from auszug.formats import uc_legacy as _uc_legacy  # noqa: F401  (legacy/v1 .uc, read through .uc)
+from auszug.formats import native as _native  # noqa: F401  (registers .json drawings)
 from auszug.formats import network_json as _network_json  # noqa: F401  (registers .network.json)
 from auszug.formats import obj as _obj  # noqa: F401  (registers .obj polylines)
 from auszug.formats import svg as _svg  # noqa: F401  (registers .svg top/side views)

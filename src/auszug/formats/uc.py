@@ -239,8 +239,6 @@ def write_web(drawing: Drawing, name: str = "") -> str:
     """
     from auszug.microarch.network import build
 
-    net = build(drawing)
-    out = [f"numCurves {len(drawing.curves)}"]
     for ci, c in enumerate(drawing.curves):
         ok_marks = c.marks in (("ground", "apex"), ("ground", "apex", "free"))
         ok_segs = all(s.kind in ("arc", "line") for s in c.segments)
@@ -251,12 +249,15 @@ def write_web(drawing: Drawing, name: str = "") -> str:
         if c.symmetry.center != (0.0, 0.0):
             raise FormatError(f"curve {ci}: the web .uc dialect needs the symmetry centre at the "
                               "origin; save as .json instead", name)
+    net = build(drawing)
+    out = [f"numCurves {len(drawing.curves)}"]
+    for ci, c in enumerate(drawing.curves):
         sym = c.symmetry
         out.append(f"unitCurve {sym.fold} {1 if sym.mirror else 0}")
         if sym.mirror:
             out.append(f"reflectionPoint {_fmt(sym.axis[0])} {_fmt(sym.axis[1])}")
-            rule = sym.axis_rule if sym.axis_rule != "fixed" else "y axis"
-            out.append(f"ref_symmetry_type {rule}")
+            if sym.axis_rule != "fixed":  # absent means fixed (as in u.xi.19-design1.uc)
+                out.append(f"ref_symmetry_type {sym.axis_rule}")
         pts = []
         for si, seg in enumerate(c.segments):
             a, b = c.vertices[si], c.vertices[si + 1]

@@ -51,10 +51,14 @@ P_1 +- t_1) were compared on all ten files:
   (-0.7, 0), U.XI.31 start (0, 0.9)): mirror replicas meet with a common
   tangent, and under (+,+) they approach from the curve's own side instead of
   overshooting the axis and crossing each other.
-- The authors redrew U.XI.31 and U.XI.34 in the web dialect (``corpus/web``,
-  circular arcs, rotated/mirrored and rescaled). After mapping the legacy curve
-  onto the web one, the web arc's tangent at each ground point, and at the apex
-  of U.XI.31 curve 0, agrees in direction with P + t, and not with P - t.
+- The authors redrew U.XI.29, 31 and 34 in the web dialect (``corpus/web``,
+  circular arcs, rotated, mirrored and rescaled). The angle between an end
+  tangent and the chord does not change under such maps; web arc / P + t /
+  P - t, at the ground end then the apex: U.XI.29 curve 0 35/65/115 and
+  35/44/137, curve 1 35/43/137 and 35/47/133; U.XI.31 curve 0 49/45/135 and
+  49/45/135, curve 1 40/33/148 (its apex vector is zero); U.XI.34 curve 0
+  (web curve 2) 32/52/128 and 32/38/142. P + t is within 30 deg of the redraw
+  everywhere, P - t 80-115 deg off: the handle points into the segment.
 
 At an *interior* vertex (a curve of more than 2 points, which the corpus never
 gives a ``ptTan``) we read the vector as the direction of travel: the outgoing
@@ -66,7 +70,7 @@ handle vectors are both zero is a straight :class:`~auszug.microarch.model.Segme
 **v1 ptTangent values are absolute control points in Bezier order**
 (P_0, C_1, C_2, P_1). In ``two_curves.uc`` they lie in the same range as the
 ``ptPos`` values (|C| up to 0.82; legacy vectors are 0.01-2 long offsets), and
-read as absolute points curve 0's handles lie within 0.03 of its chord (a
+read as absolute points curve 0's handles lie within 0.035 of its chord (a
 nearly straight rib) and the drawing has 4 replica crossings and 170 deg of
 total turning; read as vectors relative to their points (in either sign) the
 same curves turn 306-466 deg and bulge far past the drawing. Two equal

@@ -139,19 +139,26 @@ def write_native(drawing: Drawing, name: str = "") -> str:
 
 # -- reading ---------------------------------------------------------------------------------
 class _Obj(dict):
-    """A JSON object that remembers where it starts in the text."""
+    """A JSON object that remembers where it and each of its values start in the text."""
 
     pos: int | None = None
+    child_pos: dict[Any, int]
 
 
 class _Arr(list):
-    """A JSON array that remembers where it starts in the text."""
+    """A JSON array that remembers where it and each of its items start in the text."""
 
     pos: int | None = None
+    child_pos: dict[Any, int]
 
 
 class _Decoder(json.JSONDecoder):
-    """Pure-Python JSON decoder whose objects and arrays carry their text offset."""
+    """Pure-Python JSON decoder whose objects and arrays carry text offsets.
+
+    The standard library's pure-Python scanner calls ``parse_object`` and
+    ``parse_array`` for every container; wrapping the ``scan_once`` they are
+    given records where each direct child value starts.
+    """
 
     def __init__(self, path: str):
         super().__init__(parse_constant=float)
@@ -160,95 +167,121 @@ class _Decoder(json.JSONDecoder):
         self.parse_array = self._array  # type: ignore[assignment]
         self.scan_once = json.scanner.py_make_scanner(self)
 
+    @staticmethod
+    def _recording(scan_once, starts: list[int]):  # noqa: ANN001, ANN205
+        def scan(s: str, idx: int):  # noqa: ANN202
+            starts.append(idx)
+            return scan_once(s, idx)
+
+        return scan
+
     def _object(self, s_and_end, strict, scan_once, object_hook, object_pairs_hook, memo):  # noqa: ANN001
         s, end = s_and_end
-        pairs, e = json.decoder.JSONObject(s_and_end, strict, scan_once, None, list, memo)
+        starts: list[int] = []
+        pairs, e = json.decoder.JSONObject(
+            s_and_end, strict, self._recording(scan_once, starts), None, list, memo)
         out = _Obj()
         out.pos = end - 1
-        for k, v in pairs:
+        out.child_pos = {}
+        for (k, v), at in zip(pairs, starts):
             if k in out:
                 raise FormatError(f"key {k!r} appears twice in one object", self.path,
-                                  s.count("\n", 0, end) + 1)
+                                  s.count("\n", 0, at) + 1)
             out[k] = v
+            out.child_pos[k] = at
         return out, e
 
     def _array(self, s_and_end, scan_once):  # noqa: ANN001
         s, end = s_and_end
-        values, e = json.decoder.JSONArray(s_and_end, scan_once)
+        starts: list[int] = []
+        values, e = json.decoder.JSONArray(s_and_end, self._recording(scan_once, starts))
         out = _Arr(values)
         out.pos = end - 1
+        out.child_pos = dict(enumerate(starts))
         return out, e
 
 
 class _Reader:
-    """Validates a decoded document, naming the JSON path and line of every problem."""
+    """Validates a decoded document, naming the JSON path and line of every problem.
+
+    Checks take the value, its JSON path, and its container and key there, so a
+    problem is reported on the line where the value starts.
+    """
 
     def __init__(self, path: str, text: str | None):
         self.path = path
         self.text = text
 
-    def line(self, node: Any) -> int | None:
-        pos = getattr(node, "pos", None)
-        if pos is None or self.text is None:
+    def line(self, node: Any, key: Any = None) -> int | None:
+        if self.text is None:
             return None
-        return self.text.count("\n", 0, pos) + 1
+        pos = getattr(node, "child_pos", {}).get(key) if key is not None else None
+        if pos is None:
+            pos = getattr(node, "pos", None)
+        return None if pos is None else self.text.count("\n", 0, pos) + 1
 
-    def fail(self, where: str, problem: str, node: Any) -> FormatError:
-        return FormatError(f"{where}: {problem}" if where else problem, self.path, self.line(node))
+    def fail(self, where: str, problem: str, node: Any, key: Any = None) -> FormatError:
+        return FormatError(f"{where}: {problem}" if where else problem, self.path, self.line(node, key))
 
-    # -- leaves ------------------------------------------------------------------------
+    # -- leaves: (value, JSON path, container, key in the container) ---------------------
     def obj(self, v: Any, where: str, keys: tuple[str, ...], required: tuple[str, ...],
-            parent: Any) -> dict:
+            parent: Any, key: Any) -> dict:
         if not isinstance(v, dict):
-            raise self.fail(where, f"expected an object, got {_what(v)}", parent)
+            raise self.fail(where, f"expected an object, got {_what(v)}", parent, key)
         unknown = [k for k in v if k not in keys]
         if unknown:
-            raise self.fail(where, f"unknown key {unknown[0]!r}; expected keys: {', '.join(keys)}", v)
+            raise self.fail(where, f"unknown key {unknown[0]!r}; expected keys: {', '.join(keys)}",
+                            v, unknown[0])
         missing = [k for k in required if k not in v]
         if missing:
             raise self.fail(where, f"missing key {missing[0]!r}", v)
         return v
 
-    def arr(self, v: Any, where: str, parent: Any) -> list:
+    def arr(self, v: Any, where: str, parent: Any, key: Any) -> list:
         if not isinstance(v, list):
-            raise self.fail(where, f"expected an array, got {_what(v)}", parent)
+            raise self.fail(where, f"expected an array, got {_what(v)}", parent, key)
         return v
 
-    def num(self, v: Any, where: str, parent: Any) -> float:
+    def num(self, v: Any, where: str, parent: Any, key: Any) -> float:
         if isinstance(v, bool) or not isinstance(v, (int, float)):
-            raise self.fail(where, f"expected a number, got {_what(v)}", parent)
+            raise self.fail(where, f"expected a number, got {_what(v)}", parent, key)
         try:
             f = float(v)
         except OverflowError:
             f = math.inf
         if not math.isfinite(f):
-            raise self.fail(where, f"expected a finite number, got {_what(v)}", parent)
+            raise self.fail(where, f"expected a finite number, got {_what(f)}", parent, key)
         return f
 
-    def opt_num(self, v: Any, where: str, parent: Any) -> float | None:
-        return None if v is None else self.num(v, where, parent)
+    def opt_num(self, v: Any, where: str, parent: Any, key: Any) -> float | None:
+        return None if v is None else self.num(v, where, parent, key)
 
-    def integer(self, v: Any, where: str, parent: Any, minimum: int) -> int:
-        f = self.num(v, where, parent)
+    def integer(self, v: Any, where: str, parent: Any, key: Any, minimum: int) -> int:
+        f = self.num(v, where, parent, key)
         if f != int(f) or f < minimum:
-            raise self.fail(where, f"expected a whole number >= {minimum}, got {_what(v)}", parent)
+            raise self.fail(where, f"expected a whole number >= {minimum}, got {_what(v)}", parent, key)
         return int(f)
 
-    def boolean(self, v: Any, where: str, parent: Any) -> bool:
+    def boolean(self, v: Any, where: str, parent: Any, key: Any) -> bool:
         if not isinstance(v, bool):
-            raise self.fail(where, f"expected true or false, got {_what(v)}", parent)
+            raise self.fail(where, f"expected true or false, got {_what(v)}", parent, key)
         return v
 
-    def string(self, v: Any, where: str, parent: Any) -> str:
+    def string(self, v: Any, where: str, parent: Any, key: Any) -> str:
         if not isinstance(v, str):
-            raise self.fail(where, f"expected a string, got {_what(v)}", parent)
+            raise self.fail(where, f"expected a string, got {_what(v)}", parent, key)
         return v
 
-    def point(self, v: Any, where: str, parent: Any) -> tuple[float, float]:
+    def point(self, v: Any, where: str, parent: Any, key: Any) -> tuple[float, float]:
         if not isinstance(v, list) or len(v) != 2:
-            raise self.fail(where, f"expected a point [x, y], got {_what(v)}",
-                            v if isinstance(v, list) else parent)
-        return (self.num(v[0], f"{where}[0]", v), self.num(v[1], f"{where}[1]", v))
+            raise self.fail(where, f"expected a point [x, y], got {_what(v)}", parent, key)
+        return (self.num(v[0], f"{where}[0]", v, 0), self.num(v[1], f"{where}[1]", v, 1))
+
+    def field(self, c: dict, name: str, where: str, check: str, default: Any, *extra: Any) -> Any:
+        """Optional member ``name`` of ``c`` through the check method ``check``."""
+        if name not in c:
+            return default
+        return getattr(self, check)(c[name], f"{where}.{name}" if where else name, c, name, *extra)
 
     # -- structure ---------------------------------------------------------------------
     def drawing(self, doc: Any, stem: str) -> Drawing:
@@ -257,104 +290,110 @@ class _Reader:
         fmt = doc.get("format")
         if fmt != FORMAT_ID:
             got = "no 'format' key" if "format" not in doc else f"'format' is {_what(fmt)}"
-            raise self.fail("format", f"not an auszug drawing: {got}, expected {FORMAT_ID!r}", doc)
+            raise self.fail("format", f"not an auszug drawing: {got}, expected {FORMAT_ID!r}",
+                            doc, "format")
         if "version" not in doc:
             raise self.fail("", "missing key 'version'", doc)
         ver = doc["version"]
         if isinstance(ver, bool) or not isinstance(ver, int) or ver != VERSION:
             raise self.fail("version", f"unsupported version {_what(ver)}; this auszug reads "
-                            f"version {VERSION}", doc)
-        self.obj(doc, "", _TOP_KEYS, ("format", "version", "curves"), doc)
-        name = self.string(doc["name"], "name", doc) if "name" in doc else stem
-        lb = self.arr(doc.get("layer_bottoms", []), "layer_bottoms", doc)
-        bottoms = tuple(self.num(z, f"layer_bottoms[{i}]", lb) for i, z in enumerate(lb))
-        apex = self.opt_num(doc.get("default_apex"), "default_apex", doc)
-        cs = self.arr(doc["curves"], "curves", doc)
-        curves = tuple(self.curve(c, f"curves[{i}]", cs) for i, c in enumerate(cs))
+                            f"version {VERSION}", doc, "version")
+        self.obj(doc, "", _TOP_KEYS, ("format", "version", "curves"), doc, None)
+        name = self.field(doc, "name", "", "string", stem)
+        lb = self.field(doc, "layer_bottoms", "", "arr", [])
+        bottoms = tuple(self.num(z, f"layer_bottoms[{i}]", lb, i) for i, z in enumerate(lb))
+        apex = self.field(doc, "default_apex", "", "opt_num", None)
+        cs = self.arr(doc["curves"], "curves", doc, "curves")
+        curves = tuple(self.curve(c, f"curves[{i}]", cs, i) for i, c in enumerate(cs))
         try:
             return Drawing(curves=curves, layer_bottoms=bottoms, name=name, default_apex=apex)
         except DrawingError as e:  # pragma: no cover - all fields are checked above
             raise self.fail("", str(e), doc) from None
 
-    def curve(self, c: Any, where: str, parent: Any) -> BasicCurve:
-        c = self.obj(c, where, _CURVE_KEYS, ("vertices", "segments", "marks"), parent)
+    def curve(self, c: Any, where: str, parent: Any, key: Any) -> BasicCurve:
+        c = self.obj(c, where, _CURVE_KEYS, ("vertices", "segments", "marks"), parent, key)
         w = f"{where}.vertices"
-        vs = self.arr(c["vertices"], w, c)
-        verts = tuple(self.point(v, f"{w}[{i}]", vs) for i, v in enumerate(vs))
+        vs = self.arr(c["vertices"], w, c, "vertices")
+        verts = tuple(self.point(v, f"{w}[{i}]", vs, i) for i, v in enumerate(vs))
         if len(verts) < 2:
-            raise self.fail(w, f"a curve needs at least 2 vertices, got {len(verts)}", vs)
+            raise self.fail(w, f"a curve needs at least 2 vertices, got {len(verts)}", c, "vertices")
         for i in range(1, len(verts)):
             (x0, y0), (x1, y1) = verts[i - 1], verts[i]
             if math.hypot(x1 - x0, y1 - y0) <= 1e-12:
-                raise self.fail(f"{w}[{i}]", f"coincides with vertex {i - 1} (zero-length segment)",
-                                vs[i] if isinstance(vs[i], list) else vs)
+                raise self.fail(f"{w}[{i}]", f"coincides with vertex {i - 1} (zero-length segment)", vs, i)
         w = f"{where}.segments"
-        ss = self.arr(c["segments"], w, c)
+        ss = self.arr(c["segments"], w, c, "segments")
         if len(ss) != len(verts) - 1:
-            raise self.fail(w, f"{len(verts)} vertices need {len(verts) - 1} segments, got {len(ss)}", ss)
-        segs = tuple(self.segment(s, f"{w}[{i}]", ss) for i, s in enumerate(ss))
+            raise self.fail(w, f"{len(verts)} vertices need {len(verts) - 1} segments, got {len(ss)}",
+                            c, "segments")
+        segs = tuple(self.segment(s, f"{w}[{i}]", ss, i) for i, s in enumerate(ss))
         w = f"{where}.marks"
-        ms = self.arr(c["marks"], w, c)
+        ms = self.arr(c["marks"], w, c, "marks")
         if len(ms) != len(verts):
-            raise self.fail(w, f"{len(verts)} vertices need {len(verts)} marks, got {len(ms)}", ms)
-        marks = tuple(self.string(m, f"{w}[{i}]", ms) for i, m in enumerate(ms))
+            raise self.fail(w, f"{len(verts)} vertices need {len(verts)} marks, got {len(ms)}", c, "marks")
+        marks = tuple(self.string(m, f"{w}[{i}]", ms, i) for i, m in enumerate(ms))
         for i, m in enumerate(marks):
             if m not in MARKS:
-                raise self.fail(f"{w}[{i}]", f"unknown mark {m!r}; expected one of {', '.join(MARKS)}", ms)
-        sym = self.symmetry(c["symmetry"], f"{where}.symmetry", c) if "symmetry" in c else Symmetry()
-        layer = self.integer(c["layer"], f"{where}.layer", c, 0) if "layer" in c else 0
+                raise self.fail(f"{w}[{i}]", f"unknown mark {m!r}; expected one of {', '.join(MARKS)}",
+                                ms, i)
+        sym = self.symmetry(c["symmetry"], f"{where}.symmetry", c, "symmetry") if "symmetry" in c \
+            else Symmetry()
         prc: tuple[float | None, ...] = ()
         if "prc" in c:
             w = f"{where}.prc"
-            ps = self.arr(c["prc"], w, c)
+            ps = self.arr(c["prc"], w, c, "prc")
             if len(ps) != len(segs):
                 raise self.fail(w, f"need one entry (a number or null) per segment ({len(segs)}), "
-                                f"got {len(ps)}", ps)
-            prc = tuple(self.opt_num(p, f"{w}[{i}]", ps) for i, p in enumerate(ps))
+                                f"got {len(ps)}", c, "prc")
+            prc = tuple(self.opt_num(p, f"{w}[{i}]", ps, i) for i, p in enumerate(ps))
             for i, p in enumerate(prc):
                 if p is not None and not 0.0 < p < 1.0:
                     raise self.fail(f"{w}[{i}]", f"a PRC fraction must lie strictly between 0 and 1, "
-                                    f"got {p!r}", ps)
-        deco = self.boolean(c["decoration"], f"{where}.decoration", c) if "decoration" in c else False
-        deco_at = self.opt_num(c.get("decoration_at"), f"{where}.decoration_at", c)
+                                    f"got {p!r}", ps, i)
+        deco_at = self.field(c, "decoration_at", where, "opt_num", None)
         if deco_at is not None and not 0.0 < deco_at < 1.0:
-            raise self.fail(f"{where}.decoration_at", f"must lie strictly between 0 and 1, got {deco_at!r}", c)
+            raise self.fail(f"{where}.decoration_at", f"must lie strictly between 0 and 1, got {deco_at!r}",
+                            c, "decoration_at")
         try:
             return BasicCurve(
-                vertices=verts, segments=segs, marks=marks, symmetry=sym, layer=layer,
-                height=self.opt_num(c.get("height"), f"{where}.height", c),
-                prc=prc, decoration=deco, decoration_at=deco_at,
-                post_top=self.opt_num(c.get("post_top"), f"{where}.post_top", c),
-                name=self.string(c["name"], f"{where}.name", c) if "name" in c else "",
+                vertices=verts, segments=segs, marks=marks, symmetry=sym,
+                layer=self.field(c, "layer", where, "integer", 0, 0),
+                height=self.field(c, "height", where, "opt_num", None),
+                prc=prc,
+                decoration=self.field(c, "decoration", where, "boolean", False),
+                decoration_at=deco_at,
+                post_top=self.field(c, "post_top", where, "opt_num", None),
+                name=self.field(c, "name", where, "string", ""),
             )
         except DrawingError as e:
             raise self.fail(where, str(e), c) from None
 
-    def segment(self, s: Any, where: str, parent: Any) -> Segment:
-        s = self.obj(s, where, _SEG_KEYS, ("kind",), parent)
-        kind = self.string(s["kind"], f"{where}.kind", s)
+    def segment(self, s: Any, where: str, parent: Any, key: Any) -> Segment:
+        s = self.obj(s, where, _SEG_KEYS, ("kind",), parent, key)
+        kind = self.string(s["kind"], f"{where}.kind", s, "kind")
         if kind not in _HANDLES:
             raise self.fail(f"{where}.kind", f"unknown segment kind {kind!r}; expected line, arc or "
-                            "bezier", s)
-        hs = self.arr(s.get("handles", []), f"{where}.handles", s)
+                            "bezier", s, "kind")
+        hs = self.field(s, "handles", where, "arr", [])
         if len(hs) != _HANDLES[kind]:
             raise self.fail(f"{where}.handles", f"a {kind} segment needs {_HANDLES[kind]} handle(s), "
-                            f"got {len(hs)}", hs if isinstance(hs, _Arr) else s)
-        return Segment(kind, tuple(self.point(h, f"{where}.handles[{i}]", hs)  # type: ignore[arg-type]
+                            f"got {len(hs)}", s, "handles")
+        return Segment(kind, tuple(self.point(h, f"{where}.handles[{i}]", hs, i)  # type: ignore[arg-type]
                                    for i, h in enumerate(hs)))
 
-    def symmetry(self, s: Any, where: str, parent: Any) -> Symmetry:
-        s = self.obj(s, where, _SYM_KEYS, (), parent)
-        fold = self.integer(s["fold"], f"{where}.fold", s, 1) if "fold" in s else 1
-        mirror = self.boolean(s["mirror"], f"{where}.mirror", s) if "mirror" in s else False
-        axis = self.point(s["axis"], f"{where}.axis", s) if "axis" in s else (0.0, 1.0)
-        center = self.point(s["center"], f"{where}.center", s) if "center" in s else (0.0, 0.0)
-        rule = self.string(s["axis_rule"], f"{where}.axis_rule", s) if "axis_rule" in s else "fixed"
+    def symmetry(self, s: Any, where: str, parent: Any, key: Any) -> Symmetry:
+        s = self.obj(s, where, _SYM_KEYS, (), parent, key)
+        fold = self.field(s, "fold", where, "integer", 1, 1)
+        mirror = self.field(s, "mirror", where, "boolean", False)
+        axis = self.field(s, "axis", where, "point", (0.0, 1.0))
+        center = self.field(s, "center", where, "point", (0.0, 0.0))
+        rule = self.field(s, "axis_rule", where, "string", "fixed")
         if rule not in _AXIS_RULES:
             raise self.fail(f"{where}.axis_rule", f"unknown axis rule {rule!r}; expected one of "
-                            f"{', '.join(_AXIS_RULES)}", s)
+                            f"{', '.join(_AXIS_RULES)}", s, "axis_rule")
         if mirror and math.hypot(*axis) <= 1e-12:
-            raise self.fail(f"{where}.axis", "a mirror axis needs a direction of non-zero length", s)
+            raise self.fail(f"{where}.axis", "a mirror axis needs a direction of non-zero length",
+                            s, "axis" if "axis" in s else None)
         try:
             return Symmetry(fold, mirror, axis, center, rule)  # type: ignore[arg-type]
         except DrawingError as e:  # pragma: no cover - checked above

@@ -77,7 +77,7 @@ def test_optional_keys_take_their_documented_defaults():
 
 
 # -- hypothesis: arbitrary valid drawings ---------------------------------------------------------
-finite = st.floats(allow_nan=False, allow_infinity=False)
+finite = st.floats(-1e100, 1e100)  # the readers' range (formats.uc.MAX_NUMBER)
 point = st.tuples(finite, finite)
 fraction = st.floats(0.0, 1.0, exclude_min=True, exclude_max=True)
 NEED = {"line": 0, "arc": 1, "bezier": 2}
@@ -185,6 +185,8 @@ def test_wrong_format_and_version():
      "expected a finite number, got nan", ('"vertices"', 2)),
     ("[[0.7, 0.0], [0.0, 0.5]]", "[[0.7, 0.0], [0.0, 1e999]]", 0, "curves[2].vertices[1][1]",
      "expected a finite number, got inf", ('"vertices"', 2)),
+    ("[[0.7, 0.0], [0.0, 0.5]]", "[[0.7, 0.0], [0.0, -2e100]]", 0, "curves[2].vertices[1][1]",
+     "-2e+100 is too large; expected a number within +-1e+100", ('"vertices"', 2)),
     ("[[0.7, 0.0], [0.0, 0.5]]", "[[0.7, 0.0], [0.7, 0.0]]", 0, "curves[2].vertices[1]",
      "coincides with vertex 0", ('"vertices"', 2)),
     ("[[0.7, 0.0], [0.0, 0.5]]", "[[0.7, 0.0]]", 0, "curves[2].vertices",

@@ -284,6 +284,8 @@ def test_empty_and_blank_files():
     assert _err("\n\t \n").problem.startswith("empty file")
 
 
-def test_huge_coordinates_do_not_make_an_infinite_apex():
-    text = "unitCurve 2 1 0\nptPos -1e308 0\nptLab 0\nptPos 1e308 0\nptLab 1\n"
-    assert "overflows" in _err(text).problem
+def test_numbers_beyond_1e100_are_refused():
+    text = "unitCurve 2 1 0\nptPos -1e101 0\nptLab 0\nptPos 1e100 0\nptLab 1\n"
+    e = _err(text)
+    assert e.line == 2 and e.problem == "'ptPos': -1e101 is too large; expected a number within +-1e+100"
+    assert read_legacy(text.replace("-1e101", "-1e100")).default_apex == 2e100

@@ -39,6 +39,7 @@ from typing import Any
 
 from auszug.errors import DrawingError, FormatError
 from auszug.formats._registry import FileFormat, register
+from auszug.formats.uc import MAX_NUMBER
 from auszug.microarch.model import MARKS, BasicCurve, Drawing, Segment, Symmetry
 
 __all__ = ["FORMAT_ID", "VERSION", "read_native", "write_native", "to_dict", "from_dict"]
@@ -251,6 +252,9 @@ class _Reader:
             f = math.inf
         if not math.isfinite(f):
             raise self.fail(where, f"expected a finite number, got {_what(f)}", parent, key)
+        if abs(f) > MAX_NUMBER:
+            raise self.fail(where, f"{_what(v)} is too large; expected a number within "
+                            f"+-{MAX_NUMBER:g}", parent, key)
         return f
 
     def opt_num(self, v: Any, where: str, parent: Any, key: Any) -> float | None:

@@ -23,6 +23,10 @@ _WEB_KEYS = {
 }
 _TOKEN = re.compile(r"\S+")
 
+# Largest magnitude a number in a drawing file may have: squared distances of
+# larger coordinates overflow in the geometry kernel (NaN or OverflowError).
+MAX_NUMBER = 1e100
+
 
 def _numbers(tokens: list[str], n: int | None, key: str, path: str, line: int) -> list[float]:
     if n is not None and len(tokens) != n:
@@ -35,6 +39,9 @@ def _numbers(tokens: list[str], n: int | None, key: str, path: str, line: int) -
             raise FormatError(f"'{key}': {tok!r} is not a number", path, line) from None
         if not math.isfinite(v):
             raise FormatError(f"'{key}': {tok} is not a finite number", path, line)
+        if abs(v) > MAX_NUMBER:
+            raise FormatError(f"'{key}': {tok} is too large; expected a number within "
+                              f"+-{MAX_NUMBER:g}", path, line)
         out.append(v)
     return out
 

@@ -339,6 +339,4 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
             raise FormatError(f"curve {ci}: {e}", path, cur.line) from None
         for a, b in zip(cur.points[:-1], cur.points[1:]):
             longest = max(longest, math.hypot(b[0] - a[0], b[1] - a[1]))
-    if not math.isfinite(longest):
-        raise FormatError("coordinates too large: a segment's length overflows", path)
     return Drawing(curves=tuple(basics), name=_stem(path), default_apex=max(1.0, longest))

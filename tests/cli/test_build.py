@@ -132,7 +132,7 @@ def test_format_must_agree_with_the_output_ending(cli, tmp_path):
 
 @pytest.mark.parametrize("make_args, message", [
     (lambda t: ["build", t / "missing.uc"], "no such file or folder"),
-    (lambda t: ["build", t / "empty"], "no drawings (.uc"),
+    (lambda t: ["build", t / "empty"], "no drawings (.json, .uc) in this folder"),
     (lambda t: ["build", TN / "tn-1.uc", TN / "tn-2.uc", "-o", t / "f.network.json"], "need an output folder"),
     (lambda t: ["build", TN / "tn-1.uc", TN / "tn-1.uc", "-o", t / "o"], "would both be written"),
 ])
@@ -150,3 +150,11 @@ def test_progress_bar_on_a_terminal(cli, tmp_path, monkeypatch):
     r = cli("build", TN / "tn-1.uc", TN / "tn-2.uc", "-o", tmp_path)
     assert r.code == 0
     assert files_in(tmp_path) == ["tn-1.network.json", "tn-2.network.json"]
+
+
+def test_a_network_file_is_not_taken_for_a_drawing(cli, tmp_path):
+    net = tmp_path / "a.network.json"
+    assert cli("build", TN / "tn-1.uc", "-o", net).code == 0
+    r = cli("build", net, "-o", tmp_path / "b.obj")
+    assert r.code == 2 and r.err == f"auszug: {net}: not a drawing file name; drawings end in .json, .uc\n"
+    assert files_in(tmp_path) == ["a.network.json"]

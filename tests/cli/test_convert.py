@@ -36,7 +36,9 @@ def test_errors(cli, tmp_path, bad_uc):
     r = cli("convert", bad_uc, tmp_path / "x.uc")
     assert r.code == 2 and r.err.startswith(f"auszug: {bad_uc}:{BAD_LINE}: ")
     r = cli("convert", TN / "tn-1.uc", tmp_path / "x.network.json")
-    assert r.code == 2 and "unknown file type" in r.err
+    assert r.code == 2 and "not a drawing file name; drawings end in .json, .uc" in r.err
+    r = cli("convert", TN / "tn-1.uc", tmp_path / "x.obj")
+    assert r.code == 2 and "not a drawing file name" in r.err
     r = cli("convert", tmp_path / "missing.uc", tmp_path / "y.uc")
     assert r.code == 2 and "no such file" in r.err
     assert files_in(tmp_path) == ["bad.uc"]

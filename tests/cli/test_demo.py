@@ -18,7 +18,7 @@ def test_bundled_drawings_come_from_the_package():
     assert all(text.startswith("numCurves") for _, _, text in got)
 
 
-@pytest.mark.parametrize("jobs", ["1", "2"])
+@pytest.mark.parametrize("jobs", ["2"])
 def test_demo_writes_networks_figures_and_the_contact_sheet(cli, tmp_path, jobs):
     out = tmp_path / "out"
     r = cli("demo", "-o", out, "--jobs", jobs)

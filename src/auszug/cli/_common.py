@@ -76,10 +76,25 @@ def about(path: str | os.PathLike[str]) -> Iterator[None]:
         raise FormatError(str(e), os.fspath(path)) from None
 
 
+def drawing_suffixes() -> list[str]:
+    """Endings of the registered drawing formats."""
+    from auszug.formats import formats
+
+    return sorted({s for f in formats().values() if f.kind == "drawing" for s in f.suffixes})
+
+
+def check_drawing_name(path: str | os.PathLike[str]) -> None:
+    """Refuse a file name that is not a drawing's (``x.network.json`` ends in ``.json`` too)."""
+    if drawing_suffix(path) is None:
+        raise FormatError(f"not a drawing file name; drawings end in {', '.join(drawing_suffixes())}",
+                          os.fspath(path))
+
+
 def read_drawing(path: str | os.PathLike[str]) -> "Drawing":
     """Read a drawing file in any registered drawing format."""
     from auszug.formats import load
 
+    check_drawing_name(path)
     with about(path):
         return load(path, kind="drawing")
 
@@ -145,10 +160,7 @@ def find_drawings(inputs: Sequence[str]) -> list[tuple[Path, Path]]:
         if p.is_dir():
             found = sorted(q for q in p.rglob("*") if q.is_file() and drawing_suffix(q.name))
             if not found:
-                from auszug.formats import formats
-
-                sufs = sorted({s for f in formats().values() if f.kind == "drawing" for s in f.suffixes})
-                raise FormatError(f"no drawings ({', '.join(sufs)}) in this folder", arg)
+                raise FormatError(f"no drawings ({', '.join(drawing_suffixes())}) in this folder", arg)
             out.extend((q, q.parent.relative_to(p)) for q in found)
         elif p.exists():
             out.append((p, Path(".")))

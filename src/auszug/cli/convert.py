@@ -29,6 +29,7 @@ def run(args: argparse.Namespace) -> int:
     """Read, write; return 0."""
     from auszug.formats import format_for, save
 
+    _common.check_drawing_name(args.output)
     format_for(args.output, "drawing", want="write")
     drawing = _common.read_drawing(args.input)
     with _common.about(args.input):   # writer errors name OUT themselves; others are the drawing's

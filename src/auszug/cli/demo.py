@@ -88,7 +88,6 @@ def _job(set_name: str, name: str, text: str, out_dir: str) -> tuple[list[str], 
 def run(args: argparse.Namespace) -> int:
     """Write everything; return 0, or 2 if a drawing failed."""
     from auszug.formats import atomic_write
-    from auszug.formats.figure import contact_sheet
 
     out = Path(args.output)
     if out.exists() and not out.is_dir():
@@ -104,7 +103,7 @@ def run(args: argparse.Namespace) -> int:
         from concurrent.futures import ProcessPoolExecutor
 
         ctx = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(max_workers=jobs - 1 or 1, mp_context=ctx) as pool:
+        with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
             futures = [pool.submit(_job, s, n, t, str(out)) for s, n, t in drawings]
             sheet = _sheet(sheet_items)          # meanwhile, here
             results = [f.result() for f in futures]

@@ -5,9 +5,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from hypothesis import assume
 from hypothesis import strategies as st
 
-from auszug.geometry import Arc, Curve, Line, cross2
+from auszug.geometry import Arc, CubicBezier, Curve, Line, cross2
 
 TAU = 2.0 * math.pi
 
@@ -33,8 +34,17 @@ def arcs(draw: st.DrawFn) -> Arc:
     return Arc(c, r, th0, sweep)
 
 
-def curves() -> st.SearchStrategy[Curve]:
-    return st.one_of(lines(), arcs())
+@st.composite
+def beziers(draw: st.DrawFn, min_size: float = 0.05) -> CubicBezier:
+    """Beziers with control points in [-1, 1]^2 (loops, cusps and inflections included)."""
+    c = [draw(points) for _ in range(4)]
+    spread = max(float(np.hypot(*(q - c[0]))) for q in c[1:])
+    assume(spread >= min_size)
+    return CubicBezier(*c)
+
+
+def curves(bezier: bool = False) -> st.SearchStrategy[Curve]:
+    return st.one_of(lines(), arcs(), beziers()) if bezier else st.one_of(lines(), arcs())
 
 
 @st.composite

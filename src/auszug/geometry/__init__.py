@@ -5,6 +5,7 @@ No I/O, no printing, no global state beyond the tolerances in :data:`TOL`.
 
 from auszug.geometry._tolerance import TOL, Tolerances, tolerances
 from auszug.geometry.arc import Arc, arc_from_tangent, arc_through
+from auszug.geometry.bezier import CubicBezier
 from auszug.geometry.curve import Curve, cross2, rot90
 from auszug.geometry.intersect import Intersection, intersect, intersect_many
 from auszug.geometry.line import Line
@@ -16,6 +17,7 @@ __all__ = [
     "Curve",
     "Line",
     "Arc",
+    "CubicBezier",
     "arc_from_tangent",
     "arc_through",
     "cross2",

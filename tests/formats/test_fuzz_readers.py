@@ -30,7 +30,7 @@ ODD = ["nan", "NaN", "inf", "-inf", "Infinity", "0", "-0", "1", "2", "3", "-1", 
        "first", "point", "y", "axis", "", "\t", "#", "1e", "--1", ".", "1.5.5"]
 token = st.sampled_from(ODD + KEYWORDS) | st.floats(-5, 5).map(repr) | st.integers(-3, 9).map(str)
 
-SETTINGS = settings(max_examples=int(os.environ.get("AUSZUG_FUZZ_EXAMPLES", 250)), deadline=None,
+SETTINGS = settings(max_examples=int(os.environ.get("AUSZUG_FUZZ_EXAMPLES", "250")), deadline=None,
                     suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import fields
+from itertools import pairwise
 
 import pytest
 from hypothesis import given, settings
@@ -88,7 +89,7 @@ NEXT = {"ground": ["ground", "apex"], "apex": ["ground", "apex", "free"], "free"
 def basic_curves(draw):
     n = draw(st.integers(2, 5))
     verts = draw(st.lists(point, min_size=n, max_size=n).filter(
-        lambda vs: all(math.hypot(b[0] - a[0], b[1] - a[1]) > 1e-12 for a, b in zip(vs, vs[1:]))))
+        lambda vs: all(math.hypot(b[0] - a[0], b[1] - a[1]) > 1e-12 for a, b in pairwise(vs))))
     kinds = draw(st.lists(st.sampled_from(sorted(NEED)), min_size=n - 1, max_size=n - 1))
     segs = tuple(Segment(k, tuple(draw(point) for _ in range(NEED[k]))) for k in kinds)
     marks = [draw(st.sampled_from(["ground", "apex", "free"]))]

@@ -77,7 +77,7 @@ def test_web_facts_checked_by_hand():
     assert all((c.symmetry.fold, c.symmetry.mirror) == (3, True) for c in d.curves)
 
     d = load(CORPUS / "web" / "weird_ones" / "flower.uc")
-    assert [c.symmetry.fold for c in d.curves][0] == 7
+    assert d.curves[0].symmetry.fold == 7
     assert d.curves[0].decoration and d.curves[0].decoration_at == 0.20764500599882615
     assert sum(len(c.marks) == 3 for c in d.curves) == (11 - 3 * len(d.curves)) // 2
 

@@ -42,7 +42,7 @@ from auszug.formats._registry import FileFormat, register
 from auszug.formats.uc import MAX_NUMBER
 from auszug.microarch.model import MARKS, BasicCurve, Drawing, Segment, Symmetry
 
-__all__ = ["FORMAT_ID", "VERSION", "read_native", "write_native", "to_dict", "from_dict"]
+__all__ = ["FORMAT_ID", "VERSION", "from_dict", "read_native", "to_dict", "write_native"]
 
 #: Value of the ``"format"`` key.
 FORMAT_ID = "auszug.drawing"
@@ -169,14 +169,14 @@ class _Decoder(json.JSONDecoder):
         self.scan_once = json.scanner.py_make_scanner(self)
 
     @staticmethod
-    def _recording(scan_once, starts: list[int]):  # noqa: ANN001, ANN205
-        def scan(s: str, idx: int):  # noqa: ANN202
+    def _recording(scan_once, starts: list[int]):
+        def scan(s: str, idx: int):
             starts.append(idx)
             return scan_once(s, idx)
 
         return scan
 
-    def _object(self, s_and_end, strict, scan_once, object_hook, object_pairs_hook, memo):  # noqa: ANN001
+    def _object(self, s_and_end, strict, scan_once, object_hook, object_pairs_hook, memo):
         s, end = s_and_end
         starts: list[int] = []
         pairs, e = json.decoder.JSONObject(
@@ -192,8 +192,8 @@ class _Decoder(json.JSONDecoder):
             out.child_pos[k] = at
         return out, e
 
-    def _array(self, s_and_end, scan_once):  # noqa: ANN001
-        s, end = s_and_end
+    def _array(self, s_and_end, scan_once):
+        end = s_and_end[1]
         starts: list[int] = []
         values, e = json.decoder.JSONArray(s_and_end, self._recording(scan_once, starts))
         out = _Arr(values)

@@ -95,7 +95,7 @@ from auszug.errors import DrawingError, FormatError
 from auszug.formats.uc import _integer, _lines, _numbers, _stem
 from auszug.microarch.model import BasicCurve, Drawing, Segment, Symmetry
 
-__all__ = ["read_legacy", "LABEL_MARKS"]
+__all__ = ["LABEL_MARKS", "read_legacy"]
 
 #: ``ptLab`` value -> vertex mark.
 LABEL_MARKS: dict[int, str] = {0: "ground", 1: "apex", 2: "free"}

@@ -1,0 +1,642 @@
+"""Members: profiles swept along the 3D curves of a network, replicated by the symmetries.
+
+Each *basic* piece of a :class:`~auszug.microarch.Network` (ogee, free end,
+level segment, post, pillar; decoration pieces are part of their ogee) is
+swept once, and the mesh is then mapped by its curve's symmetry group, the
+2x2 top-view transforms extended to 3x3 with z kept. Replicas are therefore
+exact images of each other, and a mirrored replica gets its triangles
+reversed so that every member stays outward-oriented.
+
+Sampling
+    Ogee and free-end pieces are sampled evenly along their side view (the
+    chain of circular arcs in the (g, z) plane), which for the arc-length
+    parameterisation is the 3D arc length, so the vertical ends are as finely
+    resolved as the middle. Positions and unit tangents are exact (the side
+    view's arcs give the tangent in closed form; at the vertical ends it is
+    exactly vertical). A corner of a side view (the cusp of a decorated ogee)
+    splits the member there.
+Frames
+    Rotation-minimising (double reflection, :mod:`auszug.meshing.frames`),
+    starting from the Darboux frame of the vertical surface over the top
+    view: profile x along that surface, profile y along the horizontal
+    top-view normal. Where an end lies on a mirror axis of its curve's group,
+    the frame is turned there so that the profile's x axis is the mirror
+    plane's normal; with both ends on mirrors the remaining twist is spread
+    linearly in arc length.
+Joints
+    A member whose end lies on a mirror axis meets its mirror image there.
+    Both are cut by the vertical mirror plane, each keeping its own side, so
+    they join along one planar outline without overlap; since the image is the
+    exact mirror of the cut member, the two outlines coincide to rounding.
+    Only the stretch of member next to that end is cut. Other ends (on the
+    ground, free ends, posts) are closed by flat caps.
+
+Everything per sample is vectorised; the loops are over pieces and replicas.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import lru_cache
+from typing import Iterable, Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+
+from auszug.errors import GeometryError
+from auszug.geometry import TOL
+from auszug.meshing._clip import clip_halfspace, compact
+from auszug.meshing.frames import Frames, sweep_frames
+from auszug.meshing.mesh import Mesh, Part
+from auszug.meshing.profile import Profile, circle, ribbon, square
+
+__all__ = [
+    "SWEPT_KINDS",
+    "CurveSamples",
+    "Cut",
+    "Member",
+    "sample_piece",
+    "sweep_profile",
+    "sweep_piece",
+    "sweep_members",
+    "sweep_network",
+    "profile_for",
+    "default_size",
+]
+
+Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+#: Piece kinds that become members (decorations are part of their ogee).
+SWEPT_KINDS: tuple[str, ...] = ("ogee", "free_end", "level", "post", "pillar")
+#: Relative tolerance (of the drawing size) for "an end lies on a mirror axis".
+AXIS_TOL = 1e-6
+#: Side-view corners sharper than this (radians) split a member.
+CORNER_ANGLE = 1e-6
+
+
+# -- sampling ----------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class CurveSamples:
+    """Samples of one smooth run of a piece.
+
+    Attributes
+    ----------
+    points : (n, 3) ndarray
+        Exactly on the network's curve.
+    tangents : (n, 3) ndarray
+        Unit tangents, in the direction of travel.
+    """
+
+    points: Array
+    tangents: Array
+
+
+def _wrap(a: Array) -> Array:
+    return (a + np.pi) % (2.0 * np.pi) - np.pi
+
+
+def _t_of_g(piece, g: Array) -> Array:  # noqa: ANN001
+    mode, a, _, _ = piece.g_scale
+    top = piece.top
+    if mode == "arclength":
+        return top.t_at_u(np.clip(g / a, 0.0, 1.0))
+    if mode == "u":
+        return np.clip(g, 0.0, 1.0)
+    tt = np.linspace(0.0, 1.0, 513)
+    gg = piece.g_of_t(tt)
+    t = np.interp(g, gg, tt)
+    for _ in range(3):  # Newton on the monotone g(t)
+        h = 1e-7
+        dg = (piece.g_of_t(np.clip(t + h, 0, 1)) - piece.g_of_t(np.clip(t - h, 0, 1))) / (
+            np.clip(t + h, 0, 1) - np.clip(t - h, 0, 1))
+        t = np.clip(t - (piece.g_of_t(t) - g) / dg, 0.0, 1.0)
+    return t
+
+
+def _ds_dg(piece, t: Array) -> Array:  # noqa: ANN001
+    """Top-view arc length per unit side-view coordinate at t."""
+    mode = piece.g_scale[0]
+    if mode == "arclength":
+        return np.ones_like(t)
+    top = piece.top
+    L = top.length()
+    h = 1e-6
+    t0, t1 = np.clip(t - h, 0.0, 1.0), np.clip(t + h, 0.0, 1.0)
+    ds = L * (top.u_at_t(t1) - top.u_at_t(t0))
+    dg = piece.g_of_t(t1) - piece.g_of_t(t0)
+    return ds / dg
+
+
+def sample_piece(piece, segments: int) -> list[CurveSamples]:  # noqa: ANN001
+    """Sample a network piece for sweeping: ``segments`` steps in all, split at corners.
+
+    Parameters
+    ----------
+    piece : Piece
+        A piece of :attr:`Network.pieces`.
+    segments : int
+        Number of steps along the piece (>= 1; posts and pillars use 1).
+
+    Returns
+    -------
+    list of CurveSamples
+        One per smooth run (more than one only at side-view corners).
+    """
+    if piece.top is None:  # post or pillar: a vertical straight member
+        p = np.asarray(piece.points[[0, -1]], dtype=float)
+        d = p[1] - p[0]
+        ln = float(np.linalg.norm(d))
+        if ln <= TOL.zero:
+            raise GeometryError(f"zero-length {piece.kind}")
+        return [CurveSamples(p, np.tile(d / ln, (2, 1)))]
+    top = piece.top
+    if piece.side is None:  # level: constant height
+        u = np.linspace(0.0, 1.0, max(1, segments) + 1)
+        t = top.t_at_u(u)
+        xy = top.point(t)
+        pts = np.concatenate([xy, np.full((len(u), 1), piece.z_const)], axis=1)
+        tan = np.concatenate([top.tangent(t), np.zeros((len(u), 1))], axis=1)
+        return [CurveSamples(pts, tan)]
+    side = piece.side
+    G = float(piece.g_of_t(1.0))
+    br = np.asarray(side.breaks, dtype=float)
+    ga = np.minimum(br[:-1], G)
+    gb = np.minimum(br[1:], G)
+    use = gb - ga > 1e-12 * max(G, 1.0)
+    ga, gb = ga[use], gb[use]
+    cg, cz = side.centers[use, 0], side.centers[use, 1]
+    r = side.radii[use]
+    za, zb = side.height(ga), side.height(gb)
+    pa = np.arctan2(za - cz, ga - cg)
+    pb = np.arctan2(zb - cz, gb - cg)
+    dphi = _wrap(pb - pa)
+    lens = r * np.abs(dphi)
+    k = np.maximum(1, np.round(max(1, segments) * lens / lens.sum())).astype(int)
+    # per arc: angles, then exact g at the ends
+    arc_id = np.repeat(np.arange(len(k)), k + 1)
+    frac = np.concatenate([np.arange(n + 1) / n for n in k])
+    phi = pa[arc_id] + dphi[arc_id] * frac
+    g = cg[arc_id] + r[arc_id] * np.cos(phi)
+    first = np.concatenate([[0], np.cumsum(k + 1)[:-1]])
+    last = first + k
+    g[first] = ga
+    g[last] = gb
+    g = np.clip(g, 0.0, G)
+    z = side.height(g)
+    sgn = np.sign(dphi)[arc_id]
+    tau = sgn[:, None] * np.stack([-(z - cz[arc_id]), g - cg[arc_id]], axis=1) / r[arc_id, None]
+    t = _t_of_g(piece, g)
+    xy = top.point(t)
+    th = top.tangent(t)
+    tg = tau[:, 0] * _ds_dg(piece, t)
+    tan = np.concatenate([th * tg[:, None], tau[:, 1:2]], axis=1)
+    tan /= np.linalg.norm(tan, axis=1, keepdims=True)
+    pts = np.concatenate([xy, z[:, None]], axis=1)
+    # join the arcs: drop the repeated joint sample unless the side view has a corner there
+    runs: list[CurveSamples] = []
+    start = 0
+    keep_idx: list[IntArray] = []
+    for a in range(len(k)):
+        idx = np.arange(first[a], last[a] + 1)
+        if a > 0:
+            c = float(np.dot(tau[last[a - 1]], tau[first[a]]))
+            if c < math.cos(CORNER_ANGLE):
+                sel = np.concatenate(keep_idx)
+                runs.append(CurveSamples(pts[sel], tan[sel]))
+                keep_idx = []
+            else:
+                idx = idx[1:]
+        keep_idx.append(idx)
+        start = a
+    del start
+    sel = np.concatenate(keep_idx)
+    runs.append(CurveSamples(pts[sel], tan[sel]))
+    return runs
+
+
+# -- the sweep kernel ---------------------------------------------------------------------------
+
+
+@lru_cache(maxsize=64)
+def _grid_faces(n: int, m: int, closed: bool) -> IntArray:
+    """Side triangles of an n-ring by m-point sweep (read-only, cached)."""
+    j = np.arange(m if closed else m - 1)
+    j1 = (j + 1) % m
+    i = np.arange(n - 1)[:, None]
+    a = i * m + j
+    b = i * m + j1
+    c = (i + 1) * m + j1
+    d = (i + 1) * m + j
+    f = np.stack([np.stack([a, b, c], -1), np.stack([a, c, d], -1)], axis=2).reshape(-1, 3).astype(np.int64)
+    f.setflags(write=False)
+    return f
+
+
+def sweep_profile(points: Array, frames: Frames, profile: Profile, cap_start: bool = True,
+                  cap_end: bool = True) -> tuple[Array, IntArray]:
+    """The surface swept by ``profile`` along sampled points with their frames.
+
+    Parameters
+    ----------
+    points : (n, 3) ndarray
+    frames : Frames
+        n frames; profile (x, y) maps to ``x W + y D``.
+    profile : Profile
+    cap_start, cap_end : bool
+        Close the ends with the profile's triangulation (closed profiles only).
+
+    Returns
+    -------
+    vertices : (n m, 3) ndarray
+        Ring after ring.
+    faces : (k, 3) ndarray
+        Outward-oriented for a closed (counter-clockwise) profile.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from auszug.meshing.frames import sweep_frames
+    >>> from auszug.meshing.profile import square
+    >>> from auszug.meshing.mesh import Mesh
+    >>> p = np.array([[0, 0, 0], [0, 0, 1.0]]); t = np.tile([0, 0, 1.0], (2, 1))
+    >>> v, f = sweep_profile(p, sweep_frames(p, t, [1.0, 0, 0]), square(1.0))
+    >>> m = Mesh(v, f); m.is_watertight, round(m.volume, 12)
+    (True, 1.0)
+    """
+    n = len(points)
+    pp = profile.points
+    m = len(pp)
+    v = (points[:, None, :] + pp[None, :, 0, None] * frames.width[:, None, :]
+         + pp[None, :, 1, None] * frames.depth[:, None, :]).reshape(-1, 3)
+    faces = [_grid_faces(n, m, profile.closed)]
+    if profile.closed:
+        cap = profile.cap
+        if cap_start:
+            faces.append(cap[:, ::-1])
+        if cap_end:
+            faces.append(cap + (n - 1) * m)
+    return v, np.concatenate(faces) if len(faces) > 1 else faces[0].copy()
+
+
+# -- members ------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class Cut:
+    """A mirror plane at a member's end: the member keeps ``(x - origin) . normal >= 0``.
+
+    Attributes
+    ----------
+    origin : (3,) ndarray
+        The end point (on the plane).
+    normal : (3,) ndarray
+        Horizontal unit normal towards the kept side.
+    end : int
+        0 for the first sample's end, 1 for the last.
+    element : int
+        Index (into the symmetry's :meth:`~auszug.microarch.Symmetry.matrices`)
+        of the reflection: the replica met there is this element's image.
+    """
+
+    origin: Array
+    normal: Array
+    end: int
+    element: int
+
+
+@dataclass(frozen=True, eq=False)
+class Member:
+    """One basic piece swept (before replication).
+
+    Attributes
+    ----------
+    piece : int
+        Index into :attr:`Network.pieces`.
+    basic : int
+    kind : str
+    vertices : (n, 3) ndarray
+    faces : (m, 3) ndarray
+    frames : list of Frames
+        One per smooth run.
+    samples : list of CurveSamples
+    cuts : tuple of Cut
+    replicas : tuple of int
+        Group elements whose images are emitted (duplicates of self-symmetric
+        members, such as posts on a mirror axis, left out).
+    name : str
+        Suffix for part names: ``""`` for a curve's first ogee, else
+        ``".<kind><segment>"`` as in network curve ids.
+    """
+
+    piece: int
+    basic: int
+    kind: str
+    vertices: Array
+    faces: IntArray
+    frames: list[Frames]
+    samples: list[CurveSamples]
+    cuts: tuple[Cut, ...]
+    replicas: tuple[int, ...]
+    name: str = ""
+    closed: bool = field(default=True)
+
+
+def _reflection_axis(m: Array) -> Array:
+    """Unit direction of the axis of a 2x2 reflection."""
+    s = m + np.eye(2)
+    c = s[:, 0] if np.linalg.norm(s[:, 0]) >= np.linalg.norm(s[:, 1]) else s[:, 1]
+    return c / np.linalg.norm(c)
+
+
+def _scale(network) -> float:  # noqa: ANN001
+    pts = [v for c in network.drawing.curves for v in c.vertices]
+    return max(1.0, float(np.max(np.abs(pts)))) if pts else 1.0
+
+
+def _mirror_cuts(network, pi: int, runs: list[CurveSamples]) -> list[tuple[int, int, Array]]:  # noqa: ANN001
+    """(end, element, plane normal) for each end of piece ``pi`` on a mirror axis of its group."""
+    piece = network.pieces[pi]
+    sym = network.drawing.curves[piece.basic].symmetry
+    mats = sym.matrices()
+    cen = np.asarray(sym.center)
+    tol = AXIS_TOL * _scale(network)
+    pts = np.concatenate([r.points for r in runs])
+    probe = pts[[0, len(pts) // 3, (2 * len(pts)) // 3, -1], :2] - cen
+    mirror = np.linalg.det(mats) < 0
+    out = []
+    for end, p in ((0, pts[0]), (1, pts[-1])):
+        q = p[:2] - cen
+        if np.hypot(*q) <= tol:
+            continue  # at the centre every replica meets: left overlapping (documented)
+        imgs = np.einsum("kij,j->ki", mats, q)
+        fix = np.flatnonzero(mirror & (np.hypot(*(imgs - q).T) <= tol))
+        if len(fix) != 1:
+            continue
+        k = int(fix[0])
+        # the mirror image must be another curve, not the piece itself
+        img = probe @ mats[k].T
+        if np.abs(img - probe).max() <= tol or np.abs(img[::-1] - probe).max() <= tol:
+            continue
+        ax = _reflection_axis(mats[k])
+        out.append((end, k, np.array([-ax[1], ax[0], 0.0])))
+    return out
+
+
+def _width0(piece, s: CurveSamples, cut_normal: Array | None) -> Array:  # noqa: ANN001
+    if piece.top is not None:
+        th = piece.top.tangent(0.0)
+        nh = np.array([-th[1], th[0], 0.0])
+        return np.cross(nh, s.tangents[0])
+    if cut_normal is not None:
+        return cut_normal
+    p = s.points[0]
+    w = np.array([-p[1], p[0], 0.0])
+    return w / np.linalg.norm(w) if np.linalg.norm(w) > TOL.zero else np.array([1.0, 0.0, 0.0])
+
+
+def _replica_set(network, pi: int, pts: Array, tol: float) -> tuple[int, ...]:  # noqa: ANN001
+    """Group elements with distinct images of the piece (self-symmetric duplicates dropped)."""
+    piece = network.pieces[pi]
+    sym = network.drawing.curves[piece.basic].symmetry
+    mats = sym.matrices()
+    cen = np.asarray(sym.center)
+    probe = pts[[0, len(pts) // 2, -1], :2] - cen
+    imgs = np.einsum("kij,nj->kni", mats, probe)
+    fwd = np.abs(imgs[:, None] - imgs[None]).max(axis=(2, 3))
+    bwd = np.abs(imgs[:, None] - imgs[None, :, ::-1]).max(axis=(2, 3))
+    same = (fwd <= tol) | (bwd <= tol)
+    keep: list[int] = []
+    for k in range(len(mats)):
+        if not any(same[k, j] for j in keep):
+            keep.append(k)
+    return tuple(keep)
+
+
+def _member_name(network, pi: int) -> str:  # noqa: ANN001
+    p = network.pieces[pi]
+    for j, q in enumerate(network.pieces):
+        if q.basic == p.basic and q.kind == "ogee":
+            if j == pi:
+                return ""
+            break
+    return f".{p.kind}{p.segment if p.segment >= 0 else ''}"
+
+
+def sweep_piece(network, pi: int, profile: Profile, segments: int = 200, caps: bool = True,
+                cut: bool = True) -> Member:  # noqa: ANN001
+    """Sweep one basic piece: frames, caps, mirror-plane cuts; not yet replicated.
+
+    Parameters
+    ----------
+    network : Network
+    pi : int
+        Index into ``network.pieces``.
+    profile : Profile
+    segments : int
+        Steps along the piece.
+    caps : bool
+        Close free ends (closed profiles).
+    cut : bool
+        Cut at mirror planes (else replicas overlap at their joints).
+
+    Returns
+    -------
+    Member
+    """
+    piece = network.pieces[pi]
+    if piece.kind not in SWEPT_KINDS:
+        raise GeometryError(f"piece {pi} is a {piece.kind}; only {', '.join(SWEPT_KINDS)} pieces are swept")
+    runs = sample_piece(piece, segments)
+    tol = AXIS_TOL * _scale(network)
+    cuts_raw = _mirror_cuts(network, pi, runs) if cut else []
+    by_end = {e: (k, nrm) for e, k, nrm in cuts_raw}
+    period = math.pi / 2 if profile.quarter_symmetric else math.pi
+    verts: list[Array] = []
+    faces: list[IntArray] = []
+    frames_l: list[Frames] = []
+    ring: list[IntArray] = []
+    fring: list[IntArray] = []
+    off = 0
+    n_rings = 0
+    m = profile.n
+    per_step = 2 * (m if profile.closed else m - 1)
+    for ri, s in enumerate(runs):
+        first, last = ri == 0, ri == len(runs) - 1
+        st = by_end[0][1] if first and 0 in by_end else None
+        en = by_end[1][1] if last and 1 in by_end else None
+        w0 = _width0(piece, s, st if st is not None else en)
+        fr = sweep_frames(s.points, s.tangents, w0, st, en, period)
+        v, f = sweep_profile(s.points, fr, profile, cap_start=caps, cap_end=caps)
+        ns = len(s.points)
+        verts.append(v)
+        faces.append(f + off)
+        ring.append(np.repeat(np.arange(ns) + n_rings, m))
+        # per face: the lower ring of its step; caps belong to their end ring
+        fr_ring = np.repeat(np.arange(ns - 1) + n_rings, per_step)
+        ncap = (len(f) - len(fr_ring)) // 2
+        fring.append(np.concatenate([fr_ring, np.full(ncap, n_rings), np.full(ncap, n_rings + ns - 1)]))
+        n_rings += ns
+        frames_l.append(fr)
+        off += len(v)
+    V = np.concatenate(verts)
+    F = np.concatenate(faces)
+    R = np.concatenate(ring)
+    RF = np.concatenate(fring)
+    n_last = n_rings - 1
+    cuts: list[Cut] = []
+    eps = 1e-12 * _scale(network)
+    for end, (k, nrm) in sorted(by_end.items()):
+        s = runs[0] if end == 0 else runs[-1]
+        c = s.points if end == 0 else s.points[::-1]
+        origin = c[0]
+        dc = (c - origin) @ nrm
+        far = np.nonzero(np.abs(dc) > profile.radius * 1.0000001)[0]
+        sign = np.sign(dc[far[0]]) if len(far) else np.sign(dc[np.argmax(np.abs(dc))])
+        if sign == 0:
+            continue
+        nrm = nrm * sign
+        d = (V - origin) @ nrm
+        # the zone: rings from this end up to the first ring entirely on the kept side
+        rings = R if end == 0 else n_last - R
+        touch = np.zeros(n_rings + 1, dtype=bool)
+        touch[rings[d <= eps]] = True
+        limit = int(np.argmin(touch))
+        frings = RF if end == 0 else n_last - 1 - RF
+        zone = frings < limit
+        zi, ri_ = np.flatnonzero(zone), np.flatnonzero(~zone)
+        V, fz, src, fsrc = clip_halfspace(V, F.take(zi, axis=0), origin, nrm, eps)
+        R = R[src]
+        F = np.concatenate([F.take(ri_, axis=0), fz])
+        RF = np.concatenate([RF.take(ri_), RF.take(zi)[fsrc]])
+        cuts.append(Cut(origin, nrm, end, k))
+    if cuts:
+        V, F = compact(V, F)
+    pts = np.concatenate([s.points for s in runs])
+    return Member(pi, piece.basic, piece.kind, V, F, frames_l, runs, tuple(cuts),
+                  _replica_set(network, pi, pts, tol), _member_name(network, pi), profile.closed)
+
+
+def sweep_members(network, profile: Profile, segments: int = 200, kinds: Iterable[str] = SWEPT_KINDS,
+                  basics: Sequence[int] | None = None, caps: bool = True, cut: bool = True) -> list[Member]:  # noqa: ANN001
+    """Sweep every basic piece of the given kinds (optionally of some basic curves only)."""
+    ks = set(kinds)
+    bad = ks - set(SWEPT_KINDS)
+    if bad:
+        raise GeometryError(f"unknown member kinds {sorted(bad)}; expected some of {SWEPT_KINDS}")
+    return [
+        sweep_piece(network, pi, profile, segments, caps, cut)
+        for pi, p in enumerate(network.pieces)
+        if p.kind in ks and (basics is None or p.basic in basics)
+    ]
+
+
+def replicate(network, members: Sequence[Member]) -> Mesh:  # noqa: ANN001
+    """All replicas of the members as one mesh, one part per member replica.
+
+    Mirrored replicas have their triangles reversed (outward orientation kept).
+    """
+    plan = []
+    nv = nf = 0
+    for mb in members:
+        sym = network.drawing.curves[mb.basic].symmetry
+        k = list(mb.replicas)
+        plan.append((mb, sym, k, nv, nf))
+        nv += len(k) * len(mb.vertices)
+        nf += len(k) * len(mb.faces)
+    V = np.empty((nv, 3))
+    F = np.empty((nf, 3), dtype=np.int64)
+    parts: list[Part] = []
+    for mb, sym, ks, v0, f0 in plan:
+        mats = sym.matrices()[ks]
+        labels = sym.labels()
+        cen = np.asarray(sym.center)
+        nrep, n, m = len(ks), len(mb.vertices), len(mb.faces)
+        xy = mb.vertices[:, :2] - cen if np.any(cen) else mb.vertices[:, :2]
+        z = mb.vertices[:, 2]
+        rev = mb.faces[:, ::-1]
+        for j, kk in enumerate(ks):
+            a, b = v0 + j * n, v0 + (j + 1) * n
+            np.matmul(xy, mats[j].T, out=V[a:b, :2])
+            V[a:b, 2] = z
+            np.add(rev if np.linalg.det(mats[j]) < 0 else mb.faces, a, out=F[f0 + j * m:f0 + (j + 1) * m])
+        if np.any(cen):
+            V[v0:v0 + nrep * n, :2] += cen
+        for j, kk in enumerate(ks):
+            parts.append(Part(f"{mb.basic}/{labels[kk]}{mb.name}", "member", mb.basic, labels[kk],
+                              (v0 + j * n, v0 + (j + 1) * n), (f0 + j * m, f0 + (j + 1) * m)))
+    return Mesh._unchecked(V, F, tuple(parts))
+
+
+def sweep_network(network, profile: Profile, segments: int = 200, kinds: Iterable[str] = SWEPT_KINDS,
+                  basics: Sequence[int] | None = None, caps: bool = True, cut: bool = True) -> Mesh:  # noqa: ANN001
+    """Every member of a network: swept once per basic piece, replicated by its symmetries.
+
+    Parameters
+    ----------
+    network : Network
+    profile : Profile
+        See :func:`profile_for` for the built-in looks.
+    segments : int
+        Steps along each piece (the authors' demo: 200).
+    kinds : iterable of str
+        Which pieces become members (default all of :data:`SWEPT_KINDS`).
+    basics : sequence of int, optional
+        Only these basic curves (re-sweeping one edited curve).
+    caps, cut : bool
+        Close free ends; cut replicas at mirror planes.
+
+    Returns
+    -------
+    Mesh
+        One part per member replica, named like the network's curve ids
+        (``"0/r1m"``, ``"2/r0.free_end1"``).
+
+    Examples
+    --------
+    >>> from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry, build
+    >>> c = BasicCurve(((1.0, 0.0), (0.0, 1.0)), (Segment("line"),), ("ground", "apex"),
+    ...                Symmetry(fold=2), height=1.0)
+    >>> m = sweep_network(build(Drawing((c,))), circle(0.02, 8), segments=16)
+    >>> [p.name for p in m.parts], m.is_watertight
+    (['0/r0', '0/r1'], True)
+    """
+    if int(segments) < 1:
+        raise GeometryError(f"need at least 1 segment along each member, got {segments}")
+    members = sweep_members(network, profile, int(segments), kinds, basics, caps, cut)
+    return replicate(network, members)
+
+
+# -- built-in looks -----------------------------------------------------------------------------
+
+
+def default_size(network) -> float:  # noqa: ANN001
+    """A member thickness that reads well: 1.2 % of the network's bounding-box diagonal."""
+    b = network.bounds()
+    return 0.012 * float(np.linalg.norm(b[1] - b[0]))
+
+
+def profile_for(style: str, size: float, around: int | None = None) -> Profile:
+    """A built-in profile: ``"tube"`` (diameter ``size``), ``"bar"`` (side ``size``), ``"ribbon"``.
+
+    The ribbon is ``3 size`` wide, ``size / 4`` thick (printable).
+
+    Examples
+    --------
+    >>> profile_for("bar", 0.1).n, profile_for("tube", 0.1, 12).n
+    (4, 12)
+    >>> profile_for("cable", 0.1)
+    Traceback (most recent call last):
+    ...
+    auszug.errors.GeometryError: style must be one of tube, bar, ribbon, got 'cable'
+    """
+    if style == "tube":
+        return circle(size / 2.0, 40 if around is None else around)
+    if style == "bar":
+        return square(size, 4 if around is None else around)
+    if style == "ribbon":
+        return ribbon(3.0 * size, size / 4.0, 4 if around is None else around)
+    raise GeometryError(f"style must be one of tube, bar, ribbon, got {style!r}")

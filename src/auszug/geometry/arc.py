@@ -17,6 +17,8 @@ from auszug.geometry.line import Line
 __all__ = ["Arc", "arc_from_tangent", "arc_through"]
 
 TAU = 2.0 * math.pi
+#: arc_from_tangent refuses handles within asin(BACKWARD_SINE) of pointing straight away from the end
+BACKWARD_SINE = 1e-3
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -190,6 +192,12 @@ def arc_from_tangent(start: ArrayLike, handle: ArrayLike, end: ArrayLike) -> Arc
             return Line(a, b)
         raise GeometryError(
             f"tangent handle {h.tolist()} points away from the end point {b.tolist()}: no arc"
+        )
+    if dt < 0 and abs(cr) < BACKWARD_SINE * cl:
+        # the arc would run almost a full circle on a huge radius: ill-conditioned, never meant
+        raise GeometryError(
+            f"tangent handle {h.tolist()} points almost straight away from the end point "
+            f"{b.tolist()}: the arc would be a near-full circle of radius {cl * cl / (2 * abs(cr)):.3g}"
         )
     r_signed = cl * cl / (2.0 * cr)
     c = a + r_signed * np.array([-d[1], d[0]])

@@ -236,7 +236,7 @@ def _g_setup(top: Curve, mode: str, theta: float) -> tuple[tuple[str, float, flo
 
 def _t_of_g(piece: Piece, g: float) -> float:
     """Inverse of the side-view coordinate map on the piece's top curve."""
-    from scipy.optimize import brentq
+    from auszug.geometry._roots import find_root
 
     g0 = float(piece.g_of_t(0.0))
     g1 = float(piece.g_of_t(1.0))
@@ -244,7 +244,7 @@ def _t_of_g(piece: Piece, g: float) -> float:
         return 0.0
     if g >= g1:
         return 1.0
-    return float(brentq(lambda t: float(piece.g_of_t(t)) - g, 0.0, 1.0, xtol=1e-15))
+    return float(find_root(lambda t: float(piece.g_of_t(t)) - g, 0.0, 1.0, xtol=1e-15))
 
 
 def _sample_piece(top: Curve, side: sv.SideView | None, gs: tuple, n: int, z_const: float = 0.0) -> Array:

@@ -147,7 +147,7 @@ def decorated(base: SideView, g_split: float) -> tuple[SideView, tuple[float, fl
     DrawingError
         If no split at ``g_split`` exists.
     """
-    from scipy.optimize import brentq
+    from auszug.geometry._roots import find_root
 
     gc = float(base.breaks[1])
     G = float(base.breaks[2])
@@ -178,14 +178,14 @@ def decorated(base: SideView, g_split: float) -> tuple[SideView, tuple[float, fl
     lo = 1e-9 * ra
     if gap(lo) <= 0.0:
         raise DrawingError("cannot decorate this ogee: its lower arc is degenerate")
-    r_touch = brentq(gap, lo, r_hi, xtol=1e-15)
+    r_touch = find_root(gap, lo, r_hi, xtol=1e-15)
     # the second arc must start on the upper half of its circle (else it folds back):
     # the largest admissible cusp is where D is the leftmost point of circle 2
     def level(r: float) -> float:
         _, o2, d = cusp(r)
         return d[1] - o2[1]
 
-    r_lo = r_touch if level(r_touch * (1 + 1e-12)) >= 0.0 else brentq(level, r_touch * (1 + 1e-12), r_hi, xtol=1e-15)
+    r_lo = r_touch if level(r_touch * (1 + 1e-12)) >= 0.0 else find_root(level, r_touch * (1 + 1e-12), r_hi, xtol=1e-15)
     g_max = float(cusp(r_lo)[2][0])
     g_min = float(cusp(r_hi)[2][0])
     if g_split < g_min:
@@ -194,7 +194,7 @@ def decorated(base: SideView, g_split: float) -> tuple[SideView, tuple[float, fl
         # the nearest admissible decoration: the second arc starts vertically at the cusp
         r = r_lo
     else:
-        r = brentq(lambda rr: float(cusp(rr)[2][0]) - g_split, r_lo, r_hi, xtol=1e-15)
+        r = find_root(lambda rr: float(cusp(rr)[2][0]) - g_split, r_lo, r_hi, xtol=1e-15)
     o1, o2, d = cusp(float(r))
     sv = SideView(
         breaks=np.array([0.0, d[0], gc, G]),

@@ -82,6 +82,25 @@ class OffsetCurves:
     closed: bool
 
 
+def _line(x0: float, y0: float, x1: float, y1: float) -> Line:
+    """A Line from trusted finite floats, skipping the public validation (hot path)."""
+    ln = object.__new__(Line)
+    object.__setattr__(ln, "p0", np.array((x0, y0)))
+    object.__setattr__(ln, "p1", np.array((x1, y1)))
+    object.__setattr__(ln, "_len", math.hypot(x1 - x0, y1 - y0))
+    return ln
+
+
+def _arc(cx: float, cy: float, r: float, th0: float, sweep: float) -> Arc:
+    """An Arc from trusted finite floats, skipping the public validation (hot path)."""
+    a = object.__new__(Arc)
+    object.__setattr__(a, "center", np.array((cx, cy)))
+    object.__setattr__(a, "radius", r)
+    object.__setattr__(a, "theta0", th0)
+    object.__setattr__(a, "sweep", sweep)
+    return a
+
+
 def _wrap(a: float) -> float:
     """Angle wrapped into (-pi, pi]."""
     a = math.fmod(a, _TAU)
@@ -99,7 +118,7 @@ class _Carrier:
     """
 
     __slots__ = ("index", "line", "x0", "y0", "ux", "uy", "cx", "cy", "r", "th0", "sg",
-                 "length", "a", "b", "dead", "kappa0", "kappa1")
+                 "length", "a", "b", "dead", "kappa", "t0", "t1", "end")
 
     def __init__(self, index: int, c: Curve, d: float) -> None:
         self.index = index
@@ -111,14 +130,20 @@ class _Carrier:
             self.ux, self.uy = (x1 - x0) / L, (y1 - y0) / L
             self.x0, self.y0 = x0 - d * self.uy, y0 + d * self.ux
             self.length = L
-            self.kappa0 = self.kappa1 = 0.0
+            self.kappa = 0.0
+            self.t0 = self.t1 = (self.ux, self.uy)
+            self.end = (x1, y1)
         elif isinstance(c, Arc):
             self.line = False
             self.cx, self.cy = c.center.tolist()
             self.sg = 1.0 if c.sweep > 0 else -1.0
             self.r = c.radius - d * self.sg
             self.th0 = c.theta0
-            self.kappa0 = self.kappa1 = self.sg / c.radius
+            self.kappa = self.sg / c.radius
+            th1 = c.theta0 + c.sweep
+            self.t0 = (-self.sg * math.sin(c.theta0), self.sg * math.cos(c.theta0))
+            self.t1 = (-self.sg * math.sin(th1), self.sg * math.cos(th1))
+            self.end = (self.cx + c.radius * math.cos(th1), self.cy + c.radius * math.sin(th1))
             if self.r <= _tolerance.TOL.zero * 1e3:
                 self.dead = True
                 self.r = 0.0
@@ -178,21 +203,15 @@ def _carrier_hits(p: _Carrier, q: _Carrier) -> list[tuple[float, float]]:
     return [(mx - h * uy, my + h * ux), (mx + h * uy, my - h * ux)]
 
 
-def _tangent(c: Curve, t: float) -> tuple[float, float]:
-    v = c.tangent(t)
-    return float(v[0]), float(v[1])
-
-
-def _turn(cin: Curve, cout: Curve) -> float:
+def _turn(cin: _Carrier, cout: _Carrier) -> float:
     """Signed turning angle at the joint of ``cin`` into ``cout`` (cusps: +-pi by curvature)."""
-    ax, ay = _tangent(cin, 1.0)
-    bx, by = _tangent(cout, 0.0)
+    ax, ay = cin.t1
+    bx, by = cout.t0
     cr = ax * by - ay * bx
     dt = ax * bx + ay * by
     if abs(cr) <= _tolerance.TOL.collinear and dt < 0.0:
         # cusp: a tapering tip (region between the two curves) is a left turn by pi
-        k = float(cin.curvature(1.0)) + float(cout.curvature(0.0))
-        return math.pi if k < 0.0 else -math.pi
+        return math.pi if cin.kappa + cout.kappa < 0.0 else -math.pi
     return math.atan2(cr, dt)
 
 
@@ -349,15 +368,21 @@ def offset_curves(
     car = [_Carrier(i, c, d) for i, c in enumerate(curves)]
     prims = [_prim(c) for c in curves]
     m = n if closed else n - 1  # number of corners
-    turns = [_turn(curves[k], curves[(k + 1) % n]) for k in range(m)]
-    corners = [tuple(curves[k].end.tolist()) for k in range(m)]
+    turns = [_turn(car[k], car[(k + 1) % n]) for k in range(m)]
+    corners = [car[k].end for k in range(m)]
     tol = _tolerance.TOL.intersect
     # Each alive carrier knows whether its predecessor is its original neighbour
     # (then the original corner's turn applies) or a re-join.
     alive = [i for i in range(n) if not car[i].dead]
     round_after: dict[int, int] = {}  # carrier index -> corner index of a round join after it
+    def too_few() -> bool:
+        if not closed or len(alive) != 1:
+            return len(alive) < 1
+        c = car[alive[0]]
+        return c.line or c.length < (_TAU - 1e-9) * c.r  # one piece closes only as a whole circle
+
     for _ in range(2 * n + 2):
-        if len(alive) < (2 if closed else 1):
+        if too_few():
             raise GeometryError(
                 f"offset by {d:g} removes the whole curve sequence (it is narrower than {2 * abs(d):g})"
             )
@@ -395,10 +420,10 @@ def offset_curves(
     for j, i in enumerate(alive):
         c = car[i]
         if c.line:
-            out.append(Line(c.point(c.a), c.point(c.b)))
+            out.append(_line(*c.point(c.a), *c.point(c.b)))
         else:
             th = c.th0 + c.sg * c.a / c.r
-            out.append(Arc((c.cx, c.cy), c.r, th, c.sg * (c.b - c.a) / c.r))
+            out.append(_arc(c.cx, c.cy, c.r, th, c.sg * (c.b - c.a) / c.r))
         src.append(i)
         join.append(False)
         if i in round_after:
@@ -408,10 +433,18 @@ def offset_curves(
             x1, y1 = nxt.point(nxt.a)
             cx, cy = corners[corner]
             th0 = math.atan2(y0 - cy, x0 - cx)
-            out.append(Arc((cx, cy), abs(d), th0, turns[corner]))
+            out.append(_arc(cx, cy, abs(d), th0, turns[corner]))
             src.append(nxt.index)
             join.append(True)
     result = OffsetCurves(tuple(out), np.array(src, dtype=np.int64), np.array(join, dtype=bool), d, closed)
+    limit = abs(d) * (1.0 - 1e-7) - 10 * tol
+    for j, i in enumerate(alive):
+        x, y = car[i].point(0.5 * (car[i].a + car[i].b))
+        if not _far_enough(x, y, prims, limit):
+            raise GeometryError(
+                f"offset by {d:g} passes within {abs(d):g} of the curves near ({x:.6g}, {y:.6g}): "
+                "the region splits or vanishes there (the border is too wide for it)"
+            )
     if closed and (_tolerance.TOL.strict if check is None else check):
         _check_simple(result)
     return result

@@ -1,0 +1,49 @@
+"""Gothic window tracery: Havemann and Fellner's compass-and-straightedge constructions.
+
+"Generative Parametric Design of Gothic Window Tracery" (Havemann and Fellner
+2004) on auszug's exact geometry kernel: pointed arches by their excess,
+offsets that keep the centres, the prototype window (outer arch, sub-arches,
+the rosette circle from an ellipse, four fillets), rosettes of round and
+pointed foils, the pointed trefoil arch, recursion, styles, profiles and
+watertight meshes.
+
+Examples
+--------
+>>> from auszug import tracery
+>>> t = tracery.build("fig20b")
+>>> sorted({r.group for r in t.regions})
+['arch', 'circle', 'fillet', 'rosette', 'sub-arch']
+"""
+
+from auszug.tracery._checks import ParameterError
+from auszug.tracery.arch import PointedArch, apex_height, arch_kind, trefoil_arch
+from auszug.tracery.build import build, structure
+from auszug.tracery.model import Region, Tracery
+from auszug.tracery.profile import Profile
+from auszug.tracery.rosette import foil_radius, rosette
+from auszug.tracery.style import Style, builtin_style, builtin_styles, load_style, parse_style, refine
+from auszug.tracery.window import Prototype, WindowParams, prototype
+
+__all__ = [
+    "ParameterError",
+    "PointedArch",
+    "apex_height",
+    "arch_kind",
+    "trefoil_arch",
+    "foil_radius",
+    "rosette",
+    "WindowParams",
+    "Prototype",
+    "prototype",
+    "Region",
+    "Tracery",
+    "build",
+    "structure",
+    "Profile",
+    "Style",
+    "builtin_style",
+    "builtin_styles",
+    "load_style",
+    "parse_style",
+    "refine",
+]

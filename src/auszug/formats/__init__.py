@@ -7,6 +7,7 @@ from auszug.formats import network_json as _network_json  # noqa: F401  (registe
 from auszug.formats import obj as _obj  # noqa: F401  (registers .obj polylines)
 from auszug.formats import svg as _svg  # noqa: F401  (registers .svg top/side views)
 from auszug.formats import figure as _figure  # noqa: F401  (registers .png/.pdf/.svg figures)
+from auszug.formats import tracery_json as _tracery_json  # noqa: F401  (registers .tracery.json windows)
 from auszug.formats._registry import FileFormat, atomic_write, format_for, formats, load, register, save
 
 __all__ = ["FileFormat", "atomic_write", "format_for", "formats", "load", "register", "save"]

@@ -4,12 +4,27 @@ Pure numpy/scipy kernels (no I/O); the writers for OBJ, STL, PLY and glTF live
 in :mod:`auszug.formats`.
 """
 
+from auszug.meshing.faces import Face, Faces, common_group, network_faces
 from auszug.meshing.frames import Frames, reference_basis, rmf_angles, sweep_frames
+from auszug.meshing.loops import Loop, NetworkGraph, find_loops, loop_through, network_graph
 from auszug.meshing.mesh import Mesh, Part, concatenate
+from auszug.meshing.minimal import MinimalSurface, flat_area, minimal_surface
 from auszug.meshing.profile import Profile, circle, from_dict, from_segments, polygon, rectangle, ribbon, square
 from auszug.meshing.sweep import Member, default_size, profile_for, sweep_network, sweep_piece
 
 __all__ = [
+    "Face",
+    "Faces",
+    "common_group",
+    "network_faces",
+    "Loop",
+    "NetworkGraph",
+    "find_loops",
+    "loop_through",
+    "network_graph",
+    "MinimalSurface",
+    "flat_area",
+    "minimal_surface",
     "Frames",
     "reference_basis",
     "rmf_angles",

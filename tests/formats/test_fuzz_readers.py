@@ -50,7 +50,7 @@ def _check_build(d: Drawing) -> None:
     if sum(c.symmetry.order * len(c.segments) for c in d.curves) > 96:
         return  # big folds: a resource question, not a correctness one
     if any(s.kind == "bezier" for c in d.curves for s in c.segments):
-        return  # see test_bezier_drawings_build (geometry.intersect lacks Beziers)
+        return  # until test_degenerate_bezier_drawing_builds passes: remove this then
     try:
         net = build(d, samples=9)
     except DrawingError:
@@ -171,12 +171,25 @@ def test_damaged_native_json(name, data):
         assert read_native(write_native(d)) == d
 
 
-@pytest.mark.parametrize("name", ["U.XI.20", "U.XI.29", "U.XI.34"])
-@pytest.mark.xfail(raises=TypeError, strict=True,
-                   reason="geometry.intersect does not support CubicBezier yet (Algorithm 1 needs it); "
-                          "remove this marker when it does")
+@pytest.mark.parametrize("name", ["U.XI.20", "U.XI.22", "U.XI.24", "U.XI.25", "U.XI.29", "U.XI.30",
+                                  "U.XI.31", "U.XI.33", "U.XI.34", "U.XI.35"])
 def test_bezier_drawings_build(name):
     d = read_uc(TEXTS[f"legacy/{name}.uc"], name)
     net = build(d, samples=17)
     assert all(np.isfinite(p.points).all() for p in net.pieces)
     assert all(math.isfinite(z) for z in net.apex_heights)
+
+
+@pytest.mark.xfail(raises=(TypeError, ZeroDivisionError), strict=True,
+                   reason="geometry.intersect: Newton step divides by a zero determinant (found with Beziers "
+                          "with a handle on their end point); when fixed, remove this marker and the "
+                          "Bezier exclusion in _check_build")
+def test_degenerate_bezier_drawing_builds():
+    """Found by test_legacy_like_files: two curves, one handle vector (0, 0)."""
+    text = ("unitCurve 4 1 0\nptPos 0 0\nptLab 0\nptPos -0.5 0\nptTan 0.5 1\nptLab 0\n"
+            "ptPos -1.5 0\nptLab 0\nptPos 0 0\nptLab 0\n"
+            "unitCurve 4 1 0\nptPos 0 0.5\nptTan 0 0\nptLab 0\nptPos 0 0\nptLab 0\n"
+            "ptPos 0 -0.5\nptTan 1 -2\nptLab 0\nptPos 0 0\nptLab 1\n")
+    d = read_uc(text, "degenerate.uc")
+    net = build(d, samples=9)
+    assert all(np.isfinite(p.points).all() for p in net.pieces)

@@ -26,7 +26,7 @@ from typing import Sequence
 __all__ = ["COMMANDS", "make_parser", "main"]
 
 #: Subcommands in the order ``auszug --help`` lists them.
-COMMANDS: tuple[str, ...] = ("build", "info", "render", "convert", "demo")
+COMMANDS: tuple[str, ...] = ("build", "info", "render", "convert", "demo", "mesh")
 
 
 def _version() -> str:

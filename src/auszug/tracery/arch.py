@@ -190,6 +190,8 @@ class PointedArch:
             lim = min(lim, 0.5 * (self.springing - self.bottom) + 0.5 * self.rise)
         number("border", d, hi=lim, hi_open=True, why=f"wider than half the region ({lim:.6g})")
         span = self.span - 2.0 * d
+        if span <= 1e-9 * self.span:
+            number("border", d, hi=lim * (1.0 - 1e-9), hi_open=True, why=f"wider than half the region ({lim:.6g})")
         return PointedArch(
             self.left + d, self.right - d, self.springing,
             (self.radius - d) / span, None if self.bottom is None else self.bottom + d,

@@ -117,10 +117,15 @@ def _placed(rel: list[Region], prefix: str, dx: float, dy: float) -> list[Region
     return out
 
 
+def _name(prefix: str, name: str) -> str:
+    """A parameter name with the path of the nested window it belongs to (none for the outer one)."""
+    return name if prefix == "arch" else f"{prefix}: {name}"
+
+
 def _prefixed(err: ParameterError, prefix: str) -> ParameterError:
     if prefix == "arch":
         return err
-    return ParameterError(f"{prefix}: {err.name}", err.value, err.valid)
+    return ParameterError(_name(prefix, err.name), err.value, err.valid)
 
 
 def _window(a: PointedArch, p: WindowParams, st: Style, depth: int, prefix: str, where: str, face: float,
@@ -167,7 +172,7 @@ def _window_at_origin(a: PointedArch, p: WindowParams, st: Style, depth: int, wh
         out.append(Region("light", "light", depth, curves, "light", b, st.arch.profile, face))
         return
     try:
-        w = prototype(p, arch=a)
+        w = prototype(p, arch=None if depth == 0 else a)
     except ParameterError as e:
         raise _prefixed(e, prefix) from None
     regions = w.regions
@@ -191,7 +196,7 @@ def _window_at_origin(a: PointedArch, p: WindowParams, st: Style, depth: int, wh
                 try:
                     floor = opening.offset(g.profile.inset * b)
                 except ParameterError:
-                    raise ParameterError(f"{prefix}: sub-arch.profile", g.profile.name,
+                    raise ParameterError(_name(prefix, "sub-arch.profile"), g.profile.name,
                                          "a recess profile whose floor fits in the sub-arch") from None
                 k = floor.span / a.span
                 q = WindowParams(span=floor.span, height=floor.springing - floor.bottom, excess=p.excess,
@@ -207,7 +212,7 @@ def _window_at_origin(a: PointedArch, p: WindowParams, st: Style, depth: int, wh
             out.append(Region(rid, group, depth, regions[name], "frame", b, g2.profile, face))
             r_floor = w.circle_radius - b - g2.profile.inset * b
             if r_floor <= 2.0 * b:
-                raise ParameterError(f"{prefix}: circle.profile", g2.profile.name,
+                raise ParameterError(_name(prefix, "circle.profile"), g2.profile.name,
                                      "a recess profile that leaves room for the rosette")
             loops = rosette(w.circle_center, r_floor, g2.foils, g2.pointed, g2.displacement, g2.orientation)
             floor_face = face + g2.profile.depth * b
@@ -215,7 +220,7 @@ def _window_at_origin(a: PointedArch, p: WindowParams, st: Style, depth: int, wh
                 try:
                     curves = offset_curves(loop, b, closed=True).curves
                 except GeometryError as e:
-                    raise ParameterError(f"{prefix}: circle.foils", g2.foils,
+                    raise ParameterError(_name(prefix, "circle.foils"), g2.foils,
                                          "fewer foils (each foil must be wider than two borders)", str(e)) from None
                 suffix = "" if len(loops) == 1 else f"-{i + 1}"
                 out.append(Region(f"{rid}/rosette{suffix}", "rosette", depth, curves, "light", b,

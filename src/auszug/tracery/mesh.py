@@ -81,17 +81,21 @@ class Resolution:
         window's span.
     per_arc : int
         Samples per arc of a profile.
+    max_edge : float
+        Longest straight edge along a border, relative to the window's span
+        (long lines are split so that triangles stay compact).
     """
 
     max_angle: float = math.pi / 24
     chord: float = 4e-4
     per_arc: int = 4
+    max_edge: float = 0.25
 
 
 # -- rings: offset loops as polygons with keys --------------------------------------------
 
 def loop_ring(curves: tuple[Curve, ...] | list[Curve], source: Any, is_join: Any, n_base: int,
-              max_angle: float, chord: float) -> tuple[Array, Array]:
+              max_angle: float, chord: float, max_edge: float = 0.0) -> tuple[Array, Array]:
     """Sample an offset loop into a polygon whose points carry zip keys.
 
     Parameters
@@ -105,6 +109,8 @@ def loop_ring(curves: tuple[Curve, ...] | list[Curve], source: Any, is_join: Any
     max_angle, chord : float
         Arc sampling: angular step, or the angle of a chord deviating
         ``chord``, whichever is larger.
+    max_edge : float
+        Lines are split into pieces at most this long (0: not split).
 
     Returns
     -------
@@ -128,8 +134,9 @@ def loop_ring(curves: tuple[Curve, ...] | list[Curve], source: Any, is_join: Any
             th = c.theta0 + c.sweep * f
             pts.append(c.center + c.radius * np.stack([np.cos(th), np.sin(th)], axis=-1))
         else:
-            f = np.zeros(1)
-            pts.append(c.start[None])
+            n = max(1, math.ceil(c.length() / max_edge - 1e-9)) if max_edge > 0 else 1
+            f = np.arange(n) / n
+            pts.append(c.start + f[:, None] * (c.end - c.start))
         keys.append(src - _DELTA + 2.0 * _DELTA * f if join else src + _DELTA + (1.0 - 2.0 * _DELTA) * f)
     p = np.concatenate(pts)
     k = np.concatenate(keys)
@@ -274,7 +281,8 @@ class _Loft:
     tris: IntArray  # local indices into the concatenated rings
 
 
-def _loft(region: Region, levels: Array, res: Resolution, chord: float, base: tuple[Curve, ...]) -> _Loft:
+def _loft(region: Region, levels: Array, res: Resolution, chord: float, base: tuple[Curve, ...],
+          max_edge: float) -> _Loft:
     """Rings at every level of a profile and the zipped bands between them."""
     b = region.border
     n_base = len(base)
@@ -287,14 +295,14 @@ def _loft(region: Region, levels: Array, res: Resolution, chord: float, base: tu
         if d not in cache:
             if d == 0.0:
                 src = np.arange(n_base)
-                pts, k = loop_ring(base, src, np.zeros(n_base, bool), n_base, res.max_angle, chord)
+                pts, k = loop_ring(base, src, np.zeros(n_base, bool), n_base, res.max_angle, chord, max_edge)
             else:
                 try:
                     off = offset_curves(base, d, closed=True)
                 except GeometryError as e:
                     raise ParameterError(f"{region.id}: profile {region.profile.name!r}", float(s),
                                          "an inset that keeps the opening open", str(e)) from None
-                pts, k = loop_ring(off.curves, off.source, off.is_join, n_base, res.max_angle, chord)
+                pts, k = loop_ring(off.curves, off.source, off.is_join, n_base, res.max_angle, chord, max_edge)
             cache[d] = (pts, k)
         pts, k = cache[d]
         rings.append(pts)
@@ -307,6 +315,24 @@ def _loft(region: Region, levels: Array, res: Resolution, chord: float, base: tu
         tris.append(zip_rings(keys[i], keys[i + 1], float(n_base)) + start)
         start += na
     return _Loft(rings, ys, np.concatenate(tris) if tris else np.empty((0, 3), np.int64))
+
+
+def _max_inset(base: tuple[Curve, ...], want: float) -> float:
+    """``want`` if the loop can be offset that far, else (nearly) the largest distance it can."""
+    def ok(d: float) -> bool:
+        try:
+            offset_curves(base, d, closed=True)
+        except GeometryError:
+            return False
+        return True
+
+    if want <= 0.0 or ok(want):
+        return want
+    lo, hi = 0.0, want
+    for _ in range(24):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if ok(mid) else (lo, mid)
+    return lo
 
 
 def mesh(tracery: Tracery, resolution: Resolution | None = None, subdivide: int = 0) -> Mesh:
@@ -357,7 +383,8 @@ def mesh(tracery: Tracery, resolution: Resolution | None = None, subdivide: int 
     lo = np.array([pts_arch[:, 0].min(), pts_arch[:, 1].min()])
     hi = np.array([pts_arch[:, 0].max(), apex_y])
     number("wall.margin", wall.margin, -smin * f * 1.05 + 1e-9, why="the reveal must stay inside the wall")
-    reveal = _loft(arch, np.column_stack([wlv[:, 0], wlv[:, 1]]), res, chord, arch.curves)
+    max_edge = res.max_edge * span
+    reveal = _loft(arch, np.column_stack([wlv[:, 0], wlv[:, 1]]), res, chord, arch.curves, max_edge)
     depth_r = half_t - half_s
     ring_ids: dict[str, list[int]] = {}
     starts = []
@@ -403,7 +430,12 @@ def mesh(tracery: Tracery, resolution: Resolution | None = None, subdivide: int 
             elif r.face + r.profile.depth * r.border >= half_s * 0.98:
                 raise ParameterError("wall.slab", wall.slab, "a plate thicker than twice the recesses' depth",
                                      f"{r.id} reaches {r.face + r.profile.depth * r.border:.4g} deep")
-            lf = lofts[key] = _loft(r, lv, res, chord, base)
+            smax = _max_inset(base, float(lv[:, 0].max()) * r.border) / r.border
+            if smax < float(lv[:, 0].max()):
+                # the moulding would close this small opening: flatten it to 90 % of what fits
+                lv = lv.copy()
+                lv[:, 0] = np.minimum(lv[:, 0], 0.9 * smax)
+            lf = lofts[key] = _loft(r, lv, res, chord, base, max_edge)
         return lf
 
     for r in regions[1:]:

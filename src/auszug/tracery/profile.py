@@ -94,6 +94,15 @@ class Profile:
             raise ParameterError(where, pts.tolist(), "a profile whose s and t never decrease",
                                  "each depth must cut an offset of the opening")
 
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Profile):
+            return NotImplemented
+        return (self.name == other.name and self.wall == other.wall and self.points.shape == other.points.shape
+                and bool(np.array_equal(self.points, other.points)) and bool(np.array_equal(self.bulge, other.bulge)))
+
+    def __hash__(self) -> int:
+        return hash((self.name, self.wall, self.points.tobytes(), self.bulge.tobytes()))
+
     # -- measures ------------------------------------------------------------------------
     @property
     def end(self) -> Array:

@@ -156,7 +156,8 @@ def shade(
     col = np.clip(lum[:, None] * np.asarray(color)[None], 0, 1)
     fi = np.nonzero(front)[0]
     cbuf, zbuf = _raster(np.stack([sx, sy, sz], axis=1), f[fi], W, H)
-    cbuf = np.where(cbuf >= 0, fi[np.maximum(cbuf, 0)], -1)
+    if len(fi):
+        cbuf = np.where(cbuf >= 0, fi[np.maximum(cbuf, 0)], -1)
     img = np.empty((W * H, 3))
     hit = cbuf >= 0
     # depth cue: further from the eye a little darker (recesses read as recesses)

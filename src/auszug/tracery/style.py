@@ -273,7 +273,7 @@ def _set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
     parts = key.split(".")
     if len(parts) == 1 and parts[0] in DEFAULTS["params"]:
         parts = ["params", parts[0]]
-    if parts[0] not in DEFAULTS or parts[0] in ("name", "profiles") and len(parts) > 1 and parts[0] == "name":
+    if parts[0] not in DEFAULTS or (parts[0] in ("name", "description") and len(parts) > 1):
         raise ParameterError(key, value, "a style key: a window parameter (" + ", ".join(DEFAULTS["params"])
                              + ") or GROUP.KEY with GROUP in params, wall, arch, sub-arch, circle, fillet")
     node = data

@@ -297,14 +297,21 @@ def prototype(params: WindowParams | None = None, arch: PointedArch | None = Non
     try:
         return _construct(p, arch)
     except _Misfit as e:
-        lo, hi = _valid_interval(p, e.name, arch)
-        if lo is None:
-            valid = "a value for which the window fits (there is none with the other parameters)"
-        elif e.name == "inner" and lo < 1e-6 * p.span:
+        # blame the parameter the misfit names if some value of it fits, else the first that can
+        for name in (e.name, *(n for n in ("drop", "excess", "inner", "outer") if n != e.name)):
+            lo, hi = _valid_interval(p, name, arch)
+            if lo is not None:
+                break
+        else:
+            raise ParameterError(e.name, getattr(p, e.name),
+                                 "a value for which the window fits (there is none with the other parameters)",
+                                 e.why) from None
+        assert hi is not None
+        if name == "inner" and lo < 1e-6 * p.span:
             valid = f"a number in (0, {hi:.6g}]"
         else:
             valid = f"a number in [{0.0 if lo < 1e-6 * p.span else lo:.6g}, {hi:.6g}]"
-        raise ParameterError(e.name, getattr(p, e.name), valid, e.why) from None
+        raise ParameterError(name, getattr(p, name), valid, e.why) from None
 
 
 class _Misfit(Exception):

@@ -43,6 +43,7 @@ def test_mesh_outputs(cli, tmp_path, suffix):
 
     m = trimesh.load(out, force="mesh", process=True)
     assert m.is_watertight and m.euler_number == 2 - 2 * 7
+    assert (tmp_path / "w.mtl").exists() == (suffix == ".obj")
 
 
 def test_svg_png_and_structure_with_overrides(cli, tmp_path):

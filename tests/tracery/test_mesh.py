@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from auszug.tracery import ParameterError, build, builtin_style, builtin_styles, refine
-from auszug.tracery.mesh import Resolution, mesh, subdivide_profile, zip_rings
+from auszug.tracery.mesh import Resolution, subdivide_profile, window_mesh, zip_rings
 from tests.tracery.cases import euler_genus, n_components, self_intersections
 
 CASES = [(name, None) for name in builtin_styles()] + [
@@ -23,7 +23,7 @@ def _tracery(name, depth):
 @pytest.mark.parametrize("name, depth", CASES)
 def test_watertight_manifold_of_the_right_genus(name, depth):
     t = _tracery(name, depth)
-    m = mesh(t)
+    m = window_mesh(t)
     assert m.is_watertight and m.is_manifold
     assert n_components(m.faces, m.n_vertices) == 1
     assert euler_genus(m.vertices, m.faces) == len(t.lights)  # one handle per light through the plate
@@ -40,7 +40,7 @@ SELF = [(name, None) for name in builtin_styles()] + [("fig20b", d) for d in ran
 
 @pytest.mark.parametrize("name, depth", SELF)
 def test_no_self_intersections(name, depth):
-    m = mesh(_tracery(name, depth))
+    m = window_mesh(_tracery(name, depth))
     # the mesh is the mirror image of its front half (y <= 0), the halves meeting only in
     # the middle plane along shared edges: checking the front half checks the whole
     front = m.faces[(m.vertices[m.faces][:, :, 1] <= 0.0).all(axis=1)]
@@ -55,7 +55,7 @@ def test_the_check_finds_intersections():
 
 
 def test_the_mesh_is_symmetric_about_the_middle_plane_and_the_axis():
-    m = mesh(build("fig20c"))
+    m = window_mesh(build("fig20c"))
     v = m.vertices
     key = lambda a: np.unique(np.round(a, 9), axis=0)  # noqa: E731
     assert np.array_equal(key(v), key(v * [1, -1, 1]))
@@ -66,20 +66,20 @@ def test_the_mesh_is_symmetric_about_the_middle_plane_and_the_axis():
 
 def test_finer_resolution_and_subdivision_keep_the_topology():
     t = build("fig20d")
-    coarse = mesh(t, Resolution(max_angle=np.pi / 8, chord=2e-3, per_arc=2))
-    fine = mesh(t, Resolution(max_angle=np.pi / 48, chord=1e-4, per_arc=8))
-    smooth = mesh(t, subdivide=2)
-    assert coarse.n_faces < mesh(t).n_faces < fine.n_faces
+    coarse = window_mesh(t, Resolution(max_angle=np.pi / 8, chord=2e-3, per_arc=2))
+    fine = window_mesh(t, Resolution(max_angle=np.pi / 48, chord=1e-4, per_arc=8))
+    smooth = window_mesh(t, subdivide=2)
+    assert coarse.n_faces < window_mesh(t).n_faces < fine.n_faces
     for m in (coarse, fine, smooth):
         assert m.is_manifold and euler_genus(m.vertices, m.faces) == 7
-    assert smooth.n_faces > mesh(t).n_faces
-    assert fine.volume == pytest.approx(mesh(t).volume, rel=2e-3)
+    assert smooth.n_faces > window_mesh(t).n_faces
+    assert fine.volume == pytest.approx(window_mesh(t).volume, rel=2e-3)
 
 
 def test_profiles_cut_the_stone():
-    flat = mesh(build(builtin_style("fig20a").with_overrides(
+    flat = window_mesh(build(builtin_style("fig20a").with_overrides(
         {"sub-arch.profile": "flat", "circle.profile": "flat", "fillet.profile": "flat"})))
-    chamfer = mesh(build("fig20a"))
+    chamfer = window_mesh(build("fig20a"))
     assert chamfer.volume > flat.volume  # insets narrow the openings inside the plate
 
 
@@ -110,5 +110,5 @@ def test_zip_rings_is_a_closed_band():
 @pytest.mark.parametrize("over, name", [({"wall.slab": 0.05}, "wall.slab"), ({"wall.margin": 0.01}, "wall.margin")])
 def test_walls_too_thin_for_the_profiles_are_rejected(over, name):
     with pytest.raises(ParameterError) as e:
-        mesh(build(builtin_style("fig20c").with_overrides(over)))
+        window_mesh(build(builtin_style("fig20c").with_overrides(over)))
     assert e.value.name == name

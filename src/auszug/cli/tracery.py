@@ -115,23 +115,6 @@ def _kind(out: Path) -> str:
     raise FormatError("unknown output type; expected .json, .svg, .glb, .obj, .stl, .ply or .png", str(out))
 
 
-def mesh_bytes(mesh: Any, out: Path) -> bytes | str:
-    """The mesh in the format OUT's ending names: a registered mesh writer if there is one, else trimesh's."""
-    from auszug.errors import FormatError
-    from auszug.formats import format_for
-
-    try:
-        fmt = format_for(out, "mesh", want="write")
-    except FormatError:
-        fmt = None
-    if fmt is not None and fmt.writer is not None:
-        return fmt.writer(mesh, out.name)
-    import trimesh
-
-    tm = trimesh.Trimesh(mesh.vertices, mesh.faces, process=False)
-    return tm.export(file_type=out.suffix.lower().lstrip("."))
-
-
 def png_bytes(image: Any) -> bytes:
     """PNG bytes of an RGB array."""
     import matplotlib
@@ -190,11 +173,17 @@ def run(args: argparse.Namespace) -> int:
 
             atomic_write(out, svg(t))
         else:
-            from auszug.tracery.mesh import mesh
+            from auszug.tracery.mesh import window_mesh
 
-            m = mesh(t, subdivide=args.subdivide)
+            m = window_mesh(t, subdivide=args.subdivide)
             if kind == "mesh":
-                atomic_write(out, mesh_bytes(m, out))
+                from auszug.formats import save
+
+                save(m, out, kind="mesh")
+                if out.suffix.lower() == ".obj":
+                    from auszug.formats.mesh_obj import mtl
+
+                    atomic_write(out.with_suffix(".mtl"), mtl(m))
             else:
                 from auszug.tracery.render import shade
 

@@ -18,6 +18,7 @@ Examples
 from auszug.tracery._checks import ParameterError
 from auszug.tracery.arch import PointedArch, apex_height, arch_kind, trefoil_arch
 from auszug.tracery.build import build, structure
+from auszug.tracery.mesh import Resolution, window_mesh
 from auszug.tracery.model import Region, Tracery
 from auszug.tracery.profile import Profile
 from auszug.tracery.rosette import foil_radius, rosette
@@ -37,6 +38,8 @@ __all__ = [
     "prototype",
     "Region",
     "Tracery",
+    "Resolution",
+    "window_mesh",
     "build",
     "structure",
     "Profile",

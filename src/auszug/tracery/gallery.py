@@ -22,7 +22,7 @@ from typing import Any, Callable
 import numpy as np
 
 from auszug.tracery.build import build
-from auszug.tracery.mesh import mesh
+from auszug.tracery.mesh import window_mesh
 from auszug.tracery.model import Tracery
 from auszug.tracery.render import shade
 from auszug.tracery.style import builtin_style, builtin_styles
@@ -53,7 +53,7 @@ def _png(fig: Any) -> bytes:
 
 def render_tracery(t: Tracery, width: int = 500, azimuth: float = -18.0, elevation: float = 8.0) -> np.ndarray:
     """An RGB picture of the window's mesh, shape (h, width, 3)."""
-    m = mesh(t)
+    m = window_mesh(t)
     lo, hi = m.bounds()
     h = int(width * (hi[2] - lo[2]) / max(hi[0] - lo[0], 1e-9) * 1.08)
     return shade(m.vertices, m.faces, width, h, azimuth=azimuth, elevation=elevation)

@@ -87,7 +87,9 @@ def build(style: Style | str, params: WindowParams | None = None,
     f = p.outer + p.inner
     out.append(Region("arch", "arch", 0, a.curves(), "frame", f, st.wall.profile, 0.0))
     _window(a, p, st, 0, "arch", "arch", 0.0, out, {})
-    return Tracery(tuple(out), p, st)
+    final = [r if r.origin == (0.0, 0.0) else replace(r, curves=tuple(_shift_curve(c, *r.origin) for c in r.curves))
+             for r in out]
+    return Tracery(tuple(final), p, st)
 
 
 def _shift_curve(c: Curve, dx: float, dy: float) -> Curve:
@@ -108,13 +110,13 @@ def _shift_curve(c: Curve, dx: float, dy: float) -> Curve:
 
 
 def _placed(rel: list[Region], prefix: str, dx: float, dy: float) -> list[Region]:
-    """Regions computed at the origin (ids relative), moved to (dx, dy) under ``prefix``."""
-    out = []
-    for r in rel:
-        curves = r.curves if dx == 0.0 and dy == 0.0 else tuple(_shift_curve(c, dx, dy) for c in r.curves)
-        out.append(replace(r, id=f"{prefix}/{r.id}", curves=curves,
-                           origin=(r.origin[0] + dx, r.origin[1] + dy)))
-    return out
+    """Regions computed at the origin (ids relative) placed at (dx, dy) under ``prefix``.
+
+    Only the origin moves here; the curves stay in their template's frame until
+    :func:`build` shifts each region once, at the end.
+    """
+    return [Region(f"{prefix}/{r.id}", r.group, r.depth, r.curves, r.role, r.border, r.profile, r.face,
+                   r.template, (r.origin[0] + dx, r.origin[1] + dy)) for r in rel]
 
 
 def _name(prefix: str, name: str) -> str:

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from functools import lru_cache
 from typing import Literal, Sequence
 
 import numpy as np
@@ -78,6 +79,9 @@ class Segment:
 
     def curve(self, p0: ArrayLike, p1: ArrayLike) -> Curve:
         """The top-view curve from ``p0`` to ``p1``."""
+        return _segment_curve(self, (float(p0[0]), float(p0[1])), (float(p1[0]), float(p1[1])), False)
+
+    def _make(self, p0: ArrayLike, p1: ArrayLike) -> Curve:
         if self.kind == "line":
             return Line(p0, p1)
         if self.kind == "arc":
@@ -85,6 +89,27 @@ class Segment:
         from auszug.geometry.bezier import CubicBezier
 
         return CubicBezier(p0, self.handles[0], self.handles[1], p1)
+
+
+def _segment_curve(seg: Segment, p0: tuple, p1: tuple, flip: bool) -> Curve:
+    """Curves are immutable values: the same segment between the same points is
+    built once (interactive rebuilds reuse the curves an edit did not touch)."""
+    from auszug.geometry import _tolerance
+
+    return _cached_curve(seg, p0, p1, flip, (_tolerance.TOL.zero, _tolerance.TOL.collinear))
+
+
+@lru_cache(maxsize=1024)
+def _group_matrices(fold: int, mirror: bool, axis: tuple[float, float]) -> Array:
+    m = Symmetry._matrices(fold, mirror, axis)
+    m.setflags(write=False)
+    return m
+
+
+@lru_cache(maxsize=8192)
+def _cached_curve(seg: Segment, p0: tuple, p1: tuple, flip: bool, tol: tuple) -> Curve:
+    c = seg._make(p0, p1)
+    return c.reversed() if flip else c
 
 
 @dataclass(frozen=True)
@@ -133,20 +158,24 @@ class Symmetry:
         return self.fold * (2 if self.mirror else 1)
 
     def matrices(self) -> Array:
-        """Linear parts about :attr:`center`, shape (order, 2, 2).
+        """Linear parts about :attr:`center`, shape (order, 2, 2), read-only.
 
         Ordered r0, r0m, r1, r1m, ... (``m`` = mirror applied before the rotation)
         when mirrored, else r0, r1, ...
         """
-        k = np.arange(self.fold)
-        a = 2.0 * np.pi * k / self.fold
+        return _group_matrices(self.fold, self.mirror, self.axis)
+
+    @staticmethod
+    def _matrices(fold: int, mirror: bool, axis: tuple[float, float]) -> Array:
+        k = np.arange(fold)
+        a = 2.0 * np.pi * k / fold
         c, s = np.cos(a), np.sin(a)
         rot = np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
-        if not self.mirror:
+        if not mirror:
             return rot
-        d = np.asarray(self.axis) / math.hypot(*self.axis)
+        d = np.asarray(axis) / math.hypot(*axis)
         q = 2.0 * np.outer(d, d) - np.eye(2)
-        out = np.empty((2 * self.fold, 2, 2))
+        out = np.empty((2 * fold, 2, 2))
         out[0::2] = rot
         out[1::2] = rot @ q
         return out
@@ -261,10 +290,18 @@ class BasicCurve:
             return "free_end"
         return "level"
 
-    def top_curve(self, i: int) -> Curve:
-        """Top-view curve of segment ``i`` from vertex i to vertex i + 1."""
+    def top_curve(self, i: int, oriented: bool = False) -> Curve:
+        """Top-view curve of segment ``i`` from vertex i to vertex i + 1.
+
+        With ``oriented``, ogees run from their ground end and free ends from
+        their apex (the direction of the side view).
+        """
+        flip = False
+        if oriented:
+            kind = self.segment_kind(i)
+            flip = (kind == "ogee" and self.marks[i] == "apex") or (kind == "free_end" and self.marks[i] == "free")
         try:
-            return self.segments[i].curve(self.vertices[i], self.vertices[i + 1])
+            return _segment_curve(self.segments[i], self.vertices[i], self.vertices[i + 1], flip)
         except GeometryError as e:
             raise DrawingError(f"segment {i}: {e}") from None
 

@@ -11,6 +11,7 @@ and their points are computed on demand in one vectorised product.
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass, field
 from typing import Iterator, Literal
 
@@ -247,9 +248,22 @@ def _t_of_g(piece: Piece, g: float) -> float:
     return float(find_root(lambda t: float(piece.g_of_t(t)) - g, 0.0, 1.0, xtol=1e-15))
 
 
+_UNIFORM_T: "weakref.WeakKeyDictionary[Curve, dict[int, Array]]" = weakref.WeakKeyDictionary()
+
+
+def _uniform_t(top: Curve, n: int) -> Array:
+    """Parameters of ``n`` samples at equal arc-length steps, cached per (immutable) curve."""
+    per = _UNIFORM_T.get(top)
+    if per is None:
+        per = _UNIFORM_T.setdefault(top, {})
+    t = per.get(n)
+    if t is None:
+        t = per[n] = np.asarray(top.t_at_u(np.linspace(0.0, 1.0, n)), dtype=float)
+    return t
+
+
 def _sample_piece(top: Curve, side: sv.SideView | None, gs: tuple, n: int, z_const: float = 0.0) -> Array:
-    u = np.linspace(0.0, 1.0, n)
-    t = top.t_at_u(u)
+    t = _uniform_t(top, n)
     xy = top.point(t)
     if side is None:
         z = np.full(n, z_const)
@@ -257,6 +271,23 @@ def _sample_piece(top: Curve, side: sv.SideView | None, gs: tuple, n: int, z_con
         tmp = Piece(0, 0, "", top, side, gs, np.empty((0, 3)))
         z = side.height(tmp.g_of_t(t))
     return np.concatenate([xy, z[:, None]], axis=1)
+
+
+def _project_many(top: Curve, q: Array) -> Array:
+    """Parameters of the points of ``top`` nearest to each of ``q`` (k, 2)."""
+    from auszug.geometry import Arc, Line
+
+    if isinstance(top, Line):
+        d = top.p1 - top.p0
+        return np.clip((q - top.p0) @ d / (d @ d), 0.0, 1.0)
+    if isinstance(top, Arc):
+        v = q - top.center
+        t = top.t_of_angle(np.arctan2(v[:, 1], v[:, 0]))
+        inside = (t >= 0.0) & (t <= 1.0)
+        d0 = np.linalg.norm(q - top.start, axis=1)
+        d1 = np.linalg.norm(q - top.end, axis=1)
+        return np.where(inside, t, np.where(d0 <= d1, 0.0, 1.0))
+    return np.array([top.project(p) for p in q])
 
 
 def build(
@@ -346,12 +377,9 @@ def _build_curve(
     built: dict[int, list[Piece]] = {}
     for si in order:
         kind = kinds[si]
-        top = c.top_curve(si)
+        top = c.top_curve(si, oriented=True)
         try:
             if kind == "ogee":
-                flip = c.marks[si] == "apex"
-                if flip:
-                    top = top.reversed()
                 gs, G = _g_setup(top, mode, theta)
                 f = c.prc[si] if c.prc[si] is not None else auto[(ci, si)]
                 t_c = float(top.t_at_u(f))
@@ -377,8 +405,6 @@ def _build_curve(
                 built[si] = pieces_here
             elif kind == "free_end":
                 flip = c.marks[si] == "free"
-                if flip:
-                    top = top.reversed()
                 apex_vertex = si + 1 if flip else si
                 # the ogee that ends at this apex
                 nb = [j for j in (apex_vertex - 1, apex_vertex) if 0 <= j < len(kinds) and kinds[j] == "ogee"]
@@ -443,12 +469,14 @@ def _add_pillars(net: Network, n: int) -> None:
                 sym = d.curves[p.basic].symmetry
                 cen = np.asarray(sym.center)
                 # q lies on a replica iff its pre-image m^T (q - c) + c lies on the basic piece
-                for qq in np.einsum("kji,j->ki", sym.matrices(), q - cen) + cen:
-                    t = p.top.project(qq)
-                    if np.hypot(*(p.top.point(t) - qq)) <= tol:
-                        z = float(p.height_at_t(t))
-                        if z <= z_top + tol:
-                            z_bot = max(z_bot, z)
+                pre = np.einsum("kji,j->ki", sym.matrices(), q - cen) + cen
+                ts = _project_many(p.top, pre)
+                near = np.linalg.norm(p.top.point(ts) - pre, axis=1) <= tol
+                if near.any():
+                    zs = p.height_at_t(ts[near])
+                    zs = zs[zs <= z_top + tol]
+                    if zs.size:
+                        z_bot = max(z_bot, float(zs.max()))
             if z_top - z_bot > 1e-9 * size:
                 pts = np.array([[q[0], q[1], z_bot], [q[0], q[1], z_top]])
                 new.append(Piece(ci, -1, "pillar", None, None, ("u", 1, 0, 1), pts))

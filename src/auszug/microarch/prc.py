@@ -17,6 +17,8 @@ curves of other layers do not meet it in 3D.
 
 from __future__ import annotations
 
+from collections import OrderedDict
+from functools import lru_cache
 from dataclasses import dataclass
 from typing import Literal
 
@@ -101,16 +103,15 @@ def oriented_segments(drawing: Drawing) -> list[tuple[int, int, Curve]]:
     -------
     list of (curve index, segment index, Curve)
     """
-    out = []
-    for ci, c in enumerate(drawing.curves):
-        for si in range(len(c.segments)):
-            top = c.top_curve(si)
-            if c.segment_kind(si) == "ogee" and c.marks[si] == "apex":
-                top = top.reversed()
-            elif c.segment_kind(si) == "free_end" and c.marks[si] == "free":
-                top = top.reversed()
-            out.append((ci, si, top))
-    return out
+    return [(ci, si, c.top_curve(si, oriented=True)) for ci, c in enumerate(drawing.curves)
+            for si in range(len(c.segments))]
+
+
+@lru_cache(maxsize=4096)
+def _replicas(top: Curve, sym) -> tuple[Curve, ...]:  # noqa: ANN001
+    """Images of an (immutable, cached) top curve under a symmetry group."""
+    cen = np.asarray(sym.center)
+    return tuple(top.transformed(m, cen - m @ cen) for m in sym.matrices())
 
 
 def _same_curve(a: Curve, b: Curve, tol: float) -> bool:
@@ -140,29 +141,83 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
     tol = TOL
     segs = oriented_segments(drawing)
     reps: list[tuple[int, int, str, Curve, int]] = []   # curve, segment, label, curve, group index
+    keys = {(ci, si): _segment_key(drawing, ci, si) for ci, si, _ in segs}
     for ci, si, top in segs:
         sym = drawing.curves[ci].symmetry
-        cen = np.asarray(sym.center)
-        for k, (m, lab) in enumerate(zip(sym.matrices(), sym.labels())):
-            reps.append((ci, si, lab, top.transformed(m, cen - m @ cen), k))
+        for k, (lab, rep) in enumerate(zip(sym.labels(), _replicas(top, sym))):
+            reps.append((ci, si, lab, rep, k))
     basics = [top for _, _, top in segs]
-    hits = intersect_many(basics, [r[3] for r in reps])
     scale = max(1.0, float(np.max(np.abs([t.start for t in basics] + [t.end for t in basics]))))
     out = []
-    for (i, j), found in sorted(hits.items()):
-        ci, si, top = segs[i]
-        cj, sj, lab, rep, k = reps[j]
-        same_family = ci == cj and si == sj
-        if same_family and (k == 0 or _same_curve(top, rep, 1e-9 * scale)):
-            continue
-        if layer_only and drawing.curves[ci].layer != drawing.curves[cj].layer:
-            continue
-        for h in found:
-            u = float(top.u_at_t(h.t1))
-            u2 = float(rep.u_at_t(h.t2))
-            true = (abs(u - u2) <= tol.param_equal) if same_family else True
-            out.append(TopIntersection(ci, si, cj, sj, lab, u, u2, h.point, same_family, true))
+    for i, (ci, si, top) in enumerate(segs):
+        wanted = []
+        for j, (cj, sj, lab, rep, k) in enumerate(reps):
+            same_family = ci == cj and si == sj
+            if same_family and k == 0:
+                continue
+            if layer_only and drawing.curves[ci].layer != drawing.curves[cj].layer:
+                continue
+            wanted.append(j)
+        pair_keys = [(keys[(ci, si)], keys[reps[j][:2]], reps[j][4]) for j in wanted]
+        missing = [j for j, pk in zip(wanted, pair_keys) if pk not in _PAIRS]
+        fresh: dict = {}
+        if missing:
+            found = intersect_many([top], [reps[j][3] for j in missing])
+            for n, j in enumerate(missing):
+                rep = reps[j][3]
+                hits = tuple(
+                    (float(top.u_at_t(h.t1)), float(rep.u_at_t(h.t2)), h.point) for h in found.get((0, n), ())
+                )
+                same = (ci, si) == reps[j][:2] and _same_curve(top, rep, 1e-9 * scale)
+                pk = (keys[(ci, si)], keys[reps[j][:2]], reps[j][4])
+                fresh[pk] = None if same else hits
+                _PAIRS.put(pk, fresh[pk])
+        for j, pk in zip(wanted, pair_keys):
+            hits = fresh[pk] if pk in fresh else _PAIRS.get(pk)
+            if not hits:
+                continue
+            cj, sj, lab, rep, k = reps[j]
+            same_family = ci == cj and si == sj
+            for u, u2, pt in hits:
+                true = (abs(u - u2) <= tol.param_equal) if same_family else True
+                out.append(TopIntersection(ci, si, cj, sj, lab, u, u2, pt, same_family, true))
     return out
+
+
+class _PairCache:
+    """Bounded cache of the intersections of one basic segment with one replica.
+
+    Keyed by the geometry of both segments (their vertices, drawing, marks and
+    the replica's symmetry element), so an edit recomputes only the pairs it
+    touches: interactive rebuilds stay fast. Results are immutable tuples.
+    """
+
+    def __init__(self, size: int = 20000):
+        self.size = size
+        self.data: OrderedDict = OrderedDict()
+
+    def __contains__(self, key: object) -> bool:
+        return key in self.data
+
+    def get(self, key: object):  # noqa: ANN201
+        v = self.data.get(key)
+        if v is not None:
+            self.data.move_to_end(key)
+        return v
+
+    def put(self, key: object, value: object) -> None:
+        self.data[key] = value
+        if len(self.data) > self.size:
+            self.data.popitem(last=False)
+
+
+_PAIRS = _PairCache()
+
+
+def _segment_key(drawing: Drawing, ci: int, si: int) -> tuple:
+    c = drawing.curves[ci]
+    return (c.vertices[si], c.vertices[si + 1], c.segments[si], c.marks[si], c.marks[si + 1], c.symmetry,
+            TOL.intersect, TOL.zero, TOL.collinear)
 
 
 def algorithm1(drawing: Drawing) -> dict[tuple[int, int], PrcChoice]:
@@ -186,6 +241,19 @@ def algorithm1(drawing: Drawing) -> dict[tuple[int, int], PrcChoice]:
     >>> ch.branch, round(ch.fraction, 12)   # meets its mirror image at x = 0
     ('own replicas', 0.666666666667)
     """
+    key = (TOL.param_equal, TOL.intersect, TOL.zero, TOL.collinear, tuple((c.vertices, c.segments, c.marks, c.symmetry, c.layer) for c in drawing.curves))
+    hit = _CHOICES.get(key)
+    if hit is not None:
+        return dict(hit)
+    out = _algorithm1(drawing)
+    _CHOICES.put(key, out)
+    return dict(out)
+
+
+_CHOICES = _PairCache(256)
+
+
+def _algorithm1(drawing: Drawing) -> dict[tuple[int, int], PrcChoice]:
     eps = TOL.param_equal
     allx = intersections(drawing, layer_only=True)
     out: dict[tuple[int, int], PrcChoice] = {}

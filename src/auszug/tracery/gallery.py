@@ -151,7 +151,7 @@ def _prototype() -> bytes:
     ax.axvline(e.mid, color="0.7", lw=0.6, ls="--")
     ax.set_aspect("equal")
     ax.set_title(f"construction (tangency residual {w.tangency_residual():.1e})", fontsize=10)
-    ax.legend(loc="lower center", fontsize=8)
+    ax.legend(loc="upper left", fontsize=8, frameon=False)
     ax.axis("off")
     _draw2d(axs[1], t)
     axs[1].set_title("the eight polygons of (-1,0,2) (1,0,2) 4.0 1.25\n(0,-1,0) 0.2 0.1 0.05 gothic-window",

@@ -102,6 +102,8 @@ def near_degenerate(c1: Curve, c2: Curve, eps: float = 1e-4) -> bool:
             if dist_to_curve(b, e) < eps:
                 return True
     kinds = {c1.kind, c2.kind}
+    if "bezier" in kinds:
+        return near_tangent_samples(c1, c2, eps)
     if kinds == {"line"}:
         return abs(float(cross2(c1.direction, c2.direction))) < eps
     if kinds == {"line", "arc"}:
@@ -116,3 +118,20 @@ def near_degenerate(c1: Curve, c2: Curve, eps: float = 1e-4) -> bool:
             or abs(d - abs(c1.radius - c2.radius)) < eps
         )
     return False
+
+
+def near_tangent_samples(c1: Curve, c2: Curve, eps: float, n: int = 500) -> bool:
+    """Sampled test: somewhere the curves come within 50 eps of each other while
+    running nearly parallel (|sin| < 0.05), or within 50 eps at a cusp of either."""
+    t = np.linspace(0.0, 1.0, n)
+    p, q = c1.point(t), c2.point(t)
+    d = np.hypot(p[:, None, 0] - q[None, :, 0], p[:, None, 1] - q[None, :, 1])
+    i, j = np.nonzero(d < 50 * eps)
+    if len(i) == 0:
+        return False
+    s1 = c1.speed(t[i]) if hasattr(c1, "speed") else np.ones(len(i))
+    s2 = c2.speed(t[j]) if hasattr(c2, "speed") else np.ones(len(j))
+    if np.any(s1 < 1e-2) or np.any(s2 < 1e-2):
+        return True
+    sin = np.abs(cross2(c1.tangent(t[i]), c2.tangent(t[j])))
+    return bool(np.any(sin < 0.05))

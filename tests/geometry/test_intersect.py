@@ -10,6 +10,7 @@ import pytest
 from geometry_cases import (
     TAU,
     arcs,
+    beziers,
     curves,
     dist_to_curve,
     lines,
@@ -20,7 +21,16 @@ from geometry_cases import (
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from auszug.geometry import TOL, Arc, Line, cross2, intersect, intersect_many, tolerances
+from auszug.geometry import (
+    TOL,
+    Arc,
+    CubicBezier,
+    Line,
+    cross2,
+    intersect,
+    intersect_many,
+    tolerances,
+)
 
 ON_CURVE = 1e-9 * (1 + 1e-6)  # TOL.intersect plus rounding
 
@@ -35,8 +45,11 @@ def check_valid(c1, c2, hits):
         assert np.hypot(*(c1.point(h.t1) - h.point)) <= ON_CURVE
         assert np.hypot(*(c2.point(h.t2) - h.point)) <= ON_CURVE
     for i, a in enumerate(hits):
-        for b in hits[i + 1 :]:
-            assert np.hypot(*(a.point - b.point)) > 2 * TOL.intersect
+        for b in hits[i + 1 :]:  # distinct points, or one double point on two branches
+            assert (
+                np.hypot(*(a.point - b.point)) > 2 * TOL.intersect
+                or max(abs(a.t1 - b.t1), abs(a.t2 - b.t2)) > 1e-3
+            )
 
 
 def params(hits):
@@ -48,9 +61,13 @@ def same_params(a, b, atol=1e-7):
     a, b = params(a), params(b)
     if a.shape != b.shape:
         return False
-    a = a[np.lexsort(a.T[::-1])]
-    b = b[np.lexsort(b.T[::-1])]
-    return bool(np.allclose(a, b, atol=atol))
+    free = list(range(len(b)))
+    for row in a:
+        match = [k for k in free if np.all(np.abs(b[k] - row) <= atol)]
+        if not match:
+            return False
+        free.remove(match[0])
+    return True
 
 
 # -- against brute force ----------------------------------------------------------------
@@ -296,7 +313,8 @@ def test_lines_sharing_a_point(ln, t):
 def test_arc_with_itself(a):
     hits = intersect(a, a)
     check_valid(a, a, hits)
-    want = [(0.0, 0.0)] if abs(abs(a.sweep) - TAU) < 1e-12 else [(0.0, 0.0), (1.0, 1.0)]
+    closed = np.hypot(*(a.start - a.end)) <= TOL.intersect  # one point: start = end
+    want = [(0.0, 0.0)] if closed else [(0.0, 0.0), (1.0, 1.0)]
     assert [(h.t1, h.t2) for h in hits] == want
 
 
@@ -326,3 +344,129 @@ def test_intersect_many_is_fast():
     dt = time.perf_counter() - t0
     assert sum(map(len, res.values())) > 100
     assert dt < 0.05  # typically ~5 ms for all 1770 pairs; generous bound for slow CI
+
+
+# -- Beziers ----------------------------------------------------------------------------
+
+
+def pairs_with_bezier():
+    return st.tuples(beziers(), curves(bezier=True), st.booleans()).map(
+        lambda x: (x[0], x[1]) if x[2] else (x[1], x[0])
+    )
+
+
+@settings(max_examples=100, deadline=None)
+@given(pairs_with_bezier())
+def test_bezier_matches_brute_force(pair):
+    c1, c2 = pair
+    assume(not near_degenerate(c1, c2, 1e-3))
+    hits = intersect(c1, c2)
+    check_valid(c1, c2, hits)
+    for h in hits:
+        assert dist_to_curve(c1, h.point) <= ON_CURVE
+        assert dist_to_curve(c2, h.point) <= ON_CURVE
+    brute = polyline_crossings(c1, c2, n=800)
+    pts = np.array([h.point for h in hits]).reshape(-1, 2)
+    for x, y, _sin in brute:
+        assert len(pts) and np.min(np.hypot(*(pts - (x, y)).T)) < 2e-3
+    for h in hits:
+        s = abs(float(cross2(c1.tangent(h.t1), c2.tangent(h.t2))))
+        if s > 0.1 and 0.01 < h.t1 < 0.99 and 0.01 < h.t2 < 0.99:
+            assert len(brute) and np.min(np.hypot(*(brute[:, :2] - h.point).T)) < 2e-3
+
+
+@settings(max_examples=100, deadline=None)
+@given(pairs_with_bezier(), rigid_motions())
+def test_bezier_invariances(pair, motion):
+    c1, c2 = pair
+    assume(not near_degenerate(c1, c2, 1e-3))
+    m, off = motion
+    hits = intersect(c1, c2)
+    assert same_params(hits, intersect(c1.transformed(m, off), c2.transformed(m, off)))
+    assert same_params(hits, [h.swapped() for h in intersect(c2, c1)])
+    rev = intersect(c1.reversed(), c2.reversed())
+    assert same_params(hits, [type(h)(1 - h.t1, 1 - h.t2, h.point) for h in rev])
+
+
+APEX = CubicBezier((0, 0), (1, 2), (3, 2), (4, 0))  # apex (2, 1.5), radius of curvature 1.6875
+
+
+def test_bezier_overlaps_report_end_points():
+    b = APEX
+    assert [(h.t1, h.t2) for h in intersect(b, b)] == [(0.0, 0.0), (1.0, 1.0)]
+    assert [(h.t1, h.t2) for h in intersect(b, b.reversed())] == [(0.0, 1.0), (1.0, 0.0)]
+    hits = intersect(b, b.segment(0.2, 0.7))
+    check_valid(b, b.segment(0.2, 0.7), hits)
+    np.testing.assert_allclose(params(hits), [[0.2, 0.0], [0.7, 1.0]], atol=1e-9)
+    left, right = b.segment(0.0, 0.6), b.segment(0.4, 1.0)  # partial overlap
+    np.testing.assert_allclose(params(intersect(left, right)), [[2 / 3, 0.0], [1.0, 1 / 3]],
+                               atol=1e-9)
+    straight = CubicBezier((0, 0), (0.5, 0), (2.5, 0), (3, 0))  # non-uniform speed
+    ln = Line((1, 0), (5, 0))
+    hits = intersect(straight, ln)
+    check_valid(straight, ln, hits)
+    assert len(hits) == 2 and hits[1].t1 == 1.0
+    np.testing.assert_allclose(hits[0].point, [1, 0], atol=1e-12)
+    np.testing.assert_allclose(hits[1].t2, 0.5)
+
+
+@pytest.mark.parametrize(
+    "other",
+    [
+        Line((0, 1.5), (4, 1.5)),  # tangent line at the apex
+        Arc((2, 0.5), 1.0, 0.0, TAU),  # circle inside, touching at the apex
+        Arc((2, 2.5), 1.0, -3.0, 2.5),  # arc above, touching at the apex
+        CubicBezier((0, 3), (1, 1), (3, 1), (4, 3)),  # mirrored Bezier touching at the apex
+    ],
+)
+def test_bezier_tangency_is_one_point(other):
+    for x, y in ((APEX, other), (other, APEX)):
+        hits = intersect(x, y)
+        check_valid(x, y, hits)
+        assert len(hits) == 1
+        np.testing.assert_allclose(hits[0].point, [2, 1.5], atol=1e-7)
+
+
+def test_beziers_meeting_at_end_points():
+    b = APEX
+    c = CubicBezier(b.end, 2 * b.end - b.p2, (6, -3), (7, 0))  # G1 continuation
+    hits = intersect(b, c)
+    assert [(h.t1, h.t2) for h in hits] == [(1.0, 0.0)]
+    assert hits[0].point.tolist() == b.end.tolist()
+    hits = intersect(Line((4, 0), (4, 5)), b)
+    assert [(h.t1, h.t2) for h in hits] == [(0.0, 1.0)]
+
+
+def test_bezier_crossings_known():
+    # the apex Bezier and the line y = 1: y(t) = 6 t (1 - t) = 1
+    hits = intersect(APEX, Line((-1, 1), (5, 1)))
+    r = (1 - math.sqrt(1 / 3)) / 2
+    np.testing.assert_allclose(params(hits)[:, 0], [r, 1 - r], atol=1e-14)
+    # a loop crossing a line four... the S curve meets its chord in three points
+    s = CubicBezier((0, 0), (1, 1), (2, -1), (3, 0))
+    hits = intersect(s, Line((0, 0), (3, 0)))
+    np.testing.assert_allclose(params(hits), [[0, 0], [0.5, 0.5], [1, 1]], atol=1e-14)
+
+
+def test_intersect_many_with_beziers():
+    rng = np.random.default_rng(7)
+    cs = [CubicBezier(*rng.uniform(-1, 1, (4, 2))) for _ in range(10)]
+    cs += [Line(rng.uniform(-1, 1, 2), rng.uniform(-1, 1, 2)) for _ in range(10)]
+    got = intersect_many(cs)
+    for i in range(len(cs)):
+        for j in range(i + 1, len(cs)):
+            assert same_params(got.get((i, j), []), intersect(cs[i], cs[j]), atol=0.0)
+
+
+def test_handles_on_end_points_do_not_break_newton():
+    # both derivatives vanish at the shared start: Newton must step off, not divide by 0
+    a = CubicBezier((0, 0), (0, 0), (1, 1), (2, 0))
+    b = CubicBezier((0, 0), (0, 0), (1, -1), (2, 0))
+    for x, y in ((a, b), (b, a), (a, a.reversed())):
+        hits = intersect(x, y)
+        check_valid(x, y, hits)
+    assert [(h.t1, h.t2) for h in intersect(a, b)] == [(0.0, 0.0), (1.0, 1.0)]
+    c = CubicBezier((0, 0.5), (0, 0.5), (0, 0.2), (0, 0))  # straight, both speeds 0 at ends
+    d = CubicBezier((0, 0), (0, 0), (0, -0.3), (0, -0.5))
+    assert [(h.t1, h.t2) for h in intersect(c, d)] == [(1.0, 0.0)]
+    assert [(h.t1, h.t2) for h in intersect(c, Line((0, 1), (0, -1)))] == [(0.0, 0.25), (1.0, 0.5)]

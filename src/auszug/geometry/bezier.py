@@ -10,6 +10,7 @@ Newton iteration.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
@@ -203,7 +204,9 @@ class CubicBezier(Curve):
         scale = max(abs(x) for x in coef)
         if scale == 0.0:
             return np.zeros(0)
-        coef = np.trim_zeros(np.array(coef) / scale, "f")
+        coef = np.array(coef) / scale
+        while len(coef) > 1 and abs(coef[0]) <= 1e-13:  # negligible leading terms
+            coef = coef[1:]
         if len(coef) < 2:
             return np.zeros(0)
         r = np.roots(coef)
@@ -316,14 +319,37 @@ class CubicBezier(Curve):
         0.5
         """
         p = np.asarray(p, dtype=float)
-        ts = np.linspace(0.0, 1.0, 65)
+        n = 129
+        ts = np.linspace(0.0, 1.0, n)
         d = self.point(ts) - p
-        i = int(np.argmin(np.einsum("ij,ij->i", d, d)))
-        lo, hi = ts[max(i - 1, 0)], ts[min(i + 1, 64)]
-        t = _closest_newton(self, p, ts[i], lo, hi)
-        cands = (0.0, 1.0, t)
-        dists = [float(np.hypot(*(self.point(c) - p))) for c in cands]
-        return float(cands[int(np.argmin(dists))])
+        d2 = np.einsum("ij,ij->i", d, d)
+        # refine every local minimum of the sampled distance (a near-cusp passes a
+        # point twice, and the sample nearest to it may lie on the wrong branch)
+        pad = np.concatenate([[np.inf], d2, [np.inf]])
+        mins = np.nonzero((pad[1:-1] <= pad[:-2]) & (pad[1:-1] <= pad[2:]))[0]
+        c8 = self._floats
+        px, py = float(p[0]), float(p[1])
+        best_t, best_d = 0.0, math.inf
+        for i in mins[np.argsort(d2[mins])][:4].tolist():
+            lo, hi = float(ts[max(i - 1, 0)]), float(ts[min(i + 1, n - 1)])
+            # from an end sample start inside the interval: the speed may vanish at the end
+            start = float(ts[i]) if 0 < i < n - 1 else 0.5 * (lo + hi)
+            for t in (_closest_newton(c8, px, py, start, lo, hi), float(ts[i])):
+                x, y, _, _, _, _ = _eval_floats(c8, t)
+                d = math.hypot(x - px, y - py)
+                if d < best_d:
+                    best_t, best_d = t, d
+        for t in (0.0, 1.0):
+            x, y, _, _, _, _ = _eval_floats(c8, t)
+            d = math.hypot(x - px, y - py)
+            if d < best_d:
+                best_t, best_d = t, d
+        return best_t
+
+    @cached_property
+    def _floats(self) -> tuple[float, ...]:
+        """The control points as 8 Python floats (x0, y0, ..., x3, y3)."""
+        return tuple(self.controls.ravel().tolist())
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -334,14 +360,30 @@ class CubicBezier(Curve):
         }
 
 
-def _closest_newton(b: CubicBezier, p: Array, t: float, lo: float, hi: float) -> float:
+def _eval_floats(c: tuple[float, ...], t: float) -> tuple[float, float, float, float, float, float]:
+    """Point, first and second derivative at ``t`` of the Bezier with controls ``c`` (8 floats)."""
+    x0, y0, x1, y1, x2, y2, x3, y3 = c
+    m = 1.0 - t
+    b0, b1, b2, b3 = m * m * m, 3.0 * m * m * t, 3.0 * m * t * t, t * t * t
+    ax, ay, bx, by, cx, cy = x1 - x0, y1 - y0, x2 - x1, y2 - y1, x3 - x2, y3 - y2
+    return (
+        b0 * x0 + b1 * x1 + b2 * x2 + b3 * x3,
+        b0 * y0 + b1 * y1 + b2 * y2 + b3 * y3,
+        3.0 * (m * m * ax + 2.0 * m * t * bx + t * t * cx),
+        3.0 * (m * m * ay + 2.0 * m * t * by + t * t * cy),
+        6.0 * (m * (bx - ax) + t * (cx - bx)),
+        6.0 * (m * (by - ay) + t * (cy - by)),
+    )
+
+
+def _closest_newton(c: tuple[float, ...], px: float, py: float, t: float, lo: float,
+                    hi: float) -> float:
     """Newton on g(t) = (B(t) - p) . B'(t) = 0, kept in [lo, hi] (bisection fallback)."""
     for _ in range(60):
-        q = b.point(t) - p
-        d1 = b.derivative(t)
-        d2 = b.derivative(t, 2)
-        g = float(q @ d1)
-        dg = float(d1 @ d1 + q @ d2)
+        x, y, dx, dy, ddx, ddy = _eval_floats(c, t)
+        qx, qy = x - px, y - py
+        g = qx * dx + qy * dy
+        dg = dx * dx + dy * dy + qx * ddx + qy * ddy
         if g > 0:
             hi = min(hi, t)
         else:

@@ -9,6 +9,7 @@ from auszug.geometry.bezier import CubicBezier
 from auszug.geometry.curve import Curve, cross2, rot90
 from auszug.geometry.intersect import Intersection, intersect, intersect_many
 from auszug.geometry.line import Line
+from auszug.geometry.symmetry import SymmetryGroup
 
 __all__ = [
     "TOL",
@@ -25,4 +26,5 @@ __all__ = [
     "Intersection",
     "intersect",
     "intersect_many",
+    "SymmetryGroup",
 ]

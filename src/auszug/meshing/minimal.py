@@ -216,8 +216,16 @@ def _projections(b: Array, centre: Array | None) -> list[Array]:
         r = float(np.mean(np.hypot(b[:, 0] - centre[0], b[:, 1] - centre[1])))
         if abs(th[-1] - th[0]) < np.pi and r > 0:
             out.append(np.stack([th * r, b[:, 2]], axis=1))
+    # best-fit plane, with in-plane axes fixed by the first point so that the projection (and
+    # the mesh built on it) moves with the polygon under rigid motions
     _, _, vt = np.linalg.svd(c, full_matrices=False)
-    out.append(c @ vt[:2].T)
+    nrm = vt[2]
+    e1 = c[0] - (c[0] @ nrm) * nrm
+    if np.linalg.norm(e1) > 1e-12 * (np.abs(c).max() + 1e-300):
+        e1 = e1 / np.linalg.norm(e1)
+        out.append(np.stack([c @ e1, c @ np.cross(nrm, e1)], axis=1))
+    else:
+        out.append(c @ vt[:2].T)
     out.append(b[:, :2].copy())
     return out
 

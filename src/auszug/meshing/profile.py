@@ -85,30 +85,30 @@ class Profile:
             raise GeometryError("profile points must be finite numbers")
         if self.closed and len(p) > 1 and np.array_equal(p[0], p[-1]):
             p = p[:-1]
+        size = float(np.linalg.norm(p.max(0) - p.min(0))) if len(p) else 0.0
+        if not size > TOL.zero:
+            raise GeometryError("profile has zero size: all its points coincide")
         need = 3 if self.closed else 2
         if len(p) < need:
             kind = "closed" if self.closed else "open"
             raise GeometryError(f"a {kind} profile needs at least {need} points, got {len(p)}")
-        size = float(np.linalg.norm(p.max(0) - p.min(0)))
-        if not size > TOL.zero:
-            raise GeometryError("profile has zero size: all its points coincide")
         e = (np.roll(p, -1, axis=0) - p) if self.closed else np.diff(p, axis=0)
         ln = np.linalg.norm(e, axis=1)
         bad = np.nonzero(ln <= 1e-9 * size)[0]
         if len(bad):
             i = int(bad[0])
             raise GeometryError(f"profile edge {i} from point {i} {p[i].tolist()} has zero length")
+        hit = _first_crossing(p, self.closed, 1e-9 * size)
+        if hit is not None:
+            i, j, x = hit
+            raise GeometryError(
+                f"profile is self-intersecting: edges {i} and {j} meet at {np.round(x, 12).tolist()}")
         if self.closed:
             area = _signed_area(p)
             if abs(area) <= 1e-9 * size * size:
                 raise GeometryError("closed profile has zero size: it encloses no area")
             if area < 0:
                 p = p[::-1].copy()
-        hit = _first_crossing(p, self.closed, 1e-9 * size)
-        if hit is not None:
-            i, j, x = hit
-            raise GeometryError(
-                f"profile is self-intersecting: edges {i} and {j} meet at {np.round(x, 12).tolist()}")
         p.setflags(write=False)
         object.__setattr__(self, "points", p)
         object.__setattr__(self, "closed", bool(self.closed))
@@ -235,7 +235,8 @@ def triangulate_polygon(points: ArrayLike) -> NDArray[np.int64]:
         return np.stack([np.zeros_like(k), k, k + 1], axis=1).astype(np.int64)
     import mapbox_earcut
 
-    tri = mapbox_earcut.triangulate_float64(p, np.array([m], dtype=np.uint32)).reshape(-1, 3).astype(np.int64)
+    tri = mapbox_earcut.triangulate_float64(np.array(p, dtype=np.float64, order="C", copy=True),
+                                            np.array([m], dtype=np.uint32)).reshape(-1, 3).astype(np.int64)
     a, b, c = p[tri[:, 0]], p[tri[:, 1]], p[tri[:, 2]]
     cw = ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])) < 0
     tri[cw] = tri[cw][:, ::-1]

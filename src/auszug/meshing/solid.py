@@ -236,6 +236,7 @@ def solid(
     thickness: float | None = None,
     base: bool = False,
     base_thickness: float | None = None,
+    cut: bool = False,
 ) -> Solid:
     """Members, thickened faces and an optional base plate united into one printable solid.
 
@@ -255,6 +256,11 @@ def solid(
         Add a round base plate the members' feet sink into.
     base_thickness : float, optional
         Default: twice the profile's extent.
+    cut : bool
+        Cut members at mirror planes as in the rendered mesh. Off by default:
+        the cut halves of a joint touch their neighbours in a single point
+        where they part, which a printer (and a position-welding STL reader)
+        sees as a pinch; the overlapping members unite into a clean fork.
 
     Returns
     -------
@@ -277,7 +283,9 @@ def solid(
     """
     profile.require_closed("a solid")
     ext = profile.points.max(0) - profile.points.min(0)
-    members = sweep_members(network, profile, int(segments))
+    # uncut: at a mirror joint the cut halves would touch the neighbour along a lens that ends in a
+    # point (a zero-thickness contact); overlapping members unite into a clean fork instead
+    members = sweep_members(network, profile, int(segments), cut=cut)
     inputs: list[tuple[Array, IntArray]] = []
     for mb in members:
         v, f = closed_member(mb)

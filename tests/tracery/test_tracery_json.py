@@ -76,10 +76,13 @@ def test_the_eight_polygons_are_the_papers_construction(oracle):
                                                       ((0.0, round(Y_C, 9)), round(R_C + 0.05, 9))])
     assert sorted(_arcs(bottom["segments"])) == sorted([((1.125, 3.8), 1.175), ((-1.125, 3.8), 1.175),
                                                          ((0.0, round(Y_C, 9)), round(R_C + 0.05, 9))])
-    for side in (left, right):
-        arcs = _arcs(side["segments"])
-        assert len(arcs) in (3, 4) and all(k == "arc" for k in (s["kind"] for s in side["segments"]))
-        assert ((0.0, round(Y_C, 9)), round(R_C + 0.05, 9)) in arcs
+    # the side fillets' cells have five pieces (E's arc and jamb, the circle, both sub-arch
+    # arcs); the offset by 0.05 removes the jamb and the short arc between the circle and the
+    # sub-arch's apex: three arcs, as the paper says
+    for side, sx in ((left, -1), (right, 1)):
+        assert [s["kind"] for s in side["segments"]] == ["arc", "arc", "arc"]
+        assert sorted(_arcs(side["segments"])) == sorted([
+            ((-sx * 1.5, 4.0), 2.35), ((0.0, round(Y_C, 9)), round(R_C + 0.05, 9)), ((-sx * 0.225, 3.8), 1.175)])
     # left and right are mirror images
     lb = np.array(left["boundary"]) * [-1, 1]
     rb = np.array(right["boundary"])

@@ -51,7 +51,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from auszug.errors import GeometryError
-from auszug.geometry import Arc, Curve
+from auszug.geometry import TOL, Arc, Curve
 from auszug.geometry.offset import offset_curves
 from auszug.meshing.mesh import Mesh, Part
 from auszug.tracery._checks import ParameterError, integer, number
@@ -509,4 +509,7 @@ def _finish(verts: Array, faces: IntArray) -> Mesh:
 
     if signed_volume(verts, faces) < 0:
         faces = faces[:, ::-1].copy()
-    return Mesh._unchecked(verts, faces, (Part("window", "solid", -1, "", (0, len(verts)), (0, len(faces))),))
+    m = Mesh._unchecked(verts, faces, (Part("window", "solid", -1, "", (0, len(verts)), (0, len(faces))),))
+    if TOL.strict and not m.is_manifold:  # invariant check of the test-suite's strict mode
+        raise GeometryError("internal error: the window mesh is not a closed manifold")
+    return m

@@ -111,7 +111,8 @@ def rosette(
     tuple of loops
         Each loop a tuple of counter-clockwise arcs. For ``foils >= 3`` one
         loop (the foils touch each other in the inner points ``a``, ``b``);
-        for 2 foils, which touch in the centre, one loop per foil.
+        for 2 foils, which touch in the centre, one loop per foil (there
+        ``a = b`` is the centre, so pointed foils come out round).
 
     Examples
     --------

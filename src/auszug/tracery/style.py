@@ -331,7 +331,13 @@ def builtin_profiles() -> dict[str, Profile]:
 
 
 def builtin_styles() -> dict[str, str]:
-    """Names and one-line descriptions of the built-in styles, sorted by name."""
+    """Names and one-line descriptions of the built-in styles, sorted by name.
+
+    Examples
+    --------
+    >>> list(builtin_styles())[:3]
+    ['fig20a', 'fig20b', 'fig20c']
+    """
     out = {}
     for entry in _library().iterdir():
         if entry.name.endswith(".toml") and entry.name != "profiles.toml":
@@ -429,13 +435,26 @@ def load_style(ref: str | Path) -> Style:
     """A style by built-in name or from a TOML/JSON file.
 
     ``extends`` and ``window`` references inside a file are resolved relative
-    to the file, then among the built-in styles.
+    to the file, then among the built-in styles. (Reading style files is the
+    one place of :mod:`auszug.tracery` that touches files.)
+
+    Examples
+    --------
+    >>> load_style("fig20f").sub_arch.window.name
+    'fig20d'
     """
     return style_from_data(_resolve_ref(str(ref), None, ()))
 
 
 def parse_style(text: str, suffix: str = ".toml", source: str = "<style>") -> Style:
-    """A style from TOML (or JSON with ``suffix=".json"``) text."""
+    r"""A style from TOML (or JSON with ``suffix=".json"``) text.
+
+    Examples
+    --------
+    >>> s = parse_style('extends = "fig20b"\n[circle]\nfoils = 6\norientation = "lying"\n')
+    >>> s.circle.foils, s.circle.orientation, s.circle.decoration
+    (6, 'lying', 'rosette')
+    """
     return style_from_data(_resolve_ref(_parse_text(text, source, suffix), None, ()))
 
 

@@ -49,8 +49,6 @@ def _check_build(d: Drawing) -> None:
     """Build small drawings: DrawingError or finite points, nothing else."""
     if sum(c.symmetry.order * len(c.segments) for c in d.curves) > 96:
         return  # big folds: a resource question, not a correctness one
-    if any(s.kind == "bezier" for c in d.curves for s in c.segments):
-        return  # until test_degenerate_bezier_drawing_builds passes: remove this then
     try:
         net = build(d, samples=9)
     except DrawingError:
@@ -180,10 +178,6 @@ def test_bezier_drawings_build(name):
     assert all(math.isfinite(z) for z in net.apex_heights)
 
 
-@pytest.mark.xfail(raises=(TypeError, ZeroDivisionError), strict=True,
-                   reason="geometry.intersect: Newton step divides by a zero determinant (found with Beziers "
-                          "with a handle on their end point); when fixed, remove this marker and the "
-                          "Bezier exclusion in _check_build")
 def test_degenerate_bezier_drawing_builds():
     """Found by test_legacy_like_files: two curves, one handle vector (0, 0)."""
     text = ("unitCurve 4 1 0\nptPos 0 0\nptLab 0\nptPos -0.5 0\nptTan 0.5 1\nptLab 0\n"

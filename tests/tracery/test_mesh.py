@@ -5,6 +5,8 @@ from __future__ import annotations
 import manifold3d
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from auszug.tracery import ParameterError, build, builtin_style, builtin_styles, refine
 from auszug.tracery.mesh import Resolution, subdivide_profile, window_mesh, zip_rings
@@ -112,3 +114,26 @@ def test_walls_too_thin_for_the_profiles_are_rejected(over, name):
     with pytest.raises(ParameterError) as e:
         window_mesh(build(builtin_style("fig20c").with_overrides(over)))
     assert e.value.name == name
+
+
+PROFILES = ["flat", "chamfer", "round", "hollow", "step", "fig18"]
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.fixed_dictionaries({
+    "excess": st.floats(0.9, 2.0), "drop": st.floats(0.0, 0.5), "inner": st.floats(0.02, 0.08),
+    "outer": st.floats(0.0, 0.15), "circle.foils": st.integers(2, 8), "circle.pointed": st.booleans(),
+    "circle.orientation": st.sampled_from(["standing", "lying"]),
+    "circle.decoration": st.sampled_from(["plain", "rosette"]),
+    "sub-arch.decoration": st.sampled_from(["plain", "trefoil"]),
+    "fillet.decoration": st.sampled_from(["plain", "blind"]),
+    "sub-arch.profile": st.sampled_from(PROFILES), "fillet.profile": st.sampled_from(PROFILES),
+    "circle.foil-profile": st.sampled_from(PROFILES), "wall.profile": st.sampled_from(["square", "splay", "orders"]),
+}), st.integers(0, 2))
+def test_any_valid_style_gives_a_manifold_of_the_right_genus(over, depth):
+    try:
+        t = build(refine(builtin_style("fig20a").with_overrides(over), depth))
+    except ParameterError:
+        assume(False)
+    m = window_mesh(t)
+    assert m.is_manifold and euler_genus(m.vertices, m.faces) == len(t.lights)

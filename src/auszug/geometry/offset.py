@@ -247,15 +247,24 @@ def signed_area(curves: Sequence[Curve]) -> float:
     return area
 
 
-def _far_enough(x: float, y: float, prims: list, limit: float) -> bool:  # noqa: ANN001
-    """Whether (x, y) keeps at least ``limit`` from every input curve."""
+def _at_offset(x: float, y: float, prims: list, lo: float, hi: float) -> bool:  # noqa: ANN001
+    """Whether the distance from (x, y) to the nearest input curve lies in [lo, hi].
+
+    A point of a true offset lies at the offset distance from the input, or a
+    little further on a mitre (at most the mitre limit); a point nearer lies
+    where the region has vanished, one much further where two pieces were
+    joined across the region (a spurious re-join).
+    """
+    best = math.inf
     for pr in prims:
         bx = pr.box
-        if x < bx[0] - limit or x > bx[2] + limit or y < bx[1] - limit or y > bx[3] + limit:
+        if x < bx[0] - best or x > bx[2] + best or y < bx[1] - best or y > bx[3] + best:
             continue
-        if pr.project(x, y)[0] < limit:
+        dist = pr.project(x, y)[0]
+        if dist < lo:
             return False
-    return True
+        best = min(best, dist)
+    return best <= hi
 
 
 def _join(p: _Carrier, q: _Carrier, turn: float | None, d: float, corner: tuple[float, float],
@@ -294,7 +303,7 @@ def _join(p: _Carrier, q: _Carrier, turn: float | None, d: float, corner: tuple[
         score = abs(din) + abs(dout)
         if best is not None and score >= best[0]:
             continue
-        if not _far_enough(x, y, prims, abs(d) * (1.0 - 1e-7) - tol):
+        if not _at_offset(x, y, prims, abs(d) * (1.0 - 1e-7) - tol, miter_limit * abs(d) * 1.01 + tol):
             continue
         if best is None or score < best[0]:
             best = (score, b, a)
@@ -437,13 +446,13 @@ def offset_curves(
             src.append(nxt.index)
             join.append(True)
     result = OffsetCurves(tuple(out), np.array(src, dtype=np.int64), np.array(join, dtype=bool), d, closed)
-    limit = abs(d) * (1.0 - 1e-7) - 10 * tol
-    for j, i in enumerate(alive):
+    lo, hi = abs(d) * (1.0 - 1e-7) - 10 * tol, miter_limit * abs(d) * 1.01 + 10 * tol
+    for i in alive:
         x, y = car[i].point(0.5 * (car[i].a + car[i].b))
-        if not _far_enough(x, y, prims, limit):
+        if not _at_offset(x, y, prims, lo, hi):
             raise GeometryError(
-                f"offset by {d:g} passes within {abs(d):g} of the curves near ({x:.6g}, {y:.6g}): "
-                "the region splits or vanishes there (the border is too wide for it)"
+                f"offset by {d:g} does not keep the distance {abs(d):g} from the curves near "
+                f"({x:.6g}, {y:.6g}): the region splits or vanishes there (the border is too wide for it)"
             )
     if closed and (_tolerance.TOL.strict if check is None else check):
         _check_simple(result)

@@ -555,16 +555,18 @@ def replicate(network, members: Sequence[Member]) -> Mesh:  # noqa: ANN001
         labels = sym.labels()
         cen = np.asarray(sym.center)
         nrep, n, m = len(ks), len(mb.vertices), len(mb.faces)
-        xy = mb.vertices[:, :2] - cen if np.any(cen) else mb.vertices[:, :2]
+        x = mb.vertices[:, 0] - cen[0]
+        y = mb.vertices[:, 1] - cen[1]
         z = mb.vertices[:, 2]
-        rev = mb.faces[:, ::-1]
-        for j, kk in enumerate(ks):
+        rev = np.ascontiguousarray(mb.faces[:, ::-1])
+        dets = mats[:, 0, 0] * mats[:, 1, 1] - mats[:, 0, 1] * mats[:, 1, 0]
+        for j in range(nrep):
             a, b = v0 + j * n, v0 + (j + 1) * n
-            np.matmul(xy, mats[j].T, out=V[a:b, :2])
+            mj = mats[j]
+            V[a:b, 0] = mj[0, 0] * x + mj[0, 1] * y + cen[0]
+            V[a:b, 1] = mj[1, 0] * x + mj[1, 1] * y + cen[1]
             V[a:b, 2] = z
-            np.add(rev if np.linalg.det(mats[j]) < 0 else mb.faces, a, out=F[f0 + j * m:f0 + (j + 1) * m])
-        if np.any(cen):
-            V[v0:v0 + nrep * n, :2] += cen
+            np.add(rev if dets[j] < 0 else mb.faces, a, out=F[f0 + j * m:f0 + (j + 1) * m])
         for j, kk in enumerate(ks):
             parts.append(Part(f"{mb.basic}/{labels[kk]}{mb.name}", "member", mb.basic, labels[kk],
                               (v0 + j * n, v0 + (j + 1) * n), (f0 + j * m, f0 + (j + 1) * m)))

@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import DrawingError, GeometryError
 from auszug.geometry import Curve, Line, arc_from_tangent
+from auszug.geometry.symmetry import SymmetryGroup
 
 __all__ = [
     "Mark",
@@ -100,8 +101,13 @@ def _segment_curve(seg: Segment, p0: tuple, p1: tuple, flip: bool) -> Curve:
 
 
 @lru_cache(maxsize=1024)
-def _group_matrices(fold: int, mirror: bool, axis: tuple[float, float]) -> Array:
-    m = Symmetry._matrices(fold, mirror, axis)
+def _group(fold: int, mirror: bool, center: tuple, axis: tuple) -> SymmetryGroup:
+    return SymmetryGroup(fold, mirror, center, axis)
+
+
+@lru_cache(maxsize=1024)
+def _group_matrices(group: SymmetryGroup) -> Array:
+    m = group.matrices()
     m.setflags(write=False)
     return m
 
@@ -153,9 +159,14 @@ class Symmetry:
         object.__setattr__(self, "center", ce)
 
     @property
+    def group(self) -> SymmetryGroup:
+        """The kernel's symmetry group C_n(center) (+ sigma_axis) of this curve."""
+        return _group(self.fold, self.mirror, self.center, self.axis if self.mirror else (0.0, 1.0))
+
+    @property
     def order(self) -> int:
         """Number of group elements (replicas of a basic curve, itself included)."""
-        return self.fold * (2 if self.mirror else 1)
+        return self.group.order
 
     def matrices(self) -> Array:
         """Linear parts about :attr:`center`, shape (order, 2, 2), read-only.
@@ -163,34 +174,15 @@ class Symmetry:
         Ordered r0, r0m, r1, r1m, ... (``m`` = mirror applied before the rotation)
         when mirrored, else r0, r1, ...
         """
-        return _group_matrices(self.fold, self.mirror, self.axis)
-
-    @staticmethod
-    def _matrices(fold: int, mirror: bool, axis: tuple[float, float]) -> Array:
-        k = np.arange(fold)
-        a = 2.0 * np.pi * k / fold
-        c, s = np.cos(a), np.sin(a)
-        rot = np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
-        if not mirror:
-            return rot
-        d = np.asarray(axis) / math.hypot(*axis)
-        q = 2.0 * np.outer(d, d) - np.eye(2)
-        out = np.empty((2 * fold, 2, 2))
-        out[0::2] = rot
-        out[1::2] = rot @ q
-        return out
+        return _group_matrices(self.group)
 
     def labels(self) -> list[str]:
         """Replica labels in the order of :meth:`matrices`: ``r0``, ``r0m``, ``r1``, ..."""
-        if self.mirror:
-            return [f"r{k}{m}" for k in range(self.fold) for m in ("", "m")]
-        return [f"r{k}" for k in range(self.fold)]
+        return self.group.labels()
 
     def apply(self, points: ArrayLike) -> Array:
         """All images of ``points`` (..., 2) -> (order, ..., 2)."""
-        p = np.asarray(points, dtype=float)
-        c = np.asarray(self.center)
-        return np.einsum("kij,...j->k...i", self.matrices(), p - c) + c
+        return self.group.apply(points)
 
 
 @dataclass(frozen=True)

@@ -46,8 +46,10 @@ class Piece:
         apex for a free end). ``None`` for vertical posts and pillars.
     side : SideView or None
         Height over the side-view coordinate g (``None``: constant or vertical).
-    g_of_t : callable
-        Maps the top curve's parameter t to g.
+    g_scale : tuple
+        The side-view coordinate rule ``(mode, a, b, sign)`` behind :meth:`g_of_t`:
+        arc length times ``a`` = L, the parameter itself, or ``sign`` times the
+        projection onto the direction ``(a, b)``, measured from the start.
     points : (n, 3) ndarray
         Samples from start to end (z = height).
     prc : (3,) ndarray or None
@@ -56,9 +58,11 @@ class Piece:
         PRC as a fraction of the top-view arc length from the start.
     decoration_point : tuple or None
         ``(u, z)`` where the two equal-radius decoration arcs meet.
-    part_of : int or None
-        For a decoration piece: index (in :attr:`Network.pieces`) of the ogee
-        piece that contains it.
+    z_const : float
+        Height of a level piece (no side view).
+
+    A decoration piece is the part of its ogee (same ``basic`` and ``segment``)
+    below the PRC, listed separately so it can be drawn in its own style.
     """
 
     basic: int
@@ -71,7 +75,6 @@ class Piece:
     prc: Array | None = None
     prc_fraction: float | None = None
     decoration_point: tuple[float, float] | None = None
-    part_of: int | None = None
     z_const: float = 0.0
 
     def g_of_t(self, t: ArrayLike) -> Array:
@@ -82,14 +85,8 @@ class Piece:
             return self.top.u_at_t(t) * a  # type: ignore[union-attr]
         if mode == "u":
             return t
-        p = self.top.point(t)  # type: ignore[union-attr]
-        return c * ((p[..., 0]) * a + (p[..., 1]) * b) - c * self._g0
-
-    @property
-    def _g0(self) -> float:
-        mode, a, b, c = self.g_scale
-        p = self.top.start  # type: ignore[union-attr]
-        return float(p[0] * a + p[1] * b)
+        p = self.top.point(t) - self.top.start  # type: ignore[union-attr]
+        return c * (p[..., 0] * a + p[..., 1] * b)
 
     def height_at_t(self, t: ArrayLike) -> Array:
         """Height at top-view parameter(s) t."""

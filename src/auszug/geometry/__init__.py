@@ -9,6 +9,14 @@ from auszug.geometry.bezier import CubicBezier
 from auszug.geometry.curve import Curve, cross2, rot90
 from auszug.geometry.intersect import Intersection, intersect, intersect_many
 from auszug.geometry.line import Line
+from auszug.geometry.offset import OffsetCurves, offset_curves
+from auszug.geometry.reverse import (
+    ReverseCurve,
+    equal_radius_reverse_curve,
+    prc_locus,
+    reverse_curve_from_radius,
+    reverse_curve_through,
+)
 from auszug.geometry.symmetry import SymmetryGroup
 
 __all__ = [
@@ -26,5 +34,12 @@ __all__ = [
     "Intersection",
     "intersect",
     "intersect_many",
+    "OffsetCurves",
+    "offset_curves",
     "SymmetryGroup",
+    "ReverseCurve",
+    "prc_locus",
+    "reverse_curve_through",
+    "reverse_curve_from_radius",
+    "equal_radius_reverse_curve",
 ]

@@ -55,7 +55,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                    help="tube diameter / bar side / ribbon width over 3, drawing units "
                         "(default 1.2%% of the drawing's bounding-box diagonal)")
     g.add_argument("--segments", type=_common.at_least(1), default=None, metavar="N",
-                   help="steps along each curve (default 200, 64 for --solid)")
+                   help="steps along each curve (default 200; 64 for --solid, 48 for a picture)")
     g.add_argument("--around", type=_common.at_least(2), default=None, metavar="N",
                    help="points around the profile (default 40 for tubes, 4 for bars)")
     f = parser.add_argument_group("faces and solids")
@@ -154,7 +154,7 @@ def _make(src: Path, args: argparse.Namespace) -> tuple[Any, dict]:
             s = solid(net, prof, seg, faces=faces, thickness=args.thickness, base=args.base)
             info.update(volume=s.volume, watertight=s.watertight, shells=s.components)
             return s.mesh, info
-        seg = args.segments or 200
+        seg = args.segments or (48 if args.picture else 200)
         parts = [sweep_network(net, prof, seg)]
         if faces is not None:
             parts.append(faces.mesh())
@@ -239,7 +239,7 @@ def run(args: argparse.Namespace) -> int:
         out = Path(args.output) if args.output else Path(_common.stem(src) + fmt)
         if args.format and _suffix(out) != fmt:
             raise FormatError(f"--format {args.format} does not match the file ending of the output", str(out))
-        _suffix(out)
+        args.picture = _suffix(out) in FIGURES
         mesh, info = _make(src, args)
         _write(mesh, out)
         print(_report(out, mesh, info))
@@ -248,6 +248,7 @@ def run(args: argparse.Namespace) -> int:
     if out_dir.exists() and not out_dir.is_dir():
         raise FormatError("several drawings need an output folder, but this is a file", str(out_dir))
     jobs = [(src, out_dir / rel / (_common.stem(src) + fmt)) for src, rel in items]
+    args.picture = False
     errors: list[str] = []
     lines: list[str] = []
 

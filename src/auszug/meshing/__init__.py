@@ -1,5 +1,7 @@
 """Meshes from curve networks: swept members, minimal-surface faces, printable solids.
 
+``meshing.solid.solid(...)`` makes a printable solid (the module is imported here).
+
 Pure numpy/scipy kernels (no I/O); the writers for OBJ, STL, PLY and glTF live
 in :mod:`auszug.formats`.
 """
@@ -9,6 +11,7 @@ from auszug.meshing.frames import Frames, reference_basis, rmf_angles, sweep_fra
 from auszug.meshing.loops import Loop, NetworkGraph, find_loops, loop_through, network_graph
 from auszug.meshing.mesh import Mesh, Part, concatenate
 from auszug.meshing.minimal import MinimalSurface, flat_area, minimal_surface
+from auszug.meshing.solid import Solid, unite
 from auszug.meshing.profile import Profile, circle, from_dict, from_segments, polygon, rectangle, ribbon, square
 from auszug.meshing.sweep import Member, default_size, profile_for, sweep_network, sweep_piece
 
@@ -45,4 +48,6 @@ __all__ = [
     "profile_for",
     "sweep_network",
     "sweep_piece",
+    "Solid",
+    "unite",
 ]

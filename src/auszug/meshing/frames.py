@@ -92,7 +92,7 @@ def _dot(u: Array, v: Array) -> Array:
     return np.einsum("...i,...i->...", u, v)
 
 
-def rmf_angles(points: ArrayLike, tangents: ArrayLike) -> Array:
+def rmf_angles(points: ArrayLike, tangents: ArrayLike, basis: tuple[Array, Array] | None = None) -> Array:
     """Rotation-minimising frame angles in the :func:`reference_basis`, starting at 0.
 
     A frame vector at angle theta_0 in basis 0 is carried by double reflection
@@ -103,6 +103,8 @@ def rmf_angles(points: ArrayLike, tangents: ArrayLike) -> Array:
     points : (n, 3) array_like
     tangents : (n, 3) array_like
         Unit tangents at the points.
+    basis : (a, b), optional
+        :func:`reference_basis` of the tangents, if already at hand.
 
     Returns
     -------
@@ -121,7 +123,7 @@ def rmf_angles(points: ArrayLike, tangents: ArrayLike) -> Array:
     n = len(x)
     if n < 2:
         return np.zeros(n)
-    a, b = reference_basis(t)
+    a, b = reference_basis(t) if basis is None else basis
     v1 = x[1:] - x[:-1]
     c1 = _dot(v1, v1)
     ok1 = c1 > 0.0
@@ -200,7 +202,7 @@ def sweep_frames(
     w0 = w0 - np.dot(w0, t[0]) * t[0]
     if np.linalg.norm(w0) <= 1e-12:
         raise GeometryError("the initial width direction is parallel to the curve's tangent")
-    theta = rmf_angles(x, t)
+    theta = rmf_angles(x, t, (a, b))
     th0 = _angle_in(a[0], b[0], w0)
 
     def target_angle(v: ArrayLike | None, i: int) -> float | None:

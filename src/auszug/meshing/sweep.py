@@ -451,7 +451,8 @@ def sweep_piece(network, pi: int, profile: Profile, segments: int = 200, caps: b
     if piece.kind not in SWEPT_KINDS:
         raise GeometryError(f"piece {pi} is a {piece.kind}; only {', '.join(SWEPT_KINDS)} pieces are swept")
     runs = sample_piece(piece, segments)
-    tol = AXIS_TOL * _scale(network)
+    scale = _scale(network)
+    tol = AXIS_TOL * scale
     cuts_raw = _mirror_cuts(network, pi, runs) if cut else []
     by_end = {e: (k, nrm) for e, k, nrm in cuts_raw}
     period = math.pi / 2 if profile.quarter_symmetric else math.pi
@@ -488,7 +489,7 @@ def sweep_piece(network, pi: int, profile: Profile, segments: int = 200, caps: b
     RF = np.concatenate(fring)
     n_last = n_rings - 1
     cuts: list[Cut] = []
-    eps = 1e-12 * _scale(network)
+    eps = 1e-12 * scale
     for end, (k, nrm) in sorted(by_end.items()):
         s = runs[0] if end == 0 else runs[-1]
         c = s.points if end == 0 else s.points[::-1]

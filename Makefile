@@ -15,9 +15,11 @@ $(STAMP): pyproject.toml
 
 install: $(STAMP)
 
-## run: set up, then build and render the bundled teaching sheet and Basel drawings into ./out
+## run: set up, then build and render the bundled teaching sheet and Basel drawings, and the
+## tracery style gallery, into ./out
 run: $(STAMP)
 	$(BIN)/auszug demo -o $(OUT)
+	$(BIN)/auszug tracery --gallery $(OUT)/tracery
 
 ## test: set up, then run every test
 test: $(STAMP)

@@ -5,6 +5,8 @@ BIN     := $(VENV)/bin
 STAMP   := $(VENV)/.installed
 OUT     ?= out
 
+NODE_STAMP := web/node_modules/.installed
+
 .PHONY: run test install bench clean
 
 $(STAMP): pyproject.toml
@@ -15,6 +17,11 @@ $(STAMP): pyproject.toml
 
 install: $(STAMP)
 
+# three.js for the glTF check (and the studio front end): from the npm registry, pinned by package-lock.json
+$(NODE_STAMP): web/package.json web/package-lock.json
+	cd web && npm ci --no-audit --no-fund
+	touch $(NODE_STAMP)
+
 ## run: set up, then build and render the bundled teaching sheet and Basel drawings, and the
 ## tracery style gallery, into ./out
 run: $(STAMP)
@@ -22,8 +29,8 @@ run: $(STAMP)
 	$(BIN)/auszug tracery --gallery $(OUT)/tracery
 
 ## test: set up, then run every test
-test: $(STAMP)
-	$(BIN)/python -m pytest -n 2 -q
+test: $(STAMP) $(NODE_STAMP)
+	AUSZUG_REQUIRE_NODE=1 $(BIN)/python -m pytest -n 2 -q
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_engine.py

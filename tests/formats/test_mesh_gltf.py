@@ -124,11 +124,14 @@ console.log(JSON.stringify(out));
 """
 
 
-@pytest.mark.skipif(shutil.which("node") is None, reason="node is not installed")
 def test_three_js_gltf_loader_reads_both_files(mesh, net, tmp_path):
     where = _three_dir()
-    if where is None:
-        pytest.skip("three.js not found (set AUSZUG_THREE_DIR to a folder with node_modules/three)")
+    if shutil.which("node") is None or where is None:
+        # `make test` installs three.js into web/node_modules and sets AUSZUG_REQUIRE_NODE:
+        # there the check must run; a bare `pytest` without node may skip it
+        if os.environ.get("AUSZUG_REQUIRE_NODE"):
+            pytest.fail("node or three.js missing (make test installs three.js into web/node_modules)")
+        pytest.skip("node or three.js not found (run `make test`, or set AUSZUG_THREE_DIR)")
     (tmp_path / "m.glb").write_bytes(dumps_glb(mesh))
     (tmp_path / "m.gltf").write_text(dumps_gltf(mesh))
     script = where / f".auszug-gltf-check-{os.getpid()}.mjs"

@@ -11,7 +11,7 @@ import math
 import os
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Iterator, Sequence
+from typing import TYPE_CHECKING, Callable, Iterator, Sequence
 
 from auszug.errors import AuszugError, FormatError
 
@@ -167,3 +167,36 @@ def find_drawings(inputs: Sequence[str]) -> list[tuple[Path, Path]]:
         else:
             raise FormatError("no such file or folder", arg)
     return out
+
+
+def run_jobs(jobs: Sequence[tuple[Path, Path]], verb: str, one: "Callable[[Path, Path], None]") -> list[str]:
+    """Run ``one(src, dst)`` for every job, with a progress bar on a terminal.
+
+    Returns the messages of the auszug errors raised (each job fails alone).
+    """
+    import sys
+
+    errors: list[str] = []
+
+    def guarded(src: Path, dst: Path) -> None:
+        try:
+            one(src, dst)
+        except AuszugError as e:
+            errors.append(str(e))
+
+    if len(jobs) > 1 and sys.stderr.isatty():
+        from rich.console import Console
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+        cols = (TextColumn(verb), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                TextColumn("{task.description}"))
+        with Progress(*cols, console=Console(stderr=True), transient=True) as bar:
+            task = bar.add_task("", total=len(jobs))
+            for src, dst in jobs:
+                bar.update(task, description=src.name)
+                guarded(src, dst)
+                bar.advance(task)
+    else:
+        for src, dst in jobs:
+            guarded(src, dst)
+    return errors

@@ -102,29 +102,4 @@ def _write_one(src: Path, out: Path, args: argparse.Namespace) -> None:
 
 def _write_many(jobs: list[tuple[Path, Path]], args: argparse.Namespace) -> list[str]:
     """Build every (drawing, output) job; return the error messages of those that failed."""
-    from auszug.errors import AuszugError
-
-    errors: list[str] = []
-
-    def one(src: Path, dst: Path) -> None:
-        try:
-            _write_one(src, dst, args)
-        except AuszugError as e:
-            errors.append(str(e))
-
-    if len(jobs) > 1 and sys.stderr.isatty():
-        from rich.console import Console
-        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-        cols = (TextColumn("building"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                TextColumn("{task.description}"))
-        with Progress(*cols, console=Console(stderr=True), transient=True) as bar:
-            task = bar.add_task("", total=len(jobs))
-            for src, dst in jobs:
-                bar.update(task, description=src.name)
-                one(src, dst)
-                bar.advance(task)
-    else:
-        for src, dst in jobs:
-            one(src, dst)
-    return errors
+    return _common.run_jobs(jobs, "building", lambda src, dst: _write_one(src, dst, args))

@@ -249,32 +249,14 @@ def run(args: argparse.Namespace) -> int:
         raise FormatError("several drawings need an output folder, but this is a file", str(out_dir))
     jobs = [(src, out_dir / rel / (_common.stem(src) + fmt)) for src, rel in items]
     args.picture = False
-    errors: list[str] = []
     lines: list[str] = []
 
     def one(src: Path, dst: Path) -> None:
-        try:
-            mesh, info = _make(src, args)
-            _write(mesh, dst)
-            lines.append(_report(dst, mesh, info))
-        except AuszugError as e:
-            errors.append(str(e))
+        mesh, info = _make(src, args)
+        _write(mesh, dst)
+        lines.append(_report(dst, mesh, info))
 
-    if len(jobs) > 1 and sys.stderr.isatty():
-        from rich.console import Console
-        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-        cols = (TextColumn("meshing"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                TextColumn("{task.description}"))
-        with Progress(*cols, console=Console(stderr=True), transient=True) as bar:
-            task = bar.add_task("", total=len(jobs))
-            for src, dst in jobs:
-                bar.update(task, description=src.name)
-                one(src, dst)
-                bar.advance(task)
-    else:
-        for src, dst in jobs:
-            one(src, dst)
+    errors = _common.run_jobs(jobs, "meshing", one)
     for ln in lines:
         print(ln)
     for msg in errors:

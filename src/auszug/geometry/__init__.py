@@ -16,6 +16,8 @@ from auszug.geometry.reverse import (
     prc_locus,
     reverse_curve_from_radius,
     reverse_curve_through,
+    turning_angle,
+    winds,
 )
 from auszug.geometry.symmetry import SymmetryGroup
 
@@ -42,4 +44,6 @@ __all__ = [
     "reverse_curve_through",
     "reverse_curve_from_radius",
     "equal_radius_reverse_curve",
+    "turning_angle",
+    "winds",
 ]

@@ -163,7 +163,7 @@ class CubicBezier(Curve):
         bad = n1 <= _tolerance.TOL.zero
         if np.any(bad):
             s = np.sign(cross2(d2, self.derivative(t, 3)))
-            k = np.where(bad, np.where(s == 0, 0.0, s * np.inf), k)
+            k = np.where(bad, np.where(s > 0, np.inf, np.where(s < 0, -np.inf, 0.0)), k)
         return k
 
     def speed(self, t: ArrayLike) -> Array:

@@ -32,8 +32,11 @@ run: $(STAMP)
 test: $(STAMP) $(NODE_STAMP)
 	AUSZUG_REQUIRE_NODE=1 $(BIN)/python -m pytest -n 2 -q
 
+## bench: every benchmark (tables for benchmarks/RESULTS.md)
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_engine.py
+	$(BIN)/python benchmarks/bench_meshing.py
+	$(BIN)/python benchmarks/bench_tracery.py --markdown
 
 clean:
 	rm -rf $(VENV) $(OUT) .pytest_cache

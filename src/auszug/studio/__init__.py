@@ -1,0 +1,12 @@
+"""The studio: a local web editor for drawings (``auszug studio``).
+
+Python is the single source of geometry: the browser sends edits over a
+WebSocket (:mod:`auszug.studio.protocol`), a :class:`~auszug.studio.session.Session`
+applies them with :mod:`auszug.microarch.edit`, and the server
+(:mod:`auszug.studio.server`) replies with the network's geometry. Starlette and
+uvicorn are imported only by :mod:`auszug.studio.server` (extra ``auszug[studio]``).
+"""
+
+from __future__ import annotations
+
+__all__: list[str] = []

@@ -1,0 +1,507 @@
+"""The studio's WebSocket protocol, defined once, here.
+
+Every message is a frozen dataclass with a ``type`` tag. The browser's
+TypeScript types (``web/src/protocol.ts``) are generated from this module by
+:func:`typescript` (``python -m auszug.studio.protocol > web/src/protocol.ts``);
+a test fails when the two drift apart.
+
+Client -> server messages are JSON text frames; each may carry an ``id`` that
+the reply echoes. Edits are one message per function of
+:mod:`auszug.microarch.edit`. The server answers every message that changes
+the drawing with a :class:`Geometry` JSON frame followed by *one binary frame*:
+little-endian float32 data that the :class:`ArrayRef` fields of the geometry
+point into. Replicas are not re-sent copies: each basic piece comes once, with
+the 4x4 transforms of its replicas (column-major, as three.js's
+``Matrix4.fromArray`` reads them).
+
+Examples
+--------
+>>> msg = decode('{"type": "set_apex_height", "curve": 0, "height": 2.5}')
+>>> msg
+SetApexHeight(curve=0, height=2.5, id=0, type='set_apex_height')
+>>> decode('{"type": "set_apex_height", "curve": "zero", "height": 2.5}')
+Traceback (most recent call last):
+...
+auszug.studio.protocol.ProtocolError: set_apex_height.curve: expected an integer, got 'zero'
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import types
+import typing
+from dataclasses import dataclass, field
+from typing import Any, Callable, ClassVar, Literal, Union, get_args, get_origin, get_type_hints
+
+from auszug.errors import AuszugError
+from auszug.microarch import edit
+from auszug.microarch.model import Drawing
+
+__all__ = [
+    "PROTOCOL_VERSION",
+    "MAX_MESSAGE_BYTES",
+    "ProtocolError",
+    "Open",
+    "Save",
+    "Undo",
+    "Redo",
+    "MoveVertex",
+    "MoveHandle",
+    "SetApexHeight",
+    "SetPrc",
+    "RecomputePrc",
+    "SetLayerBottom",
+    "SetDecoration",
+    "SetPost",
+    "SetSymmetry",
+    "RemoveCurve",
+    "EditOp",
+    "ArrayRef",
+    "PieceGeometry",
+    "IntersectionMarker",
+    "Geometry",
+    "Saved",
+    "Error",
+    "CLIENT_MESSAGES",
+    "SERVER_MESSAGES",
+    "decode",
+    "encode",
+    "typescript",
+]
+
+#: Bumped whenever a message changes shape; the client shows it on mismatch.
+PROTOCOL_VERSION = 1
+#: Largest client message the server reads (bytes); larger ones get an :class:`Error` reply.
+MAX_MESSAGE_BYTES = 256 * 1024
+
+
+class ProtocolError(AuszugError, ValueError):
+    """A client message that is not valid JSON or not a known, well-formed message."""
+
+
+XY = tuple[float, float]
+Mirror = Literal["none", "first point", "last point", "y axis"]
+
+
+# ---------------------------------------------------------------- client -> server
+
+
+@dataclass(frozen=True)
+class Open:
+    """Open a drawing; ``path`` is relative to the workspace folder."""
+
+    path: str
+    id: int = 0
+    type: Literal["open"] = "open"
+
+
+@dataclass(frozen=True)
+class Save:
+    """Save the drawing; ``path`` is relative to the workspace (empty: where it was opened)."""
+
+    path: str = ""
+    id: int = 0
+    type: Literal["save"] = "save"
+
+
+@dataclass(frozen=True)
+class Undo:
+    """Undo the last edit."""
+
+    id: int = 0
+    type: Literal["undo"] = "undo"
+
+
+@dataclass(frozen=True)
+class Redo:
+    """Redo the last undone edit."""
+
+    id: int = 0
+    type: Literal["redo"] = "redo"
+
+
+class EditOp:
+    """Base of the edit messages: each applies one function of :mod:`auszug.microarch.edit`."""
+
+    #: The edit function; called as ``fn(drawing, **fields)`` without ``id`` and ``type``.
+    fn: ClassVar[Callable[..., Drawing]]
+
+    def apply(self, drawing: Drawing) -> Drawing:
+        """The edited drawing (the input is not changed)."""
+        kw = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)  # type: ignore[arg-type]
+              if f.name not in ("id", "type")}
+        return type(self).fn(drawing, **kw)
+
+
+@dataclass(frozen=True)
+class MoveVertex(EditOp):
+    """:func:`auszug.microarch.edit.move_vertex`."""
+
+    curve: int
+    vertex: int
+    xy: XY
+    id: int = 0
+    type: Literal["move_vertex"] = "move_vertex"
+    fn = staticmethod(edit.move_vertex)
+
+
+@dataclass(frozen=True)
+class MoveHandle(EditOp):
+    """:func:`auszug.microarch.edit.move_handle`."""
+
+    curve: int
+    segment: int
+    handle: int
+    xy: XY
+    id: int = 0
+    type: Literal["move_handle"] = "move_handle"
+    fn = staticmethod(edit.move_handle)
+
+
+@dataclass(frozen=True)
+class SetApexHeight(EditOp):
+    """:func:`auszug.microarch.edit.set_apex_height`."""
+
+    curve: int
+    height: float
+    id: int = 0
+    type: Literal["set_apex_height"] = "set_apex_height"
+    fn = staticmethod(edit.set_apex_height)
+
+
+@dataclass(frozen=True)
+class SetPrc(EditOp):
+    """:func:`auszug.microarch.edit.set_prc` (``fraction`` null: automatic)."""
+
+    curve: int
+    fraction: float | None
+    segment: int = 0
+    id: int = 0
+    type: Literal["set_prc"] = "set_prc"
+    fn = staticmethod(edit.set_prc)
+
+
+@dataclass(frozen=True)
+class RecomputePrc(EditOp):
+    """:func:`auszug.microarch.edit.recompute_prc` (``curves`` null: all)."""
+
+    curves: list[int] | None = None
+    id: int = 0
+    type: Literal["recompute_prc"] = "recompute_prc"
+    fn = staticmethod(edit.recompute_prc)
+
+
+@dataclass(frozen=True)
+class SetLayerBottom(EditOp):
+    """:func:`auszug.microarch.edit.set_layer_bottom`."""
+
+    layer: int
+    z: float
+    id: int = 0
+    type: Literal["set_layer_bottom"] = "set_layer_bottom"
+    fn = staticmethod(edit.set_layer_bottom)
+
+
+@dataclass(frozen=True)
+class SetDecoration(EditOp):
+    """:func:`auszug.microarch.edit.set_decoration`."""
+
+    curve: int
+    on: bool
+    at: float | None = None
+    id: int = 0
+    type: Literal["set_decoration"] = "set_decoration"
+    fn = staticmethod(edit.set_decoration)
+
+
+@dataclass(frozen=True)
+class SetPost(EditOp):
+    """:func:`auszug.microarch.edit.set_post` (``top`` null: no post)."""
+
+    curve: int
+    top: float | None
+    id: int = 0
+    type: Literal["set_post"] = "set_post"
+    fn = staticmethod(edit.set_post)
+
+
+@dataclass(frozen=True)
+class SetSymmetry(EditOp):
+    """:func:`auszug.microarch.edit.set_symmetry` (null: unchanged)."""
+
+    curve: int
+    fold: int | None = None
+    mirror: Mirror | None = None
+    id: int = 0
+    type: Literal["set_symmetry"] = "set_symmetry"
+    fn = staticmethod(edit.set_symmetry)
+
+
+@dataclass(frozen=True)
+class RemoveCurve(EditOp):
+    """:func:`auszug.microarch.edit.remove_curve`."""
+
+    curve: int
+    id: int = 0
+    type: Literal["remove_curve"] = "remove_curve"
+    fn = staticmethod(edit.remove_curve)
+
+
+# ---------------------------------------------------------------- server -> client
+
+
+@dataclass(frozen=True)
+class ArrayRef:
+    """A float32 array in the binary frame that follows a :class:`Geometry` message.
+
+    ``offset`` counts float32 values (not bytes) from the frame's start;
+    ``shape`` is row-major, e.g. ``[n, 3]`` for points, ``[k, 16]`` for transforms.
+    """
+
+    offset: int
+    shape: list[int]
+
+
+@dataclass(frozen=True)
+class PieceGeometry:
+    """One basic piece of the network with the transforms of its replicas.
+
+    ``points`` is (n, 3), the piece of the basic curve itself; ``transforms`` is
+    (k, 16), one column-major 4x4 matrix per replica (the identity first), so
+    that replica j is ``transforms[j] @ points``. ``labels`` name the replicas
+    (``r0``, ``r0m``, ...). ``prc`` is the basic piece's point of reverse
+    curvature (x, y, z), if it has one; its replicas use the same transforms.
+    """
+
+    basic: int
+    segment: int
+    layer: int
+    kind: str
+    points: ArrayRef
+    transforms: ArrayRef
+    labels: list[str]
+    prc: list[float] | None
+
+
+@dataclass(frozen=True)
+class IntersectionMarker:
+    """A top-view intersection of basic segment (curve, segment) with a replica of another.
+
+    ``true``: the 3D curves meet there. Markers are given for the basic curve;
+    the client replicates them with that curve's transforms if it wants all.
+    """
+
+    curve: int
+    segment: int
+    other_curve: int
+    other_segment: int
+    replica: str
+    point: XY
+    true: bool
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """The drawing's network after an open, edit, undo or redo; a binary frame follows."""
+
+    revision: int
+    path: str
+    name: str
+    n_curves: int
+    n_replicas: int
+    pieces: list[PieceGeometry]
+    intersections: list[IntersectionMarker]
+    bounds: list[float]
+    can_undo: bool
+    can_redo: bool
+    binary_floats: int
+    id: int = 0
+    protocol: int = PROTOCOL_VERSION
+    type: Literal["geometry"] = "geometry"
+
+
+@dataclass(frozen=True)
+class Saved:
+    """The drawing was written to ``path`` (relative to the workspace)."""
+
+    path: str
+    id: int = 0
+    type: Literal["saved"] = "saved"
+
+
+@dataclass(frozen=True)
+class Error:
+    """A message could not be carried out; the session is unchanged."""
+
+    message: str
+    id: int = 0
+    type: Literal["error"] = "error"
+
+
+CLIENT_MESSAGES: tuple[type, ...] = (
+    Open, Save, Undo, Redo, MoveVertex, MoveHandle, SetApexHeight, SetPrc, RecomputePrc,
+    SetLayerBottom, SetDecoration, SetPost, SetSymmetry, RemoveCurve,
+)
+SERVER_MESSAGES: tuple[type, ...] = (Geometry, Saved, Error)
+#: Nested types that appear inside server messages, in the order the TypeScript lists them.
+_NESTED: tuple[type, ...] = (ArrayRef, PieceGeometry, IntersectionMarker)
+
+_BY_TYPE: dict[str, type] = {c.__dataclass_fields__["type"].default: c for c in CLIENT_MESSAGES}
+
+
+# ---------------------------------------------------------------- decoding
+
+
+def _is_union(tp: Any) -> bool:
+    return get_origin(tp) in (Union, types.UnionType)
+
+
+def _convert(value: Any, tp: Any, where: str) -> Any:
+    """Check ``value`` (parsed JSON) against annotation ``tp`` and return it typed."""
+    if _is_union(tp):
+        args = get_args(tp)
+        if value is None and type(None) in args:
+            return None
+        rest = [a for a in args if a is not type(None)]
+        if len(rest) == 1:
+            return _convert(value, rest[0], where)
+        raise ProtocolError(f"{where}: unsupported union")  # pragma: no cover - not used
+    origin = get_origin(tp)
+    if tp is bool:
+        if not isinstance(value, bool):
+            raise ProtocolError(f"{where}: expected true or false, got {value!r}")
+        return value
+    if tp is int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise ProtocolError(f"{where}: expected an integer, got {value!r}")
+        return value
+    if tp is float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise ProtocolError(f"{where}: expected a finite number, got {value!r}")
+        return float(value)
+    if tp is str:
+        if not isinstance(value, str):
+            raise ProtocolError(f"{where}: expected a string, got {value!r}")
+        return value
+    if origin is Literal:
+        if value not in get_args(tp):
+            opts = ", ".join(repr(a) for a in get_args(tp))
+            raise ProtocolError(f"{where}: expected one of {opts}, got {value!r}")
+        return value
+    if origin is tuple:
+        args = get_args(tp)
+        if not isinstance(value, list) or len(value) != len(args):
+            raise ProtocolError(f"{where}: expected a list of {len(args)} values, got {value!r}")
+        return tuple(_convert(v, a, f"{where}[{i}]") for i, (v, a) in enumerate(zip(value, args)))
+    if origin is list:
+        (arg,) = get_args(tp)
+        if not isinstance(value, list):
+            raise ProtocolError(f"{where}: expected a list, got {value!r}")
+        return [_convert(v, arg, f"{where}[{i}]") for i, v in enumerate(value)]
+    raise ProtocolError(f"{where}: unsupported field type {tp!r}")  # pragma: no cover
+
+
+def decode(text: str | bytes) -> Any:
+    """Parse one client message (JSON text) into its dataclass.
+
+    Raises
+    ------
+    ProtocolError
+        Not JSON, not an object, an unknown ``type``, a missing or unknown field,
+        or a field of the wrong type; the message says which.
+    """
+    try:
+        obj = json.loads(text)
+    except (ValueError, UnicodeDecodeError) as e:
+        raise ProtocolError(f"not valid JSON ({e})") from None
+    if not isinstance(obj, dict):
+        raise ProtocolError("a message must be a JSON object with a 'type'")
+    kind = obj.get("type")
+    cls = _BY_TYPE.get(kind) if isinstance(kind, str) else None
+    if cls is None:
+        raise ProtocolError(f"unknown message type {kind!r}; expected one of {', '.join(sorted(_BY_TYPE))}")
+    hints = get_type_hints(cls)
+    fields = {f.name: f for f in dataclasses.fields(cls)}
+    unknown = sorted(set(obj) - set(fields))
+    if unknown:
+        raise ProtocolError(f"{kind}: unknown field(s) {', '.join(unknown)}")
+    kw = {}
+    for name, f in fields.items():
+        if name in obj:
+            kw[name] = _convert(obj[name], hints[name], f"{kind}.{name}")
+        elif f.default is dataclasses.MISSING:
+            raise ProtocolError(f"{kind}: missing field {name!r}")
+    return cls(**kw)
+
+
+def encode(msg: Any) -> str:
+    """A server message as JSON text."""
+    return json.dumps(dataclasses.asdict(msg), separators=(",", ":"), allow_nan=False)
+
+
+# ---------------------------------------------------------------- TypeScript
+
+
+def _ts_type(tp: Any) -> str:
+    if _is_union(tp):
+        return " | ".join(_ts_type(a) for a in get_args(tp))
+    if tp is type(None):
+        return "null"
+    if tp in (int, float):
+        return "number"
+    if tp is str:
+        return "string"
+    if tp is bool:
+        return "boolean"
+    origin = get_origin(tp)
+    if origin is Literal:
+        return " | ".join(json.dumps(a) for a in get_args(tp))
+    if origin is tuple:
+        return "[" + ", ".join(_ts_type(a) for a in get_args(tp)) + "]"
+    if origin is list:
+        inner = _ts_type(get_args(tp)[0])
+        return f"({inner})[]" if "|" in inner else f"{inner}[]"
+    if dataclasses.is_dataclass(tp):
+        return tp.__name__
+    raise TypeError(f"no TypeScript for {tp!r}")  # pragma: no cover
+
+
+def _ts_interface(cls: type, optional_defaults: bool) -> str:
+    doc = " ".join((cls.__doc__ or "").split())
+    lines = [f"/** {doc} */", f"export interface {cls.__name__} {{"]
+    hints = get_type_hints(cls)
+    for f in dataclasses.fields(cls):
+        has_default = f.default is not dataclasses.MISSING or f.default_factory is not dataclasses.MISSING
+        opt = "?" if optional_defaults and has_default and f.name != "type" else ""
+        lines.append(f"  {f.name}{opt}: {_ts_type(hints[f.name])};")
+    lines.append("}")
+    return "\n".join(lines)
+
+
+def typescript() -> str:
+    """The TypeScript mirror of this module (the contents of ``web/src/protocol.ts``)."""
+    out = [
+        "// GENERATED by `python -m auszug.studio.protocol` from src/auszug/studio/protocol.py.",
+        "// Do not edit: change the Python and regenerate (`make protocol`); a test fails on drift.",
+        "",
+        f"export const PROTOCOL_VERSION = {PROTOCOL_VERSION};",
+        f"export const MAX_MESSAGE_BYTES = {MAX_MESSAGE_BYTES};",
+        "",
+    ]
+    for cls in CLIENT_MESSAGES:
+        out += [_ts_interface(cls, optional_defaults=True), ""]
+    for cls in _NESTED + SERVER_MESSAGES:
+        out += [_ts_interface(cls, optional_defaults=False), ""]
+    out.append("export type ClientMessage =\n  | " + "\n  | ".join(c.__name__ for c in CLIENT_MESSAGES) + ";")
+    out.append("")
+    out.append("export type ServerMessage = " + " | ".join(c.__name__ for c in SERVER_MESSAGES) + ";")
+    out.append("")
+    return "\n".join(out)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    import sys
+
+    sys.stdout.write(typescript())

@@ -1,0 +1,37 @@
+"""Fixtures of the studio tests: a workspace with corpus drawings and an in-process client."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import CORPUS
+
+#: Host and origin a browser on the studio's own page sends.
+BASE = "http://127.0.0.1:8765"
+
+
+@pytest.fixture
+def workspace(tmp_path: Path) -> Path:
+    """A workspace folder holding tn-2.uc and tn-11.uc from the teaching sheet."""
+    ws = tmp_path / "ws"
+    ws.mkdir()
+    for name in ("tn-2.uc", "tn-11.uc"):
+        shutil.copy(CORPUS / "teaching-sheet" / name, ws / name)
+    return ws
+
+
+@pytest.fixture
+def client(workspace: Path):
+    """A Starlette TestClient of the studio app on ``workspace``, as seen from 127.0.0.1:8765."""
+    from starlette.testclient import TestClient
+
+    from auszug.studio.server import create_app
+
+    with TestClient(create_app(workspace), base_url=BASE) as c:
+        yield c
+
+#: The WebSocket endpoint at that address (TestClient needs the full URL for the Host header).
+WS = "ws://127.0.0.1:8765/ws"

@@ -1,0 +1,59 @@
+"""The protocol: decoding is strict, every edit maps to its edit function, the TypeScript does not drift."""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+import json
+
+import pytest
+
+from auszug.microarch import edit
+from auszug.studio import protocol as P
+from tests.conftest import REPO
+
+TS = REPO / "web" / "src" / "protocol.ts"
+
+
+def test_typescript_in_sync():
+    """web/src/protocol.ts is exactly what protocol.py generates (regenerate: make protocol)."""
+    assert TS.read_text(encoding="utf-8") == P.typescript(), (
+        "web/src/protocol.ts is out of date: run `make protocol`")
+
+
+@pytest.mark.parametrize("cls", [c for c in P.CLIENT_MESSAGES if issubclass(c, P.EditOp)])
+def test_edit_fields_match_edit_function(cls):
+    """Each edit message's fields are exactly its function's parameters after the drawing."""
+    params = list(inspect.signature(cls.fn).parameters)[1:]
+    fields = [f.name for f in dataclasses.fields(cls) if f.name not in ("id", "type")]
+    assert set(fields) == set(params)
+    assert cls.fn.__name__ in edit.__all__
+
+
+def test_type_tags_unique():
+    tags = [c.__dataclass_fields__["type"].default for c in P.CLIENT_MESSAGES + P.SERVER_MESSAGES]
+    assert len(tags) == len(set(tags))
+
+
+def test_decode_round_trip():
+    for msg in (P.Open(path="a.uc", id=3), P.MoveVertex(curve=1, vertex=0, xy=(0.5, -1.0)),
+                P.SetPrc(curve=0, fraction=None, segment=1), P.RecomputePrc(curves=[0, 2]),
+                P.SetSymmetry(curve=0, fold=5, mirror="y axis"), P.Undo(id=7)):
+        assert P.decode(json.dumps(dataclasses.asdict(msg))) == msg
+
+
+@pytest.mark.parametrize("text, says", [
+    ("{", "not valid JSON"),
+    ("[1, 2]", "JSON object"),
+    ('{"type": "explode"}', "unknown message type 'explode'"),
+    ('{"type": "open"}', "missing field 'path'"),
+    ('{"type": "open", "path": "a", "extra": 1}', "unknown field(s) extra"),
+    ('{"type": "set_apex_height", "curve": true, "height": 1}', "expected an integer"),
+    ('{"type": "set_apex_height", "curve": 0, "height": NaN}', "finite number"),
+    ('{"type": "move_vertex", "curve": 0, "vertex": 0, "xy": [1]}', "list of 2 values"),
+    ('{"type": "set_symmetry", "curve": 0, "mirror": "diagonal"}', "expected one of"),
+])
+def test_decode_rejects(text, says):
+    with pytest.raises(P.ProtocolError, match=None) as e:
+        P.decode(text)
+    assert says in str(e.value)

@@ -1,0 +1,142 @@
+"""The server over a real WebSocket (in-process): round trips, undo/redo, security, robustness."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from starlette.testclient import TestClient
+from starlette.websockets import WebSocketDisconnect
+
+from auszug.formats import load
+from auszug.microarch import build
+from auszug.studio import protocol as P
+from auszug.studio.server import create_app, static_dir
+
+from .conftest import BASE, WS
+
+
+def _geometry(ws) -> tuple[dict, np.ndarray]:
+    msg = ws.receive_json()
+    assert msg["type"] == "geometry", msg
+    data = np.frombuffer(ws.receive_bytes(), dtype="<f4")
+    assert data.size == msg["binary_floats"]
+    return msg, data
+
+
+def _error(ws) -> dict:
+    msg = ws.receive_json()
+    assert msg["type"] == "error", msg
+    return msg
+
+
+def test_open_edit_undo_redo(client, workspace):
+    n = len(list(build(load(workspace / "tn-2.uc")).curves()))
+    with client.websocket_connect(WS) as ws:
+        ws.send_json({"type": "open", "path": "tn-2.uc", "id": 1})
+        g0, data0 = _geometry(ws)
+        assert (g0["id"], g0["path"], g0["n_replicas"], g0["can_undo"]) == (1, "tn-2.uc", n, False)
+        assert sum(p["transforms"]["shape"][0] for p in g0["pieces"]) == n
+        ws.send_json({"type": "set_apex_height", "curve": 0, "height": 3.0, "id": 2})
+        g1, data1 = _geometry(ws)
+        assert g1["id"] == 2 and g1["can_undo"] and g1["revision"] == g0["revision"] + 1
+        assert g1["bounds"][5] == pytest.approx(3.0, abs=1e-6)  # the apex is the top
+        ws.send_json({"type": "undo"})
+        g2, data2 = _geometry(ws)
+        assert not g2["can_undo"] and g2["can_redo"]
+        assert np.array_equal(data2, data0)
+        ws.send_json({"type": "redo"})
+        g3, data3 = _geometry(ws)
+        assert np.array_equal(data3, data1)
+
+
+def test_drawing_opens_on_connect(workspace):
+    with TestClient(create_app(workspace, "tn-11.uc"), base_url=BASE) as c:
+        with c.websocket_connect(WS) as ws:
+            g, _ = _geometry(ws)
+            assert g["path"] == "tn-11.uc" and g["n_curves"] == len(load(workspace / "tn-11.uc").curves)
+
+
+@pytest.mark.parametrize("bad", [
+    "not json", "[]", '{"type": "explode"}', '{"type": "set_apex_height", "curve": 0}',
+    '{"type": "set_apex_height", "curve": 42, "height": 1, "id": 5}', '{"type": "undo"}',
+])
+def test_malformed_or_failing_message_gets_error_and_server_lives(client, bad):
+    with client.websocket_connect(WS) as ws:
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
+        _geometry(ws)
+        ws.send_text(bad)
+        err = _error(ws)
+        assert err["message"]
+        ws.send_json({"type": "set_apex_height", "curve": 0, "height": 2.0, "id": 9})
+        g, _ = _geometry(ws)
+        assert g["id"] == 9
+
+
+def test_error_echoes_id(client):
+    with client.websocket_connect(WS) as ws:
+        ws.send_json({"type": "set_apex_height", "curve": 0, "height": 2.0, "id": 4})
+        err = _error(ws)
+        assert err["id"] == 4 and "no drawing is open" in err["message"]
+
+
+def test_oversize_message_refused(client):
+    with client.websocket_connect(WS) as ws:
+        ws.send_text(json.dumps({"type": "open", "path": "x" * (P.MAX_MESSAGE_BYTES + 1)}))
+        assert "larger than the limit" in _error(ws)["message"]
+        ws.send_bytes(b"\0" * (P.MAX_MESSAGE_BYTES + 1))
+        assert "larger than the limit" in _error(ws)["message"]
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
+        _geometry(ws)
+
+
+@pytest.mark.parametrize("path", ["../outside.uc", "/etc/passwd", "sub/../../outside.uc"])
+def test_open_outside_workspace_refused(client, workspace, path):
+    (workspace.parent / "outside.uc").write_bytes((workspace / "tn-2.uc").read_bytes())
+    with client.websocket_connect(WS) as ws:
+        ws.send_json({"type": "open", "path": path})
+        assert "outside the workspace" in _error(ws)["message"]
+
+
+def test_save_outside_workspace_refused(client, workspace):
+    with client.websocket_connect(WS) as ws:
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
+        _geometry(ws)
+        ws.send_json({"type": "save", "path": "../stolen.json"})
+        assert "outside the workspace" in _error(ws)["message"]
+        assert not (workspace.parent / "stolen.json").exists()
+        ws.send_json({"type": "save", "path": "copy.json", "id": 3})
+        assert ws.receive_json() == {"type": "saved", "path": "copy.json", "id": 3}
+        assert (workspace / "copy.json").is_file()
+
+
+@pytest.mark.parametrize("headers", [
+    {"host": "evil.example:8765"},
+    {"origin": "http://evil.example"},
+    {"origin": "http://127.0.0.1.evil.example:8765"},
+    {"origin": "null"},
+])
+def test_foreign_host_or_origin_refused(client, headers):
+    with pytest.raises(WebSocketDisconnect) as e:
+        with client.websocket_connect(WS, headers=headers) as ws:
+            ws.receive_json()
+    assert e.value.code == 1008
+    assert client.get("/", headers=headers).status_code == 403
+
+
+@pytest.mark.parametrize("headers", [
+    {}, {"origin": "http://127.0.0.1:8765"}, {"origin": "http://localhost:8765", "host": "localhost:8765"},
+])
+def test_local_origin_accepted(client, headers):
+    with client.websocket_connect(WS, headers=headers) as ws:
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
+        _geometry(ws)
+
+
+def test_static_served_or_build_named(client):
+    r = client.get("/")
+    if (static_dir() / "index.html").is_file():
+        assert r.status_code == 200 and "<html" in r.text.lower()
+    else:
+        assert r.status_code == 503 and "make web" in r.text

@@ -85,7 +85,7 @@ class Intersection:
 
 
 class _LinePrim:
-    __slots__ = ("x0", "y0", "x1", "y1", "dx", "dy", "len", "box")
+    __slots__ = ("x0", "y0", "x1", "y1", "dx", "dy", "len", "box", "root")
 
     def __init__(self, c: Line) -> None:
         self.x0, self.y0 = c.p0.tolist()
@@ -93,6 +93,7 @@ class _LinePrim:
         self.dx = self.x1 - self.x0
         self.dy = self.y1 - self.y0
         self.len = c.length()
+        self.root: _Piece | None = None
         self.box = (
             min(self.x0, self.x1),
             min(self.y0, self.y1),
@@ -118,7 +119,7 @@ class _LinePrim:
 
 
 class _ArcPrim:
-    __slots__ = ("cx", "cy", "r", "th0", "sw", "sgn", "x0", "y0", "x1", "y1", "len", "box")
+    __slots__ = ("cx", "cy", "r", "th0", "sw", "sgn", "x0", "y0", "x1", "y1", "len", "box", "root")
 
     def __init__(self, c: Arc) -> None:
         self.cx, self.cy = c.center.tolist()
@@ -132,6 +133,7 @@ class _ArcPrim:
         self.x1 = self.cx + r * math.cos(th1)
         self.y1 = self.cy + r * math.sin(th1)
         self.len = r * abs(self.sw)
+        self.root: _Piece | None = None
         self.box = _arc_box(self.cx, self.cy, r, th0, self.sw, self.x0, self.y0, self.x1, self.y1)
 
     def ev(self, t: float) -> tuple[float, float, float, float]:
@@ -205,11 +207,12 @@ class _Piece:
     (x0, y0, x1, y1); ``ctrl`` holds a Bezier piece's 8 control coordinates.
     """
 
-    __slots__ = ("t0", "t1", "box", "dev", "chord", "ctrl")
+    __slots__ = ("t0", "t1", "box", "dev", "chord", "ctrl", "kids")
 
     def __init__(self, t0: float, t1: float, box: _Box, dev: float,
                  chord: tuple[float, float, float, float], ctrl: tuple[float, ...] | None):
         self.t0, self.t1, self.box, self.dev, self.chord, self.ctrl = t0, t1, box, dev, chord, ctrl
+        self.kids: tuple[_Piece, _Piece] | None = None  # the halves, once computed
 
 
 _Box = tuple[float, float, float, float]
@@ -245,16 +248,34 @@ def _bez_halves(p: _Piece) -> tuple[_Piece, _Piece]:
 
 
 class _BezPrim:
-    __slots__ = ("curve", "c", "x0", "y0", "x1", "y1", "len", "box", "__weakref__")
+    __slots__ = ("curve", "c", "x0", "y0", "x1", "y1", "box", "root", "__weakref__")
 
     def __init__(self, c: CubicBezier) -> None:
         self.curve = c
         self.c = tuple(c.controls.ravel().tolist())
         self.x0, self.y0 = self.c[0], self.c[1]
         self.x1, self.y1 = self.c[6], self.c[7]
-        self.len = c.length()
         xs, ys = self.c[0::2], self.c[1::2]
         self.box = (min(xs), min(ys), max(xs), max(ys))
+        self.root: _Piece | None = None
+
+    def _maybe_near(self, x: float, y: float, tol: float) -> bool:
+        """False when the point is certainly farther than ``tol`` from the curve: every
+        flat piece of the (memoised) subdivision tree is excluded by its box or strip."""
+        stack = [_root(self)]
+        while stack:
+            p = stack.pop()
+            b = p.box
+            if x < b[0] - tol or x > b[2] + tol or y < b[1] - tol or y > b[3] + tol:
+                continue
+            x0, y0, x1, y1 = p.chord
+            ln = math.hypot(x1 - x0, y1 - y0)
+            if ln > 0.0 and abs((x - x0) * (y0 - y1) + (y - y0) * (x1 - x0)) / ln > p.dev + tol:
+                continue
+            if _is_flat(p, tol) or p.t1 - p.t0 < 1e-6:
+                return True
+            stack.extend(_split(self, p))
+        return False
 
     def ev(self, t: float) -> tuple[float, float, float, float]:
         """(x, y, dx/dt, dy/dt) at ``t``."""
@@ -278,14 +299,12 @@ class _BezPrim:
     def project(self, x: float, y: float) -> tuple[float, float]:
         """(distance, parameter) of the closest point of the curve.
 
-        Only a lower bound of the distance (and parameter 0) when that bound exceeds
-        ``TOL.intersect``: callers only ask whether a point lies on the curve.
+        When the point is farther than ``TOL.intersect`` from the curve, as the
+        subdivision tree shows cheaply, only a distance above that (inf) and
+        parameter 0: callers only ask whether a point lies on the curve.
         """
-        bx0, by0, bx1, by1 = self.box
-        if x < bx0 or x > bx1 or y < by0 or y > by1:
-            far = max(bx0 - x, x - bx1, by0 - y, y - by1)
-            if far > _tolerance.TOL.intersect:
-                return far, 0.0
+        if not self._maybe_near(x, y, _tolerance.TOL.intersect):
+            return math.inf, 0.0
         t = self.curve.project((x, y))
         px, py, _, _ = self.ev(t)
         return math.hypot(px - x, py - y), t
@@ -564,10 +583,22 @@ def _chord_guess(pa: _Piece, pb: _Piece) -> tuple[float, float]:
 
 
 def _split(prim, p: _Piece) -> tuple[_Piece, _Piece]:  # noqa: ANN001
-    if p.ctrl is not None:
-        return _bez_halves(p)
-    tm = 0.5 * (p.t0 + p.t1)
-    return prim.piece(p.t0, tm), prim.piece(tm, p.t1)
+    """The two halves of a piece, memoised: a curve's subdivision tree is shared by all
+    the pairs it takes part in."""
+    if p.kids is None:
+        if p.ctrl is not None:
+            p.kids = _bez_halves(p)
+        else:
+            tm = 0.5 * (p.t0 + p.t1)
+            p.kids = (prim.piece(p.t0, tm), prim.piece(tm, p.t1))
+    return p.kids
+
+
+def _root(prim) -> _Piece:  # noqa: ANN001
+    """The whole curve as a piece, memoised on the primitive."""
+    if prim.root is None:
+        prim.root = prim.piece(0.0, 1.0)
+    return prim.root
 
 
 def _fat_apart(pa: _Piece, pb: _Piece, tol: float) -> bool:
@@ -604,7 +635,7 @@ def _subdivision_hits(a, b, tol: float) -> list[_Hit]:  # noqa: ANN001
     """Raw hits of two curves by bounding-box subdivision, Newton refinement, and the
     end-point checks; overlaps reduced to their end points, tangential clusters merged."""
     newton: list[tuple[float, float, float, float, float]] = []
-    stack = [(a.piece(0.0, 1.0), b.piece(0.0, 1.0), 0)]
+    stack = [(_root(a), _root(b), 0)]
     while stack:
         pa, pb, depth = stack.pop()
         ba, bb = pa.box, pb.box
@@ -647,7 +678,9 @@ def _subdivision_hits(a, b, tol: float) -> list[_Hit]:  # noqa: ANN001
     for i in range(len(ends)):
         for j in range(i + 1, len(ends)):
             s0, s1 = sorted((ends[i][0], ends[j][0]))
-            if (s1 - s0) * a.len <= 2.0 * tol:
+            if math.hypot(ends[i][2] - ends[j][2], ends[i][3] - ends[j][3]) <= 2.0 * tol and (
+                _same_place(a, s0, s1, tol)
+            ):
                 continue
             if all(_near(a, b, s0 + k * (s1 - s0) / 10.0, tol) for k in range(1, 10)):
                 spans.append((s0, s1))

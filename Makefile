@@ -7,7 +7,7 @@ OUT     ?= out
 
 NODE_STAMP := web/node_modules/.installed
 
-.PHONY: run test install bench clean
+.PHONY: run test install web protocol bench clean
 
 $(STAMP): pyproject.toml
 	$(PY) -m pip install --quiet --disable-pip-version-check uv || $(PY) -m pip install --quiet --user uv
@@ -22,6 +22,20 @@ $(NODE_STAMP): web/package.json web/package-lock.json
 	cd web && npm ci --no-audit --no-fund
 	touch $(NODE_STAMP)
 
+# the studio front end: Vite builds web/ into the Python package (gitignored, shipped in the wheel)
+WEB_BUILD := src/auszug/studio/static/index.html
+WEB_SRC   := $(wildcard web/src/*.ts) web/index.html web/vite.config.ts web/tsconfig.json
+
+$(WEB_BUILD): $(NODE_STAMP) $(WEB_SRC)
+	cd web && npm run --silent build -- --logLevel warn
+
+## web: build the studio front end into src/auszug/studio/static
+web: $(WEB_BUILD)
+
+## protocol: regenerate web/src/protocol.ts from src/auszug/studio/protocol.py
+protocol: $(STAMP)
+	$(BIN)/python -m auszug.studio.protocol > web/src/protocol.ts
+
 ## run: set up, then build and render the bundled teaching sheet and Basel drawings, and the
 ## tracery style gallery, into ./out
 run: $(STAMP)
@@ -29,7 +43,8 @@ run: $(STAMP)
 	$(BIN)/auszug tracery --gallery $(OUT)/tracery
 
 ## test: set up, then run every test
-test: $(STAMP) $(NODE_STAMP)
+test: $(STAMP) $(NODE_STAMP) $(WEB_BUILD)
+	cd web && npm run --silent typecheck && npm test --silent
 	AUSZUG_REQUIRE_NODE=1 $(BIN)/python -m pytest -n 2 -q
 
 ## bench: every benchmark (tables for benchmarks/RESULTS.md)

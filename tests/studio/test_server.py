@@ -140,3 +140,13 @@ def test_static_served_or_build_named(client):
         assert r.status_code == 200 and "<html" in r.text.lower()
     else:
         assert r.status_code == 503 and "make web" in r.text
+
+
+def test_built_bundle_where_the_studio_looks():
+    """`make test` builds the front end first (`make web`); the studio finds it in the package."""
+    import os
+
+    if not os.environ.get("AUSZUG_REQUIRE_NODE") and not (static_dir() / "index.html").is_file():
+        pytest.skip("front end not built (run `make web`)")
+    html = (static_dir() / "index.html").read_text(encoding="utf-8")
+    assert 'id="status"' in html and "assets/" in html

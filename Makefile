@@ -29,6 +29,13 @@ WEB_SRC   := $(wildcard web/src/*.ts) web/index.html web/vite.config.ts web/tsco
 $(WEB_BUILD): $(NODE_STAMP) $(WEB_SRC)
 	cd web && npm run --silent build -- --logLevel warn
 
+# Debian's chromium for the studio's end-to-end test (Playwright drives it; no browser downloads)
+CHROMIUM := /usr/bin/chromium
+SUDO     := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+$(CHROMIUM):
+	$(SUDO) apt-get install -y chromium || ($(SUDO) apt-get update && $(SUDO) apt-get install -y chromium)
+
 ## web: build the studio front end into src/auszug/studio/static
 web: $(WEB_BUILD)
 
@@ -43,7 +50,7 @@ run: $(STAMP)
 	$(BIN)/auszug tracery --gallery $(OUT)/tracery
 
 ## test: set up, then run every test
-test: $(STAMP) $(NODE_STAMP) $(WEB_BUILD)
+test: $(STAMP) $(NODE_STAMP) $(WEB_BUILD) $(CHROMIUM)
 	cd web && npm run --silent typecheck && npm test --silent
 	AUSZUG_REQUIRE_NODE=1 $(BIN)/python -m pytest -n 2 -q
 

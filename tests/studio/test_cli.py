@@ -30,3 +30,12 @@ def test_help_lists_options(capsys):
     assert main(["studio", "--help"]) == 0
     out = capsys.readouterr().out
     assert "--workspace" in out and "--no-browser" in out and "--port" in out
+
+
+def test_missing_bundle_names_build_command(workspace, tmp_path, monkeypatch, capsys):
+    """Without the built front end the command stops before serving and says how to build it."""
+    import auszug.studio.server as server
+
+    monkeypatch.setattr(server, "static_dir", lambda: tmp_path / "no-static")
+    assert main(["studio", str(workspace / "tn-2.uc"), "--no-browser"]) == 2
+    assert "make web" in capsys.readouterr().err

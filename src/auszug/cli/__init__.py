@@ -54,7 +54,8 @@ def make_parser() -> argparse.ArgumentParser:
     """The argument parser with every subcommand."""
     parser = argparse.ArgumentParser(
         prog="auszug",
-        description="Gothic microarchitecture: from symmetric top-view drawings to 3D ogee curve networks.",
+        description="auszug: computational Gothic design. Symmetric top views to 3D ogee curve networks "
+        "(microarchitecture), meshes and solids, window tracery, and a local 3D studio.",
         epilog="Run 'auszug COMMAND --help' for the options of a command.",
     )
     parser.add_argument("--version", action=_VersionAction)

@@ -3,9 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
-from auszug.formats import formats, load
+from auszug.formats import load
 from auszug.microarch import build
 from tests.cli.conftest import BAD_LINE, TN, files_in
 
@@ -24,8 +23,6 @@ def test_uc_to_uc_keeps_the_network(cli, tmp_path):
     _same_network(TN / "tn-6.uc", out)
 
 
-@pytest.mark.skipif(not any(".json" in f.suffixes and f.kind == "drawing" and f.writer
-                            for f in formats().values()), reason="native .json drawings not registered yet")
 def test_uc_to_native_json_and_back(cli, tmp_path):
     assert cli("convert", TN / "tn-10.uc", tmp_path / "a.json").code == 0
     assert cli("convert", tmp_path / "a.json", tmp_path / "b.uc").code == 0

@@ -5,9 +5,7 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
-import pytest
 
-from auszug.errors import AuszugError
 from auszug.formats import load
 from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry, build
 from tests.conftest import CORPUS, corpus_files
@@ -18,14 +16,11 @@ IDS = [str(p.relative_to(CORPUS)) for p in ALL]
 
 @lru_cache(maxsize=None)
 def network(path: str | Path, samples: int | None = None):
-    """The network of a corpus drawing; skips the test if the engine cannot build it."""
+    """The network of a corpus drawing (every corpus drawing must build: a failure fails the test)."""
     p = Path(path)
     if not p.is_absolute():
         p = CORPUS / p
-    try:
-        return build(load(p), samples=samples)
-    except AuszugError as e:  # pragma: no cover - depends on the engine's state
-        pytest.skip(f"engine cannot build {p.name}: {e}")
+    return build(load(p), samples=samples)
 
 
 def arch() -> Drawing:

@@ -6,8 +6,15 @@ import os
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
 
 from auszug.geometry import tolerances
+
+# CI runs on a fresh clone without hypothesis' example database: derandomise there so a run is
+# reproducible; developers' runs keep searching with fresh random examples.
+settings.register_profile("ci", derandomize=True)
+if os.environ.get("CI"):
+    settings.load_profile("ci")
 
 REPO = Path(__file__).resolve().parents[1]
 SHARED = Path(os.environ.get("AUSZUG_SHARED", REPO.parent / "shared"))

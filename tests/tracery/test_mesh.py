@@ -135,5 +135,11 @@ def test_any_valid_style_gives_a_manifold_of_the_right_genus(over, depth):
         t = build(refine(builtin_style("fig20a").with_overrides(over), depth))
     except ParameterError:
         assume(False)
-    m = window_mesh(t)
+    try:
+        m = window_mesh(t)
+    except ParameterError as e:
+        # a profile too deep for a small region of a random style is refused with a message
+        # naming the region, the profile and the inset; never a broken mesh
+        assert "profile" in str(e) and "inset" in str(e), str(e)
+        return
     assert m.is_manifold and euler_genus(m.vertices, m.faces) == len(t.lights)

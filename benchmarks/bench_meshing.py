@@ -29,6 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
+from _timing import timed
+
 from auszug.errors import AuszugError
 from auszug.formats import load
 from auszug.meshing import default_size, network_faces, profile_for, sweep_network
@@ -39,16 +41,10 @@ HERE = Path(__file__).resolve().parent
 DEFAULT_CORPUS = HERE.parent.parent / "shared" / "corpus"
 
 
-def timed(fn, reps: int) -> tuple[float, float]:
+def timed_ms(fn, reps: int) -> tuple[float, float]:  # noqa: ANN001
     """(min, median) milliseconds of ``fn()`` over ``reps`` runs after two warm-ups."""
-    fn()
-    fn()
-    ts = []
-    for _ in range(reps):
-        t0 = time.perf_counter()
-        fn()
-        ts.append(time.perf_counter() - t0)
-    return min(ts) * 1e3, statistics.median(ts) * 1e3
+    t = timed(fn, reps)
+    return t.min * 1e3, t.median * 1e3
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -68,12 +64,12 @@ def main(argv: list[str] | None = None) -> int:
     for style in ("bar", "tube"):
         prof = profile_for(style, size, 40)
         m = sweep_network(chancel, prof, 200)
-        lo, med = timed(lambda: sweep_network(chancel, prof, 200), a.reps)
+        lo, med = timed_ms(lambda: sweep_network(chancel, prof, 200), a.reps)
         print(f"| all members, {style} | {m.n_vertices} | {m.n_faces} | {lo:.1f} | {med:.1f} | < 100 |")
     prof = profile_for("bar", size, 40)
     for b in range(len(chancel.drawing.curves)):
         m = sweep_network(chancel, prof, 200, basics=[b])
-        lo, med = timed(lambda: sweep_network(chancel, prof, 200, basics=[b]), a.reps)
+        lo, med = timed_ms(lambda: sweep_network(chancel, prof, 200, basics=[b]), a.reps)
         print(f"| one basic curve ({b}) and its {len(m.parts)} replicas, bar | {m.n_vertices} | {m.n_faces} "
               f"| {lo:.2f} | {med:.2f} | < 5 |")
     d = chancel.drawing
@@ -84,12 +80,12 @@ def main(argv: list[str] | None = None) -> int:
         net = build(edit.set_apex_height(d, 0, h * (1.0 + 0.01 * (k[0] % 7))))
         return sweep_network(net, prof, 200, basics=[0])
 
-    lo, med = timed(edit_rebuild_resweep, a.reps)
+    lo, med = timed_ms(edit_rebuild_resweep, a.reps)
     print(f"| apex drag: edit + rebuild network + re-sweep curve 0 | | | {lo:.2f} | {med:.2f} | |")
 
     u28 = build(load(a.corpus / "web" / "U.XI.28.uc"))
     fs = network_faces(u28)
-    lo, med = timed(lambda: network_faces(u28), max(5, a.reps // 3))
+    lo, med = timed_ms(lambda: network_faces(u28), max(5, a.reps // 3))
     tri = sum(len(f.faces) for f in fs.faces)
     print("\n| faces | loops | solves | triangles | converged | worst residual | min (ms) | median (ms) | target |")
     print("|---|---|---|---|---|---|---|---|---|")

@@ -19,28 +19,16 @@ from __future__ import annotations
 import argparse
 import os
 import platform
-import statistics
-import time
 
 import numpy as np
+
+from _timing import timed
 
 from auszug.errors import AuszugError
 from auszug.tracery import WindowParams, build, builtin_style, builtin_styles, prototype, window_mesh
 
 TARGET_2D_MS = 20.0
 TARGET_MESH_S = 0.5
-
-
-def timed(fn, reps: int) -> tuple[float, float]:  # noqa: ANN001
-    """(median, minimum) seconds of ``fn()`` over ``reps`` runs after two warm-up runs."""
-    fn()
-    fn()
-    ts = []
-    for _ in range(reps):
-        t0 = time.perf_counter()
-        fn()
-        ts.append(time.perf_counter() - t0)
-    return statistics.median(ts), min(ts)
 
 
 def residuals(n: int, seed: int = 1) -> tuple[float, float, int]:

@@ -28,13 +28,21 @@ __all__ = [
     "recompute_prc",
     "set_layer_bottom",
     "add_curve",
+    "draw_curve",
     "remove_curve",
+    "set_layer",
     "add_layer",
     "remove_layer",
     "set_decoration",
     "set_post",
     "set_symmetry",
 ]
+
+
+def _all_bottoms(d: Drawing) -> list[float]:
+    """Bottoms of every layer, including stored empty layers above the highest used one."""
+    b = list(d.bottoms())
+    return b + [float(z) for z in d.layer_bottoms[len(b):]]
 
 
 def _check_curve(d: Drawing, i: int) -> BasicCurve:
@@ -157,7 +165,7 @@ def recompute_prc(d: Drawing, curves: list[int] | None = None) -> Drawing:
 
 def set_layer_bottom(d: Drawing, layer: int, z: float) -> Drawing:
     """Set the bottom height of a layer (stores all bottoms explicitly)."""
-    b = list(d.bottoms())
+    b = _all_bottoms(d)
     if not 0 <= layer < len(b):
         raise DrawingError(f"no layer {layer}: the drawing has {len(b)} layers")
     b[layer] = float(z)
@@ -166,7 +174,7 @@ def set_layer_bottom(d: Drawing, layer: int, z: float) -> Drawing:
 
 def add_layer(d: Drawing, bottom: float | None = None) -> Drawing:
     """Add an (empty) layer on top; its bottom defaults to the highest apex of the top layer."""
-    b = list(d.bottoms())
+    b = _all_bottoms(d)
     if bottom is None:
         top = len(b) - 1
         hs = [d.apex_height(i, b) for i, c in enumerate(d.curves) if c.layer == top]
@@ -177,7 +185,7 @@ def add_layer(d: Drawing, bottom: float | None = None) -> Drawing:
 
 def remove_layer(d: Drawing, layer: int) -> Drawing:
     """Remove a layer and its curves; the layers above move down one index."""
-    b = list(d.bottoms())
+    b = _all_bottoms(d)
     if not 0 <= layer < len(b):
         raise DrawingError(f"no layer {layer}")
     curves = tuple(c.with_(layer=c.layer - (1 if c.layer > layer else 0)) for c in d.curves if c.layer != layer)
@@ -188,6 +196,74 @@ def remove_layer(d: Drawing, layer: int) -> Drawing:
 def add_curve(d: Drawing, curve: BasicCurve) -> Drawing:
     """Append a basic curve."""
     return replace(d, curves=d.curves + (curve,))
+
+
+def draw_curve(
+    d: Drawing,
+    vertices: list[tuple[float, float]],
+    handles: list[list[tuple[float, float]]],
+    marks: list[str],
+    fold: int = 1,
+    mirror: Literal["none", "first point", "last point", "y axis"] = "none",
+    layer: int = 0,
+) -> Drawing:
+    """Append a basic curve drawn by clicks (the studio's drawing tool).
+
+    Parameters
+    ----------
+    vertices : list of (x, y)
+        m >= 2 top-view points, drawing units.
+    handles : list of list of (x, y)
+        One entry per segment (m - 1): ``[]`` a line, ``[h]`` an arc whose
+        tangent at the segment's first point aims at ``h``, ``[h1, h2]`` a cubic
+        Bezier with inner control points h1, h2.
+    marks : list of {"ground", "apex", "free"}
+        One per vertex.
+    fold, mirror
+        The symmetry, as :func:`set_symmetry` takes it.
+    layer : int
+        An existing layer, or the next one above the top (created).
+
+    Examples
+    --------
+    >>> d = draw_curve(Drawing(()), [(1, 0), (0, 0)], [[(1, 1)]], ["ground", "apex"], fold=4, mirror="first point")
+    >>> c = d.curves[0]
+    >>> c.segments[0].kind, c.symmetry.order, c.symmetry.axis_rule
+    ('arc', 8, 'first point')
+    """
+    if len(handles) != len(vertices) - 1:
+        raise DrawingError(f"{len(vertices)} points need {len(vertices) - 1} handle lists, got {len(handles)}")
+    kinds = {0: "line", 1: "arc", 2: "bezier"}
+    segs = []
+    for i, h in enumerate(handles):
+        if len(h) not in kinds:
+            raise DrawingError(f"segment {i}: expected 0 (line), 1 (arc) or 2 (Bezier) handles, got {len(h)}")
+        segs.append(Segment(kinds[len(h)], tuple(tuple(p) for p in h)))
+    n_layers = len(_all_bottoms(d))
+    if isinstance(layer, bool) or not 0 <= layer <= n_layers:
+        raise DrawingError(f"layer {layer} does not exist: the drawing has layers 0..{n_layers - 1} "
+                           f"(or {n_layers} to add one on top)")
+    if layer == n_layers:
+        d = add_layer(d)
+    c = BasicCurve(tuple(tuple(v) for v in vertices), tuple(segs), tuple(marks), layer=layer)
+    out = add_curve(d, c)
+    return set_symmetry(out, len(out.curves) - 1, fold=fold, mirror=mirror)
+
+
+def set_layer(d: Drawing, curve: int, layer: int) -> Drawing:
+    """Move a basic curve to another existing layer (its top view and heights are kept).
+
+    Examples
+    --------
+    >>> d = Drawing((BasicCurve(((0, 0), (1, 0)), (Segment(),), ("ground", "apex"), height=1.0),), (0.0, 1.0))
+    >>> set_layer(d, 0, 1).curves[0].layer
+    1
+    """
+    c = _check_curve(d, curve)
+    b = _all_bottoms(d)
+    if isinstance(layer, bool) or not 0 <= layer < len(b):
+        raise DrawingError(f"no layer {layer}: the drawing has layers 0..{len(b) - 1}")
+    return replace(d.with_curve(curve, c.with_(layer=layer)), layer_bottoms=tuple(b))
 
 
 def remove_curve(d: Drawing, curve: int) -> Drawing:

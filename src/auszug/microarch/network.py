@@ -448,6 +448,8 @@ def _add_pillars(net: Network, n: int) -> None:
     height at the nearest point is taken), as in the authors' demo.
     """
     d = net.drawing
+    if not d.curves:
+        return
     pts_all = np.array([v for c in d.curves for v in c.vertices])
     size = max(1e-12, float(np.abs(pts_all).max()))
     tol = PILLAR_SNAP * size

@@ -147,6 +147,8 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
         for k, (lab, rep) in enumerate(zip(sym.labels(), _replicas(top, sym))):
             reps.append((ci, si, lab, rep, k))
     basics = [top for _, _, top in segs]
+    if not basics:
+        return []
     scale = max(1.0, float(np.max(np.abs([t.start for t in basics] + [t.end for t in basics]))))
     out = []
     for i, (ci, si, top) in enumerate(segs):

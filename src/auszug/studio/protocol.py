@@ -57,13 +57,35 @@ __all__ = [
     "SetPost",
     "SetSymmetry",
     "RemoveCurve",
+    "DrawCurve",
+    "SetLayer",
+    "SetPrcAt",
+    "SetPrcHeight",
+    "AddLayer",
+    "RemoveLayer",
+    "ListFiles",
+    "OpenExample",
+    "OpenText",
+    "NewDrawing",
+    "Recover",
+    "GetMesh",
+    "GetLoops",
+    "Export",
     "EditOp",
     "ArrayRef",
     "PieceGeometry",
     "IntersectionMarker",
+    "CurveInfo",
     "Geometry",
+    "MeshPiece",
+    "MeshGeometry",
+    "LoopInfo",
+    "Loops",
+    "Files",
+    "Exported",
     "Saved",
     "Error",
+    "BINARY_FOLLOWS",
     "CLIENT_MESSAGES",
     "SERVER_MESSAGES",
     "decode",
@@ -72,7 +94,7 @@ __all__ = [
 ]
 
 #: Bumped whenever a message changes shape; the client shows it on mismatch.
-PROTOCOL_VERSION = 1
+PROTOCOL_VERSION = 2
 #: Largest client message the server reads (bytes); larger ones get an :class:`Error` reply.
 MAX_MESSAGE_BYTES = 256 * 1024
 
@@ -83,6 +105,12 @@ class ProtocolError(AuszugError, ValueError):
 
 XY = tuple[float, float]
 Mirror = Literal["none", "first point", "last point", "y axis"]
+Mark = Literal["ground", "apex", "free"]
+#: Cross-sections of the members in the studio's looks and exports ("curves": polylines only).
+Style = Literal["curves", "tube", "bar", "ribbon"]
+#: Faces: none, every loop the network closes (automatic), or the loops picked by index.
+FacesMode = Literal["none", "auto", "picked"]
+ExportFormat = Literal["glb", "obj", "stl", "ply", "svg", "json", "uc", "network.json"]
 
 
 # ---------------------------------------------------------------- client -> server
@@ -249,6 +277,169 @@ class RemoveCurve(EditOp):
     fn = staticmethod(edit.remove_curve)
 
 
+@dataclass(frozen=True)
+class DrawCurve(EditOp):
+    """:func:`auszug.microarch.edit.draw_curve`: append a curve drawn by clicks.
+
+    ``handles`` has one list per segment: [] line, [h] arc (tangent at the
+    segment's first point aims at h), [h1, h2] cubic Bezier.
+    """
+
+    vertices: list[XY]
+    handles: list[list[XY]]
+    marks: list[Mark]
+    fold: int = 1
+    mirror: Mirror = "none"
+    layer: int = 0
+    id: int = 0
+    type: Literal["draw_curve"] = "draw_curve"
+    fn = staticmethod(edit.draw_curve)
+
+
+@dataclass(frozen=True)
+class SetLayer(EditOp):
+    """:func:`auszug.microarch.edit.set_layer`: move a curve to another layer."""
+
+    curve: int
+    layer: int
+    id: int = 0
+    type: Literal["set_layer"] = "set_layer"
+    fn = staticmethod(edit.set_layer)
+
+
+@dataclass(frozen=True)
+class SetPrcAt(EditOp):
+    """:func:`auszug.microarch.edit.set_prc_at`: the top-view point nearest ``point`` becomes the PRC."""
+
+    curve: int
+    point: XY
+    segment: int = 0
+    id: int = 0
+    type: Literal["set_prc_at"] = "set_prc_at"
+    fn = staticmethod(edit.set_prc_at)
+
+
+@dataclass(frozen=True)
+class SetPrcHeight(EditOp):
+    """:func:`auszug.microarch.edit.set_prc_height`: drag the PRC in the side view (the apex follows)."""
+
+    curve: int
+    z: float
+    segment: int = 0
+    id: int = 0
+    type: Literal["set_prc_height"] = "set_prc_height"
+    fn = staticmethod(edit.set_prc_height)
+
+
+@dataclass(frozen=True)
+class AddLayer(EditOp):
+    """:func:`auszug.microarch.edit.add_layer` (``bottom`` null: the highest apex below)."""
+
+    bottom: float | None = None
+    id: int = 0
+    type: Literal["add_layer"] = "add_layer"
+    fn = staticmethod(edit.add_layer)
+
+
+@dataclass(frozen=True)
+class RemoveLayer(EditOp):
+    """:func:`auszug.microarch.edit.remove_layer` (and its curves)."""
+
+    layer: int
+    id: int = 0
+    type: Literal["remove_layer"] = "remove_layer"
+    fn = staticmethod(edit.remove_layer)
+
+
+@dataclass(frozen=True)
+class ListFiles:
+    """List the drawings of the workspace and the bundled examples (answered by :class:`Files`)."""
+
+    id: int = 0
+    type: Literal["list_files"] = "list_files"
+
+
+@dataclass(frozen=True)
+class OpenExample:
+    """Open a bundled drawing, e.g. ``web/U.XI.28.uc`` (a name from :class:`Files`); saving asks for a name."""
+
+    name: str
+    id: int = 0
+    type: Literal["open_example"] = "open_example"
+
+
+@dataclass(frozen=True)
+class OpenText:
+    """Open the text of a local file the user picked in the browser (``name`` gives the format)."""
+
+    name: str
+    text: str
+    id: int = 0
+    type: Literal["open_text"] = "open_text"
+
+
+@dataclass(frozen=True)
+class NewDrawing:
+    """Start an empty drawing called ``name`` (saved as ``name`` + .json unless told otherwise)."""
+
+    name: str = "untitled"
+    id: int = 0
+    type: Literal["new_drawing"] = "new_drawing"
+
+
+@dataclass(frozen=True)
+class Recover:
+    """Replace the open drawing by its autosaved version (offered by ``Geometry.recoverable``)."""
+
+    id: int = 0
+    type: Literal["recover"] = "recover"
+
+
+@dataclass(frozen=True)
+class GetMesh:
+    """Ask for the members (and faces) of the current drawing (answered by :class:`MeshGeometry`).
+
+    ``loops`` are indices into the last :class:`Loops` reply, used with ``faces="picked"``.
+    ``size`` null: the default member size (1.2 % of the bounding-box diagonal).
+    """
+
+    style: Style = "bar"
+    faces: FacesMode = "none"
+    loops: list[int] = field(default_factory=list)
+    size: float | None = None
+    segments: int = 64
+    id: int = 0
+    type: Literal["get_mesh"] = "get_mesh"
+
+
+@dataclass(frozen=True)
+class GetLoops:
+    """Ask for the closed loops of the network that faces can fill (answered by :class:`Loops`)."""
+
+    id: int = 0
+    type: Literal["get_loops"] = "get_loops"
+
+
+@dataclass(frozen=True)
+class Export:
+    """Export the current drawing; answered by :class:`Exported` and the file's bytes.
+
+    Mesh formats (glb, obj, stl, ply) use ``style``/``faces``/``loops`` as
+    :class:`GetMesh`; ``solid`` unites everything into one watertight solid.
+    ``colors`` are ``#rrggbb`` per basic curve (glb, obj). svg: top and side
+    views; json / uc: the drawing; network.json: the 3D curve network.
+    """
+
+    format: ExportFormat
+    style: Style = "bar"
+    faces: FacesMode = "none"
+    loops: list[int] = field(default_factory=list)
+    solid: bool = False
+    colors: list[str] = field(default_factory=list)
+    id: int = 0
+    type: Literal["export"] = "export"
+
+
 # ---------------------------------------------------------------- server -> client
 
 
@@ -262,6 +453,7 @@ class ArrayRef:
 
     offset: int
     shape: list[int]
+    dtype: Literal["f4", "u4"] = "f4"
 
 
 @dataclass(frozen=True)
@@ -273,6 +465,8 @@ class PieceGeometry:
     that replica j is ``transforms[j] @ points``. ``labels`` name the replicas
     (``r0``, ``r0m``, ...). ``prc`` is the basic piece's point of reverse
     curvature (x, y, z), if it has one; its replicas use the same transforms.
+    ``side`` is (n, 2): the side view of ``points``, (s, z) with s the top-view
+    arc length from the piece's start. ``prc_s`` is the PRC's s.
     """
 
     basic: int
@@ -280,9 +474,11 @@ class PieceGeometry:
     layer: int
     kind: str
     points: ArrayRef
+    side: ArrayRef
     transforms: ArrayRef
     labels: list[str]
     prc: list[float] | None
+    prc_s: float | None
 
 
 @dataclass(frozen=True)
@@ -303,8 +499,41 @@ class IntersectionMarker:
 
 
 @dataclass(frozen=True)
+class CurveInfo:
+    """The editable definition of one basic curve (what the design tools show).
+
+    ``handles`` per segment as in :class:`DrawCurve`; ``mirror`` is the axis rule
+    (``"fixed"``: a mirror whose axis follows no point); ``axis`` the mirror axis
+    direction (null: no mirror); ``apex`` the absolute apex height, ``bottom``
+    its layer's bottom; ``prc`` the stored fraction per segment (null: automatic).
+    """
+
+    vertices: list[XY]
+    handles: list[list[XY]]
+    marks: list[str]
+    fold: int
+    mirror: str
+    axis: list[float] | None
+    center: XY
+    layer: int
+    apex: float
+    bottom: float
+    prc: list[float | None]
+    decoration: bool
+    decoration_at: float | None
+    post_top: float | None
+    name: str
+
+
+@dataclass(frozen=True)
 class Geometry:
-    """The drawing's network after an open, edit, undo or redo; a binary frame follows."""
+    """The drawing's network after an open, edit, undo or redo; a binary frame follows.
+
+    Sent to every tab that has the document open (``id`` is the requester's,
+    0 for the others). ``dirty``: edited since the last save. ``recoverable``:
+    an autosave newer than the file exists (send :class:`Recover`), else "".
+    ``layers`` are the bottoms of all layers.
+    """
 
     revision: int
     path: str
@@ -313,13 +542,89 @@ class Geometry:
     n_replicas: int
     pieces: list[PieceGeometry]
     intersections: list[IntersectionMarker]
+    curves: list[CurveInfo]
+    layers: list[float]
     bounds: list[float]
     can_undo: bool
     can_redo: bool
+    dirty: bool
+    recoverable: str
     binary_floats: int
     id: int = 0
     protocol: int = PROTOCOL_VERSION
     type: Literal["geometry"] = "geometry"
+
+
+@dataclass(frozen=True)
+class MeshPiece:
+    """A triangle mesh and where it goes: ``transforms`` (k, 16) place its k copies.
+
+    ``positions`` (n, 3) f4, ``indices`` (m, 3) u4; ``basic`` the basic curve
+    (-1 for faces, whose mesh is sent with all copies and the identity).
+    """
+
+    basic: int
+    name: str
+    positions: ArrayRef
+    indices: ArrayRef
+    transforms: ArrayRef
+
+
+@dataclass(frozen=True)
+class MeshGeometry:
+    """Members and faces of the drawing at ``revision``; a binary frame follows."""
+
+    revision: int
+    style: str
+    pieces: list[MeshPiece]
+    faces: int
+    converged: bool
+    residual: float
+    binary_floats: int
+    id: int = 0
+    type: Literal["mesh"] = "mesh"
+
+
+@dataclass(frozen=True)
+class LoopInfo:
+    """One closed loop of the network: ``boundary`` (n, 3) f4 polyline, ``centre`` (x, y, z)."""
+
+    index: int
+    boundary: ArrayRef
+    centre: list[float]
+    rim: bool
+
+
+@dataclass(frozen=True)
+class Loops:
+    """The loops faces can fill at ``revision``; a binary frame follows."""
+
+    revision: int
+    loops: list[LoopInfo]
+    binary_floats: int
+    id: int = 0
+    type: Literal["loops"] = "loops"
+
+
+@dataclass(frozen=True)
+class Files:
+    """Drawings in the workspace (relative paths) and the bundled examples (names for :class:`OpenExample`)."""
+
+    workspace: list[str]
+    examples: list[str]
+    id: int = 0
+    type: Literal["files"] = "files"
+
+
+@dataclass(frozen=True)
+class Exported:
+    """An exported file: ``name`` (suggested file name), ``mime``; a binary frame of ``size`` bytes follows."""
+
+    name: str
+    mime: str
+    size: int
+    id: int = 0
+    type: Literal["exported"] = "exported"
 
 
 @dataclass(frozen=True)
@@ -343,10 +648,14 @@ class Error:
 CLIENT_MESSAGES: tuple[type, ...] = (
     Open, Save, Undo, Redo, MoveVertex, MoveHandle, SetApexHeight, SetPrc, RecomputePrc,
     SetLayerBottom, SetDecoration, SetPost, SetSymmetry, RemoveCurve,
+    DrawCurve, SetLayer, SetPrcAt, SetPrcHeight, AddLayer, RemoveLayer,
+    ListFiles, OpenExample, OpenText, NewDrawing, Recover, GetMesh, GetLoops, Export,
 )
-SERVER_MESSAGES: tuple[type, ...] = (Geometry, Saved, Error)
+SERVER_MESSAGES: tuple[type, ...] = (Geometry, MeshGeometry, Loops, Files, Exported, Saved, Error)
+#: Server message types that are followed by exactly one binary frame.
+BINARY_FOLLOWS: tuple[str, ...] = ("geometry", "mesh", "loops", "exported")
 #: Nested types that appear inside server messages, in the order the TypeScript lists them.
-_NESTED: tuple[type, ...] = (ArrayRef, PieceGeometry, IntersectionMarker)
+_NESTED: tuple[type, ...] = (ArrayRef, PieceGeometry, IntersectionMarker, CurveInfo, MeshPiece, LoopInfo)
 
 _BY_TYPE: dict[str, type] = {c.__dataclass_fields__["type"].default: c for c in CLIENT_MESSAGES}
 
@@ -431,7 +740,7 @@ def decode(text: str | bytes) -> Any:
     for name, f in fields.items():
         if name in obj:
             kw[name] = _convert(obj[name], hints[name], f"{kind}.{name}")
-        elif f.default is dataclasses.MISSING:
+        elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
             raise ProtocolError(f"{kind}: missing field {name!r}")
     return cls(**kw)
 
@@ -488,6 +797,8 @@ def typescript() -> str:
         "",
         f"export const PROTOCOL_VERSION = {PROTOCOL_VERSION};",
         f"export const MAX_MESSAGE_BYTES = {MAX_MESSAGE_BYTES};",
+        "export const BINARY_FOLLOWS: readonly string[] = "
+        + json.dumps(list(BINARY_FOLLOWS)) + ";",
         "",
     ]
     for cls in CLIENT_MESSAGES:

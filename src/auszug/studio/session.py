@@ -19,7 +19,7 @@ from auszug.microarch.network import build
 from auszug.microarch.prc import intersections
 from auszug.studio import protocol as P
 
-__all__ = ["WorkspaceError", "Workspace", "Session", "geometry", "replica_transforms"]
+__all__ = ["WorkspaceError", "Workspace", "Session", "geometry", "curve_infos", "replica_transforms"]
 
 #: How many edits undo remembers.
 UNDO_DEPTH = 500
@@ -85,8 +85,51 @@ def replica_transforms(drawing: Drawing, basic: int) -> NDArray[np.float64]:
     return np.ascontiguousarray(t.transpose(0, 2, 1)).reshape(k, 16)
 
 
+def _handles(seg) -> list[tuple[float, float]]:  # noqa: ANN001
+    return [(float(h[0]), float(h[1])) for h in seg.handles]
+
+
+def curve_infos(drawing: Drawing) -> list[P.CurveInfo]:
+    """The editable definition of every basic curve, as the design tools show it."""
+    bottoms = drawing.bottoms()
+    out = []
+    for i, c in enumerate(drawing.curves):
+        sym = c.symmetry
+        out.append(P.CurveInfo(
+            vertices=[(float(x), float(y)) for x, y in c.vertices],
+            handles=[_handles(sg) for sg in c.segments],
+            marks=list(c.marks),
+            fold=sym.fold,
+            mirror=sym.axis_rule if sym.mirror else "none",
+            axis=[float(sym.axis[0]), float(sym.axis[1])] if sym.mirror else None,
+            center=(float(sym.center[0]), float(sym.center[1])),
+            layer=c.layer,
+            apex=float(drawing.apex_height(i, bottoms)),
+            bottom=float(bottoms[c.layer]),
+            prc=list(c.prc),
+            decoration=c.decoration,
+            decoration_at=c.decoration_at,
+            post_top=c.post_top,
+            name=c.name,
+        ))
+    return out
+
+
+def _side(points: NDArray[np.float64]) -> NDArray[np.float64]:
+    """(n, 2) side view (s, z) of a piece's samples: s = top-view arc length from the start."""
+    d = np.hypot(*np.diff(points[:, :2], axis=0).T)
+    s = np.concatenate([[0.0], np.cumsum(d)])
+    return np.stack([s, points[:, 2]], axis=1)
+
+
+def _layer_bottoms(drawing: Drawing) -> list[float]:
+    b = list(drawing.bottoms())
+    return b + [float(z) for z in drawing.layer_bottoms[len(b):]]
+
+
 def geometry(drawing: Drawing, *, path: str = "", revision: int = 0, can_undo: bool = False,
-             can_redo: bool = False, msg_id: int = 0) -> tuple[P.Geometry, bytes]:
+             can_redo: bool = False, msg_id: int = 0, dirty: bool = False,
+             recoverable: str = "") -> tuple[P.Geometry, bytes]:
     """The :class:`~auszug.studio.protocol.Geometry` message of ``drawing`` and its binary payload.
 
     Posts and pillars that lie on a mirror axis are their own mirror image;
@@ -121,8 +164,10 @@ def geometry(drawing: Drawing, *, path: str = "", revision: int = 0, can_undo: b
         n_rep += len(tr)
         pieces.append(P.PieceGeometry(
             basic=p.basic, segment=p.segment, layer=drawing.curves[p.basic].layer, kind=p.kind,
-            points=put(p.points), transforms=put(tr), labels=labels,
+            points=put(p.points), side=put(_side(p.points)), transforms=put(tr), labels=labels,
             prc=None if p.prc is None else [float(v) for v in p.prc],
+            prc_s=None if p.prc_fraction is None or p.top is None
+            else float(p.prc_fraction * p.top.length()),
         ))
     markers = [
         P.IntersectionMarker(curve=x.curve, segment=x.segment, other_curve=x.other_curve,
@@ -134,8 +179,10 @@ def geometry(drawing: Drawing, *, path: str = "", revision: int = 0, can_undo: b
     payload = np.concatenate(chunks).astype("<f4").tobytes() if chunks else b""
     msg = P.Geometry(
         revision=revision, path=path, name=drawing.name, n_curves=len(drawing.curves),
-        n_replicas=n_rep, pieces=pieces, intersections=markers, bounds=bounds,
-        can_undo=can_undo, can_redo=can_redo, binary_floats=offset, id=msg_id,
+        n_replicas=n_rep, pieces=pieces, intersections=markers, curves=curve_infos(drawing),
+        layers=[float(z) for z in _layer_bottoms(drawing)], bounds=bounds,
+        can_undo=can_undo, can_redo=can_redo, dirty=dirty, recoverable=recoverable,
+        binary_floats=offset, id=msg_id,
     )
     return msg, payload
 

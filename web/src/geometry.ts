@@ -1,17 +1,30 @@
-// Geometry messages -> typed arrays and three.js objects. Pure functions over the
-// protocol's types; the only three.js objects made here are lines sharing one
-// BufferGeometry per basic piece, placed by the replica transforms (instances,
-// not copies).
+// Geometry messages -> typed arrays and matrices. Pure functions over the protocol's types
+// (no DOM): slicing the binary frame, replica transforms, CPU-side replicas for picking.
 import * as THREE from "three";
 import type { ArrayRef, Geometry, PieceGeometry } from "./protocol";
 
+function size(ref: ArrayRef): number {
+  return ref.shape.reduce((a, b) => a * b, 1);
+}
+
+function check(ref: ArrayRef, n: number, length: number): void {
+  if (ref.offset < 0 || ref.offset + n > length) {
+    throw new RangeError(`array [${ref.offset}, ${ref.offset + n}) outside a frame of ${length} values`);
+  }
+}
+
 /** The float32 values of `ref` in the binary frame (a view, not a copy). */
 export function view(data: Float32Array, ref: ArrayRef): Float32Array {
-  const size = ref.shape.reduce((a, b) => a * b, 1);
-  if (ref.offset < 0 || ref.offset + size > data.length) {
-    throw new RangeError(`array [${ref.offset}, ${ref.offset + size}) outside a frame of ${data.length} floats`);
-  }
-  return data.subarray(ref.offset, ref.offset + size);
+  const n = size(ref);
+  check(ref, n, data.length);
+  return data.subarray(ref.offset, ref.offset + n);
+}
+
+/** The values of `ref` (f4 or u4) in a binary frame given as its ArrayBuffer (a view, not a copy). */
+export function viewAny(buffer: ArrayBuffer, ref: ArrayRef): Float32Array | Uint32Array {
+  const n = size(ref);
+  check(ref, n, buffer.byteLength / 4);
+  return ref.dtype === "u4" ? new Uint32Array(buffer, 4 * ref.offset, n) : new Float32Array(buffer, 4 * ref.offset, n);
 }
 
 /** Number of replicas (network curves) a geometry message describes. */
@@ -20,7 +33,7 @@ export function replicaCount(msg: Geometry): number {
 }
 
 /** The transforms of a piece as three.js matrices (column-major, as sent). */
-export function transforms(data: Float32Array, piece: PieceGeometry): THREE.Matrix4[] {
+export function transforms(data: Float32Array, piece: { transforms: ArrayRef }): THREE.Matrix4[] {
   const t = view(data, piece.transforms);
   const out: THREE.Matrix4[] = [];
   for (let k = 0; k < piece.transforms.shape[0]; k++) {
@@ -44,23 +57,7 @@ export function replicaPoints(data: Float32Array, piece: PieceGeometry, k: numbe
   return out;
 }
 
-const KIND_COLORS: Record<string, number> = { ogee: 0x7a2e1d, free_end: 0x1d4e7a, level: 0x3b6e2b };
-
-/** A group of lines: one shared BufferGeometry per basic piece, one Line per replica. */
-export function networkObject(msg: Geometry, data: Float32Array): THREE.Group {
-  const group = new THREE.Group();
-  group.name = "network";
-  for (const piece of msg.pieces) {
-    const geom = new THREE.BufferGeometry();
-    geom.setAttribute("position", new THREE.BufferAttribute(view(data, piece.points), 3));
-    const mat = new THREE.LineBasicMaterial({ color: KIND_COLORS[piece.kind] ?? 0x444444 });
-    transforms(data, piece).forEach((m, k) => {
-      const line = new THREE.Line(geom, mat);
-      line.name = `${piece.basic}/${piece.labels[k]}`;
-      line.matrixAutoUpdate = false;
-      line.matrix.copy(m);
-      group.add(line);
-    });
-  }
-  return group;
+/** A key that is equal for two geometry messages whose pieces have the same sizes and owners. */
+export function layoutKey(msg: Geometry): string {
+  return msg.pieces.map((p) => `${p.basic}.${p.kind}.${p.points.shape[0]}.${p.transforms.shape[0]}`).join("|");
 }

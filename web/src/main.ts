@@ -1,96 +1,167 @@
-// The studio: top view (orthographic, left) and 3D perspective (right) of the network.
-import * as THREE from "three";
-import { Connection, socketUrl } from "./connection";
-import { networkObject, replicaCount } from "./geometry";
-import { PROTOCOL_VERSION, type Geometry } from "./protocol";
+// The studio's entry point: state, connection, views, and the modules that fill the page.
+import "./style.css";
+import { initBackground } from "./background";
+import { Connection, socketUrl, type Reply } from "./connection";
+import type { Ctx } from "./context";
+import { initCurvePanel } from "./curvepanel";
+import { initFiles } from "./files";
+import { replicaCount } from "./geometry";
+import { initHelp } from "./help";
+import { initLooks } from "./looks";
+import { PROTOCOL_VERSION, type ClientMessage, type Geometry, type ServerMessage } from "./protocol";
+import { Views } from "./scene";
+import { installShortcuts, registerShortcut } from "./shortcuts";
+import { initSideView } from "./sideview";
+import { Store, type Mode } from "./store";
+import { initTopView } from "./topview";
 
-const host = document.getElementById("app")!;
-const status = document.getElementById("status")!;
-
-const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
-renderer.setPixelRatio(window.devicePixelRatio);
-renderer.setClearColor(0xf4f1ea);
-renderer.setScissorTest(true);
-host.appendChild(renderer.domElement);
-
-const scene = new THREE.Scene();
-const top = new THREE.OrthographicCamera(-1, 1, 1, -1, -1000, 1000);
-top.up.set(0, 1, 0);
-const persp = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
-persp.up.set(0, 0, 1);
-let network: THREE.Group | null = null;
-let bounds = new THREE.Box3(new THREE.Vector3(-1, -1, 0), new THREE.Vector3(1, 1, 1));
-
-function frame(): void {
-  const w = host.clientWidth, h = host.clientHeight, half = Math.floor(w / 2);
-  renderer.setSize(w, h, false);
-  const c = bounds.getCenter(new THREE.Vector3());
-  const size = bounds.getSize(new THREE.Vector3());
-  const r = 0.55 * Math.max(size.x, size.y, 1e-6);
-  const aspect = half / Math.max(h, 1);
-  top.left = c.x - r * aspect; top.right = c.x + r * aspect;
-  top.bottom = c.y - r; top.top = c.y + r;
-  top.position.set(0, 0, bounds.max.z + 10);
-  top.lookAt(0, 0, 0);
-  top.position.set(0, 0, bounds.max.z + 10);
-  top.updateProjectionMatrix();
-  const d = 1.6 * Math.max(size.x, size.y, size.z, 1e-6);
-  persp.aspect = (w - half) / Math.max(h, 1);
-  persp.position.set(c.x + 1.4 * d, c.y - 1.8 * d, c.z + 1.0 * d);
-  persp.lookAt(c);
-  persp.updateProjectionMatrix();
+/** One edit's timeline (performance.now() values), for the speed benchmark and the e2e tests. */
+export interface EditTiming {
+  id: number;
+  revision: number;
+  sent: number;
+  received: number;
+  applied: number;
+  rendered: number;
 }
 
-function render(): void {
-  frame();
-  const w = host.clientWidth, h = host.clientHeight, half = Math.floor(w / 2);
-  renderer.setViewport(0, 0, half, h);
-  renderer.setScissor(0, 0, half, h);
-  renderer.render(scene, top);
-  renderer.setViewport(half, 0, w - half, h);
-  renderer.setScissor(half, 0, w - half, h);
-  renderer.render(scene, persp);
-}
+const store = new Store();
+const statusEl = document.getElementById("status")!;
+const timings: EditTiming[] = [];
+let receivedAt = 0;
 
-function show(msg: Geometry, data: Float32Array): void {
-  if (network) scene.remove(network);
-  network = networkObject(msg, data);
-  scene.add(network);
-  const b = msg.bounds;
-  bounds = new THREE.Box3(new THREE.Vector3(b[0], b[1], b[2]), new THREE.Vector3(b[3], b[4], b[5]));
+function statusText(msg: Geometry): string {
   const n = replicaCount(msg);
-  status.className = "";
-  status.dataset.replicas = String(n);
-  status.dataset.revision = String(msg.revision);
-  status.textContent = `${msg.path}: ${msg.n_curves} basic curves, ${n} replicas, ` +
-    `${msg.intersections.filter((x) => x.true).length} true intersections`;
-  if (msg.protocol !== PROTOCOL_VERSION) {
-    status.textContent += ` (protocol ${msg.protocol}, client ${PROTOCOL_VERSION}: reload)`;
-  }
-  render();
+  const trues = msg.intersections.filter((x) => x.true).length;
+  let text = `${msg.path || msg.name || "untitled"}${msg.dirty ? " (unsaved)" : ""}: ${msg.n_curves} basic curves, ` +
+    `${n} replicas, ${trues} true / ${msg.intersections.length - trues} false intersections`;
+  if (msg.protocol !== PROTOCOL_VERSION) text += ` (server protocol ${msg.protocol}, page ${PROTOCOL_VERSION}: reload)`;
+  return text;
 }
+
+store.on("status", ({ text, error }) => {
+  statusEl.textContent = text;
+  statusEl.classList.toggle("error", error);
+});
 
 const conn = new Connection(socketUrl(window.location), {
-  geometry: show,
-  message(msg) {
-    if (msg.type === "error") {
-      status.className = "error";
-      status.textContent = msg.message;
-    } else if (msg.type === "saved") {
-      status.textContent = `saved ${msg.path}`;
+  message(msg: ServerMessage, binary: ArrayBuffer | null) {
+    receivedAt = performance.now();
+    switch (msg.type) {
+      case "geometry": {
+        store.setGeometry(msg, binary!);
+        const sent = conn.sentAt.get(msg.id);
+        if (sent !== undefined) {
+          const t: EditTiming = { id: msg.id, revision: msg.revision, sent, received: receivedAt,
+            applied: performance.now(), rendered: 0 };
+          timings.push(t);
+          if (timings.length > 5000) timings.splice(0, 1000);
+        }
+        statusEl.dataset.replicas = String(replicaCount(msg));
+        statusEl.dataset.revision = String(msg.revision);
+        statusEl.dataset.curves = String(msg.n_curves);
+        store.status(statusText(msg));
+        break;
+      }
+      case "mesh":
+        store.setMesh(msg, binary!);
+        break;
+      case "loops":
+        store.setLoops(msg, binary!);
+        break;
+      case "error":
+        store.status(msg.message, true);
+        break;
+      case "saved":
+        store.status(`saved ${msg.path}`);
+        break;
+      default:
+        break; // files, exported: awaited by their requesters
+    }
+  },
+  opened(again) {
+    document.body.dataset.connected = "true";
+    if (again && store.geometry?.path) conn.send({ type: "open", path: store.geometry.path });
+    else if (!again) {
+      const open = new URLSearchParams(window.location.search).get("open");
+      if (open) conn.send({ type: "open", path: open });
     }
   },
   closed() {
-    status.className = "error";
-    status.textContent = "disconnected from the studio server";
+    document.body.dataset.connected = "false";
+    store.status("disconnected from the studio server; reconnecting...", true);
   },
 });
 
-window.addEventListener("resize", render);
-window.addEventListener("keydown", (ev) => {
-  if ((ev.ctrlKey || ev.metaKey) && ev.key === "z") conn.send({ type: ev.shiftKey ? "redo" : "undo" });
+const views = new Views(document.getElementById("viewport")!, store);
+views.onFrame(() => {
+  const last = timings[timings.length - 1];
+  if (last && !last.rendered) last.rendered = views.lastFrameAt;
 });
-const params = new URLSearchParams(window.location.search);
-const open = params.get("open");
-if (open) conn.send({ type: "open", path: open });
-render();
+
+const ctx: Ctx = {
+  store,
+  conn,
+  views,
+  send: (msg: ClientMessage) => conn.send(msg),
+  request: (msg: ClientMessage): Promise<Reply> =>
+    conn.request(msg).catch((e: Error) => {
+      store.status(e.message, true);
+      throw e;
+    }),
+};
+
+// ---- modes and history (the rest of the toolbar belongs to the modules)
+function button(parent: HTMLElement, text: string, title: string, testid: string, onClick: () => void): HTMLButtonElement {
+  const b = document.createElement("button");
+  b.textContent = text;
+  b.title = title;
+  b.dataset.testid = testid;
+  b.addEventListener("click", onClick);
+  parent.appendChild(b);
+  return b;
+}
+
+const modeTools = document.getElementById("mode-tools")!;
+const modeButtons: Record<Mode, HTMLButtonElement> = {
+  design: button(modeTools, "Design", "Design mode: top view editing (D)", "mode-design", () => store.setMode("design")),
+  preview: button(modeTools, "Preview", "Preview mode: 3D, top and side views (P)", "mode-preview", () => store.setMode("preview")),
+};
+const syncMode = () => {
+  for (const [m, b] of Object.entries(modeButtons)) b.setAttribute("aria-pressed", String(store.mode === m));
+};
+store.on("mode", syncMode);
+syncMode();
+registerShortcut({ key: "d", description: "Design mode", run: () => store.setMode("design") });
+registerShortcut({ key: "p", description: "Preview mode", run: () => store.setMode("preview") });
+
+const history = document.getElementById("history-tools")!;
+const undo = button(history, "Undo", "Undo (Ctrl+Z)", "undo", () => conn.send({ type: "undo" }));
+const redo = button(history, "Redo", "Redo (Ctrl+Shift+Z)", "redo", () => conn.send({ type: "redo" }));
+undo.disabled = redo.disabled = true;
+store.on("geometry", (g) => {
+  undo.disabled = !g.can_undo;
+  redo.disabled = !g.can_redo;
+});
+registerShortcut({ key: "z", ctrl: true, description: "Undo", run: () => conn.send({ type: "undo" }) });
+registerShortcut({ key: "z", ctrl: true, shift: true, description: "Redo", run: () => conn.send({ type: "redo" }) });
+registerShortcut({ key: "y", ctrl: true, description: "Redo", run: () => conn.send({ type: "redo" }) });
+registerShortcut({ key: "f", description: "Fit the views to the drawing", run: () => { views.fit(); views.requestRender(); } });
+
+initTopView(ctx);
+initCurvePanel(ctx);
+initSideView(ctx);
+initLooks(ctx);
+initFiles(ctx);
+initBackground(ctx);
+initHelp(ctx);
+installShortcuts();
+
+// The hook the end-to-end tests and the speed benchmark read (no effect on the app).
+declare global {
+  interface Window {
+    auszug: { store: Store; views: Views; conn: Connection; timings: EditTiming[]; ctx: Ctx };
+  }
+}
+window.auszug = { store, views, conn, timings, ctx };
+views.requestRender();

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import os
 from importlib.resources import files
 from pathlib import Path
 from typing import Any, Iterable
@@ -45,7 +46,14 @@ BUILD_COMMAND = "make web"
 
 
 def static_dir() -> Path:
-    """The built front end inside the installed package (``auszug/studio/static``)."""
+    """The built front end inside the installed package (``auszug/studio/static``).
+
+    The environment variable ``AUSZUG_STUDIO_STATIC`` names another folder
+    (development: a front end built elsewhere with ``vite build --outDir``).
+    """
+    override = os.environ.get("AUSZUG_STUDIO_STATIC")
+    if override:
+        return Path(override)
     return Path(str(files("auszug.studio").joinpath("static")))
 
 

@@ -1,0 +1,370 @@
+// One WebGL renderer, several views (scissored regions of one canvas), rendered on demand.
+// Design mode: the top view (left) and a perspective view (right). Preview mode: perspective,
+// top and side (front elevation) views side by side (paper Fig. C.7).
+// The network's lines share one BufferGeometry per basic piece; replicas are Line objects
+// placed by the sent transforms (instances, not copies). An edit that keeps the layout (a drag)
+// rewrites the buffers in place, so no GPU resources are created or leaked per edit.
+import * as THREE from "three";
+import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
+import { layoutKey, transforms, view } from "./geometry";
+import type { Geometry } from "./protocol";
+import type { Mode, Store } from "./store";
+
+export type ViewName = "top" | "persp" | "side";
+
+/** three.js layers: 0 is seen by every view; these only by one. */
+export const VIEW_LAYER: Record<ViewName, number> = { top: 1, persp: 2, side: 3 };
+
+/** A view's region in CSS pixels, relative to the viewport element's top left. */
+export interface Rect {
+  x: number;
+  y: number;
+  w: number;
+  h: number;
+}
+
+const LAYOUTS: Record<Mode, Partial<Record<ViewName, [number, number]>>> = {
+  // [start, end] as fractions of the viewport's width
+  design: { top: [0, 0.62], persp: [0.62, 1] },
+  preview: { persp: [0, 1 / 3], top: [1 / 3, 2 / 3], side: [2 / 3, 1] },
+};
+
+export class Views {
+  readonly renderer: THREE.WebGLRenderer;
+  readonly scene = new THREE.Scene();
+  readonly top = new THREE.OrthographicCamera(-1, 1, 1, -1, -1e4, 1e4);
+  readonly persp = new THREE.PerspectiveCamera(35, 1, 0.01, 1e5);
+  readonly side = new THREE.OrthographicCamera(-1, 1, 1, -1, -1e4, 1e4);
+  readonly orbit: OrbitControls;
+  /** The network's lines (one child per replica). */
+  readonly network = new THREE.Group();
+  /** Top view: world units per CSS pixel and the world point at the view's centre. */
+  topScale = 0.01;
+  topCenter = new THREE.Vector2(0, 0);
+  bounds = new THREE.Box3(new THREE.Vector3(-1, -1, 0), new THREE.Vector3(1, 1, 1));
+  /** performance.now() when the last frame was drawn, and how many frames so far. */
+  lastFrameAt = 0;
+  frames = 0;
+  private mode: Mode = "design";
+  private layout = "";
+  private geoms: THREE.BufferGeometry[] = [];
+  private materials = new Map<string, THREE.LineBasicMaterial>();
+  private pendingFrame = 0;
+  private topListeners = new Set<() => void>();
+  private frameListeners = new Set<() => void>();
+  private fittedPath: string | null = null;
+  private labels: Record<ViewName, HTMLElement>;
+
+  constructor(readonly host: HTMLElement, private store: Store) {
+    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(window.devicePixelRatio);
+    this.renderer.setClearColor(0xf4f1ea);
+    this.renderer.setScissorTest(true);
+    this.renderer.domElement.dataset.testid = "canvas";
+    host.prepend(this.renderer.domElement);
+    this.network.name = "network";
+    this.scene.add(this.network);
+    this.scene.add(new THREE.AmbientLight(0xffffff, 0.55));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+    sun.position.set(0.6, -1, 1.6);
+    this.scene.add(sun);
+    this.top.up.set(0, 1, 0);
+    this.persp.up.set(0, 0, 1);
+    this.side.up.set(0, 0, 1);
+    for (const v of ["top", "persp", "side"] as ViewName[]) this.camera(v).layers.enable(VIEW_LAYER[v]);
+    this.orbit = new OrbitControls(this.persp, this.renderer.domElement);
+    this.orbit.enabled = false; // enabled while the pointer is over the perspective view
+    this.orbit.addEventListener("change", () => this.requestRender());
+    const labels = host.querySelector("#view-labels") as HTMLElement;
+    const label = (text: string) => {
+      const el = document.createElement("div");
+      el.className = "label";
+      el.textContent = text;
+      labels.appendChild(el);
+      return el;
+    };
+    this.labels = { top: label("top"), persp: label("3D"), side: label("side") };
+    this.installTopControls();
+    new ResizeObserver(() => this.resize()).observe(host);
+    store.on("geometry", (g) => this.showGeometry(g));
+    store.on("selection", () => this.recolor());
+    store.on("looks", () => this.recolor());
+    store.on("mode", (m) => this.setMode(m));
+    this.resize();
+  }
+
+  camera(v: ViewName): THREE.Camera {
+    return v === "top" ? this.top : v === "persp" ? this.persp : this.side;
+  }
+
+  /** The region of view `v` (null when the current mode does not show it). */
+  rect(v: ViewName): Rect | null {
+    const span = LAYOUTS[this.mode][v];
+    if (!span) return null;
+    const w = this.host.clientWidth, h = this.host.clientHeight;
+    const x0 = Math.round(span[0] * w), x1 = Math.round(span[1] * w);
+    return { x: x0, y: 0, w: x1 - x0, h };
+  }
+
+  /** The view under a point given in client coordinates. */
+  viewAt(clientX: number, clientY: number): ViewName | null {
+    const b = this.host.getBoundingClientRect();
+    const x = clientX - b.left, y = clientY - b.top;
+    for (const v of ["top", "persp", "side"] as ViewName[]) {
+      const r = this.rect(v);
+      if (r && x >= r.x && x < r.x + r.w && y >= r.y && y < r.y + r.h) return v;
+    }
+    return null;
+  }
+
+  /** Top view: world (x, y) -> CSS pixels relative to the top view's region. */
+  topToScreen(x: number, y: number): [number, number] {
+    const r = this.rect("top") ?? { x: 0, y: 0, w: 1, h: 1 };
+    return [r.w / 2 + (x - this.topCenter.x) / this.topScale, r.h / 2 - (y - this.topCenter.y) / this.topScale];
+  }
+
+  /** Top view: CSS pixels relative to the top view's region -> world (x, y). */
+  screenToTop(px: number, py: number): [number, number] {
+    const r = this.rect("top") ?? { x: 0, y: 0, w: 1, h: 1 };
+    return [this.topCenter.x + (px - r.w / 2) * this.topScale, this.topCenter.y - (py - r.h / 2) * this.topScale];
+  }
+
+  /** Any view: a world point -> client coordinates (for tests and overlays). */
+  worldToClient(v: ViewName, p: THREE.Vector3): [number, number] | null {
+    const r = this.rect(v);
+    if (!r) return null;
+    const q = p.clone().project(this.camera(v));
+    const b = this.host.getBoundingClientRect();
+    return [b.left + r.x + ((q.x + 1) / 2) * r.w, b.top + r.y + ((1 - q.y) / 2) * r.h];
+  }
+
+  /** Called whenever the top view's mapping changes (pan, zoom, resize, mode). */
+  onTopChange(fn: () => void): () => void {
+    this.topListeners.add(fn);
+    return () => this.topListeners.delete(fn);
+  }
+
+  /** Called after every drawn frame. */
+  onFrame(fn: () => void): () => void {
+    this.frameListeners.add(fn);
+    return () => this.frameListeners.delete(fn);
+  }
+
+  /** Fit the top view (and the 3D cameras) to the drawing's bounds. */
+  fit(): void {
+    const b = this.bounds;
+    const size = b.getSize(new THREE.Vector3());
+    const c = b.getCenter(new THREE.Vector3());
+    const r = this.rect("top");
+    if (r) {
+      const span = Math.max(size.x / Math.max(r.w, 1), size.y / Math.max(r.h, 1), 1e-6);
+      this.topScale = 1.2 * span;
+      this.topCenter.set(c.x, c.y);
+    }
+    const d = 1.5 * Math.max(size.x, size.y, size.z, 1e-6);
+    this.persp.position.set(c.x + 1.1 * d, c.y - 1.6 * d, c.z + 0.9 * d);
+    this.orbit.target.copy(c);
+    this.orbit.update();
+    this.updateCameras();
+  }
+
+  requestRender(): void {
+    if (this.pendingFrame) return;
+    this.pendingFrame = requestAnimationFrame(() => {
+      this.pendingFrame = 0;
+      this.render();
+    });
+  }
+
+  /** Draw every view of the current mode now. */
+  render(): void {
+    this.updateCameras();
+    const w = this.host.clientWidth, h = this.host.clientHeight;
+    for (const v of ["top", "persp", "side"] as ViewName[]) {
+      const r = this.rect(v);
+      this.labels[v].hidden = !r;
+      if (!r) continue;
+      this.labels[v].style.left = `${r.x + 8}px`;
+      this.labels[v].style.top = "6px";
+      const y = h - r.y - r.h; // WebGL's origin is the bottom left
+      this.renderer.setViewport(r.x, y, r.w, r.h);
+      this.renderer.setScissor(r.x, y, r.w, r.h);
+      this.renderer.render(this.scene, this.camera(v));
+    }
+    void w;
+    this.lastFrameAt = performance.now();
+    this.frames++;
+    for (const fn of this.frameListeners) fn();
+  }
+
+  private setMode(mode: Mode): void {
+    this.mode = mode;
+    document.body.classList.toggle("preview", mode === "preview");
+    this.resize();
+  }
+
+  private resize(): void {
+    const w = this.host.clientWidth, h = this.host.clientHeight;
+    this.renderer.setSize(w, h, false);
+    this.updateCameras();
+    for (const fn of this.topListeners) fn();
+    this.requestRender();
+  }
+
+  private updateCameras(): void {
+    const top = this.rect("top");
+    if (top) {
+      const hw = (top.w / 2) * this.topScale, hh = (top.h / 2) * this.topScale;
+      this.top.left = -hw; this.top.right = hw; this.top.top = hh; this.top.bottom = -hh;
+      this.top.position.set(this.topCenter.x, this.topCenter.y, this.bounds.max.z + 100);
+      this.top.lookAt(this.topCenter.x, this.topCenter.y, 0);
+      this.top.updateProjectionMatrix();
+    }
+    const persp = this.rect("persp");
+    if (persp) {
+      this.persp.aspect = persp.w / Math.max(persp.h, 1);
+      this.persp.updateProjectionMatrix();
+    }
+    const side = this.rect("side");
+    if (side) {
+      const b = this.bounds, c = b.getCenter(new THREE.Vector3()), s = b.getSize(new THREE.Vector3());
+      const scale = 1.2 * Math.max(s.x / Math.max(side.w, 1), s.z / Math.max(side.h, 1), 1e-6);
+      const hw = (side.w / 2) * scale, hh = (side.h / 2) * scale;
+      this.side.left = -hw; this.side.right = hw; this.side.top = hh; this.side.bottom = -hh;
+      this.side.position.set(c.x, b.min.y - 100, c.z);
+      this.side.lookAt(c.x, c.y, c.z);
+      this.side.updateProjectionMatrix();
+    }
+  }
+
+  private topChanged(): void {
+    this.updateCameras();
+    for (const fn of this.topListeners) fn();
+    this.requestRender();
+  }
+
+  /** Wheel zooms about the cursor; the middle or right button (or space + left) pans the top view. */
+  private installTopControls(): void {
+    const el = this.renderer.domElement;
+    const overlay = this.host.querySelector("#top-overlay") as SVGElement | null;
+    const zoom = (ev: WheelEvent) => {
+      if (this.viewAt(ev.clientX, ev.clientY) !== "top") return;
+      ev.preventDefault();
+      const r = this.rect("top")!, b = this.host.getBoundingClientRect();
+      const px = ev.clientX - b.left - r.x, py = ev.clientY - b.top - r.y;
+      const [wx, wy] = this.screenToTop(px, py);
+      const f = Math.exp(ev.deltaY * 0.0015);
+      this.topScale *= f;
+      this.topCenter.set(wx - (wx - this.topCenter.x) * f, wy - (wy - this.topCenter.y) * f);
+      this.topChanged();
+    };
+    let panning: { x: number; y: number } | null = null;
+    let space = false;
+    window.addEventListener("keydown", (e) => { if (e.code === "Space" && !isTyping(e)) space = true; });
+    window.addEventListener("keyup", (e) => { if (e.code === "Space") space = false; });
+    const down = (ev: PointerEvent) => {
+      const v = this.viewAt(ev.clientX, ev.clientY);
+      this.orbit.enabled = v === "persp";
+      if (v !== "top") return;
+      if (ev.button === 1 || ev.button === 2 || (ev.button === 0 && space)) {
+        panning = { x: ev.clientX, y: ev.clientY };
+        ev.preventDefault();
+        ev.stopPropagation();
+      }
+    };
+    const move = (ev: PointerEvent) => {
+      if (!panning) {
+        this.orbit.enabled = this.viewAt(ev.clientX, ev.clientY) === "persp";
+        return;
+      }
+      this.topCenter.x -= (ev.clientX - panning.x) * this.topScale;
+      this.topCenter.y += (ev.clientY - panning.y) * this.topScale;
+      panning = { x: ev.clientX, y: ev.clientY };
+      this.topChanged();
+    };
+    const up = () => { panning = null; };
+    for (const target of [el, overlay].filter(Boolean) as (HTMLElement | SVGElement)[]) {
+      target.addEventListener("wheel", zoom as EventListener, { passive: false });
+      target.addEventListener("pointerdown", down as EventListener, { capture: true });
+      target.addEventListener("contextmenu", (e) => e.preventDefault());
+    }
+    window.addEventListener("pointermove", move);
+    window.addEventListener("pointerup", up);
+  }
+
+  private material(color: string): THREE.LineBasicMaterial {
+    let m = this.materials.get(color);
+    if (!m) this.materials.set(color, (m = new THREE.LineBasicMaterial({ color })));
+    return m;
+  }
+
+  private recolor(): void {
+    const sel = this.store.selection;
+    for (const child of this.network.children as THREE.Line[]) {
+      const basic = child.userData.basic as number;
+      child.material = this.material(basic === sel ? "#d97706" : this.store.color(basic));
+    }
+    this.requestRender();
+  }
+
+  /** New geometry: rewrite the buffers in place when the layout is unchanged, else rebuild. */
+  showGeometry(msg: Geometry): void {
+    const data = this.store.data;
+    const key = layoutKey(msg);
+    if (key === this.layout && this.geoms.length === msg.pieces.length) {
+      let child = 0;
+      msg.pieces.forEach((p, i) => {
+        const attr = this.geoms[i].getAttribute("position") as THREE.BufferAttribute;
+        (attr.array as Float32Array).set(view(data, p.points));
+        attr.needsUpdate = true;
+        this.geoms[i].computeBoundingSphere();
+        for (const m of transforms(data, p)) {
+          const line = this.network.children[child++];
+          line.matrix.copy(m);
+          line.matrixWorldNeedsUpdate = true;
+        }
+      });
+    } else {
+      this.network.clear();
+      for (const g of this.geoms) g.dispose();
+      this.geoms = [];
+      for (const p of msg.pieces) {
+        const geom = new THREE.BufferGeometry();
+        geom.setAttribute("position", new THREE.BufferAttribute(view(data, p.points).slice(), 3));
+        this.geoms.push(geom);
+        transforms(data, p).forEach((m, k) => {
+          const line = new THREE.Line(geom, this.material(this.store.color(p.basic)));
+          line.name = `${p.basic}/${p.labels[k]}`;
+          line.userData.basic = p.basic;
+          line.matrixAutoUpdate = false;
+          line.matrix.copy(m);
+          this.network.add(line);
+        });
+      }
+      this.layout = key;
+      this.recolor();
+    }
+    const b = msg.bounds;
+    this.bounds.set(new THREE.Vector3(b[0], b[1], b[2]), new THREE.Vector3(b[3], b[4], b[5]));
+    if (this.bounds.isEmpty() || msg.n_curves === 0) {
+      this.bounds.set(new THREE.Vector3(-1, -1, 0), new THREE.Vector3(1, 1, 1));
+    }
+    if (this.fittedPath !== msg.path + "\u0000" + msg.name) {
+      this.fittedPath = msg.path + "\u0000" + msg.name;
+      this.fit();
+      for (const fn of this.topListeners) fn();
+    }
+    this.requestRender();
+  }
+}
+
+/** Whether a key event comes from a text field (no shortcut may fire then). */
+export function isTyping(ev: Event): boolean {
+  const t = ev.target as HTMLElement | null;
+  if (!t || !t.tagName) return false;
+  if (t.isContentEditable) return true;
+  if (t.tagName === "TEXTAREA" || t.tagName === "SELECT") return true;
+  if (t.tagName !== "INPUT") return false;
+  const type = (t as HTMLInputElement).type;
+  return !["button", "checkbox", "radio", "range", "color", "file", "submit", "reset"].includes(type);
+}

@@ -1,0 +1,126 @@
+// The page's state: the document's latest geometry (from the server, the single source of
+// geometry), what the user selected and chose, and a tiny event bus. No DOM, no three.js.
+import type { FacesMode, Style } from "./looks-types";
+import type { Geometry, Loops, MeshGeometry } from "./protocol";
+
+export type Mode = "design" | "preview";
+export type Tool = "select" | "line" | "arc" | "free";
+
+export interface Looks {
+  style: Style;
+  faces: FacesMode;
+  /** Loop indices (from the last Loops reply) filled when faces == "picked". */
+  loops: number[];
+  /** `#rrggbb` per basic curve; missing entries use the palette. */
+  colors: string[];
+}
+
+export interface StoreEvents {
+  /** A new Geometry arrived (open, edit, undo, redo, another tab's edit). */
+  geometry: Geometry;
+  /** The selected basic curve changed (null: none). */
+  selection: number | null;
+  mode: Mode;
+  tool: Tool;
+  looks: Looks;
+  mesh: MeshGeometry;
+  loops: Loops;
+  /** A one-line message for the status bar; `error` marks failures. */
+  status: { text: string; error: boolean };
+  /** The active layer (new curves go there; the side view snaps to its heights). */
+  layer: number;
+}
+
+type Listener<T> = (value: T) => void;
+
+/** Default colours per basic curve (cycled). */
+export const PALETTE = ["#7a2e1d", "#1d4e7a", "#3b6e2b", "#8a5a00", "#5b2a7a", "#0f6f6f", "#a0304f", "#44515c"];
+
+export class Store {
+  geometry: Geometry | null = null;
+  /** The float32 view of the binary frame that came with `geometry`. */
+  data: Float32Array = new Float32Array(0);
+  /** The raw binary frame (u4 arrays are read from it too). */
+  buffer: ArrayBuffer = new ArrayBuffer(0);
+  mesh: MeshGeometry | null = null;
+  meshBuffer: ArrayBuffer = new ArrayBuffer(0);
+  loops: Loops | null = null;
+  loopsBuffer: ArrayBuffer = new ArrayBuffer(0);
+  selection: number | null = null;
+  layer = 0;
+  mode: Mode = "design";
+  tool: Tool = "select";
+  looks: Looks = { style: "curves", faces: "none", loops: [], colors: [] };
+  private listeners = new Map<keyof StoreEvents, Set<Listener<never>>>();
+
+  on<K extends keyof StoreEvents>(event: K, fn: Listener<StoreEvents[K]>): () => void {
+    let set = this.listeners.get(event);
+    if (!set) this.listeners.set(event, (set = new Set()));
+    set.add(fn as Listener<never>);
+    return () => set!.delete(fn as Listener<never>);
+  }
+
+  emit<K extends keyof StoreEvents>(event: K, value: StoreEvents[K]): void {
+    for (const fn of this.listeners.get(event) ?? []) (fn as Listener<StoreEvents[K]>)(value);
+  }
+
+  setGeometry(msg: Geometry, buffer: ArrayBuffer): void {
+    this.geometry = msg;
+    this.buffer = buffer;
+    this.data = new Float32Array(buffer);
+    if (this.selection !== null && this.selection >= msg.n_curves) this.select(null);
+    const nLayers = Math.max(1, msg.layers.length);
+    if (this.layer >= nLayers) this.setLayer(nLayers - 1);
+    this.emit("geometry", msg);
+  }
+
+  setMesh(msg: MeshGeometry, buffer: ArrayBuffer): void {
+    this.mesh = msg;
+    this.meshBuffer = buffer;
+    this.emit("mesh", msg);
+  }
+
+  setLoops(msg: Loops, buffer: ArrayBuffer): void {
+    this.loops = msg;
+    this.loopsBuffer = buffer;
+    this.emit("loops", msg);
+  }
+
+  select(curve: number | null): void {
+    if (curve === this.selection) return;
+    this.selection = curve;
+    this.emit("selection", curve);
+  }
+
+  setMode(mode: Mode): void {
+    if (mode === this.mode) return;
+    this.mode = mode;
+    this.emit("mode", mode);
+  }
+
+  setTool(tool: Tool): void {
+    if (tool === this.tool) return;
+    this.tool = tool;
+    this.emit("tool", tool);
+  }
+
+  setLayer(layer: number): void {
+    if (layer === this.layer) return;
+    this.layer = layer;
+    this.emit("layer", layer);
+  }
+
+  setLooks(change: Partial<Looks>): void {
+    this.looks = { ...this.looks, ...change };
+    this.emit("looks", this.looks);
+  }
+
+  /** The colour of basic curve `i`. */
+  color(i: number): string {
+    return this.looks.colors[i] || PALETTE[i % PALETTE.length];
+  }
+
+  status(text: string, error = false): void {
+    this.emit("status", { text, error });
+  }
+}

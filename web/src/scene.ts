@@ -56,7 +56,9 @@ export class Views {
   private labels: Record<ViewName, HTMLElement>;
 
   constructor(readonly host: HTMLElement, private store: Store) {
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    // MSAA doubles the cost of a frame on a software renderer (headless chromium's SwiftShader,
+    // llvmpipe): keep it for real GPUs only.
+    this.renderer = new THREE.WebGLRenderer({ antialias: !softwareRenderer(), preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(window.devicePixelRatio);
     this.renderer.setClearColor(0xf4f1ea);
     this.renderer.setScissorTest(true);
@@ -356,6 +358,16 @@ export class Views {
     }
     this.requestRender();
   }
+}
+
+/** Whether WebGL runs on a software rasteriser (no GPU), judged from a throwaway context. */
+export function softwareRenderer(): boolean {
+  const gl = document.createElement("canvas").getContext("webgl2");
+  if (!gl) return true;
+  const ext = gl.getExtension("WEBGL_debug_renderer_info");
+  const name = String(ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER));
+  gl.getExtension("WEBGL_lose_context")?.loseContext();
+  return /swiftshader|llvmpipe|softpipe|software/i.test(name);
 }
 
 /** Whether a key event comes from a text field (no shortcut may fire then). */

@@ -1,0 +1,172 @@
+"""Studio speed in headless chromium (issue: studio). Prints a table; not a test.
+
+The studio is served by uvicorn on 127.0.0.1 (in this process) and driven by Debian's chromium
+through Playwright with software WebGL (--disable-gpu), as the authors' demo was measured
+(../shared/reference/anchor/README.md). Every edit is sent by the page itself over its
+WebSocket; the clock is the page's performance.now():
+
+- edit -> geometry in the page: from sending the edit message until the page has the new
+  Geometry and every listener (scene buffers, overlays, panels) has run. Target: median <= 2 ms
+  for a top-view point drag on U.XI.28 (demo: 1.2 ms point drag, 4.2 ms apex drag).
+- edit + rendered frame: the same plus the next animation frame drawn and finished on the GPU
+  (gl.readPixels forces completion). Target <= 20 ms (demo: 17-23 ms).
+- first load: navigation start to the first frame showing the drawing. Target < 1.5 s.
+- GPU resources (renderer.info): geometries, textures and shader programs after the first
+  edit, after 1000 edits and after 10 s idle. Target: no growth (the demo leaks a texture a frame).
+
+Usage: python benchmarks/bench_studio.py [--drawing web/U.XI.28.uc] [--edits 1000] [--idle 10] [--looks STYLE]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import shutil
+import socket
+import statistics
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+from auszug import examples
+
+CHROMIUM = "/usr/bin/chromium"
+ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
+        "--disable-sync", "--no-first-run"]
+ANCHOR = {"point drag": 1.2, "apex drag": 4.2, "frame": "17-23"}
+
+# Runs in the page: n edits of one kind, one at a time, each after the previous one's frame was
+# drawn (so no frame runs while an edit is timed); returns [geometry ms, frame ms] per edit.
+EDITS_JS = """
+async ({kind, n}) => {
+  const a = window.auszug, g0 = a.store.geometry, c = g0.curves[0];
+  const last = c.vertices.length - 1, [x, y] = c.vertices[last], h = c.apex;
+  const gl = a.views.renderer.getContext(), px = new Uint8Array(4);
+  const out = [];
+  for (let k = 0; k < n; k++) {
+    const msg = kind === "point drag"
+      ? {type: "move_vertex", curve: 0, vertex: last, xy: [x + 1e-3 * (k % 7), y]}
+      : {type: "set_apex_height", curve: 0, height: h * (1 - 0.002 * (k % 7))};
+    const got = new Promise((res) => { const off = a.store.on("geometry", () => { off(); res(performance.now()); }); });
+    const t0 = performance.now();
+    a.ctx.send(msg);
+    const t1 = await got;
+    await new Promise((res) => requestAnimationFrame(() => res()));  // the views' frame runs first
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    const t2 = performance.now();
+    out.push([t1 - t0, t2 - t0]);
+  }
+  return out;
+}
+"""
+
+INFO_JS = """() => {
+  const i = window.auszug.views.renderer.info;
+  return {geometries: i.memory.geometries, textures: i.memory.textures, programs: (i.programs || []).length};
+}"""
+
+
+def serve(workspace: Path) -> tuple[str, object, threading.Thread]:
+    import uvicorn
+
+    from auszug.studio.server import create_app
+
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+    sock.bind(("127.0.0.1", 0))
+    server = uvicorn.Server(uvicorn.Config(create_app(workspace), log_level="warning", lifespan="off"))
+    th = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
+    th.start()
+    while not server.started:
+        time.sleep(0.02)
+    return f"http://127.0.0.1:{sock.getsockname()[1]}/", server, th
+
+
+def pct(xs: list[float], q: float) -> float:
+    s = sorted(xs)
+    return s[min(len(s) - 1, int(q * len(s)))]
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--drawing", default="web/U.XI.28.uc", help="bundled drawing (default web/U.XI.28.uc)")
+    ap.add_argument("--reps", type=int, default=200, help="timed edits per kind (default 200)")
+    ap.add_argument("--edits", type=int, default=1000, help="edits for the GPU-resource check (default 1000)")
+    ap.add_argument("--idle", type=float, default=10.0, help="idle seconds for the GPU-resource check")
+    ap.add_argument("--looks", default="curves", help="looks style while measuring resources (curves, tube, bar, ribbon)")
+    args = ap.parse_args(argv)
+    from playwright.sync_api import sync_playwright
+
+    from auszug.studio.server import static_dir
+
+    if not (static_dir() / "index.html").is_file():
+        print(f"the studio front end is not built ({static_dir()}); run `make web`", file=sys.stderr)
+        return 2
+    ws = Path(tempfile.mkdtemp(prefix="auszug-bench-"))
+    name = Path(args.drawing).name
+    shutil.copy(examples.path(args.drawing), ws / name)
+    url, server, th = serve(ws)
+    rows = []
+    try:
+        with sync_playwright() as pw:
+            browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+            page = browser.new_page(viewport={"width": 1280, "height": 800})
+            loads = []
+            for _ in range(3):
+                page.goto(f"{url}?open={name}")
+                page.wait_for_function("() => window.auszug && window.auszug.timings.length > 0 "
+                                       "&& window.auszug.timings[0].rendered > 0", timeout=30000)
+                loads.append(page.evaluate("() => window.auszug.timings[0].rendered"))
+            page.evaluate(EDITS_JS, {"kind": "point drag", "n": 20})  # warm up
+            for kind in ("point drag", "apex drag"):
+                res = page.evaluate(EDITS_JS, {"kind": kind, "n": args.reps})
+                g = [a for a, _ in res]
+                f = [b for _, b in res]
+                rows.append((kind, statistics.median(g), pct(g, 0.9), statistics.median(f), pct(f, 0.9)))
+            if args.looks != "curves":
+                page.evaluate(f"() => window.auszug.store.setLooks({{style: '{args.looks}'}})")
+                page.wait_for_timeout(1500)
+            page.evaluate(EDITS_JS, {"kind": "point drag", "n": 1})
+            info0 = page.evaluate(INFO_JS)
+            page.evaluate(EDITS_JS, {"kind": "point drag", "n": args.edits})
+            if args.looks != "curves":
+                page.wait_for_timeout(1500)
+            info1 = page.evaluate(INFO_JS)
+            frames0 = page.evaluate("() => window.auszug.views.frames")
+            page.wait_for_timeout(int(args.idle * 1000))
+            info2 = page.evaluate(INFO_JS)
+            frames1 = page.evaluate("() => window.auszug.views.frames")
+            browser.close()
+    finally:
+        server.should_exit = True
+        th.join(10)
+        shutil.rmtree(ws, ignore_errors=True)
+
+    print(f"studio speed: {args.drawing} in headless chromium {platform.machine()}, {os.cpu_count()} cores, "
+          f"Python {platform.python_version()}, {time.strftime('%Y-%m-%d')}")
+    print()
+    print("| edit | to geometry in page: median (ms) | p90 | + rendered frame: median (ms) | p90 | target | authors' demo (ms) |")
+    print("|---|---|---|---|---|---|---|")
+    for kind, gm, g9, fm, f9 in rows:
+        print(f"| {kind} | {gm:.2f} | {g9:.2f} | {fm:.2f} | {f9:.2f} | <= 2 (point drag), <= 20 with frame | "
+              f"{ANCHOR[kind]} ({ANCHOR['frame']} with frame) |")
+    print()
+    print(f"| first load (navigation to first frame) | {', '.join(f'{t:.0f}' for t in loads)} ms | target < 1500 ms |")
+    print()
+    print(f"| GPU resources (looks: {args.looks}) | geometries | textures | programs |")
+    print("|---|---|---|---|")
+    print(f"| after the first edit | {info0['geometries']} | {info0['textures']} | {info0['programs']} |")
+    print(f"| after {args.edits} more edits | {info1['geometries']} | {info1['textures']} | {info1['programs']} |")
+    print(f"| after {args.idle:g} s idle ({frames1 - frames0} frames drawn) | {info2['geometries']} | "
+          f"{info2['textures']} | {info2['programs']} |")
+    grew = any(info2[k] > info0[k] or info1[k] > info0[k] for k in info0)
+    print()
+    print("GPU resources grew: " + ("YES" if grew else "no"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -55,10 +55,11 @@ test: $(STAMP) $(NODE_STAMP) $(WEB_BUILD) $(CHROMIUM)
 	AUSZUG_REQUIRE_NODE=1 $(BIN)/python -m pytest -n 2 -q
 
 ## bench: every benchmark (tables for benchmarks/RESULTS.md)
-bench: $(STAMP)
+bench: $(STAMP) $(WEB_BUILD) $(CHROMIUM)
 	$(BIN)/python benchmarks/bench_engine.py
 	$(BIN)/python benchmarks/bench_meshing.py
 	$(BIN)/python benchmarks/bench_tracery.py --markdown
+	$(BIN)/python benchmarks/bench_studio.py
 
 clean:
 	rm -rf $(VENV) $(OUT) .pytest_cache

@@ -53,6 +53,7 @@ export class Views {
   private topListeners = new Set<() => void>();
   private frameListeners = new Set<() => void>();
   private fittedPath: string | null = null;
+  private framing = new Map<Mode, { topScale: number; topCenter: THREE.Vector2; position: THREE.Vector3; target: THREE.Vector3 }>();
   private labels: Record<ViewName, HTMLElement>;
 
   constructor(readonly host: HTMLElement, private store: Store) {
@@ -163,8 +164,13 @@ export class Views {
       this.topScale = 1.2 * span;
       this.topCenter.set(c.x, c.y);
     }
-    const d = 1.5 * Math.max(size.x, size.y, size.z, 1e-6);
-    this.persp.position.set(c.x + 1.1 * d, c.y - 1.6 * d, c.z + 0.9 * d);
+    // the bounding sphere fills the 3D view's narrower field of view, seen from the front right
+    const persp = this.rect("persp");
+    const aspect = persp ? persp.w / Math.max(persp.h, 1) : 1;
+    const half = THREE.MathUtils.degToRad(this.persp.fov) / 2;
+    const fov = Math.min(half, Math.atan(Math.tan(half) * aspect));
+    const d = (0.9 * Math.max(size.length() / 2, 1e-6)) / Math.sin(fov);
+    this.persp.position.copy(c).addScaledVector(new THREE.Vector3(1.1, -1.6, 0.9).normalize(), d);
     this.orbit.target.copy(c);
     this.orbit.update();
     this.updateCameras();
@@ -199,9 +205,23 @@ export class Views {
     for (const fn of this.frameListeners) fn();
   }
 
+  /** Each mode keeps its own framing (fitted the first time the mode shows a drawing). */
   private setMode(mode: Mode): void {
+    this.framing.set(this.mode, { topScale: this.topScale, topCenter: this.topCenter.clone(),
+      position: this.persp.position.clone(), target: this.orbit.target.clone() });
     this.mode = mode;
     document.body.classList.toggle("preview", mode === "preview");
+    this.recolor();
+    const f = this.framing.get(mode);
+    if (f) {
+      this.topScale = f.topScale;
+      this.topCenter.copy(f.topCenter);
+      this.persp.position.copy(f.position);
+      this.orbit.target.copy(f.target);
+      this.orbit.update();
+    } else {
+      this.fit();
+    }
     this.resize();
   }
 
@@ -301,7 +321,7 @@ export class Views {
   }
 
   private recolor(): void {
-    const sel = this.store.selection;
+    const sel = this.mode === "preview" ? null : this.store.selection; // preview shows the design as it is
     for (const child of this.network.children as THREE.Line[]) {
       const basic = child.userData.basic as number;
       child.material = this.material(basic === sel ? "#d97706" : this.store.color(basic));
@@ -353,6 +373,7 @@ export class Views {
     }
     if (this.fittedPath !== msg.path + "\u0000" + msg.name) {
       this.fittedPath = msg.path + "\u0000" + msg.name;
+      this.framing.clear();
       this.fit();
       for (const fn of this.topListeners) fn();
     }

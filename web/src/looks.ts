@@ -1,6 +1,144 @@
-// Looks (#look-tools): curves, tube, bar, ribbon, colours, faces; meshes from MeshGeometry.
+// Looks (#look-tools): the members' style (curves, tube, bar, ribbon) and the faces (none, every
+// loop, or picked loops). Meshes come from the server (get_mesh) after each geometry revision,
+// debounced, one request at a time; replies older than the geometry or for other looks are
+// dropped. Members show in the 3D view (and in every view in preview mode), coloured per basic
+// curve (store.color); picking faces: click a loop in the 3D view (or the top view in preview).
+import "./looks.css";
+import * as THREE from "three";
 import type { Ctx } from "./context";
+import type { FacesMode, Style } from "./looks-types";
+import { Debouncer, LoopView, MeshView, pickLoop, type ScreenLoop } from "./meshes";
+import { VIEW_LAYER, type ViewName } from "./scene";
+import type { Looks } from "./store";
+
+const STYLES: Record<Style, string> = { curves: "curves", tube: "tubes", bar: "bars", ribbon: "ribbons" };
+const FACES: Record<FacesMode, string> = { none: "no faces", auto: "all faces", picked: "picked faces" };
+/** A pointer that moves less than this between press and release clicks (CSS pixels). */
+const CLICK_SLOP = 4;
+
+/** A toolbar select of `options` (value -> text). */
+function select<T extends string>(parent: HTMLElement, testid: string, title: string, options: Record<T, string>,
+  onChange: (v: T) => void): HTMLSelectElement {
+  const el = document.createElement("select");
+  el.dataset.testid = testid;
+  el.title = title;
+  for (const [value, text] of Object.entries(options) as [T, string][]) el.add(new Option(text, value));
+  el.addEventListener("change", () => onChange(el.value as T));
+  parent.appendChild(el);
+  return el;
+}
+
+/** What a mesh request depends on besides the geometry. */
+function meshKey(l: Looks): string {
+  return `${l.style}|${l.faces}|${l.faces === "picked" ? [...l.loops].sort((a, b) => a - b).join(",") : ""}`;
+}
+
+const wantsMesh = (l: Looks) => l.style !== "curves" || l.faces !== "none";
 
 export function initLooks(ctx: Ctx): void {
-  void ctx;
+  const { store, views } = ctx;
+  const bar = document.getElementById("look-tools")!;
+  const style = select(bar, "look-style", "How the members are drawn", STYLES, (v) => store.setLooks({ style: v }));
+  const faces = select(bar, "look-faces", "Fill the network's loops with minimal surfaces: none, all, " +
+    "or the loops you click (in the 3D view; in preview also the top view)", FACES, (v) => store.setLooks({ faces: v }));
+  const info = document.createElement("span");
+  info.className = "look-info";
+  info.dataset.testid = "look-info";
+  bar.appendChild(info);
+
+  const meshes = new MeshView((b) => store.color(b));
+  const loops = new LoopView();
+  views.scene.add(meshes.group, loops.group);
+
+  /** Meshes show in the 3D view; in preview mode in all three. */
+  const layers = (): number[] =>
+    store.mode === "preview" ? [VIEW_LAYER.persp, VIEW_LAYER.top, VIEW_LAYER.side] : [VIEW_LAYER.persp];
+  /** Loops are picked in the 3D view, and in the top view in preview mode (in design it is the design tools'). */
+  const pickViews = (): ViewName[] => (store.mode === "preview" ? ["persp", "top"] : ["persp"]);
+
+  let sentKey = "";
+  const meshRequests = new Debouncer(() => {
+    sentKey = meshKey(store.looks);
+    const l = store.looks;
+    info.textContent = "meshing...";
+    return ctx.request({ type: "get_mesh", style: l.style, faces: l.faces, loops: l.faces === "picked" ? l.loops : [] });
+  });
+  const loopRequests = new Debouncer(() => ctx.request({ type: "get_loops" }));
+
+  let lastKey = meshKey(store.looks);
+  store.on("geometry", () => {
+    if (wantsMesh(store.looks)) meshRequests.poke();
+    if (store.looks.faces === "picked") loopRequests.poke();
+  });
+  store.on("looks", (l) => {
+    style.value = l.style;
+    faces.value = l.faces;
+    const key = meshKey(l);
+    if (key !== lastKey) {
+      const wasPicking = lastKey.split("|")[1] === "picked";
+      lastKey = key;
+      if (wantsMesh(l) && store.geometry) meshRequests.poke();
+      if (!wantsMesh(l)) {
+        meshRequests.cancel();
+        meshes.clear();
+        info.textContent = "";
+      }
+      if (l.faces === "picked" && !wasPicking && store.geometry) loopRequests.poke();
+      if (l.faces !== "picked") {
+        loopRequests.cancel();
+        loops.clear();
+      }
+    }
+    meshes.recolor();
+    loops.setPicked(l.loops);
+    views.requestRender();
+  });
+  store.on("mesh", (m) => {
+    const current = store.geometry?.revision ?? 0;
+    if (!wantsMesh(store.looks) || m.revision < current || sentKey !== meshKey(store.looks)) return;
+    meshes.show(m, store.meshBuffer);
+    info.textContent = store.looks.faces === "none" ? "" :
+      `${m.faces} faces${m.converged ? "" : ` (not converged: ${m.residual.toPrecision(2)})`}`;
+    views.requestRender();
+  });
+  store.on("loops", (m) => {
+    if (store.looks.faces !== "picked" || m.revision < (store.geometry?.revision ?? 0)) return;
+    loops.show(m, store.loopsBuffer, store.looks.loops);
+    views.requestRender();
+  });
+  store.on("mode", () => {
+    meshes.setLayers(layers());
+    loops.setLayers(pickViews().map((v) => VIEW_LAYER[v]));
+    views.requestRender();
+  });
+  meshes.setLayers(layers());
+  loops.setLayers(pickViews().map((v) => VIEW_LAYER[v]));
+
+  // ---- picking loops: a click (no drag) toggles the loop under the pointer
+  let down: { x: number; y: number } | null = null;
+  views.host.addEventListener("pointerdown", (ev) => {
+    down = ev.button === 0 ? { x: ev.clientX, y: ev.clientY } : null;
+  }, { capture: true });
+  views.host.addEventListener("pointerup", (ev) => {
+    const start = down;
+    down = null;
+    if (!start || store.looks.faces !== "picked" || !loops.loops.length) return;
+    if (Math.hypot(ev.clientX - start.x, ev.clientY - start.y) > CLICK_SLOP) return;
+    const v = views.viewAt(ev.clientX, ev.clientY);
+    if (!v || !pickViews().includes(v)) return;
+    const p = new THREE.Vector3();
+    const screen: ScreenLoop[] = loops.loops.map((l) => {
+      const boundary: [number, number][] = [];
+      for (let i = 0; i < l.boundary.length; i += 3) {
+        boundary.push(views.worldToClient(v, p.set(l.boundary[i], l.boundary[i + 1], l.boundary[i + 2]))!);
+      }
+      return { boundary, centre: views.worldToClient(v, l.centre)! };
+    });
+    const hit = pickLoop(screen, [ev.clientX, ev.clientY]);
+    if (hit === null) return;
+    const index = loops.loops[hit].index;
+    const picked = store.looks.loops.includes(index)
+      ? store.looks.loops.filter((i) => i !== index) : [...store.looks.loops, index];
+    store.setLooks({ loops: picked });
+  }, { capture: true });
 }

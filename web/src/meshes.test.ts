@@ -1,5 +1,6 @@
+import type * as THREE from "three";
 import { afterEach, beforeEach, describe, expect, it, vi } from "vitest";
-import { Debouncer, MeshView, pickLoop, pieceArrays, type ScreenLoop } from "./meshes";
+import { Debouncer, MeshView, pickLoop, pieceArrays, reversedWinding, splitHandedness, type ScreenLoop } from "./meshes";
 import type { MeshGeometry } from "./protocol";
 
 // One triangle (3 vertices, 1 face) with two instances (identity, shifted by x + 1), and faces.
@@ -60,6 +61,31 @@ describe("MeshView", () => {
     expect(pos.getAttribute("position").array[3]).toBe(2);
     view.clear();
     expect(view.group.children.length).toBe(0);
+  });
+
+  it("draws mirrored instances from a geometry wound the other way that shares positions and normals", () => {
+    const view = new MeshView(() => "#7a2e1d");
+    const { msg, buffer } = frame();
+    new Float32Array(buffer)[28] = -1; // the second instance mirrors x
+    view.show(msg, buffer);
+    expect(view.counts).toEqual([2, 1]);
+    const [rot, mir] = view.group.children as unknown as { count: number; geometry: THREE.BufferGeometry }[];
+    expect([rot.count, mir.count]).toEqual([1, 1]);
+    expect(mir.geometry.getAttribute("position")).toBe(rot.geometry.getAttribute("position"));
+    expect(mir.geometry.getAttribute("normal")).toBe(rot.geometry.getAttribute("normal"));
+    expect(Array.from(mir.geometry.index!.array)).toEqual([0, 2, 1]);
+  });
+});
+
+describe("handedness", () => {
+  it("splits rotations from mirror images and reverses windings", () => {
+    const id = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
+    const quarter = [0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 2, 0, 0, 1];
+    const mirror = [1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
+    const { proper, mirrored } = splitHandedness(new Float32Array([...id, ...mirror, ...quarter]));
+    expect(Array.from(proper)).toEqual([...id, ...quarter]);
+    expect(Array.from(mirrored)).toEqual(mirror);
+    expect(Array.from(reversedWinding(new Uint32Array([0, 1, 2, 3, 4, 5])))).toEqual([0, 2, 1, 3, 5, 4]);
   });
 });
 

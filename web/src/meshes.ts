@@ -1,5 +1,5 @@
 // The looks' meshes (tube, bar, ribbon members, minimal-surface faces) from MeshGeometry, and the
-// network's loops for picking faces. Each MeshPiece is one BufferGeometry drawn by one
+// network's loops for picking faces. Each MeshPiece is one BufferGeometry drawn by an
 // InstancedMesh with the piece's transforms (instances, not copies). A reply with the same sizes
 // rewrites the buffers in place; any other disposes everything it replaces, so repeated edits
 // never add GPU resources.
@@ -9,6 +9,8 @@ import type { ArrayRef, Loops, MeshGeometry } from "./protocol";
 
 /** The colour of faces (basic -1): a light stone. */
 export const STONE = "#d9cfbd";
+/** Loop outlines are drawn scaled by this about their centres. */
+const LOOP_INSET = 0.93;
 
 /** One mesh piece's arrays, sliced out of the binary frame (views, not copies). */
 export interface PieceArrays {
@@ -154,10 +156,45 @@ function setLayers(obj: THREE.Object3D, layers: readonly number[]): void {
   for (const l of layers) obj.layers.enable(l);
 }
 
+/**
+ * The instance matrices (k x 16) split by handedness: rotations, and mirror images (negative
+ * determinant), which turn a triangle's winding around.
+ */
+export function splitHandedness(matrices: Float32Array): { proper: Float32Array; mirrored: Float32Array } {
+  const proper: number[] = [], mirrored: number[] = [];
+  for (let i = 0; i < matrices.length; i += 16) {
+    const m = matrices.subarray(i, i + 16);
+    const det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[4] * (m[1] * m[10] - m[2] * m[9]) + m[8] * (m[1] * m[6] - m[2] * m[5]);
+    (det < 0 ? mirrored : proper).push(...m);
+  }
+  return { proper: new Float32Array(proper), mirrored: new Float32Array(mirrored) };
+}
+
+/** Triangle indices with every triangle's winding reversed. */
+export function reversedWinding(indices: Uint32Array, out: Uint32Array = new Uint32Array(indices.length)): Uint32Array {
+  for (let i = 0; i < indices.length; i += 3) {
+    out[i] = indices[i];
+    out[i + 1] = indices[i + 2];
+    out[i + 2] = indices[i + 1];
+  }
+  return out;
+}
+
+/**
+ * One mesh piece on the GPU: its geometry and the InstancedMesh of its rotated replicas; mirrored
+ * replicas are a second InstancedMesh of a geometry that shares the positions and normals but
+ * winds its triangles the other way, so that both stay front-facing and lit from outside.
+ */
 interface Entry {
-  geom: THREE.BufferGeometry;
-  mesh: THREE.InstancedMesh;
   basic: number;
+  /** Sizes that a reply must match to be written in place. */
+  sizes: string;
+  geoms: THREE.BufferGeometry[];
+  meshes: THREE.InstancedMesh[];
+}
+
+function sizes(a: PieceArrays, split: { proper: Float32Array; mirrored: Float32Array }): string {
+  return `${a.basic}:${a.positions.length}/${a.indices.length}/${split.proper.length}/${split.mirrored.length}`;
 }
 
 /** The members and faces of the last MeshGeometry, coloured per basic curve. */
@@ -174,62 +211,84 @@ export class MeshView {
 
   /** The number of instances per piece, in the order of the last reply (for tests). */
   get counts(): number[] {
-    return this.entries.map((e) => e.mesh.count);
+    return this.entries.map((e) => e.meshes.reduce((n, m) => n + m.count, 0));
   }
 
   show(msg: MeshGeometry, buffer: ArrayBuffer): void {
     const arrays = pieceArrays(msg, buffer);
-    const same = msg.style === this.style && arrays.length === this.entries.length && arrays.every((a, i) => {
-      const g = this.entries[i].geom;
-      return a.basic === this.entries[i].basic && a.count === this.entries[i].mesh.count &&
-        a.positions.length === g.getAttribute("position").array.length && a.indices.length === g.index!.array.length;
-    });
-    if (!same) this.clear();
-    this.style = msg.style;
-    arrays.forEach((a, i) => {
-      if (same) {
-        const { geom, mesh } = this.entries[i];
-        const pos = geom.getAttribute("position") as THREE.BufferAttribute;
-        (pos.array as Float32Array).set(a.positions);
-        pos.needsUpdate = true;
-        (geom.index!.array as Uint32Array).set(a.indices);
-        geom.index!.needsUpdate = true;
-        geom.computeVertexNormals();
-        (mesh.instanceMatrix.array as Float32Array).set(a.matrices);
-        mesh.instanceMatrix.needsUpdate = true;
-        return;
-      }
-      const geom = new THREE.BufferGeometry();
-      geom.setAttribute("position", new THREE.BufferAttribute(a.positions.slice(), 3));
-      geom.setIndex(new THREE.BufferAttribute(a.indices.slice(), 1));
-      geom.computeVertexNormals();
-      const mesh = new THREE.InstancedMesh(geom, this.material(a.basic), a.count);
-      (mesh.instanceMatrix.array as Float32Array).set(a.matrices);
-      mesh.instanceMatrix.needsUpdate = true;
+    const splits = arrays.map((a) => splitHandedness(a.matrices));
+    const same = msg.style === this.style && arrays.length === this.entries.length &&
+      arrays.every((a, i) => this.entries[i].sizes === sizes(a, splits[i]));
+    if (same) {
+      arrays.forEach((a, i) => this.rewrite(this.entries[i], a, splits[i]));
+    } else {
+      this.clear();
+      this.style = msg.style;
+      arrays.forEach((a, i) => this.add(a, splits[i]));
+    }
+  }
+
+  private add(a: PieceArrays, split: { proper: Float32Array; mirrored: Float32Array }): void {
+    const geom = new THREE.BufferGeometry();
+    geom.setAttribute("position", new THREE.BufferAttribute(a.positions.slice(), 3));
+    geom.setIndex(new THREE.BufferAttribute(a.indices.slice(), 1));
+    geom.computeVertexNormals();
+    const entry: Entry = { basic: a.basic, sizes: sizes(a, split), geoms: [geom], meshes: [] };
+    if (split.mirrored.length) {
+      const flipped = new THREE.BufferGeometry();
+      flipped.setAttribute("position", geom.getAttribute("position"));
+      flipped.setAttribute("normal", geom.getAttribute("normal"));
+      flipped.setIndex(new THREE.BufferAttribute(reversedWinding(a.indices), 1));
+      entry.geoms.push(flipped);
+    }
+    [split.proper, split.mirrored].forEach((matrices, j) => {
+      if (!matrices.length) return;
+      const mesh = new THREE.InstancedMesh(entry.geoms[j], this.material(a.basic), matrices.length / 16);
+      (mesh.instanceMatrix.array as Float32Array).set(matrices);
       mesh.name = a.name;
       mesh.userData.basic = a.basic;
       mesh.frustumCulled = false; // the instances' bounds change with every edit
       setLayers(mesh, this.layers);
       this.group.add(mesh);
-      this.entries.push({ geom, mesh, basic: a.basic });
+      entry.meshes.push(mesh);
+    });
+    this.entries.push(entry);
+  }
+
+  private rewrite(e: Entry, a: PieceArrays, split: { proper: Float32Array; mirrored: Float32Array }): void {
+    const [geom, flipped] = e.geoms;
+    const pos = geom.getAttribute("position") as THREE.BufferAttribute;
+    (pos.array as Float32Array).set(a.positions);
+    pos.needsUpdate = true;
+    (geom.index!.array as Uint32Array).set(a.indices);
+    geom.index!.needsUpdate = true;
+    geom.computeVertexNormals(); // rewrites the shared normals in place
+    if (flipped) {
+      reversedWinding(a.indices, flipped.index!.array as Uint32Array);
+      flipped.index!.needsUpdate = true;
+    }
+    const matrices = [split.proper, split.mirrored].filter((m) => m.length);
+    e.meshes.forEach((mesh, j) => {
+      (mesh.instanceMatrix.array as Float32Array).set(matrices[j]);
+      mesh.instanceMatrix.needsUpdate = true;
     });
   }
 
   /** Re-apply the colours (after the looks' colours changed). */
   recolor(): void {
-    for (const e of this.entries) e.mesh.material = this.material(e.basic);
+    for (const e of this.entries) for (const m of e.meshes) m.material = this.material(e.basic);
   }
 
   setLayers(layers: readonly number[]): void {
     this.layers = layers;
-    for (const e of this.entries) setLayers(e.mesh, layers);
+    for (const e of this.entries) for (const m of e.meshes) setLayers(m, layers);
   }
 
   /** Remove and dispose every mesh (materials are kept for reuse). */
   clear(): void {
     for (const e of this.entries) {
-      e.geom.dispose();
-      e.mesh.dispose();
+      for (const g of e.geoms) g.dispose();
+      for (const m of e.meshes) m.dispose();
     }
     this.group.clear();
     this.entries = [];
@@ -278,8 +337,11 @@ export class LoopView {
       const boundary = viewAny(buffer, l.boundary) as Float32Array;
       const centre = new THREE.Vector3(l.centre[0], l.centre[1], l.centre[2]);
       this.loops.push({ index: l.index, boundary, centre });
+      // drawn a little inside the curves that bound it, so that loops sharing a curve read apart
+      const inset = boundary.slice();
+      for (let i = 0; i < inset.length; i++) inset[i] = l.centre[i % 3] + LOOP_INSET * (inset[i] - l.centre[i % 3]);
       const geom = new THREE.BufferGeometry();
-      geom.setAttribute("position", new THREE.BufferAttribute(boundary.slice(), 3));
+      geom.setAttribute("position", new THREE.BufferAttribute(inset, 3));
       const dotGeom = new THREE.BufferGeometry();
       dotGeom.setAttribute("position", new THREE.BufferAttribute(new Float32Array(centre.toArray()), 3));
       this.geoms.push(geom, dotGeom);

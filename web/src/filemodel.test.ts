@@ -10,15 +10,15 @@ const files = {
 };
 
 describe("galleryGroups", () => {
-  it("groups by folder, workspace first, in natural order", () => {
+  it("groups by folder: workspace, teaching sheet, web, legacy; in natural order", () => {
     const groups = galleryGroups(files);
     expect(groups.map((g) => g.title)).toEqual([
-      "Workspace", "Workspace · sub", "Examples · legacy", "Examples · teaching-sheet", "Examples · web",
-      "Examples · web/weird_ones",
+      "Workspace", "Workspace · sub", "Examples · teaching-sheet", "Examples · web", "Examples · web/weird_ones",
+      "Examples · legacy",
     ]);
     expect(groups[0].cards.map((c) => c.path)).toEqual(["a.json", "tn-2.uc"]);
-    expect(groups[3].cards.map((c) => c.label)).toEqual(["tn-2", "tn-11"]);
-    expect(groups[4].cards[0]).toEqual({ kind: "example", path: "web/U.XI.28.uc", label: "U.XI.28", ext: ".uc" });
+    expect(groups[2].cards.map((c) => c.label)).toEqual(["tn-2", "tn-11"]);
+    expect(groups[3].cards[0]).toEqual({ kind: "example", path: "web/U.XI.28.uc", label: "U.XI.28", ext: ".uc" });
   });
 
   it("keeps only matching drawings and drops empty groups", () => {

@@ -21,6 +21,17 @@ export interface Group {
 
 const natural = (a: string, b: string) => a.localeCompare(b, "en", { numeric: true, sensitivity: "base" });
 
+/** The bundled examples' folders in the order the gallery shows them (others follow, sorted). */
+const EXAMPLE_FOLDERS = ["teaching-sheet", "web", "legacy"];
+
+function byFolder(a: string, b: string): number {
+  const rank = (dir: string) => {
+    const i = EXAMPLE_FOLDERS.indexOf(dir.split("/")[0]);
+    return i < 0 ? EXAMPLE_FOLDERS.length : i;
+  };
+  return rank(a) - rank(b) || natural(a, b);
+}
+
 function card(kind: Card["kind"], path: string): Card {
   const base = path.slice(path.lastIndexOf("/") + 1);
   const m = /^(.*?)((?:\.network)?\.[^.]+)$/.exec(base);
@@ -39,13 +50,14 @@ export function matches(path: string, filter: string): boolean {
 }
 
 /**
- * The gallery: workspace drawings first, then the examples, one group per folder, each in natural
- * order (tn-2 before tn-11); only drawings matching `filter`; no empty groups.
+ * The gallery: workspace drawings first, then the examples (teaching sheet, web, legacy), one
+ * group per folder, each in natural order (tn-2 before tn-11); only drawings matching `filter`;
+ * no empty groups.
  */
 export function galleryGroups(files: Pick<Files, "workspace" | "examples">, filter = ""): Group[] {
   const groups = new Map<string, Group>();
   const add = (kind: Card["kind"], paths: string[], prefix: string, rootTitle: string) => {
-    const keys = [...new Set(paths.map(folder))].sort(natural);
+    const keys = [...new Set(paths.map(folder))].sort(kind === "example" ? byFolder : natural);
     for (const dir of keys) {
       const cards = paths.filter((p) => folder(p) === dir && matches(p, filter)).sort(natural).map((p) => card(kind, p));
       if (cards.length) groups.set(`${kind}:${dir}`, { title: dir ? `${prefix} · ${dir}` : rootTitle, cards });

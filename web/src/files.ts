@@ -1,6 +1,7 @@
-// Files (#file-tools): new, the gallery of workspace drawings and bundled examples, open a local
-// file, save, save as, export (a download of the server's file); the document's name in the
-// toolbar and the tab title ("name •" while unsaved); #banner: autosave recovery, reconnecting.
+// Files (#file-tools): new, the gallery of workspace drawings and bundled examples (which also
+// opens a file from this computer), save, save as, export (a download of the server's file); the
+// document's name in the toolbar and the tab title ("name •" while unsaved); #banner: autosave
+// recovery, reconnecting.
 import "./files.css";
 import type { Ctx } from "./context";
 import { Modal, Popover, button } from "./dialog";
@@ -45,8 +46,8 @@ export function initFiles(ctx: Ctx): void {
   docName.dataset.testid = "doc-name";
   tools.append(
     button("New", "Start an empty drawing", "new", () => void newDrawing()),
-    button("Open…", "Open a drawing of the workspace or a bundled example (Ctrl+O)", "open", () => void openGallery()),
-    button("Open file…", "Open a .uc or .json file from this computer", "open-local", () => localInput.click()),
+    button("Open…", "Open a drawing of the workspace, a bundled example or a file from this computer (Ctrl+O)", "open",
+      () => void openGallery()),
     localInput, saveButton, saveAsButton, exportButton, docName,
   );
   const needsDocument = [saveButton, saveAsButton, exportButton];

@@ -14,7 +14,6 @@ const GESTURES: [string, string][] = [
   ["Alt (hold)", "suspend snapping while drawing or dragging"],
   ["Shift + drag on the background image", "move the image"],
   ["Shift + wheel over the top view", "scale the background image about the pointer"],
-  ["Esc", "close a dialog or menu"],
 ];
 
 export function initHelp(_ctx: Ctx): void {
@@ -30,12 +29,15 @@ export function initHelp(_ctx: Ctx): void {
       k.className = "keys";
       keys.forEach((combo, i) => {
         if (i) k.append(" or ");
+        const span = document.createElement("span");
+        span.className = "combo";
         combo.split(/\+(?!$)/).forEach((part, j) => {
-          if (j) k.append("+");
+          if (j) span.append("+");
           const kbd = document.createElement("kbd");
           kbd.textContent = part;
-          k.appendChild(kbd);
+          span.appendChild(kbd);
         });
+        k.appendChild(span);
       });
       tr.insertCell().textContent = description;
     }
@@ -70,7 +72,10 @@ export function initHelp(_ctx: Ctx): void {
     h.textContent = "Mouse";
     mouse.append(h, gestureTable());
     cols.appendChild(mouse);
-    help.body.appendChild(cols);
+    const note = document.createElement("p");
+    note.className = "help-note";
+    note.textContent = "Esc closes a dialog or menu. Shortcuts are off while you type in a text field.";
+    help.body.append(cols, note);
   }
 
   const open = () => {

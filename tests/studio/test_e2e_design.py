@@ -17,7 +17,9 @@ from auszug import examples
 from auszug.formats import load, save
 from auszug.microarch import Drawing, build, edit
 
-from .e2e import browser, geometry, needs_browser, open_drawing, page, studio, top_to_client, wait_revision  # noqa: F401
+from .e2e import (  # noqa: F401  (fixtures)
+    browser, geometry, needs_browser, open_drawing, page, studio, top_to_client, wait_revision,
+)
 
 pytestmark = needs_browser
 
@@ -195,8 +197,9 @@ def test_click_intersection_sets_prc(studio, workspace, page):  # noqa: F811
     ends = np.array(c["vertices"])
     prc = next(p["prc"] for p in g["pieces"] if p["prc"])
     # a true intersection of the basic curve that is neither an end point nor the current PRC
-    i, m = next((i, m) for i, m in enumerate(g["intersections"]) if m["true"]
-                and np.hypot(*(ends - m["point"]).T).min() > 0.05 and np.hypot(*np.subtract(m["point"], prc[:2])) > 0.05)
+    i, m = next((i, m) for i, m in enumerate(g["intersections"])
+                if m["true"] and np.linalg.norm(ends - m["point"], axis=1).min() > 0.05
+                and np.linalg.norm(np.subtract(m["point"], prc[:2])) > 0.05)
     overlay_ready(page)
     marker = page.locator(f"[data-testid=intersection][data-index='{i}'][data-replica='0']")
     assert marker.get_attribute("data-true") == "true"

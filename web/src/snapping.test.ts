@@ -57,7 +57,8 @@ describe("guides and snapping", () => {
   });
 
   it("prefers the nearest point, then the nearest line, within the tolerance", () => {
-    const targets = { points: [[0, 0], [1, 0], [1.05, 0]] as Vec[], lines: [{ origin: [0, 5] as Vec, dir: [1, 0] as Vec }] };
+    const line = { origin: [0, 5] as Vec, dir: [1, 0] as Vec };
+    const targets = { points: [[0, 0], [1, 0], [1.05, 0]] as Vec[], lines: [line] };
     expect(snap([1.04, 0.01], targets, 0.1)).toEqual({ p: [1.05, 0], kind: "point" });
     expect(snap([0.5, 4.95], targets, 0.1)).toEqual({ p: [0.5, 5], kind: "line", line: targets.lines[0] });
     expect(snap([0.5, 0.5], targets, 0.1)).toEqual({ p: [0.5, 0.5], kind: null });

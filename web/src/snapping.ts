@@ -148,7 +148,8 @@ export interface PickPiece {
 }
 
 /** The basic curve and replica whose top-view polyline passes nearest `p`, if within `tol`. */
-export function pickCurve(p: Vec, pieces: readonly PickPiece[], tol: number): { basic: number; replica: number } | null {
+export function pickCurve(p: Vec, pieces: readonly PickPiece[], tol: number):
+  { basic: number; replica: number } | null {
   let best: { basic: number; replica: number } | null = null, bestD = tol;
   for (const pc of pieces) {
     const pts = pc.points, t = pc.transforms, n = pts.length / 3;

@@ -24,8 +24,10 @@ type DrawTool = Exclude<Tool, "select">;
 const TOOLS: { tool: Tool; label: string; key: string; title: string }[] = [
   { tool: "select", label: "Select", key: "v", title: "Select curves, drag points, click intersections (V)" },
   { tool: "line", label: "Line", key: "l", title: "Draw a line: click the ground point, then the apex (L)" },
-  { tool: "arc", label: "Arc", key: "a", title: "Draw an arc: ground point, apex, then drag (or click) where the tangent aims (A)" },
-  { tool: "free", label: "Free end", key: "e", title: "Draw a curve with a free end: ground point, apex, free end (E)" },
+  { tool: "arc", label: "Arc", key: "a",
+    title: "Draw an arc: ground point, apex, then drag (or click) where the tangent aims (A)" },
+  { tool: "free", label: "Free end", key: "e",
+    title: "Draw a curve with a free end: ground point, apex, free end (E)" },
 ];
 
 const HINTS: Record<DrawTool, string[]> = {
@@ -96,6 +98,21 @@ function setTitle(e: SVGElement, text: string): void {
 }
 
 const withTitle = (e: SVGElement) => void make(e, "title");
+
+/** World (x, y) -> overlay pixels. */
+type Px = (p: readonly number[]) => [number, number];
+
+function placeCircle(e: SVGCircleElement, [x, y]: [number, number]): void {
+  e.setAttribute("cx", f2(x));
+  e.setAttribute("cy", f2(y));
+}
+
+function placeLine(e: SVGLineElement, [x1, y1]: [number, number], [x2, y2]: [number, number]): void {
+  e.setAttribute("x1", f2(x1));
+  e.setAttribute("y1", f2(y1));
+  e.setAttribute("x2", f2(x2));
+  e.setAttribute("y2", f2(y2));
+}
 
 class TopView {
   private readonly store: Store;
@@ -388,7 +405,7 @@ class TopView {
   private drawDown(ev: PointerEvent): void {
     const tool = this.store.tool as DrawTool;
     const p = this.snapped(ev, this.targets()).p;
-    if (!this.draft || this.draft.tool !== tool) this.draft = { tool, pts: [], handle: null, needHandle: false, press: null };
+    if (this.draft?.tool !== tool) this.draft = { tool, pts: [], handle: null, needHandle: false, press: null };
     const d = this.draft;
     this.cursor = p;
     if (d.needHandle) {
@@ -396,7 +413,8 @@ class TopView {
       return this.finishDraft();
     }
     const last = d.pts[d.pts.length - 1];
-    if (last && Math.hypot(p[0] - last[0], p[1] - last[1]) < DRAG_PX * this.ctx.views.topScale) return; // a double click
+    // a second click on the same spot (a double click) adds nothing
+    if (last && Math.hypot(p[0] - last[0], p[1] - last[1]) < DRAG_PX * this.ctx.views.topScale) return;
     d.pts.push(p);
     this.schedule(); // the guides may follow the first point
     if (d.pts.length < (tool === "free" ? 3 : 2)) return;
@@ -458,16 +476,16 @@ class TopView {
     const shown = !!r && this.store.mode === "design";
     this.svg.style.display = shown ? "" : "none";
     if (!shown) return;
-    const s = this.svg.style;
-    s.left = `${r.x}px`; s.top = `${r.y}px`; s.width = `${r.w}px`; s.height = `${r.h}px`;
+    Object.assign(this.svg.style, { left: `${r.x}px`, top: `${r.y}px`, width: `${r.w}px`, height: `${r.h}px` });
     const drawing = this.store.tool !== "select";
     this.svg.classList.add("design");
     this.svg.classList.toggle("drawing", drawing);
     if (drawing) this.svg.classList.remove("over-curve");
     // the top view's mapping, read once: world (x, y) -> overlay pixels
     const views = this.ctx.views;
-    const [ox, oy] = views.topToScreen(0, 0), sx = views.topToScreen(1, 0)[0] - ox, sy = views.topToScreen(0, 1)[1] - oy;
-    const px = (p: readonly number[]): [number, number] => [ox + sx * p[0], oy + sy * p[1]];
+    const [ox, oy] = views.topToScreen(0, 0);
+    const sx = views.topToScreen(1, 0)[0] - ox, sy = views.topToScreen(0, 1)[1] - oy;
+    const px: Px = (p) => [ox + sx * p[0], oy + sy * p[1]];
     if (this.full) {
       this.full = false;
       this.renderGuides(px, r.w, r.h);
@@ -481,15 +499,14 @@ class TopView {
     if (this.hint.textContent !== hint) this.hint.textContent = hint;
   }
 
-  private renderGuides(px: (p: readonly number[]) => [number, number], w: number, h: number): void {
+  private renderGuides(px: Px, w: number, h: number): void {
     const sym = this.guideSymmetry();
     const [cx, cy] = px(sym.center);
     const reach = Math.hypot(w, h) + Math.hypot(cx - w / 2, cy - h / 2);
     const place = (e: SVGLineElement, dir: readonly number[]) => {
-      const [dx, dy] = px([dir[0], dir[1]]), [zx, zy] = px([0, 0]);
-      const ux = dx - zx, uy = dy - zy, l = Math.hypot(ux, uy) || 1;
-      e.setAttribute("x1", f2(cx - (reach * ux) / l)); e.setAttribute("y1", f2(cy - (reach * uy) / l));
-      e.setAttribute("x2", f2(cx + (reach * ux) / l)); e.setAttribute("y2", f2(cy + (reach * uy) / l));
+      const [dx, dy] = px(dir), [zx, zy] = px([0, 0]);
+      const l = Math.hypot(dx - zx, dy - zy) || 1, ux = (reach * (dx - zx)) / l, uy = (reach * (dy - zy)) / l;
+      placeLine(e, [cx - ux, cy - uy], [cx + ux, cy + uy]);
     };
     const lines = guideLines(sym);
     this.guides.take(lines.length).forEach((e, k) => place(e, lines[k].dir));
@@ -499,7 +516,7 @@ class TopView {
   }
 
   /** Intersection markers and PRCs, for every replica of their basic curve. */
-  private renderMarkers(px: (p: readonly number[]) => [number, number]): void {
+  private renderMarkers(px: Px): void {
     const g = this.store.geometry, sel = this.store.selection;
     const ints = g?.intersections ?? [];
     const n = ints.reduce((a, m) => a + (this.mats[m.curve]?.length ?? 0), 0);
@@ -510,10 +527,10 @@ class TopView {
       const tip = `${m.true ? "true" : "false"} intersection of curve ${m.curve} with curve ${m.other_curve} ` +
         `${m.replica}: click to put the PRC here`;
       images(m.point, c.center, this.mats[m.curve]).forEach((p, k) => {
-        const e = marks[j++], [x, y] = px(p);
-        e.setAttribute("cx", f2(x)); e.setAttribute("cy", f2(y));
+        const e = marks[j++];
+        placeCircle(e, px(p));
         e.setAttribute("r", k === 0 ? "4.5" : "3.5");
-        e.setAttribute("class", `intersection hit ${m.true ? "true" : "false"}${sel !== null && sel !== m.curve ? " faded" : ""}`);
+        e.setAttribute("class", `intersection hit ${m.true}${sel !== null && sel !== m.curve ? " faded" : ""}`);
         Object.assign(e.dataset, { true: String(m.true), curve: String(m.curve), segment: String(m.segment),
           replica: String(k), index: String(i) });
         setTitle(e, tip);
@@ -534,7 +551,7 @@ class TopView {
   }
 
   /** Small dots on the vertices of every basic curve but the selected one (which gets handles). */
-  private renderDots(px: (p: readonly number[]) => [number, number]): void {
+  private renderDots(px: Px): void {
     const curves = this.store.geometry?.curves ?? [], sel = this.store.selection;
     const n = curves.reduce((a, c, i) => a + (i === sel ? 0 : c.vertices.length), 0);
     const dots = this.dots.take(n);
@@ -542,8 +559,8 @@ class TopView {
     curves.forEach((c, i) => {
       if (i === sel) return;
       c.vertices.forEach((v, k) => {
-        const e = dots[j++], [x, y] = px(v);
-        e.setAttribute("cx", f2(x)); e.setAttribute("cy", f2(y));
+        const e = dots[j++];
+        placeCircle(e, px(v));
         e.setAttribute("fill", this.store.color(i));
         e.setAttribute("class", `dot hit mark-${c.marks[k]}`);
         Object.assign(e.dataset, { curve: String(i), vertex: String(k) });
@@ -553,61 +570,62 @@ class TopView {
   }
 
   /** The selected curve's points, tangent handles and tangent lines (a dragged point where it is dragged). */
-  private renderSelected(px: (p: readonly number[]) => [number, number]): void {
+  private renderSelected(px: Px): void {
     const g = this.store.geometry, sel = this.store.selection;
     const c: CurveInfo | undefined = sel !== null ? g?.curves[sel] : undefined;
-    if (!c) {
+    if (sel === null || !c) {
       this.handles.take(0);
       this.tangents.take(0);
       return;
     }
-    const t = this.drag?.pos ? this.drag.target : null;
+    const drag = this.drag?.pos && this.drag.target.curve === sel ? this.drag : null;
+    const t = drag?.target;
     const verts = c.vertices.map((v, k): Vec =>
-      t?.kind === "vertex" && t.curve === sel && t.vertex === k ? this.drag!.pos! : [v[0], v[1]]);
+      (t?.kind === "vertex" && t.vertex === k ? drag!.pos! : [v[0], v[1]]));
     const hs = c.handles.map((list, s) => list.map((h, k): Vec =>
-      t?.kind === "handle" && t.curve === sel && t.segment === s && t.handle === k ? this.drag!.pos! : [h[0], h[1]]));
+      (t?.kind === "handle" && t.segment === s && t.handle === k ? drag!.pos! : [h[0], h[1]])));
     // a handle dragged off a line segment makes it an arc before the server says so
-    if (t?.kind === "handle" && t.curve === sel && hs[t.segment].length === 0) hs[t.segment] = [this.drag!.pos!];
-    type Item = { p: Vec; cls: string; data: Record<string, string>; tip: string };
-    const items: Item[] = [];
+    if (t?.kind === "handle" && hs[t.segment].length === 0) hs[t.segment] = [drag!.pos!];
+    const items: { p: Vec; cls: string; data: Record<string, string>; tip: string }[] = [];
     const lines: [Vec, Vec][] = [];
     hs.forEach((list, s) => {
       const a = verts[s], b = verts[s + 1];
+      const handle = (p: Vec, k: number, cls: string, tip: string) => items.push({ p, cls,
+        data: { role: "handle", segment: String(s), handle: String(k) }, tip: `segment ${s}: ${tip}` });
       if (list.length === 0) {
-        items.push({ p: [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2], cls: "bend",
-          data: { role: "handle", segment: String(s), handle: "0" }, tip: `segment ${s}: drag to bend the line into an arc` });
+        handle([(a[0] + b[0]) / 2, (a[1] + b[1]) / 2], 0, "bend", "drag to bend the line into an arc");
       }
       list.forEach((h, k) => {
-        lines.push([list.length === 2 && k === 1 ? b : a, h]);
-        items.push({ p: h, cls: "tangent-handle", data: { role: "handle", segment: String(s), handle: String(k) },
-          tip: `segment ${s}, handle ${k}: ${list.length === 1 ? "where the tangent at the first point aims" : "Bezier control point"}` });
+        // an arc's tangent at a aims at its handle; a Bezier's inner points hang off a and b
+        lines.push([k === 1 ? b : a, h]);
+        handle(h, k, "tangent-handle",
+          list.length === 1 ? "where the tangent at the first point aims" : `control point ${k + 1}`);
       });
     });
     verts.forEach((v, k) => items.push({ p: v, cls: `vertex mark-${c.marks[k]}`,
-      data: { role: "vertex", vertex: String(k) }, tip: `${c.marks[k]} point ${k} (${v[0].toFixed(4)}, ${v[1].toFixed(4)}): drag to move` }));
-    this.tangents.take(lines.length).forEach((e, i) => {
-      const [[x1, y1], [x2, y2]] = [px(lines[i][0]), px(lines[i][1])];
-      e.setAttribute("x1", f2(x1)); e.setAttribute("y1", f2(y1)); e.setAttribute("x2", f2(x2)); e.setAttribute("y2", f2(y2));
-    });
+      data: { role: "vertex", vertex: String(k) },
+      tip: `${c.marks[k]} point ${k} (${v[0].toFixed(4)}, ${v[1].toFixed(4)}): drag to move` }));
+    this.tangents.take(lines.length).forEach((e, i) => placeLine(e, px(lines[i][0]), px(lines[i][1])));
     this.handles.take(items.length).forEach((e, i) => {
-      const it = items[i], [x, y] = px(it.p);
-      e.setAttribute("cx", f2(x)); e.setAttribute("cy", f2(y));
+      const it = items[i];
+      placeCircle(e, px(it.p));
       e.setAttribute("r", it.cls === "bend" ? "4" : "5.5");
       e.setAttribute("class", `handle hit ${it.cls}`);
-      delete e.dataset.vertex; delete e.dataset.segment; delete e.dataset.handle;
+      delete e.dataset.vertex;
+      delete e.dataset.segment;
+      delete e.dataset.handle;
       Object.assign(e.dataset, { curve: String(sel), ...it.data });
       setTitle(e, it.tip);
     });
   }
 
   /** The curve being drawn up to the cursor, its replicas, and where the cursor snapped. */
-  private renderDraft(px: (p: readonly number[]) => [number, number]): void {
+  private renderDraft(px: Px): void {
     const d = this.draft, cur = this.cursor;
     const live = this.store.tool !== "select" ? this.lastSnap : this.drag?.pos ? this.lastSnap : null;
     this.snapMark.style.display = live?.kind ? "" : "none";
     if (live?.kind) {
-      const [x, y] = px(live.p);
-      this.snapMark.setAttribute("cx", f2(x)); this.snapMark.setAttribute("cy", f2(y));
+      placeCircle(this.snapMark, px(live.p));
       this.snapMark.setAttribute("class", `snap ${live.kind}`);
     }
     let pts: Vec[] = d ? [...d.pts] : [];
@@ -615,11 +633,11 @@ class TopView {
       const h = d.handle ?? cur;
       pts = h ? arcPoints(d.pts[0], h, d.pts[1]) : pts;
     } else if (d && cur) pts.push(cur);
-    this.draftPoints.take(d ? d.pts.length : 0).forEach((e, i) => {
-      const [x, y] = px(d!.pts[i]);
-      e.setAttribute("cx", f2(x)); e.setAttribute("cy", f2(y));
-    });
-    const path = (list: readonly Vec[]) => list.map((p, i) => { const [x, y] = px(p); return `${i ? "L" : "M"}${f2(x)} ${f2(y)}`; }).join("");
+    this.draftPoints.take(d ? d.pts.length : 0).forEach((e, i) => placeCircle(e, px(d!.pts[i])));
+    const path = (list: readonly Vec[]) => list.map((p, i) => {
+      const [x, y] = px(p);
+      return `${i ? "L" : "M"}${f2(x)} ${f2(y)}`;
+    }).join("");
     this.draftPath.setAttribute("d", pts.length > 1 ? path(pts) : "");
     let replicas = "";
     if (pts.length > 1) {

@@ -144,6 +144,28 @@ def test_fold_and_mirror_in_panel(studio, workspace, page):  # noqa: F811
     assert page.locator("[data-testid=intersection]").count() == 16 * len(g["intersections"])
 
 
+def test_layer_and_colour_in_panel(studio, workspace, page):  # noqa: F811
+    drawing = load(workspace / "tn-2.uc")
+    g = open_drawing(page, studio, "tn-2.uc")
+    for bottom in (1.0, 2.5):  # set-up: layers 1 and 2 (above the apex, 1.82)
+        page.evaluate(f"() => window.auszug.ctx.request({{type: 'add_layer', bottom: {bottom}}})")
+        g = wait_revision(page, g["revision"])
+    select_curve(page, drawing, 0)
+    layer = page.locator("[data-testid=layer-select]")
+    assert layer.locator("option").all_inner_texts() == ["0 (bottom 0)", "1 (bottom 1)", "2 (bottom 2.5)"]
+    layer.select_option("2")  # refused by the server: the select shows the curve's layer again
+    page.wait_for_function("() => document.getElementById('status').classList.contains('error')")
+    page.wait_for_function("() => document.querySelector('[data-testid=layer-select]').value === '0'")
+    layer.select_option("1")
+    g = wait_revision(page, g["revision"])
+    assert g["curves"][0]["layer"] == 1
+    expected = edit.set_layer(edit.add_layer(edit.add_layer(drawing, 1.0), 2.5), 0, 1)
+    assert g["n_replicas"] == replicas(expected)
+    page.locator("[data-testid=curve-color]").fill("#1f77b4")
+    assert page.evaluate("() => window.auszug.store.looks.colors[0]") == "#1f77b4"
+    assert page.evaluate("() => window.auszug.store.color(0)") == "#1f77b4"
+
+
 def test_drag_vertex(studio, workspace, page):  # noqa: F811
     drawing = load(workspace / "tn-2.uc")
     g = open_drawing(page, studio, "tn-2.uc")

@@ -3,7 +3,7 @@
 // (never under the user's cursor: a focused field keeps what is being typed).
 import "./curvepanel.css";
 import type { Ctx } from "./context";
-import type { Geometry } from "./protocol";
+import type { ClientMessage, Geometry } from "./protocol";
 import { registerShortcut } from "./shortcuts";
 import { MIRROR_RULES, type MirrorRule } from "./topview";
 
@@ -22,9 +22,9 @@ function field<E extends HTMLElement>(parent: HTMLElement, text: string, control
   return control;
 }
 
-/** Set a control's value unless the user is editing it. */
-function show(input: HTMLInputElement | HTMLSelectElement, value: string): void {
-  if (document.activeElement !== input && input.value !== value) input.value = value;
+/** Set a control's value unless the user is editing it (`force`: even then). */
+function show(input: HTMLInputElement | HTMLSelectElement, value: string, force = false): void {
+  if ((force || document.activeElement !== input) && input.value !== value) input.value = value;
 }
 
 export function initCurvePanel(ctx: Ctx): void {
@@ -55,6 +55,8 @@ export function initCurvePanel(ctx: Ctx): void {
   const del = el(body, "button", { textContent: "Delete curve", title: "Remove the curve and its replicas (Delete)" },
     "delete-curve");
 
+  /** Send an edit; a refused one puts the controls back to the drawing's values (the status bar says why). */
+  const edit = (msg: ClientMessage) => void ctx.request(msg).catch(() => update(true));
   const selected = (): number | null => {
     const g = store.geometry, s = store.selection;
     return g && s !== null && s < g.curves.length ? s : null;
@@ -64,15 +66,15 @@ export function initCurvePanel(ctx: Ctx): void {
     const s = selected(), n = Math.round(Number(fold.value));
     if (s === null) return;
     if (!(n >= 1 && n <= 64)) { fold.value = String(store.geometry!.curves[s].fold); return; }
-    if (n !== store.geometry!.curves[s].fold) ctx.request({ type: "set_symmetry", curve: s, fold: n }).catch(() => {});
+    if (n !== store.geometry!.curves[s].fold) edit({ type: "set_symmetry", curve: s, fold: n });
   });
   mirror.addEventListener("change", () => {
     const s = selected();
-    if (s !== null) ctx.request({ type: "set_symmetry", curve: s, mirror: mirror.value as MirrorRule }).catch(() => {});
+    if (s !== null) edit({ type: "set_symmetry", curve: s, mirror: mirror.value as MirrorRule });
   });
   layer.addEventListener("change", () => {
     const s = selected();
-    if (s !== null) ctx.request({ type: "set_layer", curve: s, layer: Number(layer.value) }).catch(() => {});
+    if (s !== null) edit({ type: "set_layer", curve: s, layer: Number(layer.value) });
   });
   color.addEventListener("input", () => {
     const s = selected();
@@ -87,7 +89,7 @@ export function initCurvePanel(ctx: Ctx): void {
     if (s === null) return;
     store.select(null);
     if (store.looks.colors.length > s) store.setLooks({ colors: store.looks.colors.filter((_, i) => i !== s) });
-    ctx.request({ type: "remove_curve", curve: s }).catch(() => {});
+    edit({ type: "remove_curve", curve: s });
   };
   del.addEventListener("click", remove);
   registerShortcut({ key: "Delete", description: "Delete the selected curve", run: remove });
@@ -110,7 +112,7 @@ export function initCurvePanel(ctx: Ctx): void {
           if (s === null || input.value === "" || !Number.isFinite(v)) return;
           const xy = [...store.geometry!.curves[s].vertices[k]] as [number, number];
           xy[axis] = v;
-          ctx.request({ type: "move_vertex", curve: s, vertex: k, xy }).catch(() => {});
+          edit({ type: "move_vertex", curve: s, vertex: k, xy });
         });
         return input;
       };
@@ -118,7 +120,7 @@ export function initCurvePanel(ctx: Ctx): void {
     });
   };
 
-  const update = () => {
+  const update = (force = false) => {
     const g: Geometry | null = store.geometry, s = selected();
     empty.hidden = s !== null;
     body.hidden = s === null;
@@ -128,13 +130,14 @@ export function initCurvePanel(ctx: Ctx): void {
     }
     const c = g.curves[s];
     title.textContent = `Curve ${s}${c.name ? ` (${c.name})` : ""}`;
-    show(fold, String(c.fold));
+    show(fold, String(c.fold), force);
     fixed.hidden = c.mirror !== "fixed";
-    show(mirror, c.mirror);
-    if (layer.options.length !== g.layers.length) {
-      layer.replaceChildren(...g.layers.map((z, i) => new Option(`${i} (bottom ${+z.toFixed(4)})`, String(i))));
+    show(mirror, c.mirror, force);
+    const names = g.layers.map((z, i) => `${i} (bottom ${+z.toFixed(4)})`);
+    if ([...layer.options].map((o) => o.text).join("\n") !== names.join("\n")) {
+      layer.replaceChildren(...names.map((name, i) => new Option(name, String(i))));
     }
-    show(layer, String(c.layer));
+    show(layer, String(c.layer), force);
     show(color, store.color(s));
     const replicas = Math.max(0, ...g.pieces.filter((p) => p.basic === s).map((p) => p.transforms.shape[0]));
     info.textContent = `${replicas} ${replicas === 1 ? "replica" : "replicas"} · apex at ${+c.apex.toFixed(4)}` +
@@ -142,8 +145,8 @@ export function initCurvePanel(ctx: Ctx): void {
     if (rows.length !== c.vertices.length) buildRows(c.vertices.length);
     c.vertices.forEach((v, k) => {
       rows[k].mark.textContent = c.marks[k];
-      show(rows[k].x, String(+v[0].toFixed(6)));
-      show(rows[k].y, String(+v[1].toFixed(6)));
+      show(rows[k].x, String(+v[0].toFixed(6)), force);
+      show(rows[k].y, String(+v[1].toFixed(6)), force);
     });
   };
   // once a frame: a drag's geometry stream never forces a layout in the middle of the listeners

@@ -337,11 +337,11 @@ function initSide(ctx: Ctx): void {
   function draw(): void {
     const g = store.geometry, c = selected();
     syncCurveSelect(g);
-    const width = svg.getBoundingClientRect().width;
     const on = g !== null && c !== null;
     hint.hidden = on;
     svg.style.display = on ? "" : "none";
     readout.hidden = controls.hidden = !on;
+    const width = svg.getBoundingClientRect().width; // 0 while the panel is hidden (preview mode)
     if (!on || width <= 0) return;
     const info = g.curves[c];
     lay = sideLayout(g, store.data, c);

@@ -731,18 +731,30 @@ def decode(text: str | bytes) -> Any:
     cls = _BY_TYPE.get(kind) if isinstance(kind, str) else None
     if cls is None:
         raise ProtocolError(f"unknown message type {kind!r}; expected one of {', '.join(sorted(_BY_TYPE))}")
-    hints = get_type_hints(cls)
-    fields = {f.name: f for f in dataclasses.fields(cls)}
-    unknown = sorted(set(obj) - set(fields))
+    hints, fields = _schema(cls)
+    unknown = sorted(set(obj) - fields.keys())
     if unknown:
         raise ProtocolError(f"{kind}: unknown field(s) {', '.join(unknown)}")
     kw = {}
-    for name, f in fields.items():
+    for name, required in fields.items():
         if name in obj:
             kw[name] = _convert(obj[name], hints[name], f"{kind}.{name}")
-        elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
+        elif required:
             raise ProtocolError(f"{kind}: missing field {name!r}")
     return cls(**kw)
+
+
+_SCHEMAS: dict[type, tuple[dict[str, Any], dict[str, bool]]] = {}
+
+
+def _schema(cls: type) -> tuple[dict[str, Any], dict[str, bool]]:
+    """Field types and "required" flags of a message class (``get_type_hints`` is slow: cached)."""
+    s = _SCHEMAS.get(cls)
+    if s is None:
+        req = {f.name: f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+               for f in dataclasses.fields(cls)}
+        s = _SCHEMAS[cls] = (get_type_hints(cls), req)
+    return s
 
 
 def encode(msg: Any) -> str:

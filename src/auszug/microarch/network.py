@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import weakref
+from collections import OrderedDict
 from dataclasses import dataclass, field
 from typing import Iterator, Literal
 
@@ -338,11 +339,54 @@ def build(
         for key, ch in algorithm1(drawing).items():
             choices[key] = ch
             auto[key] = ch.fraction
+    tol_key = tuple(vars(TOL).values())
     for ci, c in enumerate(drawing.curves):
-        pieces.extend(_build_curve(drawing, ci, c, bottoms, apex[ci], auto, parameterization, theta, n))
+        autos = tuple(auto.get((ci, si)) for si in range(len(c.segments)))
+        key = (ci, c, bottoms[c.layer], apex[ci], autos, parameterization, theta, n, tol_key)
+        got = _CURVE_PIECES.get(key)
+        if got is None:
+            got = tuple(_build_curve(drawing, ci, c, bottoms, apex[ci], auto, parameterization, theta, n))
+            for p in got:
+                p.points.setflags(write=False)
+                if p.prc is not None:
+                    p.prc.setflags(write=False)
+            _CURVE_PIECES.put(key, got)
+        pieces.extend(got)
     net = Network(drawing, pieces, bottoms, apex, parameterization, choices)
     _add_pillars(net, n)
     return net
+
+
+class _Lru:
+    """A small thread-tolerant LRU dict (the studio builds from several threads)."""
+
+    def __init__(self, size: int):
+        self.size = size
+        self.data: OrderedDict = OrderedDict()
+
+    def get(self, key: object):  # noqa: ANN201
+        v = self.data.get(key)
+        if v is not None:
+            try:
+                self.data.move_to_end(key)
+            except KeyError:
+                pass
+        return v
+
+    def put(self, key: object, value: object) -> None:
+        self.data[key] = value
+        while len(self.data) > self.size:
+            try:
+                self.data.popitem(last=False)
+            except KeyError:
+                break
+
+
+#: The pieces of one basic curve, keyed by everything they depend on: the curve, its layer's
+#: bottom, its apex, its automatic PRCs, the parameterisation, samples and tolerances. An edit
+#: rebuilds only the curves it changes (pillars, which depend on other curves, always are).
+#: Cached pieces are shared between networks; their arrays are read-only.
+_CURVE_PIECES = _Lru(1024)
 
 
 def _heights(c: BasicCurve, bottom: float, apex: float, where: str) -> list[float]:

@@ -140,49 +140,71 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
     """
     tol = TOL
     segs = oriented_segments(drawing)
-    reps: list[tuple[int, int, str, Curve, int]] = []   # curve, segment, label, curve, group index
-    keys = {(ci, si): _segment_key(drawing, ci, si) for ci, si, _ in segs}
+    if not segs:
+        return []
+    ids = {(ci, si): _key_id(_segment_key(drawing, ci, si)) for ci, si, _ in segs}
+    layers = tuple(c.layer for c in drawing.curves) if layer_only else ()
+    if layer_only and len(set(layers)) <= 1:
+        layer_only, layers = False, ()   # one layer: the same result, and the same cache entry
+    whole = (tuple(ids.items()), layers, tol.param_equal)
+    hit = _RESULTS.get(whole)
+    if hit is not None:
+        return list(hit)
+    reps: list[tuple[int, int, str, Curve, int, int]] = []   # curve, segment, label, curve, group index, key id
     for ci, si, top in segs:
         sym = drawing.curves[ci].symmetry
+        kid = ids[(ci, si)]
         for k, (lab, rep) in enumerate(zip(sym.labels(), _replicas(top, sym))):
-            reps.append((ci, si, lab, rep, k))
-    basics = [top for _, _, top in segs]
-    if not basics:
-        return []
-    scale = max(1.0, float(np.max(np.abs([t.start for t in basics] + [t.end for t in basics]))))
+            reps.append((ci, si, lab, rep, k, kid))
+    scale = None
     out = []
-    for i, (ci, si, top) in enumerate(segs):
-        wanted = []
-        for j, (cj, sj, lab, rep, k) in enumerate(reps):
-            same_family = ci == cj and si == sj
-            if same_family and k == 0:
+    data = _PAIRS.data   # the OrderedDict itself: this loop runs for every pair of every rebuild
+    param_equal = tol.param_equal
+    for ci, si, top in segs:
+        kid_i = ids[(ci, si)]
+        layer_i = drawing.curves[ci].layer
+        found_here: list = []   # per wanted replica: (index into reps, pair key, hits or _MISS)
+        missing: list[int] = []
+        for j, (cj, sj, _lab, _rep, k, kid_j) in enumerate(reps):
+            if k == 0 and ci == cj and si == sj:
                 continue
-            if layer_only and drawing.curves[ci].layer != drawing.curves[cj].layer:
+            if layer_only and layer_i != layers[cj]:
                 continue
-            wanted.append(j)
-        pair_keys = [(keys[(ci, si)], keys[reps[j][:2]], reps[j][4]) for j in wanted]
-        missing = [j for j, pk in zip(wanted, pair_keys) if pk not in _PAIRS]
-        fresh: dict = {}
+            pk = (kid_i, kid_j, k)
+            v = data.get(pk, _MISS)
+            if v is _MISS:
+                missing.append(len(found_here))
+            else:
+                try:
+                    data.move_to_end(pk)
+                except KeyError:  # evicted meanwhile by another thread; v is still right
+                    pass
+            found_here.append((j, pk, v))
         if missing:
-            found = intersect_many([top], [reps[j][3] for j in missing])
-            for n, j in enumerate(missing):
+            if scale is None:
+                ends = [t.start for _, _, t in segs] + [t.end for _, _, t in segs]
+                scale = max(1.0, float(np.max(np.abs(ends))))
+            found = intersect_many([top], [reps[found_here[m][0]][3] for m in missing])
+            for n, m in enumerate(missing):
+                j, pk, _ = found_here[m]
                 rep = reps[j][3]
                 hits = tuple(
                     (float(top.u_at_t(h.t1)), float(rep.u_at_t(h.t2)), h.point) for h in found.get((0, n), ())
                 )
-                same = (ci, si) == reps[j][:2] and _same_curve(top, rep, 1e-9 * scale)
-                pk = (keys[(ci, si)], keys[reps[j][:2]], reps[j][4])
-                fresh[pk] = None if same else hits
-                _PAIRS.put(pk, fresh[pk])
-        for j, pk in zip(wanted, pair_keys):
-            hits = fresh[pk] if pk in fresh else _PAIRS.get(pk)
+                # an identical replica overlaps the segment everywhere: it has hits, and is left out
+                same = bool(hits) and (ci, si) == reps[j][:2] and _same_curve(top, rep, 1e-9 * scale)
+                v = None if same else hits
+                _PAIRS.put(pk, v)
+                found_here[m] = (j, pk, v)
+        for j, _pk, hits in found_here:
             if not hits:
                 continue
-            cj, sj, lab, rep, k = reps[j]
+            cj, sj, lab, _rep, _k, _ = reps[j]
             same_family = ci == cj and si == sj
             for u, u2, pt in hits:
-                true = (abs(u - u2) <= tol.param_equal) if same_family else True
+                true = (abs(u - u2) <= param_equal) if same_family else True
                 out.append(TopIntersection(ci, si, cj, sj, lab, u, u2, pt, same_family, true))
+    _RESULTS.put(whole, tuple(out))
     return out
 
 
@@ -204,16 +226,40 @@ class _PairCache:
     def get(self, key: object):  # noqa: ANN201
         v = self.data.get(key)
         if v is not None:
-            self.data.move_to_end(key)
+            try:
+                self.data.move_to_end(key)
+            except KeyError:  # evicted meanwhile by another thread: still a valid result
+                pass
         return v
 
     def put(self, key: object, value: object) -> None:
         self.data[key] = value
-        if len(self.data) > self.size:
-            self.data.popitem(last=False)
+        while len(self.data) > self.size:
+            try:
+                self.data.popitem(last=False)
+            except KeyError:  # emptied meanwhile by another thread
+                break
 
 
 _PAIRS = _PairCache()
+_MISS = object()
+#: Whole results of :func:`intersections`, keyed by the segments' key ids (an apex drag hits).
+_RESULTS = _PairCache(64)
+#: Segment keys -> small integers, so pair keys hash cheaply. Ids are never reused: when the
+#: table is cleared, keys get fresh ids and the cached pairs of the old ids simply go unused.
+_KEY_IDS: dict = {}
+_NEXT_ID = [0]
+
+
+def _key_id(key: tuple) -> int:
+    """A small integer standing for a segment key (same key, same id while the table lasts)."""
+    kid = _KEY_IDS.get(key)
+    if kid is None:
+        if len(_KEY_IDS) >= 50000:
+            _KEY_IDS.clear()
+        kid = _KEY_IDS[key] = _NEXT_ID[0]
+        _NEXT_ID[0] += 1
+    return kid
 
 
 def _segment_key(drawing: Drawing, ci: int, si: int) -> tuple:

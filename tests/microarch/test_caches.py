@@ -1,0 +1,73 @@
+"""The engine's caches (pair intersections, whole results, per-curve pieces) never change a result."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from auszug import examples
+from auszug.formats import load
+from auszug.microarch import build, edit, network, prc
+
+NAMES = ["web/U.XI.28.uc", "web/3d-scan-final.uc", "legacy/U.XI.22.uc", "web/U.XI.91.uc"]
+
+
+def _cold() -> None:
+    prc._PAIRS.data.clear()
+    prc._RESULTS.data.clear()
+    prc._CHOICES.data.clear()
+    network._CURVE_PIECES.data.clear()
+
+
+def _key(x: prc.TopIntersection) -> tuple:
+    return (x.curve, x.segment, x.other_curve, x.other_segment, x.replica, x.u, x.u_other,
+            tuple(x.point.tolist()), x.same_family, x.true)
+
+
+@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("layer_only", [False, True])
+def test_intersections_cold_warm_and_after_an_edit(name, layer_only):
+    d = load(examples.path(name))
+    moved = edit.move_vertex(d, 0, 0, tuple(np.add(d.curves[0].vertices[0], (1e-3, -2e-3))))
+    _cold()
+    cold = [_key(x) for x in prc.intersections(moved, layer_only)]
+    _cold()
+    prc.intersections(d, layer_only)                     # warm the pairs the edit does not touch
+    warm = [_key(x) for x in prc.intersections(moved, layer_only)]
+    again = [_key(x) for x in prc.intersections(moved, layer_only)]   # the whole-result cache
+    assert cold == warm == again and cold
+
+
+def test_one_layer_layer_only_is_the_same_result():
+    d = load(examples.path("web/U.XI.28.uc"))
+    assert len({c.layer for c in d.curves}) == 1
+    assert [_key(x) for x in prc.intersections(d, True)] == [_key(x) for x in prc.intersections(d, False)]
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_build_with_cached_curves_equals_a_cold_build(name):
+    d = load(examples.path(name))
+    h = d.apex_height(1)
+    edited = edit.set_apex_height(d, 1, h * 1.01)
+    _cold()
+    cold = build(edited)
+    _cold()
+    build(d)
+    warm = build(edited)
+    assert len(cold.pieces) == len(warm.pieces)
+    for a, b in zip(cold.pieces, warm.pieces):
+        assert (a.basic, a.segment, a.kind) == (b.basic, b.segment, b.kind)
+        np.testing.assert_array_equal(a.points, b.points)
+    shared = [p for p in warm.pieces if p.basic != 1 and p.kind not in ("pillar",)]
+    assert shared and all(p in build(d).pieces for p in shared)   # unchanged curves' pieces are reused
+    assert not shared[0].points.flags.writeable                       # and read-only
+
+
+def test_cached_pieces_follow_the_tolerances():
+    from auszug.geometry import tolerances
+
+    d = load(examples.path("teaching-sheet/tn-2.uc"))
+    n0 = len(build(d).pieces[0].points)
+    with tolerances(samples=11):
+        assert len(build(d).pieces[0].points) == 11
+    assert len(build(d).pieces[0].points) == n0

@@ -75,3 +75,154 @@ def test_save_round_trip(workspace):
     s.apply(P.SetApexHeight(curve=0, height=2.5))
     assert s.save("edited.json") == "edited.json"
     assert load(workspace / "edited.json") == s.drawing
+
+
+# ---------------------------------------------------------------- the fast geometry path
+
+
+FAST_CASES = ["web/U.XI.28.uc", "web/3d-scan-final.uc", "legacy/U.XI.22.uc", "teaching-sheet/tn-9.uc",
+              "teaching-sheet/tn-12.uc", "web/two_curves.uc"]
+
+
+@pytest.mark.parametrize("name", FAST_CASES)
+def test_fast_geometry_text_equals_dataclass_encoding(name):
+    """geometry_frames' hand-written JSON is exactly json.dumps(dataclasses.asdict(msg)), for any id."""
+    import dataclasses
+    import json
+
+    from auszug import examples
+    from auszug.studio.session import geometry_frames
+
+    d = load(examples.path(name))
+    kw = dict(path="sub/x.uc", revision=17, can_undo=True, can_redo=False, dirty=True,
+              recoverable="2026-01-02T03:04:05+00:00")
+    text, payload = geometry_frames(d, **kw)
+    for msg_id in (0, 5, 123456):
+        msg, payload2 = geometry(d, msg_id=msg_id, **kw)
+        assert payload == payload2
+        assert text.text(msg_id) == P.encode(msg)
+        assert text.text(msg_id) == json.dumps(dataclasses.asdict(msg), separators=(",", ":"), allow_nan=False)
+    assert json.loads(text.text(1))["pieces"][0]["points"]["dtype"] == "f4"
+
+
+def test_empty_drawing_geometry():
+    from auszug.microarch.model import Drawing
+
+    msg, payload = geometry(Drawing((), name="blank"))
+    assert (msg.n_curves, msg.pieces, msg.bounds, payload, msg.binary_floats) == (0, [], [0.0] * 6, b"", 0)
+
+
+def test_bounds_equal_the_networks():
+    from auszug import examples
+    from auszug.studio.session import _bounds
+
+    for name in FAST_CASES:
+        net = build(load(examples.path(name)))
+        want = net.bounds().ravel()
+        np.testing.assert_allclose(_bounds(net), want, rtol=0, atol=1e-14 * np.abs(want).max())   # to rounding
+
+
+def test_network_of_reuses_one_build_per_drawing(workspace):
+    from auszug.studio.session import network_of
+
+    d = load(workspace / "tn-2.uc")
+    assert network_of(d) is network_of(d)
+    assert network_of(d) is not network_of(load(workspace / "tn-2.uc"))   # keyed by the object, not its value
+
+
+def test_undo_redo_reuse_networks(workspace, monkeypatch):
+    import auszug.studio.session as S
+
+    s = Session(Workspace(workspace))
+    s.open("tn-2.uc")
+    s.apply(P.SetApexHeight(curve=0, height=2.5))
+    built = []
+    monkeypatch.setattr(S, "build", lambda d: built.append(d) or build(d))
+    s.undo()
+    s.redo()
+    assert built == []   # the networks of both drawings were kept
+
+
+def test_revisions_increase_across_documents(workspace):
+    from auszug.studio.session import new_document, open_document
+
+    ws = Workspace(workspace)
+    a = open_document(ws, "tn-2.uc")
+    b = new_document(ws, "x")
+    r = b.revision
+    a.apply(P.SetApexHeight(curve=0, height=2.5))
+    assert b.revision < a.revision and r > 0
+
+
+def test_dirty_follows_the_file_state(workspace):
+    from auszug.studio.session import open_document
+
+    doc = open_document(Workspace(workspace), "tn-2.uc")
+    assert not doc.dirty
+    doc.apply(P.SetApexHeight(curve=0, height=2.5))
+    assert doc.dirty
+    doc.undo()
+    assert not doc.dirty
+    doc.redo()
+    doc.save()
+    assert not doc.dirty and load(workspace / "tn-2.uc").curves[0].height == 2.5
+
+
+# ---------------------------------------------------------------- workspace
+
+
+def test_workspace_refuses_symlink_escapes(workspace, tmp_path):
+    import os
+
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "x.uc").write_text("secret")
+    os.symlink(outside / "x.uc", workspace / "link.uc")
+    os.symlink(outside, workspace / "dir")
+    os.symlink(workspace / "tn-2.uc", workspace / "ok.uc")
+    ws = Workspace(workspace)
+    for rel in ("link.uc", "dir/x.uc", "dir/new.json", "dir/../../outside/x.uc"):
+        with pytest.raises(WorkspaceError, match="is outside the workspace"):
+            ws.resolve(rel)
+        with pytest.raises(WorkspaceError, match="is outside the workspace"):
+            ws.resolve_for_writing(rel)
+    assert ws.resolve("ok.uc") == (workspace / "tn-2.uc").resolve()
+
+
+def test_workspace_symlink_loop(workspace):
+    import os
+
+    os.symlink(workspace / "a.uc", workspace / "b.uc")
+    os.symlink(workspace / "b.uc", workspace / "a.uc")
+    with pytest.raises(WorkspaceError):
+        Workspace(workspace).resolve("a.uc")
+
+
+def test_workspace_writing_needs_a_regular_file(workspace):
+    import os
+
+    (workspace / "d.json").mkdir()
+    os.mkfifo(workspace / "p.json")
+    ws = Workspace(workspace)
+    with pytest.raises(WorkspaceError, match="it is a folder"):
+        ws.resolve_for_writing("d.json")
+    with pytest.raises(WorkspaceError, match="not a regular file"):
+        ws.resolve_for_writing("p.json")
+    with pytest.raises(WorkspaceError, match="the workspace folder itself"):
+        ws.resolve_for_writing(".")
+    assert ws.resolve_for_writing("new/fresh.json") == workspace.resolve() / "new" / "fresh.json"
+
+
+def test_open_errors_name_the_file(workspace):
+    from auszug.errors import FormatError
+    from auszug.studio.session import open_document
+
+    (workspace / "bad.uc").write_text("numCurves 1\nunitCurve zero\n")
+    (workspace / "bin.uc").write_bytes(b"\xff\xfe\x00")
+    ws = Workspace(workspace)
+    with pytest.raises(FormatError, match=r"^bad\.uc:2: "):
+        open_document(ws, "bad.uc")
+    with pytest.raises(FormatError, match=r"^bin\.uc: not a text file"):
+        open_document(ws, "bin.uc")
+    with pytest.raises(WorkspaceError, match="no such file in the workspace: 'nope.uc'"):
+        open_document(ws, "nope.uc")

@@ -1,28 +1,68 @@
-"""One studio session: the current drawing, its undo/redo stacks and its geometry.
+"""Studio documents: a drawing with its undo/redo history, its network and its geometry message.
 
-No networking here: :class:`Session` turns protocol messages into new drawings
-and :func:`geometry` turns a drawing into a :class:`~auszug.studio.protocol.Geometry`
-message plus its float32 payload. The server only moves bytes.
+No networking here. A :class:`Document` turns protocol messages into new
+drawings; :func:`geometry` (and the fast :func:`geometry_frames` the server
+sends) turns a drawing into a :class:`~auszug.studio.protocol.Geometry`
+message plus its float32 payload. :class:`Workspace` confines every path to
+the workspace folder. The server (:mod:`auszug.studio.server`) shares one
+document between all tabs that have the same file open (:mod:`auszug.studio.hub`).
+
+Speed: an edit builds the network once (:func:`network_of` keeps the last
+networks by drawing object, so undo and redo rebuild nothing), and the
+geometry JSON is written from plain dicts without dataclasses (same text as
+``protocol.encode`` of the dataclass message; a test checks it).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from pathlib import Path
+import itertools
+import json
+import os
+import stat
+import threading
+from collections import OrderedDict
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
+from pathlib import Path, PurePosixPath
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from auszug.errors import AuszugError
+from auszug.errors import AuszugError, DrawingError, FormatError
 from auszug.microarch.model import Drawing
-from auszug.microarch.network import build
+from auszug.microarch.network import Network, build
 from auszug.microarch.prc import intersections
 from auszug.studio import protocol as P
 
-__all__ = ["WorkspaceError", "Workspace", "Session", "geometry", "curve_infos", "replica_transforms"]
+__all__ = [
+    "WorkspaceError",
+    "Workspace",
+    "AUTOSAVE_DIR",
+    "DRAWING_SUFFIXES",
+    "Document",
+    "Session",
+    "network_of",
+    "geometry",
+    "geometry_frames",
+    "curve_infos",
+    "replica_transforms",
+    "check_file_name",
+    "read_drawing",
+    "example_document",
+    "text_document",
+    "new_document",
+    "open_document",
+]
 
 #: How many edits undo remembers.
 UNDO_DEPTH = 500
+#: Where autosaves live, relative to the workspace.
+AUTOSAVE_DIR = ".auszug/autosave"
+#: Drawing files the studio opens, saves and lists.
+DRAWING_SUFFIXES = (".uc", ".json")
+#: Revisions count up over all documents, so a tab that moves to another document never goes back.
+_REVISIONS = itertools.count(1)
 
 
 class WorkspaceError(AuszugError, ValueError):
@@ -32,6 +72,9 @@ class WorkspaceError(AuszugError, ValueError):
 @dataclass(frozen=True)
 class Workspace:
     """The folder the studio may read and write; every path is resolved inside it.
+
+    Symbolic links are followed before the check, so a link (or a linked
+    folder) inside the workspace that points outside it is refused too.
 
     Examples
     --------
@@ -45,25 +88,125 @@ class Workspace:
     root: Path
 
     def resolve(self, rel: str) -> Path:
-        """The absolute path of ``rel``; refuses anything that resolves outside the root."""
+        """The absolute, link-free path of ``rel``; refuses anything that resolves outside the root.
+
+        Raises
+        ------
+        WorkspaceError
+            For an empty path, a NUL byte, or a path (or link target) outside the workspace.
+        """
         if not rel or "\x00" in rel:
             raise WorkspaceError("expected a file name inside the workspace")
         root = self.root.resolve()
-        p = (root / rel).resolve()
+        try:
+            p = (root / rel).resolve()
+        except (OSError, RuntimeError) as e:  # a symlink loop
+            raise WorkspaceError(f"{rel!r}: cannot resolve ({e})") from None
         if p != root and root not in p.parents:
             raise WorkspaceError(f"{rel!r} is outside the workspace")
+        return p
+
+    def resolve_for_writing(self, rel: str) -> Path:
+        """:meth:`resolve`, and refuse targets that are not regular files or lie in the autosave folder."""
+        p = self.resolve(rel)
+        if p == self.root.resolve():
+            raise WorkspaceError(f"{rel!r} is the workspace folder itself, not a file")
+        try:
+            st = p.lstat()
+        except FileNotFoundError:
+            st = None
+        if st is not None and not stat.S_ISREG(st.st_mode):
+            what = "a folder" if stat.S_ISDIR(st.st_mode) else "not a regular file"
+            raise WorkspaceError(f"{rel!r}: cannot save over it, it is {what}")
+        reserved = self.root.resolve() / ".auszug"
+        if reserved == p or reserved in p.parents:
+            raise WorkspaceError(f"{rel!r}: the .auszug folder is reserved for autosaves")
         return p
 
     def relative(self, p: Path) -> str:
         """``p`` relative to the root, with forward slashes."""
         return p.resolve().relative_to(self.root.resolve()).as_posix()
 
+    def autosave_path(self, key: str) -> Path:
+        """Where the autosave of ``key`` goes: a workspace path, or ``unsaved/<name>``."""
+        return self.root.resolve() / AUTOSAVE_DIR / (key + ".json")
+
+    def drawings(self, limit: int = 10000) -> list[str]:
+        """Drawing files (.uc, .json) below the root, relative and sorted.
+
+        Hidden folders (``.auszug`` with the autosaves, ``.git``...) and
+        ``node_modules`` are skipped, as are network files (``*.network.json``),
+        tracery styles (``*.tracery.json``) and links that lead outside the workspace.
+        """
+        root = self.root.resolve()
+        out: list[str] = []
+        for dirpath, dirnames, filenames in os.walk(root):
+            dirnames[:] = sorted(d for d in dirnames if not d.startswith(".") and d != "node_modules")
+            for fn in filenames:
+                low = fn.lower()
+                if fn.startswith(".") or not low.endswith(DRAWING_SUFFIXES):
+                    continue
+                if low.endswith((".network.json", ".tracery.json")):
+                    continue
+                p = Path(dirpath) / fn
+                try:
+                    real = p.resolve()
+                except OSError:
+                    continue
+                if (root in real.parents) and real.is_file():
+                    out.append(p.relative_to(root).as_posix())
+                    if len(out) >= limit:
+                        return sorted(out)
+        return sorted(out)
+
+
+# ---------------------------------------------------------------- networks and geometry
+
+_NETS: "OrderedDict[int, tuple[Drawing, Network]]" = OrderedDict()
+_NETS_LOCK = threading.Lock()
+_NETS_SIZE = 64
+
+
+def network_of(drawing: Drawing) -> Network:
+    """The network of ``drawing``, built once per drawing object (the last few are kept).
+
+    The cache holds the drawing itself, so its ``id`` is not reused while the
+    entry lives; undo and redo find their networks here.
+    """
+    key = id(drawing)
+    with _NETS_LOCK:
+        hit = _NETS.get(key)
+        if hit is not None and hit[0] is drawing:
+            _NETS.move_to_end(key)
+            return hit[1]
+    net = build(drawing)
+    with _NETS_LOCK:
+        _NETS[key] = (drawing, net)
+        while len(_NETS) > _NETS_SIZE:
+            _NETS.popitem(last=False)
+    return net
+
+
+@lru_cache(maxsize=1024)
+def _transforms(sym: Any) -> NDArray[np.float64]:  # noqa: ANN401 - a Symmetry
+    m = sym.matrices()
+    c = np.asarray(sym.center)
+    k = len(m)
+    t = np.zeros((k, 4, 4))
+    t[:, :2, :2] = m
+    t[:, 2, 2] = 1.0
+    t[:, 3, 3] = 1.0
+    t[:, :2, 3] = c - np.einsum("kij,j->ki", m, c)
+    out = np.ascontiguousarray(t.transpose(0, 2, 1)).reshape(k, 16)
+    out.setflags(write=False)
+    return out
+
 
 def replica_transforms(drawing: Drawing, basic: int) -> NDArray[np.float64]:
     """Column-major 4x4 transforms (k, 16) of the replicas of basic curve ``basic``.
 
     Replica j maps (x, y, z) to (M_j (xy - c) + c, z) with M_j the symmetry
-    group's 2x2 matrix and c its centre.
+    group's 2x2 matrix and c its centre. The array is read-only (cached).
 
     Examples
     --------
@@ -73,45 +216,49 @@ def replica_transforms(drawing: Drawing, basic: int) -> NDArray[np.float64]:
     >>> t.shape, t[1].reshape(4, 4).T[:2, :2].round(12).tolist()
     ((4, 16), [[0.0, -1.0], [1.0, 0.0]])
     """
-    sym = drawing.curves[basic].symmetry
-    m = sym.matrices()
-    c = np.asarray(sym.center)
-    k = len(m)
-    t = np.zeros((k, 4, 4))
-    t[:, :2, :2] = m
-    t[:, 2, 2] = 1.0
-    t[:, 3, 3] = 1.0
-    t[:, :2, 3] = c - np.einsum("kij,j->ki", m, c)
-    return np.ascontiguousarray(t.transpose(0, 2, 1)).reshape(k, 16)
+    return _transforms(drawing.curves[basic].symmetry)
 
 
-def _handles(seg) -> list[tuple[float, float]]:  # noqa: ANN001
-    return [(float(h[0]), float(h[1])) for h in seg.handles]
+def _xy(p: Any) -> list[float]:  # noqa: ANN401
+    return [float(p[0]), float(p[1])]
+
+
+@lru_cache(maxsize=4096)
+def _curve_info(c: Any, apex: float, bottom: float) -> dict:  # noqa: ANN401 - a BasicCurve
+    sym = c.symmetry
+    return {
+        "vertices": [_xy(v) for v in c.vertices],
+        "handles": [[_xy(h) for h in sg.handles] for sg in c.segments],
+        "marks": list(c.marks),
+        "fold": sym.fold,
+        "mirror": sym.axis_rule if sym.mirror else "none",
+        "axis": _xy(sym.axis) if sym.mirror else None,
+        "center": _xy(sym.center),
+        "layer": c.layer,
+        "apex": float(apex),
+        "bottom": float(bottom),
+        "prc": list(c.prc),
+        "decoration": c.decoration,
+        "decoration_at": c.decoration_at,
+        "post_top": c.post_top,
+        "name": c.name,
+    }
+
+
+def _curve_dicts(drawing: Drawing) -> list[dict]:
+    bottoms = drawing.bottoms()
+    return [_curve_info(c, drawing.apex_height(i, bottoms), bottoms[c.layer]) for i, c in enumerate(drawing.curves)]
 
 
 def curve_infos(drawing: Drawing) -> list[P.CurveInfo]:
     """The editable definition of every basic curve, as the design tools show it."""
-    bottoms = drawing.bottoms()
     out = []
-    for i, c in enumerate(drawing.curves):
-        sym = c.symmetry
-        out.append(P.CurveInfo(
-            vertices=[(float(x), float(y)) for x, y in c.vertices],
-            handles=[_handles(sg) for sg in c.segments],
-            marks=list(c.marks),
-            fold=sym.fold,
-            mirror=sym.axis_rule if sym.mirror else "none",
-            axis=[float(sym.axis[0]), float(sym.axis[1])] if sym.mirror else None,
-            center=(float(sym.center[0]), float(sym.center[1])),
-            layer=c.layer,
-            apex=float(drawing.apex_height(i, bottoms)),
-            bottom=float(bottoms[c.layer]),
-            prc=list(c.prc),
-            decoration=c.decoration,
-            decoration_at=c.decoration_at,
-            post_top=c.post_top,
-            name=c.name,
-        ))
+    for d in _curve_dicts(drawing):
+        kw = dict(d)
+        kw["vertices"] = [tuple(v) for v in d["vertices"]]
+        kw["handles"] = [[tuple(h) for h in hs] for hs in d["handles"]]
+        kw["center"] = tuple(d["center"])
+        out.append(P.CurveInfo(**kw))
     return out
 
 
@@ -124,35 +271,51 @@ def _side(points: NDArray[np.float64]) -> NDArray[np.float64]:
 
 def _layer_bottoms(drawing: Drawing) -> list[float]:
     b = list(drawing.bottoms())
-    return b + [float(z) for z in drawing.layer_bottoms[len(b):]]
+    return [float(z) for z in b] + [float(z) for z in drawing.layer_bottoms[len(b):]]
 
 
-def geometry(drawing: Drawing, *, path: str = "", revision: int = 0, can_undo: bool = False,
-             can_redo: bool = False, msg_id: int = 0, dirty: bool = False,
-             recoverable: str = "") -> tuple[P.Geometry, bytes]:
-    """The :class:`~auszug.studio.protocol.Geometry` message of ``drawing`` and its binary payload.
+def _bounds(net: Network) -> list[float]:
+    """:meth:`Network.bounds` (min corner, max corner) as 6 floats, by matrix products per curve."""
+    lo = np.full(3, np.inf)
+    hi = np.full(3, -np.inf)
+    by_basic: dict[int, list[NDArray[np.float64]]] = {}
+    for p in net.pieces:
+        by_basic.setdefault(p.basic, []).append(p.points)
+    for b, pts in by_basic.items():
+        sym = net.drawing.curves[b].symmetry
+        c = np.asarray(sym.center)
+        a = np.concatenate(pts) if len(pts) > 1 else pts[0]
+        xy = np.matmul(sym.matrices(), (a[:, :2] - c).T)    # (k, 2, n)
+        lo[:2] = np.minimum(lo[:2], xy.min(axis=(0, 2)) + c)
+        hi[:2] = np.maximum(hi[:2], xy.max(axis=(0, 2)) + c)
+        lo[2] = min(lo[2], float(a[:, 2].min()))
+        hi[2] = max(hi[2], float(a[:, 2].max()))
+    return [float(v) for v in lo] + [float(v) for v in hi]
 
-    Posts and pillars that lie on a mirror axis are their own mirror image;
-    their duplicate replicas are left out, as :meth:`Network.curves` does, so
-    ``n_replicas`` equals the number of network curves.
-    """
-    net = build(drawing)
-    chunks: list[NDArray[np.float32]] = []
+
+def _ref(offset: int, shape: tuple[int, ...]) -> dict:
+    return {"offset": offset, "shape": list(shape), "dtype": "f4"}
+
+
+def _geometry_body(drawing: Drawing, net: Network) -> tuple[dict, bytes]:
+    """Everything of the geometry message that depends on the drawing only, and the payload."""
+    arrays: list[NDArray[np.float64]] = []
     offset = 0
 
-    def put(a: NDArray[np.float64]) -> P.ArrayRef:
+    def put(a: NDArray[np.float64]) -> dict:
         nonlocal offset
-        a32 = np.ascontiguousarray(a, dtype="<f4")
-        chunks.append(a32.ravel())
-        ref = P.ArrayRef(offset=offset, shape=list(a32.shape))
-        offset += a32.size
+        arrays.append(a)
+        ref = _ref(offset, a.shape)
+        offset += a.size
         return ref
 
     pieces = []
     n_rep = 0
+    curves = drawing.curves
     for p in net.pieces:
-        tr = replica_transforms(drawing, p.basic)
-        labels = drawing.curves[p.basic].symmetry.labels()
+        sym = curves[p.basic].symmetry
+        tr = _transforms(sym)
+        labels = sym.labels()
         if p.top is None:  # vertical: drop replicas that coincide with an earlier one
             reps = net.replicate(p)
             keep: list[int] = []
@@ -162,105 +325,509 @@ def geometry(drawing: Drawing, *, path: str = "", revision: int = 0, can_undo: b
             tr = tr[keep]
             labels = [labels[k] for k in keep]
         n_rep += len(tr)
-        pieces.append(P.PieceGeometry(
-            basic=p.basic, segment=p.segment, layer=drawing.curves[p.basic].layer, kind=p.kind,
-            points=put(p.points), side=put(_side(p.points)), transforms=put(tr), labels=labels,
-            prc=None if p.prc is None else [float(v) for v in p.prc],
-            prc_s=None if p.prc_fraction is None or p.top is None
+        pieces.append({
+            "basic": p.basic, "segment": p.segment, "layer": curves[p.basic].layer, "kind": p.kind,
+            "points": put(p.points), "side": put(_side(p.points)), "transforms": put(tr), "labels": labels,
+            "prc": None if p.prc is None else [float(v) for v in p.prc],
+            "prc_s": None if p.prc_fraction is None or p.top is None
             else float(p.prc_fraction * p.top.length()),
-        ))
+        })
     markers = [
-        P.IntersectionMarker(curve=x.curve, segment=x.segment, other_curve=x.other_curve,
-                             other_segment=x.other_segment, replica=x.replica,
-                             point=(float(x.point[0]), float(x.point[1])), true=bool(x.true))
+        {"curve": x.curve, "segment": x.segment, "other_curve": x.other_curve,
+         "other_segment": x.other_segment, "replica": x.replica,
+         "point": [float(x.point[0]), float(x.point[1])], "true": bool(x.true)}
         for x in intersections(drawing)
     ]
-    bounds = [float(v) for v in net.bounds().ravel()] if net.pieces else [0.0] * 6
-    payload = np.concatenate(chunks).astype("<f4").tobytes() if chunks else b""
-    msg = P.Geometry(
-        revision=revision, path=path, name=drawing.name, n_curves=len(drawing.curves),
-        n_replicas=n_rep, pieces=pieces, intersections=markers, curves=curve_infos(drawing),
-        layers=[float(z) for z in _layer_bottoms(drawing)], bounds=bounds,
-        can_undo=can_undo, can_redo=can_redo, dirty=dirty, recoverable=recoverable,
-        binary_floats=offset, id=msg_id,
-    )
-    return msg, payload
+    bounds = _bounds(net) if net.pieces else [0.0] * 6
+    if arrays:
+        buf = np.empty(offset, dtype="<f4")
+        o = 0
+        for a in arrays:
+            buf[o:o + a.size] = a.ravel()
+            o += a.size
+        payload = buf.tobytes()
+    else:
+        payload = b""
+    body = {
+        "name": drawing.name, "n_curves": len(curves), "n_replicas": n_rep, "pieces": pieces,
+        "intersections": markers, "curves": _curve_dicts(drawing), "layers": _layer_bottoms(drawing),
+        "bounds": bounds, "binary_floats": offset,
+    }
+    return body, payload
+
+
+def _geometry_dict(body: dict, *, path: str, revision: int, can_undo: bool, can_redo: bool,
+                   dirty: bool, recoverable: str) -> dict:
+    """The Geometry message as a dict in field order, without the trailing id/protocol/type."""
+    return {
+        "revision": revision, "path": path, "name": body["name"], "n_curves": body["n_curves"],
+        "n_replicas": body["n_replicas"], "pieces": body["pieces"], "intersections": body["intersections"],
+        "curves": body["curves"], "layers": body["layers"], "bounds": body["bounds"],
+        "can_undo": can_undo, "can_redo": can_redo, "dirty": dirty, "recoverable": recoverable,
+        "binary_floats": body["binary_floats"],
+    }
+
+
+class GeometryText:
+    """The JSON text of a Geometry message for any ``id``: the body is encoded once.
+
+    ``text(msg_id)`` equals ``protocol.encode`` of the dataclass message with that id.
+    """
+
+    __slots__ = ("_head",)
+
+    def __init__(self, d: dict):
+        self._head = json.dumps(d, separators=(",", ":"), allow_nan=False)[:-1]
+
+    def text(self, msg_id: int = 0) -> str:
+        """The message text with ``id`` = ``msg_id``."""
+        return f'{self._head},"id":{int(msg_id)},"protocol":{P.PROTOCOL_VERSION},"type":"geometry"}}'
+
+
+def geometry_frames(drawing: Drawing, *, net: Network | None = None, path: str = "", revision: int = 0,
+                    can_undo: bool = False, can_redo: bool = False, dirty: bool = False,
+                    recoverable: str = "") -> tuple[GeometryText, bytes]:
+    """The geometry message of ``drawing`` as ready-to-send text (for any id) and its binary payload.
+
+    The fast path of :func:`geometry`: no dataclasses, the network built once
+    (``net``, or :func:`network_of`).
+    """
+    body, payload = _geometry_body(drawing, network_of(drawing) if net is None else net)
+    d = _geometry_dict(body, path=path, revision=revision, can_undo=can_undo, can_redo=can_redo,
+                       dirty=dirty, recoverable=recoverable)
+    return GeometryText(d), payload
+
+
+def _message(d: dict, msg_id: int) -> P.Geometry:
+    """The dataclass of a geometry dict (for the Python API and the tests)."""
+    pieces = [P.PieceGeometry(**{**p, "points": P.ArrayRef(**p["points"]), "side": P.ArrayRef(**p["side"]),
+                                 "transforms": P.ArrayRef(**p["transforms"])}) for p in d["pieces"]]
+    markers = [P.IntersectionMarker(**{**m, "point": tuple(m["point"])}) for m in d["intersections"]]
+    curves = []
+    for c in d["curves"]:
+        kw = dict(c)
+        kw["vertices"] = [tuple(v) for v in c["vertices"]]
+        kw["handles"] = [[tuple(h) for h in hs] for hs in c["handles"]]
+        kw["center"] = tuple(c["center"])
+        curves.append(P.CurveInfo(**kw))
+    return P.Geometry(**{**d, "pieces": pieces, "intersections": markers, "curves": curves, "id": msg_id})
+
+
+def geometry(drawing: Drawing, *, path: str = "", revision: int = 0, can_undo: bool = False,
+             can_redo: bool = False, msg_id: int = 0, dirty: bool = False,
+             recoverable: str = "", net: Network | None = None) -> tuple[P.Geometry, bytes]:
+    """The :class:`~auszug.studio.protocol.Geometry` message of ``drawing`` and its binary payload.
+
+    Posts and pillars that lie on a mirror axis are their own mirror image;
+    their duplicate replicas are left out, as :meth:`Network.curves` does, so
+    ``n_replicas`` equals the number of network curves.
+    """
+    body, payload = _geometry_body(drawing, network_of(drawing) if net is None else net)
+    d = _geometry_dict(body, path=path, revision=revision, can_undo=can_undo, can_redo=can_redo,
+                       dirty=dirty, recoverable=recoverable)
+    return _message(d, msg_id), payload
+
+
+# ---------------------------------------------------------------- documents
+
+
+def check_file_name(name: str) -> str:
+    """``name`` if it is a plain file name (no folder, not empty, no NUL); else :class:`WorkspaceError`."""
+    if not name or name in (".", "..") or "/" in name or "\\" in name or "\x00" in name or len(name) > 255:
+        raise WorkspaceError(f"{name!r} is not a plain file name (no folders, not empty)")
+    if name != name.strip():
+        raise WorkspaceError(f"{name!r}: a file name must not start or end with blanks")
+    return name
+
+
+def _drawing_format(name: str) -> Any:  # noqa: ANN401 - a FileFormat
+    from auszug.formats._registry import format_for
+
+    low = name.lower()
+    if not low.endswith(DRAWING_SUFFIXES) or low.endswith((".network.json", ".tracery.json")):
+        raise FormatError("not a drawing file; expected a .uc or .json drawing", name)
+    return format_for(PurePosixPath(name), "drawing")
+
+
+def read_drawing(name: str, text: str) -> Drawing:
+    """Parse drawing text in the format of ``name``'s extension (no file is touched).
+
+    Raises
+    ------
+    FormatError
+        Naming ``name``, the line and the problem.
+    """
+    fmt = _drawing_format(name)
+    d = fmt.reader(text, name)
+    if not isinstance(d, Drawing):  # pragma: no cover - drawing readers return drawings
+        raise FormatError("not a drawing", name)
+    return d
+
+
+def _same_drawing(a: Drawing, b: Drawing) -> bool:
+    """Equal up to the name (a file's stem names its drawing; the autosave's stem differs)."""
+    return a is b or replace(a, name="") == replace(b, name="")
+
+
+def _autosave_time(p: Path) -> str:
+    from datetime import datetime
+
+    return datetime.fromtimestamp(p.stat().st_mtime).astimezone().isoformat(timespec="seconds")
+
+
+class Document:
+    """One open drawing: the drawing, its undo/redo stacks, revision, dirty flag and autosave state.
+
+    Every edit is a pure function of :mod:`auszug.microarch.edit`; a failed edit
+    (an :class:`~auszug.errors.AuszugError`) leaves the document unchanged, and
+    an edit is only kept when the edited drawing builds. All changes hold the
+    document's lock, so worker threads and the event loop may both use it.
+
+    Parameters
+    ----------
+    workspace : Workspace
+    drawing : Drawing
+    path : str
+        Workspace-relative path ("" for a document not saved yet).
+    name : str
+        File name for an unsaved document (its default save name and autosave name).
+    """
+
+    def __init__(self, workspace: Workspace, drawing: Drawing, path: str = "", name: str = ""):
+        self.workspace = workspace
+        self.lock = threading.RLock()
+        self.drawing = drawing
+        self.net = network_of(drawing)
+        self.path = path
+        self.name = name or (PurePosixPath(path).name if path else (drawing.name or "untitled"))
+        self.revision = next(_REVISIONS)
+        self.undo_stack: list[Drawing] = []
+        self.redo_stack: list[Drawing] = []
+        self.clean: Drawing = drawing        # the drawing as last opened or saved
+        self.recoverable = ""
+        self.changes = 0                     # counts every change (the autosaver compares)
+        self.autosaved_changes = 0           # ``changes`` when the autosave was last written
+        self.autosave_lock = threading.Lock()  # one autosave or save at a time touches the files
+        self._frames: tuple[int, GeometryText, bytes] | None = None
+
+    # -- state ------------------------------------------------------------------------
+    @property
+    def dirty(self) -> bool:
+        """Whether the drawing differs from the one last opened or saved (undo back clears it)."""
+        return self.drawing is not self.clean
+
+    @property
+    def label(self) -> str:
+        """How error messages name the document: its path, else its name."""
+        return self.path or self.name
+
+    @property
+    def autosave_key(self) -> str:
+        """The autosave's name below the autosave folder: the path, or ``unsaved/<name>``."""
+        return self.path if self.path else "unsaved/" + self.name
+
+    def autosave_file(self) -> Path:
+        """The autosave file of this document."""
+        return self.workspace.autosave_path(self.autosave_key)
+
+    def snapshot(self) -> tuple[Drawing, Network, int]:
+        """(drawing, network, revision), consistent, for work outside the lock (meshes, autosave)."""
+        with self.lock:
+            return self.drawing, self.net, self.revision
+
+    def check_recoverable(self) -> str:
+        """Set and return :attr:`recoverable`: the autosave's ISO time if it differs from the drawing."""
+        p = self.autosave_file()
+        rec = ""
+        try:
+            if p.is_file():
+                saved = read_drawing(p.name, p.read_text(encoding="utf-8"))
+                if not _same_drawing(saved, self.drawing):
+                    rec = _autosave_time(p)
+        except (OSError, AuszugError, UnicodeDecodeError):
+            rec = ""   # an unreadable autosave is no recovery; it is overwritten on the next change
+        self.recoverable = rec
+        return rec
+
+    # -- changes ----------------------------------------------------------------------
+    def _set(self, new: Drawing, net: Network) -> None:
+        self.drawing = new
+        self.net = net
+        self.revision = next(_REVISIONS)
+        self.recoverable = ""
+        self.changes += 1
+        self._frames = None
+
+    def _push(self, new: Drawing, net: Network) -> None:
+        self.undo_stack.append(self.drawing)
+        del self.undo_stack[:-UNDO_DEPTH]
+        self.redo_stack.clear()
+        self._set(new, net)
+
+    def apply(self, op: P.EditOp) -> None:
+        """Apply one edit message; on error nothing changes."""
+        with self.lock:
+            new = op.apply(self.drawing)
+            net = network_of(new)   # refuses a drawing that does not build
+            self._push(new, net)
+
+    def replace_drawing(self, new: Drawing) -> None:
+        """Replace the whole drawing as one undoable edit (recovery, save over another tab's file)."""
+        with self.lock:
+            self._push(new, network_of(new))
+
+    def undo(self) -> None:
+        """Go back one edit."""
+        with self.lock:
+            if not self.undo_stack:
+                raise AuszugError("nothing to undo")
+            prev = self.undo_stack[-1]
+            net = network_of(prev)
+            self.undo_stack.pop()
+            self.redo_stack.append(self.drawing)
+            self._set(prev, net)
+
+    def redo(self) -> None:
+        """Redo the last undone edit."""
+        with self.lock:
+            if not self.redo_stack:
+                raise AuszugError("nothing to redo")
+            nxt = self.redo_stack[-1]
+            net = network_of(nxt)
+            self.redo_stack.pop()
+            self.undo_stack.append(self.drawing)
+            self._set(nxt, net)
+
+    def recover(self) -> None:
+        """Replace the drawing by its autosave (an undoable edit; the document becomes dirty)."""
+        p = self.autosave_file()
+        if not p.is_file():
+            raise WorkspaceError(f"{self.label}: no autosave to recover")
+        saved = read_drawing(p.name, p.read_text(encoding="utf-8"))
+        with self.lock:
+            self.replace_drawing(replace(saved, name=self.drawing.name))
+
+    def default_save_path(self) -> str:
+        """Where an unsaved document goes by default: ``<name>.json`` (a .uc/.json ending replaced)."""
+        stem = self.name
+        for suf in DRAWING_SUFFIXES:
+            if stem.lower().endswith(suf) and len(stem) > len(suf):
+                stem = stem[: -len(suf)]
+                break
+        return stem + ".json"
+
+    def save(self, rel: str = "") -> str:
+        """Write the drawing inside the workspace (.uc or .json by extension); the relative path written.
+
+        ``rel`` empty: the document's own path, or :meth:`default_save_path` if
+        it has none. Afterwards the document is clean, its path is the one
+        written and the old autosave is gone.
+
+        Raises
+        ------
+        WorkspaceError
+            Outside the workspace, not a regular file, or not a .uc/.json name.
+        FormatError
+            If the format cannot hold the drawing.
+        """
+        from auszug.formats import save
+
+        target = rel or self.path or self.default_save_path()
+        low = target.lower()
+        if not low.endswith(DRAWING_SUFFIXES) or low.endswith((".network.json", ".tracery.json")):
+            raise WorkspaceError(f"{target!r}: can only save drawings as .uc or .json")
+        p = self.workspace.resolve_for_writing(target)
+        with self.autosave_lock:
+            with self.lock:
+                d = self.drawing
+                old_autosave = self.autosave_file()
+            try:
+                save(d, p, kind="drawing")
+            except OSError as e:
+                raise WorkspaceError(f"{target}: cannot write ({e.strerror or e})") from None
+            new_rel = self.workspace.relative(p)
+            with self.lock:
+                self.path = new_rel
+                self.name = PurePosixPath(new_rel).name
+                self.clean = d
+                self.recoverable = ""
+                self.revision = next(_REVISIONS)
+                self.autosaved_changes = self.changes
+                self._frames = None
+            for a in {old_autosave, self.autosave_file()}:
+                try:
+                    a.unlink()
+                except FileNotFoundError:
+                    pass
+        return new_rel
+
+    def write_autosave(self) -> int:
+        """Write the autosave now (blocking; a worker thread calls it); the change count written.
+
+        A dirty drawing goes to :meth:`autosave_file` as native JSON, atomically;
+        a clean one (saved, or undone back to the file) removes the autosave.
+        """
+        from auszug.formats import save
+
+        with self.autosave_lock:
+            with self.lock:
+                d, changes, dirty, target = self.drawing, self.changes, self.dirty, self.autosave_file()
+            if dirty:
+                save(d, target, kind="drawing")
+            else:
+                try:
+                    target.unlink()
+                except FileNotFoundError:
+                    pass
+            with self.lock:
+                self.autosaved_changes = max(self.autosaved_changes, changes)
+        return changes
+
+    # -- geometry ---------------------------------------------------------------------
+    def frames(self) -> tuple[GeometryText, bytes]:
+        """The current geometry message (text for any id) and payload, computed once per revision."""
+        with self.lock:
+            f = self._frames
+            if f is not None and f[0] == self.revision:
+                return f[1], f[2]
+            text, payload = geometry_frames(
+                self.drawing, net=self.net, path=self.path, revision=self.revision,
+                can_undo=bool(self.undo_stack), can_redo=bool(self.redo_stack), dirty=self.dirty,
+                recoverable=self.recoverable)
+            self._frames = (self.revision, text, payload)
+            return text, payload
+
+    def geometry(self, msg_id: int = 0) -> tuple[P.Geometry, bytes]:
+        """The current geometry as a dataclass message and payload (Python API, tests)."""
+        with self.lock:
+            return geometry(self.drawing, net=self.net, path=self.path, revision=self.revision,
+                            can_undo=bool(self.undo_stack), can_redo=bool(self.redo_stack),
+                            msg_id=msg_id, dirty=self.dirty, recoverable=self.recoverable)
+
+
+def open_document(workspace: Workspace, rel: str) -> Document:
+    """Load ``rel`` (inside the workspace) as a new document; errors name ``rel``.
+
+    Checks for an autosave that differs from the file (:attr:`Document.recoverable`).
+    """
+    p = workspace.resolve(rel)
+    rel_clean = workspace.relative(p)
+    if p.is_dir():
+        raise WorkspaceError(f"{rel_clean}: is a folder, not a drawing")
+    if not p.is_file():
+        raise WorkspaceError(f"no such file in the workspace: {rel!r}")
+    fmt = _drawing_format(rel_clean)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except UnicodeDecodeError as e:
+        raise FormatError(f"not a text file ({e.reason} at byte {e.start})", rel_clean) from None
+    except OSError as e:
+        raise WorkspaceError(f"{rel_clean}: cannot read ({e.strerror or e})") from None
+    d = fmt.reader(text, rel_clean)
+    doc = _built(workspace, d, rel_clean, "", rel_clean)
+    doc.check_recoverable()
+    return doc
+
+
+def _built(workspace: Workspace, d: Drawing, path: str, name: str, label: str) -> Document:
+    try:
+        return Document(workspace, d, path=path, name=name)
+    except DrawingError as e:
+        raise DrawingError(e.problem, f"{label}: {e.where}" if e.where else label) from None
+
+
+def example_document(workspace: Workspace, name: str) -> Document:
+    """A private (unsaved) document of the bundled drawing ``name`` (one of ``examples.names()``)."""
+    from auszug import examples
+
+    if name not in examples.names():
+        raise WorkspaceError(f"no bundled example {name!r}; list_files names them")
+    text = examples.path(name).read_text(encoding="utf-8")
+    d = read_drawing(name, text)
+    doc = _built(workspace, d, "", PurePosixPath(name).name, name)
+    doc.check_recoverable()
+    return doc
+
+
+def text_document(workspace: Workspace, name: str, text: str) -> Document:
+    """A private document from the text of a file the user picked (``name`` gives the format)."""
+    base = PurePosixPath(name.replace("\\", "/")).name
+    check_file_name(base)
+    d = read_drawing(base, text)
+    doc = _built(workspace, d, "", base, base)
+    doc.check_recoverable()
+    return doc
+
+
+def new_document(workspace: Workspace, name: str = "untitled") -> Document:
+    """A private, empty drawing called ``name`` (a plain file name)."""
+    check_file_name(name)
+    doc = Document(workspace, Drawing((), name=name), name=name)
+    doc.check_recoverable()
+    return doc
 
 
 @dataclass
 class Session:
-    """The drawing being edited, with undo and redo.
+    """One document at a time for one user: the Python API without a server.
 
-    Every edit is a pure function of :mod:`auszug.microarch.edit`; a failed edit
-    (an :class:`~auszug.errors.AuszugError`) leaves the session unchanged. An
-    edit is only kept when the edited drawing builds.
+    The server shares documents between tabs (:class:`~auszug.studio.hub.Hub`);
+    this is the same logic for a single caller (scripts, tests, benchmarks).
     """
 
     workspace: Workspace
-    drawing: Drawing | None = None
-    path: str = ""
-    revision: int = 0
-    undo_stack: list[Drawing] = field(default_factory=list)
-    redo_stack: list[Drawing] = field(default_factory=list)
+    document: Document | None = field(default=None)
+
+    @property
+    def drawing(self) -> Drawing | None:
+        """The open drawing (None before :meth:`open`)."""
+        return None if self.document is None else self.document.drawing
+
+    @property
+    def path(self) -> str:
+        """Workspace-relative path of the open drawing."""
+        return "" if self.document is None else self.document.path
+
+    @property
+    def revision(self) -> int:
+        """Revision of the open document (0: none)."""
+        return 0 if self.document is None else self.document.revision
+
+    @property
+    def undo_stack(self) -> list[Drawing]:
+        """The open document's undo stack."""
+        return [] if self.document is None else self.document.undo_stack
+
+    @property
+    def redo_stack(self) -> list[Drawing]:
+        """The open document's redo stack."""
+        return [] if self.document is None else self.document.redo_stack
 
     def open(self, rel: str) -> None:
         """Load ``rel`` (inside the workspace) and forget the undo history."""
-        from auszug.formats import load
-
-        p = self.workspace.resolve(rel)
-        if not p.is_file():
-            raise WorkspaceError(f"no such file in the workspace: {rel!r}")
-        d = load(p)
-        build(d)  # refuse a drawing that does not build before replacing the current one
-        self.drawing, self.path = d, self.workspace.relative(p)
-        self.undo_stack.clear()
-        self.redo_stack.clear()
-        self.revision += 1
+        self.document = open_document(self.workspace, rel)
 
     def save(self, rel: str = "") -> str:
         """Write the drawing (format by extension) inside the workspace; the relative path written."""
-        from auszug.formats import save
-
-        d = self._need()
-        p = self.workspace.resolve(rel or self.path)
-        save(d, p, kind="drawing")
-        return self.workspace.relative(p)
+        return self._need().save(rel)
 
     def apply(self, op: P.EditOp) -> None:
         """Apply one edit message; on error nothing changes."""
-        d = self._need()
-        new = op.apply(d)
-        build(new)
-        self.undo_stack.append(d)
-        del self.undo_stack[:-UNDO_DEPTH]
-        self.redo_stack.clear()
-        self.drawing = new
-        self.revision += 1
+        self._need().apply(op)
 
     def undo(self) -> None:
         """Go back one edit."""
-        d = self._need()
-        if not self.undo_stack:
-            raise AuszugError("nothing to undo")
-        self.redo_stack.append(d)
-        self.drawing = self.undo_stack.pop()
-        self.revision += 1
+        self._need().undo()
 
     def redo(self) -> None:
         """Redo the last undone edit."""
-        d = self._need()
-        if not self.redo_stack:
-            raise AuszugError("nothing to redo")
-        self.undo_stack.append(d)
-        self.drawing = self.redo_stack.pop()
-        self.revision += 1
+        self._need().redo()
 
     def geometry(self, msg_id: int = 0) -> tuple[P.Geometry, bytes]:
         """The current geometry message and payload."""
-        return geometry(self._need(), path=self.path, revision=self.revision,
-                        can_undo=bool(self.undo_stack), can_redo=bool(self.redo_stack), msg_id=msg_id)
+        return self._need().geometry(msg_id)
 
-    def _need(self) -> Drawing:
-        if self.drawing is None:
+    def _need(self) -> Document:
+        if self.document is None:
             raise AuszugError("no drawing is open: send an 'open' message first")
-        return self.drawing
+        return self.document

@@ -16,8 +16,11 @@ Security, for a server that edits files on the user's machine:
 from __future__ import annotations
 
 import asyncio
+import contextlib
+import json
 import logging
 import os
+import time
 from importlib.resources import files
 from pathlib import Path
 from typing import Any, Iterable
@@ -32,8 +35,11 @@ from starlette.types import ASGIApp, Receive, Scope, Send
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from auszug.errors import AuszugError
+from auszug.studio import meshes
 from auszug.studio import protocol as P
-from auszug.studio.session import Session, Workspace
+from auszug.studio.hub import AUTOSAVE_DELAY, Connection, Hub
+from auszug.studio.session import (Document, Workspace, example_document, new_document, open_document,
+                                   text_document)
 
 __all__ = ["LOCAL_HOSTS", "BUILD_COMMAND", "static_dir", "create_app", "HostOriginGuard"]
 
@@ -97,27 +103,202 @@ class HostOriginGuard:
         await self.app(scope, receive, send)
 
 
-async def _reply(ws: WebSocket, msg: Any, payload: bytes | None = None) -> None:
-    await ws.send_text(P.encode(msg))
-    if payload is not None:
-        await ws.send_bytes(payload)
+#: An edit that took longer than this (seconds, edit + geometry) sends the document's next
+#: edits to a worker thread; quicker ones run on the event loop, where a thread hop
+#: (about 0.05-0.1 ms) would cost more than the edit saves.
+INLINE_EDIT_SECONDS = 0.003
 
 
-def _handle(session: Session, msg: Any) -> tuple[Any, bytes | None]:
-    """Carry out one decoded message (blocking: runs in a worker thread)."""
-    if isinstance(msg, P.Open):
-        session.open(msg.path)
-    elif isinstance(msg, P.Save):
-        return P.Saved(path=session.save(msg.path), id=msg.id), None
-    elif isinstance(msg, P.Undo):
-        session.undo()
-    elif isinstance(msg, P.Redo):
-        session.redo()
-    elif isinstance(msg, P.EditOp):
-        session.apply(msg)
-    else:  # pragma: no cover - decode only returns the types above
-        raise P.ProtocolError(f"unhandled message {type(msg).__name__}")
-    return session.geometry(msg_id=msg.id)
+def _text_bytes(data: str | bytes) -> int:
+    """Size of a frame in bytes (UTF-8 for text), cheaply for small frames."""
+    if isinstance(data, bytes):
+        return len(data)
+    return len(data) if len(data) * 4 <= P.MAX_MESSAGE_BYTES else len(data.encode("utf-8", "surrogatepass"))
+
+
+def _raw_id(data: str | bytes) -> int:
+    """The ``id`` of a message that did not decode, if it has an integer one (else 0)."""
+    try:
+        v = json.loads(data).get("id", 0)
+    except (ValueError, AttributeError, UnicodeDecodeError):
+        return 0
+    return v if isinstance(v, int) and not isinstance(v, bool) else 0
+
+
+def _error(e: BaseException, msg_id: int, label: str = "") -> P.Error:
+    """One line naming the file (``label``) and the problem."""
+    if isinstance(e, OSError):
+        text = f"{e.filename or label or 'file'}: {e.strerror or e}"
+    elif isinstance(e, AuszugError):
+        text = str(e)
+    else:
+        log.exception("studio: message failed", exc_info=e)
+        text = f"internal error: {type(e).__name__}: {e}"
+    if label and not text.startswith(label) and not isinstance(e, OSError):
+        text = f"{label}: {text}"
+    return P.Error(message=" ".join(text.split()), id=msg_id)
+
+
+class _Studio:
+    """The message handlers of one app: a hub of shared documents on one workspace."""
+
+    def __init__(self, workspace: Workspace, drawing: str | None, autosave_delay: float):
+        self.workspace = workspace
+        self.drawing = drawing
+        self.hub = Hub(workspace, autosave_delay)
+
+    # -- the socket -------------------------------------------------------------------
+    async def socket(self, ws: WebSocket, max_message_bytes: int) -> None:
+        await ws.accept()
+        conn = Connection()
+
+        async def send(text: str, payload: bytes | None) -> None:
+            await ws.send({"type": "websocket.send", "text": text})
+            if payload is not None:
+                await ws.send({"type": "websocket.send", "bytes": payload})
+
+        sender = asyncio.create_task(conn.outbox.run(send))
+        jobs: asyncio.Queue = asyncio.Queue()
+        worker = asyncio.create_task(self._jobs(conn, jobs))
+        try:
+            if self.drawing:
+                await self.handle(conn, P.Open(path=self.drawing), jobs)
+            while True:
+                try:
+                    event = await ws.receive()
+                except (WebSocketDisconnect, RuntimeError):
+                    return
+                if event["type"] == "websocket.disconnect":
+                    return
+                data = event.get("text")
+                if data is None:
+                    data = event.get("bytes") or b""
+                n = _text_bytes(data)
+                if n > max_message_bytes:
+                    conn.outbox.put(P.encode(P.Error(
+                        message=f"message of {n} bytes is larger than the limit of {max_message_bytes} bytes")))
+                    continue
+                msg_id, msg = 0, None
+                try:
+                    msg = P.decode(data)
+                    msg_id = msg.id
+                    await self.handle(conn, msg, jobs)
+                except Exception as e:  # noqa: BLE001 - a bad message must not kill the session
+                    if msg is None:
+                        msg_id = _raw_id(data)
+                    # edits name the document they failed on; the other messages name their own file
+                    on_doc = isinstance(msg, (P.EditOp, P.Undo, P.Redo, P.Recover)) and not isinstance(
+                        e, P.ProtocolError)
+                    label = conn.doc.label if on_doc and conn.doc is not None else ""
+                    conn.outbox.put(P.encode(_error(e, msg_id, label)))
+        finally:
+            worker.cancel()
+            conn.outbox.close()
+            sender.cancel()
+            await self.hub.detach(conn)   # last: it may wait for an autosave
+
+    async def _jobs(self, conn: Connection, jobs: asyncio.Queue) -> None:
+        """Meshes, loops and exports of one connection, one after the other, in worker threads."""
+        while True:
+            msg, snapshot, label = await jobs.get()
+            try:
+                reply, payload = await asyncio.to_thread(self._job, msg, snapshot, label)
+            except Exception as e:  # noqa: BLE001
+                reply, payload = _error(e, msg.id, label), None
+            conn.outbox.put(P.encode(reply), payload)
+
+    @staticmethod
+    def _job(msg: Any, snapshot: tuple, label: str) -> tuple[Any, bytes | None]:
+        drawing, net, revision = snapshot
+        if isinstance(msg, P.GetMesh):
+            return meshes.mesh_message(net, style=msg.style, faces=msg.faces, loops=msg.loops, size=msg.size,
+                                       segments=msg.segments, revision=revision, msg_id=msg.id)
+        if isinstance(msg, P.GetLoops):
+            return meshes.loops_message(net, revision=revision, msg_id=msg.id)
+        name, mime, data = meshes.export_file(net, label or drawing.name or "drawing", format=msg.format,
+                                              style=msg.style, faces=msg.faces, loops=msg.loops,
+                                              solid=msg.solid, colors=msg.colors)
+        return P.Exported(name=name, mime=mime, size=len(data), id=msg.id), data
+
+    # -- messages ---------------------------------------------------------------------
+    def _need(self, conn: Connection) -> Document:
+        if conn.doc is None:
+            raise AuszugError("no drawing is open: send an 'open' message first")
+        return conn.doc
+
+    async def handle(self, conn: Connection, msg: Any, jobs: asyncio.Queue) -> None:  # noqa: ANN401
+        """Carry out one decoded message for ``conn``; replies go to the outboxes."""
+        hub = self.hub
+        if isinstance(msg, (P.EditOp, P.Undo, P.Redo)):
+            doc = self._need(conn)
+            async with hub.lock(doc):
+                fn = doc.apply if isinstance(msg, P.EditOp) else doc.undo if isinstance(msg, P.Undo) else doc.redo
+                args = (msg,) if isinstance(msg, P.EditOp) else ()
+                if getattr(doc, "slow_edits", False):
+                    t0 = time.perf_counter()
+                    await asyncio.to_thread(self._edit, doc, fn, args)
+                else:
+                    t0 = time.perf_counter()
+                    self._edit(doc, fn, args)
+                doc.slow_edits = time.perf_counter() - t0 > INLINE_EDIT_SECONDS  # type: ignore[attr-defined]
+                hub.broadcast(doc, conn, msg.id)
+            hub.changed(doc)
+        elif isinstance(msg, P.Recover):
+            doc = self._need(conn)
+            async with hub.lock(doc):
+                await asyncio.to_thread(self._edit, doc, doc.recover, ())
+                hub.broadcast(doc, conn, msg.id)
+            hub.changed(doc)
+        elif isinstance(msg, P.Open):
+            rel = self.workspace.relative(self.workspace.resolve(msg.path))
+            await hub.settle()   # a tab that just closed this file may still be writing its autosave
+            doc = hub.get(rel)
+            if doc is None:
+                doc = await asyncio.to_thread(self._opened, open_document, self.workspace, msg.path)
+                doc = hub.add(doc, rel)
+            await hub.attach(conn, doc)
+            text, payload = doc.frames()
+            conn.outbox.put(text.text(msg.id), payload)
+        elif isinstance(msg, (P.OpenExample, P.OpenText, P.NewDrawing)):
+            await hub.settle()
+            if isinstance(msg, P.OpenExample):
+                doc = await asyncio.to_thread(self._opened, example_document, self.workspace, msg.name)
+            elif isinstance(msg, P.OpenText):
+                doc = await asyncio.to_thread(self._opened, text_document, self.workspace, msg.name, msg.text)
+            else:
+                doc = await asyncio.to_thread(self._opened, new_document, self.workspace, msg.name)
+            hub.add(doc, conn.private_key())
+            await hub.attach(conn, doc)
+            text, payload = doc.frames()
+            conn.outbox.put(text.text(msg.id), payload)
+        elif isinstance(msg, P.Save):
+            doc = self._need(conn)
+            async with hub.lock(doc):
+                rel = await asyncio.to_thread(doc.save, msg.path)
+                await hub.rekey(doc, rel)
+                conn.outbox.put(P.encode(P.Saved(path=rel, id=msg.id)))
+                hub.broadcast(doc, None, 0)
+        elif isinstance(msg, P.ListFiles):
+            from auszug import examples
+
+            ws_files = await asyncio.to_thread(self.workspace.drawings)
+            conn.outbox.put(P.encode(P.Files(workspace=ws_files, examples=examples.names(), id=msg.id)))
+        elif isinstance(msg, (P.GetMesh, P.GetLoops, P.Export)):
+            doc = self._need(conn)
+            jobs.put_nowait((msg, doc.snapshot(), doc.label))
+        else:  # pragma: no cover - decode only returns the types above
+            raise P.ProtocolError(f"unhandled message {type(msg).__name__}")
+
+    @staticmethod
+    def _edit(doc: Document, fn: Any, args: tuple) -> None:  # noqa: ANN401
+        fn(*args)
+        doc.frames()   # the geometry, computed where the edit ran (the event loop or a worker)
+
+    @staticmethod
+    def _opened(make: Any, *args: Any) -> Document:  # noqa: ANN401
+        doc = make(*args)
+        doc.frames()
+        return doc
 
 
 def create_app(
@@ -126,49 +307,25 @@ def create_app(
     *,
     hosts: Iterable[str] = LOCAL_HOSTS,
     max_message_bytes: int = P.MAX_MESSAGE_BYTES,
+    autosave_delay: float = AUTOSAVE_DELAY,
 ) -> ASGIApp:
     """The studio app for ``workspace``; ``drawing`` (relative to it) opens on connect.
 
-    Each WebSocket connection gets its own :class:`Session`.
+    All connections that open the same workspace file share one document
+    (:class:`~auszug.studio.hub.Hub`). The returned app has the hub as
+    ``app.hub``; its lifespan shutdown flushes the autosaves.
     """
-    ws_root = Workspace(Path(workspace))
+    studio = _Studio(Workspace(Path(workspace)), drawing, autosave_delay)
 
     async def socket(ws: WebSocket) -> None:
-        await ws.accept()
-        session = Session(ws_root)
-        if drawing:
-            try:
-                await asyncio.to_thread(session.open, drawing)
-                await _reply(ws, *session.geometry())
-            except AuszugError as e:
-                await _reply(ws, P.Error(message=str(e)))
-        while True:
-            try:
-                event = await ws.receive()
-            except WebSocketDisconnect:
-                return
-            if event["type"] == "websocket.disconnect":
-                return
-            data = event.get("text")
-            if data is None:
-                data = event.get("bytes") or b""
-            if len(data) > max_message_bytes:
-                await _reply(ws, P.Error(message=f"message of {len(data)} bytes is larger than the "
-                                         f"limit of {max_message_bytes} bytes"))
-                continue
-            msg_id = 0
-            try:
-                msg = P.decode(data)
-                msg_id = msg.id
-                reply, payload = await asyncio.to_thread(_handle, session, msg)
-            except AuszugError as e:
-                reply, payload = P.Error(message=str(e), id=msg_id), None
-            except OSError as e:
-                reply, payload = P.Error(message=f"{e.strerror or e}", id=msg_id), None
-            except Exception as e:  # noqa: BLE001 - a bug in one edit must not kill the session
-                log.exception("studio: message failed")
-                reply, payload = P.Error(message=f"internal error: {type(e).__name__}: {e}", id=msg_id), None
-            await _reply(ws, reply, payload)
+        await studio.socket(ws, max_message_bytes)
+
+    @contextlib.asynccontextmanager
+    async def lifespan(app: Starlette):  # noqa: ANN202
+        try:
+            yield
+        finally:
+            await studio.hub.close()
 
     static = static_dir()
 
@@ -182,4 +339,6 @@ def create_app(
         routes.append(Mount("/", app=StaticFiles(directory=str(static), html=True)))
     else:
         routes.append(Route("/{path:path}", missing))
-    return HostOriginGuard(Starlette(routes=routes), hosts)
+    guard = HostOriginGuard(Starlette(routes=routes, lifespan=lifespan), hosts)
+    guard.hub = studio.hub  # type: ignore[attr-defined]
+    return guard

@@ -1,0 +1,321 @@
+"""Meshes, loops and exports of the studio: what ``get_mesh``, ``get_loops`` and ``export`` answer.
+
+Pure functions of a network (no networking, no document state); the server
+runs them in a worker thread. Members are sent the way the geometry is: each
+basic piece swept once (:func:`~auszug.meshing.sweep.sweep_piece`), with the
+4x4 transforms of the replicas :func:`~auszug.meshing.sweep.sweep_network`
+emits for it, so the client instances it. Instancing gives exactly the
+vertex positions of ``sweep_network``'s mesh; ``sweep_network`` also reverses
+the triangles of mirrored replicas (their transform has determinant -1), which
+a client instancing a mirrored matrix must do itself (or draw double-sided).
+Faces come as one extra piece (``basic`` -1, the identity transform).
+
+The binary frame of a mesh or loops reply is little-endian 4-byte values:
+float32 for positions, boundaries and transforms, uint32 for indices;
+``ArrayRef.offset`` counts 4-byte values from the frame's start.
+"""
+
+from __future__ import annotations
+
+import re
+import threading
+from collections import OrderedDict
+from pathlib import PurePosixPath
+from typing import Any, Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+
+from auszug.errors import AuszugError
+from auszug.microarch.network import Network
+from auszug.studio import protocol as P
+
+__all__ = ["MAX_SEGMENTS", "MIMES", "Payload", "mesh_message", "loops_message", "export_file", "loops_of"]
+
+#: Largest ``segments`` a client may ask for (a sweep grows linearly with it).
+MAX_SEGMENTS = 1000
+#: MIME type of every export format.
+MIMES: dict[str, str] = {
+    "glb": "model/gltf-binary",
+    "obj": "model/obj",
+    "stl": "model/stl",
+    "ply": "application/octet-stream",
+    "svg": "image/svg+xml",
+    "json": "application/json",
+    "uc": "text/plain",
+    "network.json": "application/json",
+}
+MESH_EXPORTS = ("glb", "obj", "stl", "ply")
+_COLOUR = re.compile(r"^#[0-9a-fA-F]{6}$")
+_IDENTITY = np.eye(4).reshape(1, 16)
+
+
+class StudioMeshError(AuszugError, ValueError):
+    """A mesh, loops or export request that cannot be carried out (bad style, loop index, ...)."""
+
+
+class Payload:
+    """A binary frame being assembled from float32 and uint32 arrays (4 bytes per value)."""
+
+    def __init__(self) -> None:
+        self.chunks: list[bytes] = []
+        self.size = 0   # in 4-byte values
+
+    def put(self, a: Any, dtype: str = "f4") -> P.ArrayRef:  # noqa: ANN401
+        """Append ``a`` as little-endian ``dtype`` ("f4" or "u4"); its reference into the frame."""
+        arr = np.ascontiguousarray(a, dtype="<f4" if dtype == "f4" else "<u4")
+        ref = P.ArrayRef(offset=self.size, shape=list(arr.shape), dtype=dtype)  # type: ignore[arg-type]
+        self.chunks.append(arr.tobytes())
+        self.size += arr.size
+        return ref
+
+    def bytes(self) -> bytes:
+        """The frame."""
+        return b"".join(self.chunks)
+
+
+# ---------------------------------------------------------------- caches (per network object)
+
+_LOCK = threading.Lock()
+_LOOPS: "OrderedDict[int, tuple[Network, list]]" = OrderedDict()
+_FACES: "OrderedDict[tuple, tuple[Network, Any]]" = OrderedDict()
+
+
+def _remember(cache: OrderedDict, key: Any, value: Any, size: int) -> None:  # noqa: ANN401
+    with _LOCK:
+        cache[key] = value
+        while len(cache) > size:
+            cache.popitem(last=False)
+
+
+def loops_of(net: Network) -> list:
+    """The loops :func:`~auszug.meshing.find_loops` finds in ``net`` (computed once per network).
+
+    Their order is the one ``get_loops`` reports and ``get_mesh(faces="picked", loops=[...])`` uses.
+    """
+    from auszug.meshing import find_loops
+
+    with _LOCK:
+        hit = _LOOPS.get(id(net))
+    if hit is not None and hit[0] is net:
+        return hit[1]
+    loops = find_loops(net) if net.pieces else []
+    _remember(_LOOPS, id(net), (net, loops), 16)
+    return loops
+
+
+def _faces(net: Network, mode: str, picked: Sequence[int]) -> Any:  # noqa: ANN401 - Faces or None
+    from auszug.meshing import network_faces
+
+    if mode == "none":
+        return None
+    if mode not in ("auto", "picked"):
+        raise StudioMeshError(f"faces must be none, auto or picked, got {mode!r}")
+    key = (id(net), mode, tuple(picked) if mode == "picked" else ())
+    with _LOCK:
+        hit = _FACES.get(key)
+    if hit is not None and hit[0] is net:
+        return hit[1]
+    if mode == "auto":
+        faces = network_faces(net) if net.pieces else None
+    else:
+        loops = loops_of(net)
+        bad = [i for i in picked if not 0 <= i < len(loops)]
+        if bad:
+            raise StudioMeshError(f"no loop {bad[0]}: the drawing has {len(loops)} loops (ask get_loops)")
+        faces = network_faces(net, [loops[i] for i in picked]) if picked else None
+    _remember(_FACES, key, (net, faces), 8)
+    return faces
+
+
+def _profile(net: Network, style: str, size: float | None) -> Any:  # noqa: ANN401
+    from auszug.meshing import default_size, profile_for
+
+    if style not in ("tube", "bar", "ribbon"):
+        raise StudioMeshError(f"style must be one of curves, tube, bar, ribbon, got {style!r}")
+    if size is not None and not size > 0:
+        raise StudioMeshError(f"member size must be positive, got {size:g}")
+    s = size if size is not None else default_size(net)
+    if not s > 0:
+        raise StudioMeshError("the drawing has no extent, so members have no default size; give a size")
+    return profile_for(style, s)
+
+
+def _check_segments(segments: int) -> int:
+    if not 1 <= segments <= MAX_SEGMENTS:
+        raise StudioMeshError(f"segments must lie in 1..{MAX_SEGMENTS}, got {segments}")
+    return segments
+
+
+def _transforms(net: Network, basic: int, replicas: Sequence[int]) -> NDArray[np.float64]:
+    from auszug.studio.session import _transforms as all_transforms
+
+    return all_transforms(net.drawing.curves[basic].symmetry)[list(replicas)]
+
+
+def members(net: Network, style: str, size: float | None, segments: int) -> list:
+    """Every swept basic piece (:class:`~auszug.meshing.sweep.Member`, not replicated)."""
+    from auszug.meshing.sweep import SWEPT_KINDS, sweep_piece
+
+    if style == "curves":
+        return []
+    prof = _profile(net, style, size)
+    seg = _check_segments(segments)
+    return [sweep_piece(net, pi, prof, seg) for pi, p in enumerate(net.pieces) if p.kind in SWEPT_KINDS]
+
+
+def _member_name(net: Network, mb: Any) -> str:  # noqa: ANN401
+    p = net.pieces[mb.piece]
+    return f"{mb.basic}/{p.kind}{p.segment if p.segment >= 0 else ''}"
+
+
+def mesh_message(net: Network, *, style: str, faces: str, loops: Sequence[int], size: float | None,
+                 segments: int, revision: int = 0, msg_id: int = 0) -> tuple[P.MeshGeometry, bytes]:
+    """The :class:`~auszug.studio.protocol.MeshGeometry` of ``net`` and its binary frame.
+
+    Raises
+    ------
+    StudioMeshError
+        For an unknown style or faces mode, a bad size or segment count, or a
+        loop index that ``get_loops`` did not report.
+    """
+    if style != "curves":
+        _profile(net, style, size)   # check before any work
+    fs = _faces(net, faces, loops)
+    out = Payload()
+    pieces = []
+    for mb in members(net, style, size, segments):
+        pieces.append(P.MeshPiece(
+            basic=mb.basic, name=_member_name(net, mb), positions=out.put(mb.vertices),
+            indices=out.put(mb.faces, "u4"), transforms=out.put(_transforms(net, mb.basic, mb.replicas))))
+    n_faces, converged, residual = 0, True, 0.0
+    if fs is not None and fs.faces:
+        m = fs.mesh()
+        pieces.append(P.MeshPiece(basic=-1, name="faces", positions=out.put(m.vertices),
+                                  indices=out.put(m.faces, "u4"), transforms=out.put(_IDENTITY)))
+        n_faces, converged, residual = len(fs.faces), bool(fs.converged), float(fs.residual)
+    msg = P.MeshGeometry(revision=revision, style=style, pieces=pieces, faces=n_faces, converged=converged,
+                         residual=residual, binary_floats=out.size, id=msg_id)
+    return msg, out.bytes()
+
+
+def loops_message(net: Network, *, revision: int = 0, msg_id: int = 0,
+                  resolution: int = 96) -> tuple[P.Loops, bytes]:
+    """The :class:`~auszug.studio.protocol.Loops` of ``net`` (boundaries as (n, 3) float32) and its frame."""
+    out = Payload()
+    infos = []
+    for i, lp in enumerate(loops_of(net)):
+        b, _ = lp.boundary(resolution)
+        infos.append(P.LoopInfo(index=i, boundary=out.put(b), centre=[float(v) for v in b.mean(axis=0)],
+                                rim=bool(lp.has_rim)))
+    return P.Loops(revision=revision, loops=infos, binary_floats=out.size, id=msg_id), out.bytes()
+
+
+def _stem(name: str) -> str:
+    stem = PurePosixPath(name).name or "drawing"
+    low = stem.lower()
+    for suf in (".network.json", ".json", ".uc"):
+        if low.endswith(suf) and len(stem) > len(suf):
+            return stem[: -len(suf)]
+    return stem
+
+
+def _parse_colours(colors: Sequence[str]) -> list[tuple[float, float, float]]:
+    out = []
+    for i, c in enumerate(colors):
+        if not isinstance(c, str) or not _COLOUR.match(c):
+            raise StudioMeshError(f"colors[{i}]: expected #rrggbb, got {c!r}")
+        out.append(tuple(int(c[k:k + 2], 16) / 255.0 for k in (1, 3, 5)))
+    return out  # type: ignore[return-value]
+
+
+def _glb(mesh: Any, colours: list[tuple[float, float, float]]) -> bytes:  # noqa: ANN401
+    """GLB bytes of ``mesh`` with the members of basic curve i in ``colours[i]`` (others unchanged)."""
+    import json
+    import struct
+
+    from auszug.formats.gltf import dumps_glb, to_gltf
+
+    if not colours:
+        return dumps_glb(mesh)
+    doc, binary = to_gltf(mesh)
+    for node in doc.get("nodes", []):
+        b = node.get("extras", {}).get("basic")
+        if b is not None and 0 <= b < len(colours) and "mesh" in node:
+            mat = doc["meshes"][node["mesh"]]["primitives"][0]["material"]
+            doc["materials"][mat]["pbrMetallicRoughness"]["baseColorFactor"][:3] = list(colours[b])
+    js = json.dumps(doc, separators=(",", ":")).encode("utf-8")
+    js += b" " * ((-len(js)) % 4)
+    chunks = struct.pack("<I4s", len(js), b"JSON") + js
+    if binary:
+        chunks += struct.pack("<I4s", len(binary), b"BIN\0") + binary
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks
+
+
+def export_file(net: Network, name: str, *, format: str, style: str = "bar", faces: str = "none",
+                loops: Sequence[int] = (), solid: bool = False, colors: Sequence[str] = (),
+                segments: int | None = None) -> tuple[str, str, bytes]:
+    """Export ``net`` (whose drawing is called ``name``): (suggested file name, MIME type, bytes).
+
+    Mesh formats (glb, obj, stl, ply) sweep the members in ``style`` (200 steps,
+    64 for a solid) and add the faces; ``solid`` unites everything into one
+    watertight solid. ``colors`` (#rrggbb per basic curve) colour the glb's
+    members; OBJ is sent without its .mtl (one file per export), so it carries
+    no colours; STL and PLY have none. svg: top and side views; json / uc: the
+    drawing; network.json: the 3D curve network.
+
+    Raises
+    ------
+    StudioMeshError
+        For an unknown format or style, nothing to export, or a bad colour.
+    FormatError
+        If the format cannot hold the drawing (e.g. a .uc of a feature the web format lacks).
+    """
+    from pathlib import Path
+
+    from auszug.formats._registry import format_for
+
+    if format not in MIMES:
+        raise StudioMeshError(f"format must be one of {', '.join(MIMES)}, got {format!r}")
+    colours = _parse_colours(colors)
+    fname = f"{_stem(name)}.{format}"
+    if format in MESH_EXPORTS:
+        mesh = _export_mesh(net, style, faces, loops, solid, segments)
+        if format == "glb":
+            data: bytes | str = _glb(mesh, colours)
+        else:
+            fmt = format_for(Path(fname), "mesh", want="write")
+            data = fmt.writer(mesh, fname)
+    elif format == "svg":
+        data = format_for(Path(fname), "network", want="write").writer(net, fname)
+    elif format == "network.json":
+        from auszug.formats.network_json import NetworkFile
+
+        data = format_for(Path(fname), "network", want="write").writer(NetworkFile(net, name), fname)
+    else:
+        data = format_for(Path(fname), "drawing", want="write").writer(net.drawing, fname)
+    raw = data.encode("utf-8") if isinstance(data, str) else bytes(data)
+    return fname, MIMES[format], raw
+
+
+def _export_mesh(net: Network, style: str, faces: str, loops: Sequence[int], solid: bool,
+                 segments: int | None) -> Any:  # noqa: ANN401 - a Mesh
+    from auszug.meshing import concatenate, sweep_network
+    from auszug.meshing.solid import solid as make_solid
+
+    fs = _faces(net, faces, loops)
+    if style == "curves":
+        if solid:
+            raise StudioMeshError("a solid needs members: pick the style tube, bar or ribbon")
+        if fs is None or not fs.faces:
+            raise StudioMeshError("nothing to export: style curves without faces makes no mesh")
+        return fs.mesh()
+    prof = _profile(net, style, None)
+    if not net.pieces:
+        raise StudioMeshError("nothing to export: the drawing has no curves")
+    if solid:
+        return make_solid(net, prof, _check_segments(segments or 64), faces=fs).mesh
+    parts = [sweep_network(net, prof, _check_segments(segments or 200))]
+    if fs is not None and fs.faces:
+        parts.append(fs.mesh())
+    return concatenate(parts)

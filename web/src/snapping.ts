@@ -28,8 +28,6 @@ export interface Snap {
   p: Vec;
   /** What the point snapped to (null: nothing within the tolerance). */
   kind: "point" | "line" | null;
-  /** The line snapped to, when `kind` is "line". */
-  line?: Line;
 }
 
 /** Linear parts of C_n (+ the mirror along `axis`) in the order r0, r0m, r1, r1m, ...: R^k, R^k Q. */
@@ -121,14 +119,14 @@ export function snap(p: Vec, targets: SnapTargets, tol: number): Snap {
     if (d <= bestD) { best = q; bestD = d; }
   }
   if (best) return { p: [best[0], best[1]], kind: "point" };
-  let line: Line | undefined, proj: Vec | null = null;
+  let proj: Vec | null = null;
   bestD = tol;
   for (const l of targets.lines) {
     const q = projectOnLine(p, l);
     const d = Math.hypot(q[0] - p[0], q[1] - p[1]);
-    if (d <= bestD) { proj = q; line = l; bestD = d; }
+    if (d <= bestD) { proj = q; bestD = d; }
   }
-  if (proj) return { p: proj, kind: "line", line };
+  if (proj) return { p: proj, kind: "line" };
   return { p: [p[0], p[1]], kind: null };
 }
 
@@ -166,12 +164,6 @@ export function pickCurve(p: Vec, pieces: readonly PickPiece[], tol: number):
     }
   }
   return best;
-}
-
-/** Apply the xy part of column-major 4x4 transform `k` of a flat (k, 16) array to (x, y). */
-export function transformXY(t: ArrayLike<number>, k: number, x: number, y: number): Vec {
-  const o = 16 * k;
-  return [t[o] * x + t[o + 4] * y + t[o + 12], t[o + 1] * x + t[o + 5] * y + t[o + 13]];
 }
 
 /** `n` + 1 points of the arc from `a` to `b` whose tangent at `a` aims at `h` (edit.draw_curve's

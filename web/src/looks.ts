@@ -61,7 +61,11 @@ export function initLooks(ctx: Ctx): void {
     sentKey = meshKey(store.looks);
     const l = store.looks;
     info.textContent = "meshing...";
-    return ctx.request({ type: "get_mesh", style: l.style, faces: l.faces, loops: l.faces === "picked" ? l.loops : [] });
+    return ctx.request({ type: "get_mesh", style: l.style, faces: l.faces, loops: l.faces === "picked" ? l.loops : [] })
+      .catch((e) => {
+        info.textContent = ""; // the status bar says why
+        throw e;
+      });
   });
   const loopRequests = new Debouncer(() => ctx.request({ type: "get_loops" }));
 

@@ -35,3 +35,10 @@ def client(workspace: Path):
 
 #: The WebSocket endpoint at that address (TestClient needs the full URL for the Host header).
 WS = "ws://127.0.0.1:8765/ws"
+
+
+def pytest_sessionfinish(session, exitstatus):
+    """Close the end-to-end tests' chromium, if they started one."""
+    from tests.studio import e2e
+
+    e2e.close_chromium()

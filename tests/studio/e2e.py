@@ -60,15 +60,35 @@ class Studio:
         self.sock.close()
 
 
+_RUNNING: dict[str, Any] = {}
+
+
+def _chromium() -> Any:
+    """The process's one Playwright and chromium, started on first use.
+
+    Test modules import the fixtures below, so pytest registers the session fixture once per
+    module; a second sync Playwright in the same thread would fail, hence one per process.
+    """
+    if "browser" not in _RUNNING:
+        from playwright.sync_api import sync_playwright
+
+        pw = sync_playwright().start()
+        _RUNNING["playwright"] = pw
+        _RUNNING["browser"] = pw.chromium.launch(executable_path=str(CHROMIUM), args=ARGS)
+    return _RUNNING["browser"]
+
+
+def close_chromium() -> None:
+    """Stop the process's chromium and Playwright (tests/studio/conftest.py calls it at the end)."""
+    if "browser" in _RUNNING:
+        _RUNNING.pop("browser").close()
+        _RUNNING.pop("playwright").stop()
+
+
 @pytest.fixture(scope="session")
 def browser():
-    """One chromium for the whole session (each test gets its own page)."""
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as pw:
-        b = pw.chromium.launch(executable_path=str(CHROMIUM), args=ARGS)
-        yield b
-        b.close()
+    """One chromium for the whole run (each test gets its own page)."""
+    return _chromium()
 
 
 @pytest.fixture

@@ -145,7 +145,9 @@ export function initFiles(ctx: Ctx): void {
         if (nameDialog.isOpen) nameDialog.close();
         resolve(answer);
       };
-      const cancel = () => done(null);
+      const cancel = () => {
+        if (!nameDialog.isOpen) done(null); // not a late "close" of an earlier question
+      };
       nameForm.addEventListener("submit", submit);
       nameDialog.el.addEventListener("close", cancel);
     });

@@ -226,3 +226,12 @@ def test_open_errors_name_the_file(workspace):
         open_document(ws, "bin.uc")
     with pytest.raises(WorkspaceError, match="no such file in the workspace: 'nope.uc'"):
         open_document(ws, "nope.uc")
+
+
+def test_messages_do_not_share_the_caches(workspace):
+    d = load(workspace / "tn-2.uc")
+    msg, _ = geometry(d)
+    msg.pieces[0].labels.append("junk")
+    msg.curves[0].marks.append("junk")
+    again, _ = geometry(d)
+    assert "junk" not in again.pieces[0].labels and "junk" not in again.curves[0].marks

@@ -15,11 +15,13 @@ geometry JSON is written from plain dicts without dataclasses (same text as
 
 from __future__ import annotations
 
+import copy
 import itertools
 import json
 import os
 import stat
 import threading
+import weakref
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
@@ -254,7 +256,7 @@ def curve_infos(drawing: Drawing) -> list[P.CurveInfo]:
     """The editable definition of every basic curve, as the design tools show it."""
     out = []
     for d in _curve_dicts(drawing):
-        kw = dict(d)
+        kw = copy.deepcopy(d)
         kw["vertices"] = [tuple(v) for v in d["vertices"]]
         kw["handles"] = [[tuple(h) for h in hs] for hs in d["handles"]]
         kw["center"] = tuple(d["center"])
@@ -293,79 +295,167 @@ def _bounds(net: Network) -> list[float]:
     return [float(v) for v in lo] + [float(v) for v in hi]
 
 
+def _distinct_replicas(sym: Any, points: NDArray[np.float64]) -> list[int]:  # noqa: ANN401
+    """Replicas of a vertical piece that do not coincide (to 1e-12) with an earlier one.
+
+    The rule of :meth:`Network.curves`; all pairs at once instead of ``allclose`` per pair.
+    """
+    c = np.asarray(sym.center)
+    xy = np.matmul(sym.matrices(), (points[:, :2] - c).T).transpose(0, 2, 1) + c    # (k, n, 2)
+    flat = np.concatenate([xy, np.broadcast_to(points[:, 2:], xy.shape[:2] + (1,))], axis=2).reshape(len(xy), -1)
+    close = np.abs(flat[:, None, :] - flat[None, :, :]).max(axis=2) <= 1e-12
+    keep: list[int] = []
+    for k in range(len(flat)):
+        if not close[k, keep].any():
+            keep.append(k)
+    return keep
+
+
 def _ref(offset: int, shape: tuple[int, ...]) -> dict:
     return {"offset": offset, "shape": list(shape), "dtype": "f4"}
 
 
-def _geometry_body(drawing: Drawing, net: Network) -> tuple[dict, bytes]:
-    """Everything of the geometry message that depends on the drawing only, and the payload."""
-    arrays: list[NDArray[np.float64]] = []
-    offset = 0
+def _dumps(v: Any) -> str:  # noqa: ANN401
+    return json.dumps(v, separators=(",", ":"), allow_nan=False)
 
-    def put(a: NDArray[np.float64]) -> dict:
-        nonlocal offset
-        arrays.append(a)
-        ref = _ref(offset, a.shape)
-        offset += a.size
-        return ref
 
-    pieces = []
-    n_rep = 0
-    curves = drawing.curves
-    for p in net.pieces:
-        sym = curves[p.basic].symmetry
+class _PieceData:
+    """What a geometry message says about one network piece, computed once per piece object.
+
+    The engine reuses the pieces of the curves an edit leaves alone, so an
+    edit recomputes only its own curve's: side view, replica transforms (without
+    duplicates for vertical pieces), the float32 bytes, bounds, the JSON tail.
+    """
+
+    __slots__ = ("sym", "layer", "head", "n", "k", "data", "lo", "hi", "tail", "tail_json", "n_rep")
+
+    def __init__(self, p: Any, sym: Any, layer: int):  # noqa: ANN401 - a Piece and a Symmetry
+        self.sym, self.layer = sym, layer
         tr = _transforms(sym)
         labels = sym.labels()
         if p.top is None:  # vertical: drop replicas that coincide with an earlier one
-            reps = net.replicate(p)
-            keep: list[int] = []
-            for k in range(len(reps)):
-                if not any(np.allclose(reps[k], reps[j], rtol=0, atol=1e-12) for j in keep):
-                    keep.append(k)
+            keep = _distinct_replicas(sym, p.points)
             tr = tr[keep]
             labels = [labels[k] for k in keep]
-        n_rep += len(tr)
-        pieces.append({
-            "basic": p.basic, "segment": p.segment, "layer": curves[p.basic].layer, "kind": p.kind,
-            "points": put(p.points), "side": put(_side(p.points)), "transforms": put(tr), "labels": labels,
-            "prc": None if p.prc is None else [float(v) for v in p.prc],
-            "prc_s": None if p.prc_fraction is None or p.top is None
-            else float(p.prc_fraction * p.top.length()),
-        })
-    markers = [
-        {"curve": x.curve, "segment": x.segment, "other_curve": x.other_curve,
-         "other_segment": x.other_segment, "replica": x.replica,
-         "point": [float(x.point[0]), float(x.point[1])], "true": bool(x.true)}
-        for x in intersections(drawing)
-    ]
-    bounds = _bounds(net) if net.pieces else [0.0] * 6
-    if arrays:
-        buf = np.empty(offset, dtype="<f4")
+        pts = p.points
+        self.n, self.k, self.n_rep = len(pts), len(tr), len(tr)
+        buf = np.empty(len(pts) * 5 + tr.size, dtype="<f4")
+        buf[:3 * len(pts)] = pts.ravel()
+        buf[3 * len(pts):5 * len(pts)] = _side(pts).ravel()
+        buf[5 * len(pts):] = tr.ravel()
+        self.data = buf.tobytes()
+        c = np.asarray(sym.center)
+        xy = np.matmul(sym.matrices(), (pts[:, :2] - c).T)    # (k, 2, n): every replica's top view
+        self.lo = (*(xy.min(axis=(0, 2)) + c), float(pts[:, 2].min()))
+        self.hi = (*(xy.max(axis=(0, 2)) + c), float(pts[:, 2].max()))
+        self.head = (p.basic, p.segment, layer, p.kind)
+        self.tail = {"labels": labels, "prc": None if p.prc is None else [float(v) for v in p.prc],
+                     "prc_s": None if p.prc_fraction is None or p.top is None
+                     else float(p.prc_fraction * p.top.length())}
+        self.tail_json = _dumps(self.tail)[1:-1]
+
+    def refs(self, offset: int) -> tuple[dict, dict, dict]:
+        """ArrayRefs of points, side and transforms when the piece's data start at ``offset``."""
+        n = self.n
+        return (_ref(offset, (n, 3)), _ref(offset + 3 * n, (n, 2)), _ref(offset + 5 * n, (self.k, 16)))
+
+    def as_dict(self, offset: int) -> dict:
+        """The PieceGeometry fields as a dict."""
+        b, sg, ly, kind = self.head
+        pts, side, tr = self.refs(offset)
+        return {"basic": b, "segment": sg, "layer": ly, "kind": kind, "points": pts, "side": side,
+                "transforms": tr, **copy.deepcopy(self.tail)}   # the cache's lists stay private
+
+    def as_json(self, offset: int) -> str:
+        """The PieceGeometry as JSON text (the same text as encoding :meth:`as_dict`)."""
+        b, sg, ly, kind = self.head
+        n, o = self.n, offset
+        return (f'{{"basic":{b},"segment":{sg},"layer":{ly},"kind":{_dumps(kind)},'
+                f'"points":{{"offset":{o},"shape":[{n},3],"dtype":"f4"}},'
+                f'"side":{{"offset":{o + 3 * n},"shape":[{n},2],"dtype":"f4"}},'
+                f'"transforms":{{"offset":{o + 5 * n},"shape":[{self.k},16],"dtype":"f4"}},{self.tail_json}}}')
+
+    @property
+    def size(self) -> int:
+        """Its float32 values in the payload."""
+        return 5 * self.n + 16 * self.k
+
+
+_PIECES: "weakref.WeakKeyDictionary[Any, _PieceData]" = weakref.WeakKeyDictionary()
+
+
+def _piece_data(p: Any, curves: tuple) -> _PieceData:  # noqa: ANN401
+    c = curves[p.basic]
+    d = _PIECES.get(p)
+    if d is None or d.layer != c.layer or not (d.sym is c.symmetry or d.sym == c.symmetry):
+        d = _PieceData(p, c.symmetry, c.layer)
+        try:
+            _PIECES[p] = d
+        except TypeError:  # pragma: no cover - pieces are weak-referenceable dataclasses
+            pass
+    return d
+
+
+@lru_cache(maxsize=4096)
+def _curve_json(c: Any, apex: float, bottom: float) -> str:  # noqa: ANN401
+    return _dumps(_curve_info(c, apex, bottom))
+
+
+class _Body:
+    """The drawing-dependent part of a geometry message, as data for both the dict and the text form."""
+
+    def __init__(self, drawing: Drawing, net: Network):
+        curves = drawing.curves
+        self.drawing = drawing
+        self.pieces = [_piece_data(p, curves) for p in net.pieces]
+        self.offsets = []
         o = 0
-        for a in arrays:
-            buf[o:o + a.size] = a.ravel()
-            o += a.size
-        payload = buf.tobytes()
-    else:
-        payload = b""
-    body = {
-        "name": drawing.name, "n_curves": len(curves), "n_replicas": n_rep, "pieces": pieces,
-        "intersections": markers, "curves": _curve_dicts(drawing), "layers": _layer_bottoms(drawing),
-        "bounds": bounds, "binary_floats": offset,
-    }
-    return body, payload
+        for d in self.pieces:
+            self.offsets.append(o)
+            o += d.size
+        self.binary_floats = o
+        self.payload = b"".join(d.data for d in self.pieces)
+        self.n_rep = sum(d.n_rep for d in self.pieces)
+        self.markers = [
+            {"curve": x.curve, "segment": x.segment, "other_curve": x.other_curve,
+             "other_segment": x.other_segment, "replica": x.replica,
+             "point": [float(x.point[0]), float(x.point[1])], "true": bool(x.true)}
+            for x in intersections(drawing)
+        ]
+        if self.pieces:
+            lo = [min(d.lo[i] for d in self.pieces) for i in range(3)]
+            hi = [max(d.hi[i] for d in self.pieces) for i in range(3)]
+            self.bounds = [float(v) for v in lo + hi]
+        else:
+            self.bounds = [0.0] * 6
+        self.layers = _layer_bottoms(drawing)
+        bottoms = drawing.bottoms()
+        self.curve_keys = [(c, drawing.apex_height(i, bottoms), bottoms[c.layer]) for i, c in enumerate(curves)]
 
+    def as_dict(self, *, path: str, revision: int, can_undo: bool, can_redo: bool, dirty: bool,
+                recoverable: str) -> dict:
+        """The Geometry message as a dict in field order, without the trailing id/protocol/type."""
+        d = self.drawing
+        return {
+            "revision": revision, "path": path, "name": d.name, "n_curves": len(d.curves),
+            "n_replicas": self.n_rep, "pieces": [p.as_dict(o) for p, o in zip(self.pieces, self.offsets)],
+            "intersections": self.markers, "curves": [copy.deepcopy(_curve_info(*k)) for k in self.curve_keys],
+            "layers": self.layers, "bounds": self.bounds, "can_undo": can_undo, "can_redo": can_redo,
+            "dirty": dirty, "recoverable": recoverable, "binary_floats": self.binary_floats,
+        }
 
-def _geometry_dict(body: dict, *, path: str, revision: int, can_undo: bool, can_redo: bool,
-                   dirty: bool, recoverable: str) -> dict:
-    """The Geometry message as a dict in field order, without the trailing id/protocol/type."""
-    return {
-        "revision": revision, "path": path, "name": body["name"], "n_curves": body["n_curves"],
-        "n_replicas": body["n_replicas"], "pieces": body["pieces"], "intersections": body["intersections"],
-        "curves": body["curves"], "layers": body["layers"], "bounds": body["bounds"],
-        "can_undo": can_undo, "can_redo": can_redo, "dirty": dirty, "recoverable": recoverable,
-        "binary_floats": body["binary_floats"],
-    }
+    def head(self, *, path: str, revision: int, can_undo: bool, can_redo: bool, dirty: bool,
+             recoverable: str) -> str:
+        """The JSON text of :meth:`as_dict` without its closing brace (fragments cached per piece and curve)."""
+        d = self.drawing
+        pieces = ",".join(p.as_json(o) for p, o in zip(self.pieces, self.offsets))
+        curves = ",".join(_curve_json(*k) for k in self.curve_keys)
+        return (f'{{"revision":{int(revision)},"path":{_dumps(path)},"name":{_dumps(d.name)},'
+                f'"n_curves":{len(d.curves)},"n_replicas":{self.n_rep},"pieces":[{pieces}],'
+                f'"intersections":{_dumps(self.markers)},"curves":[{curves}],"layers":{_dumps(self.layers)},'
+                f'"bounds":{_dumps(self.bounds)},"can_undo":{_dumps(bool(can_undo))},'
+                f'"can_redo":{_dumps(bool(can_redo))},"dirty":{_dumps(bool(dirty))},'
+                f'"recoverable":{_dumps(recoverable)},"binary_floats":{self.binary_floats}')
 
 
 class GeometryText:
@@ -376,8 +466,8 @@ class GeometryText:
 
     __slots__ = ("_head",)
 
-    def __init__(self, d: dict):
-        self._head = json.dumps(d, separators=(",", ":"), allow_nan=False)[:-1]
+    def __init__(self, head: str):
+        self._head = head
 
     def text(self, msg_id: int = 0) -> str:
         """The message text with ``id`` = ``msg_id``."""
@@ -390,12 +480,13 @@ def geometry_frames(drawing: Drawing, *, net: Network | None = None, path: str =
     """The geometry message of ``drawing`` as ready-to-send text (for any id) and its binary payload.
 
     The fast path of :func:`geometry`: no dataclasses, the network built once
-    (``net``, or :func:`network_of`).
+    (``net``, or :func:`network_of`), JSON fragments of unchanged pieces and
+    curves reused.
     """
-    body, payload = _geometry_body(drawing, network_of(drawing) if net is None else net)
-    d = _geometry_dict(body, path=path, revision=revision, can_undo=can_undo, can_redo=can_redo,
-                       dirty=dirty, recoverable=recoverable)
-    return GeometryText(d), payload
+    body = _Body(drawing, network_of(drawing) if net is None else net)
+    head = body.head(path=path, revision=revision, can_undo=can_undo, can_redo=can_redo, dirty=dirty,
+                     recoverable=recoverable)
+    return GeometryText(head), body.payload
 
 
 def _message(d: dict, msg_id: int) -> P.Geometry:
@@ -422,10 +513,10 @@ def geometry(drawing: Drawing, *, path: str = "", revision: int = 0, can_undo: b
     their duplicate replicas are left out, as :meth:`Network.curves` does, so
     ``n_replicas`` equals the number of network curves.
     """
-    body, payload = _geometry_body(drawing, network_of(drawing) if net is None else net)
-    d = _geometry_dict(body, path=path, revision=revision, can_undo=can_undo, can_redo=can_redo,
-                       dirty=dirty, recoverable=recoverable)
-    return _message(d, msg_id), payload
+    body = _Body(drawing, network_of(drawing) if net is None else net)
+    d = body.as_dict(path=path, revision=revision, can_undo=can_undo, can_redo=can_redo, dirty=dirty,
+                     recoverable=recoverable)
+    return _message(d, msg_id), body.payload
 
 
 # ---------------------------------------------------------------- documents

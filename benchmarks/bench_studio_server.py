@@ -1,0 +1,204 @@
+"""Studio server speed (issue: the studio, speed). Prints markdown tables; not a test.
+
+1. The server-side path of one edit, in-process: decode the client's JSON,
+   apply the edit to the shared document (one network build), compute the
+   geometry message and its float32 payload, encode the JSON text. A
+   top-view point drag (``move_vertex`` of curve 0's last point by a fresh
+   small step every time, so no intersection is cached from an earlier
+   step, as in a real drag) and an apex-height drag (``set_apex_height`` of
+   curve 0), on U.XI.28, tn-2 and the chancel (web/3d-scan-final.uc).
+   Target: well under 1 ms, so that the page can show the new geometry in
+   <= 2 ms end to end. The authors' demo: 1.2 ms (point drag) and 4.2 ms
+   (apex drag) per edit in the page (../shared/reference/anchor/README.md).
+2. The WebSocket round trip through a real uvicorn on 127.0.0.1 (a separate
+   process, as the browser is): send the edit, receive the geometry JSON
+   and its binary frame, with the ``websockets`` client.
+3. The cost of a worker-thread hop (``asyncio.to_thread``), which the server
+   skips for quick edits.
+
+Usage: python benchmarks/bench_studio_server.py [--reps N] [--ws-reps N] [--markdown]
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import json
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from auszug import examples
+from auszug.formats import load
+from auszug.studio import protocol as P
+from auszug.studio.session import Document, Workspace
+
+DRAWINGS = {"U.XI.28": "web/U.XI.28.uc", "tn-2": "teaching-sheet/tn-2.uc", "chancel": "web/3d-scan-final.uc"}
+EDITS = ("point drag", "apex drag")
+ANCHOR = {"point drag": 1.2, "apex drag": 4.2}
+TARGET_PAGE_MS = 2.0
+
+
+def edit_messages(drawing, kind: str, start: int):  # noqa: ANN001, ANN201
+    """An endless stream of edit messages (JSON text) of one kind, each with fresh values."""
+    c = drawing.curves[0]
+    v = len(c.vertices) - 1
+    x, y = c.vertices[v]
+    h = drawing.apex_height(0)
+    size = max(1e-9, float(np.abs(np.array(c.vertices)).max()))
+    k = start
+    while True:
+        k += 1
+        # small steps that never repeat (a cache of earlier steps would flatter the drag)
+        if kind == "point drag":
+            msg = {"type": "move_vertex", "curve": 0, "vertex": v,
+                   "xy": [x + size * 1e-3 * np.sin(k * 0.37), y + size * 1e-3 * np.cos(k * 0.23)], "id": k}
+        else:
+            msg = {"type": "set_apex_height", "curve": 0, "height": h * (1.0 - 0.01 * abs(np.sin(k * 0.37))),
+                   "id": k}
+        yield json.dumps(msg)
+
+
+def server_path(name: str, kind: str, reps: int) -> dict[str, float]:
+    """Median and p90 (ms) of decode -> apply -> geometry -> encode, and the parts' medians."""
+    d = load(examples.path(DRAWINGS[name]))
+    doc = Document(Workspace(Path(tempfile.gettempdir())), d, name=name)
+    msgs = edit_messages(d, kind, 1000 if kind == "point drag" else 5000)
+    parts: dict[str, list[float]] = {"decode": [], "edit + build": [], "geometry": [], "encode": [], "total": []}
+    for i in range(reps + 20):
+        text = next(msgs)
+        t0 = time.perf_counter()
+        msg = P.decode(text)
+        t1 = time.perf_counter()
+        doc.apply(msg)
+        t2 = time.perf_counter()
+        frames, payload = doc.frames()
+        t3 = time.perf_counter()
+        out = frames.text(msg.id)
+        t4 = time.perf_counter()
+        if i >= 20:  # warm-up: imports, first builds of the other curves
+            for key, dt in zip(parts, (t1 - t0, t2 - t1, t3 - t2, t4 - t3, t4 - t0)):
+                parts[key].append(dt * 1e3)
+        doc.undo_stack.clear()
+    res = {k: statistics.median(v) for k, v in parts.items()}
+    res["p90"] = float(np.percentile(parts["total"], 90))
+    res["json_bytes"] = len(out)
+    res["payload_bytes"] = len(payload)
+    return res
+
+
+# ---------------------------------------------------------------- the WebSocket round trip
+
+
+def serve(workspace: str) -> None:
+    """Run the studio app on 127.0.0.1 (any free port); print the port, serve until killed."""
+    import uvicorn
+
+    from auszug.cli.studio import bind_local
+    from auszug.studio.server import create_app
+
+    sock = bind_local(0)   # as `auszug studio` binds (TCP_NODELAY)
+    print(sock.getsockname()[1], flush=True)
+    config = uvicorn.Config(create_app(Path(workspace)), log_level="warning",
+                            ws_max_size=4 * P.MAX_MESSAGE_BYTES, lifespan="on")
+    uvicorn.Server(config).run(sockets=[sock])
+
+
+async def _round_trips(port: int, name: str, kind: str, reps: int) -> list[float]:
+    import websockets
+
+    d = load(examples.path(DRAWINGS[name]))
+    async with websockets.connect(f"ws://127.0.0.1:{port}/ws", max_size=None, compression=None) as ws:
+        await ws.send(json.dumps({"type": "open_example", "name": DRAWINGS[name], "id": 1}))
+        json.loads(await ws.recv())
+        await ws.recv()
+        msgs = edit_messages(d, kind, 1000 if kind == "point drag" else 5000)
+        out = []
+        for i in range(reps + 20):
+            text = next(msgs)
+            t0 = time.perf_counter()
+            await ws.send(text)
+            reply = await ws.recv()
+            payload = await ws.recv()
+            dt = time.perf_counter() - t0
+            head = json.loads(reply)
+            if head.get("type") != "geometry" or not isinstance(payload, bytes):
+                raise RuntimeError(f"unexpected reply {reply[:200]}")
+            if i >= 20:
+                out.append(dt * 1e3)
+        return out
+
+
+def websocket_round_trips(reps: int) -> dict[tuple[str, str], tuple[float, float]]:
+    """(median, p90) ms of edit -> geometry + binary frame over a real uvicorn, per drawing and edit."""
+    with tempfile.TemporaryDirectory() as tmp:
+        proc = subprocess.Popen([sys.executable, __file__, "--serve", tmp], stdout=subprocess.PIPE, text=True)
+        try:
+            port = int(proc.stdout.readline())
+            res = {}
+            for name in DRAWINGS:
+                for kind in EDITS:
+                    ts = asyncio.run(_round_trips(port, name, kind, reps))
+                    res[(name, kind)] = (statistics.median(ts), float(np.percentile(ts, 90)))
+            return res
+        finally:
+            proc.terminate()
+            proc.wait(10)
+
+
+def thread_hop(reps: int = 2000) -> float:
+    """Median ms of ``await asyncio.to_thread(noop)``."""
+    async def run() -> list[float]:
+        ts = []
+        for _ in range(reps):
+            t0 = time.perf_counter()
+            await asyncio.to_thread(lambda: None)
+            ts.append(time.perf_counter() - t0)
+        return ts
+    return statistics.median(asyncio.run(run())[50:]) * 1e3
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--reps", type=int, default=400, help="edits per drawing and kind, in-process")
+    ap.add_argument("--ws-reps", type=int, default=300, help="round trips per drawing and kind")
+    ap.add_argument("--markdown", action="store_true", help="also print the RESULTS.md paragraph")
+    ap.add_argument("--serve", metavar="WORKSPACE", help=argparse.SUPPRESS)
+    a = ap.parse_args(argv)
+    if a.serve:
+        serve(a.serve)
+        return 0
+    load_avg = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(f"# machine: {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
+          f"{platform.platform()}; {time.strftime('%Y-%m-%d')}; load average {load_avg:.1f}")
+    print(f"# server path: median of {a.reps} edits each; WebSocket: median of {a.ws_reps}"
+          " round trips each\n")
+    rows = {(n, k): server_path(n, k, a.reps) for n in DRAWINGS for k in EDITS}
+    print("| server edit path (ms) | median | p90 | decode | edit + build | geometry | encode | JSON / payload bytes |")
+    print("|---|---|---|---|---|---|---|---|")
+    for (n, k), r in rows.items():
+        print(f"| {n}, {k} | {r['total']:.3f} | {r['p90']:.3f} | {r['decode']:.3f} | {r['edit + build']:.3f} | "
+              f"{r['geometry']:.3f} | {r['encode']:.3f} | {r['json_bytes']} / {r['payload_bytes']} |")
+    ws = websocket_round_trips(a.ws_reps)
+    print("\n| WebSocket round trip, uvicorn on 127.0.0.1 (ms) | median | p90 | target in the page | authors' demo |")
+    print("|---|---|---|---|---|")
+    for (n, k), (med, p90) in ws.items():
+        print(f"| {n}, {k} | {med:.3f} | {p90:.3f} | <= {TARGET_PAGE_MS} | {ANCHOR[k]} |")
+    hop = thread_hop()
+    print(f"\n| asyncio.to_thread hop | {hop:.3f} ms median | (quick edits run on the event loop instead) |")
+    if a.markdown:
+        u = rows[("U.XI.28", "point drag")]
+        print(f"\nU.XI.28 point drag: server path {u['total']:.2f} ms median, WebSocket round trip "
+              f"{ws[('U.XI.28', 'point drag')][0]:.2f} ms; target <= {TARGET_PAGE_MS} ms in the page.")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -12,7 +12,7 @@ import { VIEW_LAYER, type ViewName } from "./scene";
 import type { Looks } from "./store";
 
 const STYLES: Record<Style, string> = { curves: "curves", tube: "tubes", bar: "bars", ribbon: "ribbons" };
-const FACES: Record<FacesMode, string> = { none: "no faces", auto: "all faces", picked: "picked faces" };
+const FACES: Record<FacesMode, string> = { none: "no faces", auto: "all faces", picked: "pick faces" };
 /** A pointer that moves less than this between press and release clicks (CSS pixels). */
 const CLICK_SLOP = 4;
 

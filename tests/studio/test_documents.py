@@ -460,3 +460,57 @@ def test_geometry_payload_is_float32_of_the_shapes(client):
     for p in g["pieces"]:
         for ref in (p["points"], p["side"], p["transforms"]):
             assert ref["dtype"] == "f4" and ref["offset"] + int(np.prod(ref["shape"])) <= f.size
+
+
+# ---------------------------------------------------------------- outboxes
+
+
+def test_outbox_sends_in_order_and_replaces_pending_broadcasts():
+    import asyncio
+
+    from auszug.studio.hub import Outbox
+
+    async def run() -> list:
+        box = Outbox()
+        sent: list = []
+
+        async def send(text, payload):
+            sent.append((text, payload))
+            await asyncio.sleep(0)
+
+        box.put("reply 1", b"a")
+        box.put("broadcast r1", b"b", coalesce=("geometry", 1))
+        box.put("files")
+        box.put("broadcast r2", b"c", coalesce=("geometry", 1))   # replaces r1, which was not sent
+        box.put("broadcast other doc", b"d", coalesce=("geometry", 2))
+        task = asyncio.create_task(box.run(send))
+        await asyncio.sleep(0.01)
+        box.put("later", None)
+        box.close()
+        await asyncio.wait_for(task, 1)
+        box.put("after close")
+        return sent
+
+    assert asyncio.run(run()) == [("reply 1", b"a"), ("files", None), ("broadcast r2", b"c"),
+                                  ("broadcast other doc", b"d"), ("later", None)]
+
+
+def test_outbox_stops_when_the_peer_is_gone():
+    import asyncio
+
+    from auszug.studio.hub import Outbox
+
+    async def run() -> int:
+        box = Outbox()
+        calls = []
+
+        async def send(text, payload):
+            calls.append(text)
+            raise RuntimeError("socket closed")
+
+        box.put("a")
+        box.put("b")
+        await asyncio.wait_for(box.run(send), 1)
+        return len(calls), box.pending()
+
+    assert asyncio.run(run()) == (1, 0)

@@ -235,3 +235,23 @@ def test_messages_do_not_share_the_caches(workspace):
     msg.curves[0].marks.append("junk")
     again, _ = geometry(d)
     assert "junk" not in again.pieces[0].labels and "junk" not in again.curves[0].marks
+
+
+def test_concurrent_edits_from_threads_are_all_kept(workspace):
+    """Document is safe without the server's lock: edits from several threads all land, in some order."""
+    import threading
+
+    from auszug.studio.session import open_document
+
+    doc = open_document(Workspace(workspace), "tn-2.uc")
+
+    def nudge():
+        for _ in range(10):
+            doc.apply(P.SetApexHeight(curve=0, height=doc.drawing.curves[0].height or 1.0))
+
+    threads = [threading.Thread(target=nudge) for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(doc.undo_stack) == 40 and doc.changes == 40

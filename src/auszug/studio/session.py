@@ -656,16 +656,26 @@ class Document:
         self._set(new, net)
 
     def apply(self, op: P.EditOp) -> None:
-        """Apply one edit message; on error nothing changes."""
-        with self.lock:
-            new = op.apply(self.drawing)
+        """Apply one edit message; on error nothing changes.
+
+        The edit and its build run outside the lock (readers such as a mesh
+        snapshot never wait for them); the commit checks that no other change
+        came in between, and else starts over from the newer drawing.
+        """
+        while True:
+            base = self.drawing
+            new = op.apply(base)
             net = network_of(new)   # refuses a drawing that does not build
-            self._push(new, net)
+            with self.lock:
+                if self.drawing is base:
+                    self._push(new, net)
+                    return
 
     def replace_drawing(self, new: Drawing) -> None:
         """Replace the whole drawing as one undoable edit (recovery, save over another tab's file)."""
+        net = network_of(new)
         with self.lock:
-            self._push(new, network_of(new))
+            self._push(new, net)
 
     def undo(self) -> None:
         """Go back one edit."""

@@ -786,17 +786,22 @@ class Document:
 
     # -- geometry ---------------------------------------------------------------------
     def frames(self) -> tuple[GeometryText, bytes]:
-        """The current geometry message (text for any id) and payload, computed once per revision."""
+        """The current geometry message (text for any id) and payload, computed once per revision.
+
+        Computed outside the lock from a consistent snapshot of the state.
+        """
         with self.lock:
             f = self._frames
             if f is not None and f[0] == self.revision:
                 return f[1], f[2]
-            text, payload = geometry_frames(
-                self.drawing, net=self.net, path=self.path, revision=self.revision,
-                can_undo=bool(self.undo_stack), can_redo=bool(self.redo_stack), dirty=self.dirty,
-                recoverable=self.recoverable)
-            self._frames = (self.revision, text, payload)
-            return text, payload
+            state = dict(drawing=self.drawing, net=self.net, path=self.path, revision=self.revision,
+                         can_undo=bool(self.undo_stack), can_redo=bool(self.redo_stack), dirty=self.dirty,
+                         recoverable=self.recoverable)
+        text, payload = geometry_frames(**state)
+        with self.lock:
+            if self.revision == state["revision"]:
+                self._frames = (state["revision"], text, payload)
+        return text, payload
 
     def geometry(self, msg_id: int = 0) -> tuple[P.Geometry, bytes]:
         """The current geometry as a dataclass message and payload (Python API, tests)."""

@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from auszug.geometry import TOL, Curve
-from auszug.geometry.intersect import intersect_many
+from auszug.geometry.intersect import _prim, intersect_many
 from auszug.microarch.model import Drawing
 
 __all__ = ["TopIntersection", "PrcChoice", "intersections", "algorithm1", "oriented_segments"]
@@ -116,6 +116,17 @@ def _replicas(top: Curve, sym) -> tuple[Curve, ...]:  # noqa: ANN001
 
 def _same_curve(a: Curve, b: Curve, tol: float) -> bool:
     """Whether two curves are the same point set (either orientation)."""
+    # quick refusal from the end points' floats (memoised by the intersection kernel): curves
+    # whose ends differ by clearly more than tol are not the same; the margin covers the
+    # rounding between an end point and the curve evaluated at t = 0 or 1
+    pa_, pb_ = _prim(a), _prim(b)
+    m = tol + 1e-12 * max(1.0, abs(pa_.x0), abs(pa_.y0), abs(pa_.x1), abs(pa_.y1))
+    fwd = (abs(pa_.x0 - pb_.x0) <= m and abs(pa_.y0 - pb_.y0) <= m and abs(pa_.x1 - pb_.x1) <= m
+           and abs(pa_.y1 - pb_.y1) <= m)
+    bwd = (abs(pa_.x0 - pb_.x1) <= m and abs(pa_.y0 - pb_.y1) <= m and abs(pa_.x1 - pb_.x0) <= m
+           and abs(pa_.y1 - pb_.y0) <= m)
+    if not (fwd or bwd):
+        return False
     pa = a.point(np.array([0.0, 0.5, 1.0]))
     pb = b.point(np.array([0.0, 0.5, 1.0]))
     return bool(np.all(np.abs(pa - pb) <= tol) or np.all(np.abs(pa - pb[::-1]) <= tol))
@@ -159,6 +170,7 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
     scale = None
     out = []
     data = _PAIRS.data   # the OrderedDict itself: this loop runs for every pair of every rebuild
+    markers = _MARKERS.data
     param_equal = tol.param_equal
     for ci, si, top in segs:
         kid_i = ids[(ci, si)]
@@ -196,14 +208,21 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
                 v = None if same else hits
                 _PAIRS.put(pk, v)
                 found_here[m] = (j, pk, v)
-        for j, _pk, hits in found_here:
+        for j, pk, hits in found_here:
             if not hits:
                 continue
             cj, sj, lab, _rep, _k, _ = reps[j]
-            same_family = ci == cj and si == sj
-            for u, u2, pt in hits:
-                true = (abs(u - u2) <= param_equal) if same_family else True
-                out.append(TopIntersection(ci, si, cj, sj, lab, u, u2, pt, same_family, true))
+            # the same pair at the same indices gives the same (immutable) records: reuse them
+            mk = (pk, ci, si, cj, sj, lab, param_equal)
+            made = markers.get(mk)
+            if made is None or made[0] is not hits:
+                same_family = ci == cj and si == sj
+                made = (hits, tuple(
+                    TopIntersection(ci, si, cj, sj, lab, u, u2, pt, same_family,
+                                    (abs(u - u2) <= param_equal) if same_family else True)
+                    for u, u2, pt in hits))
+                _MARKERS.put(mk, made)
+            out.extend(made[1])
     _RESULTS.put(whole, tuple(out))
     return out
 
@@ -243,6 +262,8 @@ class _PairCache:
 
 _PAIRS = _PairCache()
 _MISS = object()
+#: The TopIntersection records of a pair at given curve/segment indices (keyed like the pairs).
+_MARKERS = _PairCache(20000)
 #: Whole results of :func:`intersections`, keyed by the segments' key ids (an apex drag hits).
 _RESULTS = _PairCache(64)
 #: Segment keys -> small integers, so pair keys hash cheaply. Ids are never reused: when the

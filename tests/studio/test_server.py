@@ -150,3 +150,55 @@ def test_built_bundle_where_the_studio_looks():
         pytest.skip("front end not built (run `make web`)")
     html = (static_dir() / "index.html").read_text(encoding="utf-8")
     assert 'id="status"' in html and "assets/" in html
+
+
+def test_undecodable_message_error_echoes_its_id(client):
+    with client.websocket_connect(WS) as ws:
+        ws.send_json({"type": "set_apex_height", "curve": "zero", "height": 1, "id": 11})
+        err = _error(ws)
+        assert err == {"type": "error", "id": 11,
+                       "message": "set_apex_height.curve: expected an integer, got 'zero'"}
+        ws.send_text('{"type": "undo", "id": true}')
+        assert _error(ws)["id"] == 0
+
+
+def test_edit_errors_name_the_document(client):
+    with client.websocket_connect(WS) as ws:
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
+        _geometry(ws)
+        ws.send_json({"type": "set_apex_height", "curve": 42, "height": 1, "id": 5})
+        err = _error(ws)
+        assert err["id"] == 5 and err["message"] == "tn-2.uc: no curve 42: the drawing has 1 curves"
+        assert "\n" not in err["message"]
+
+
+@pytest.mark.parametrize("inline_limit", [0.0, 10.0])
+def test_edits_in_threads_or_inline_answer_in_order(client, monkeypatch, inline_limit):
+    """Slow edits go to a worker thread (limit 0: all of them), quick ones run inline: same answers."""
+    import auszug.studio.server as S
+
+    monkeypatch.setattr(S, "INLINE_EDIT_SECONDS", inline_limit)
+    want = build(load(client.app.hub.workspace.root / "tn-2.uc"))
+    with client.websocket_connect(WS) as ws:
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
+        g0, _ = _geometry(ws)
+        for k in range(6):
+            ws.send_json({"type": "set_apex_height", "curve": 0, "height": 2.0 + 0.1 * k, "id": 10 + k})
+        revs = []
+        for k in range(6):
+            g, _ = _geometry(ws)
+            assert g["id"] == 10 + k and g["curves"][0]["apex"] == pytest.approx(2.0 + 0.1 * k)
+            revs.append(g["revision"])
+        assert revs == sorted(revs) and revs[0] > g0["revision"]
+        assert g0["n_replicas"] == len(list(want.curves()))
+
+
+def test_shutdown_flushes_autosaves(workspace):
+    with TestClient(create_app(workspace, autosave_delay=3600), base_url=BASE) as c:
+        with c.websocket_connect(WS) as ws:
+            ws.send_json({"type": "open", "path": "tn-2.uc"})
+            _geometry(ws)
+            ws.send_json({"type": "set_apex_height", "curve": 0, "height": 2.5})
+            _geometry(ws)
+            assert not (workspace / ".auszug").exists()    # an hour's delay: nothing written yet
+    assert load(workspace / ".auszug" / "autosave" / "tn-2.uc.json").curves[0].height == 2.5

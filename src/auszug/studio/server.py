@@ -234,13 +234,13 @@ class _Studio:
             async with hub.lock(doc):
                 fn = doc.apply if isinstance(msg, P.EditOp) else doc.undo if isinstance(msg, P.Undo) else doc.redo
                 args = (msg,) if isinstance(msg, P.EditOp) else ()
-                if getattr(doc, "slow_edits", False):
+                if doc.slow_edits:
                     t0 = time.perf_counter()
                     await asyncio.to_thread(self._edit, doc, fn, args)
                 else:
                     t0 = time.perf_counter()
                     self._edit(doc, fn, args)
-                doc.slow_edits = time.perf_counter() - t0 > INLINE_EDIT_SECONDS  # type: ignore[attr-defined]
+                doc.slow_edits = time.perf_counter() - t0 > INLINE_EDIT_SECONDS
                 hub.broadcast(doc, conn, msg.id)
             hub.changed(doc)
         elif isinstance(msg, P.Recover):

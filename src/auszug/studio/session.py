@@ -599,6 +599,7 @@ class Document:
         self.changes = 0                     # counts every change (the autosaver compares)
         self.autosaved_changes = 0           # ``changes`` when the autosave was last written
         self.autosave_lock = threading.Lock()  # one autosave or save at a time touches the files
+        self.slow_edits = False              # the last edit was slow: the server runs the next in a thread
         self._frames: tuple[int, GeometryText, bytes] | None = None
 
     # -- state ------------------------------------------------------------------------

@@ -29,8 +29,10 @@ export class Modal {
     this.body = document.createElement("div");
     this.body.className = "modal-body";
     this.el.append(head, this.body);
-    // the page's shortcuts listen on window: keys pressed in a modal stay in it
+    // the page's shortcuts listen on window: keys pressed in a modal stay in it (once closed, the
+    // focus may rest on the dialog for a moment: keys pass then)
     this.el.addEventListener("keydown", (ev) => {
+      if (!this.el.open) return;
       ev.stopPropagation();
       if (closeKeys.includes(ev.key) && !isTextField(ev.target)) {
         ev.preventDefault();

@@ -57,8 +57,8 @@ export function initBackground(ctx: Ctx): void {
     for (const c of controls) c.disabled = !on;
     toggle.classList.toggle("active", on);
     if (!mesh || !place) return;
-    const b = views.bounds, depth = b.getSize(new THREE.Vector3()).length();
-    mesh.position.set(place.x, place.y, b.min.z - Math.max(0.02 * depth, 1e-3));
+    const b = views.bounds, diagonal = b.getSize(new THREE.Vector3()).length();
+    mesh.position.set(place.x, place.y, b.min.z - Math.max(0.02 * diagonal, 1e-3));
     mesh.scale.set(place.width, place.width * aspect, 1);
     mesh.material.opacity = place.opacity;
     mesh.visible = place.visible;

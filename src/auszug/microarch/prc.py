@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from auszug.geometry import TOL, Curve
-from auszug.geometry.intersect import _prim, intersect_many
+from auszug.geometry.intersect import _intersect_prims, _prim
 from auszug.microarch.model import Drawing
 
 __all__ = ["TopIntersection", "PrcChoice", "intersections", "algorithm1", "oriented_segments"]
@@ -193,18 +193,21 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
                     pass
             found_here.append((j, pk, v))
         if missing:
-            if scale is None:
-                ends = [t.start for _, _, t in segs] + [t.end for _, _, t in segs]
-                scale = max(1.0, float(np.max(np.abs(ends))))
-            found = intersect_many([top], [reps[found_here[m][0]][3] for m in missing])
-            for n, m in enumerate(missing):
+            # pair by pair: what intersect_many does after its box prefilter, which
+            # _intersect_prims repeats exactly (and for a few pairs numpy costs more than it saves)
+            ptop = _prim(top)
+            for m in missing:
                 j, pk, _ = found_here[m]
                 rep = reps[j][3]
-                hits = tuple(
-                    (float(top.u_at_t(h.t1)), float(rep.u_at_t(h.t2)), h.point) for h in found.get((0, n), ())
-                )
+                found = _intersect_prims(ptop, _prim(rep))
+                hits = tuple((float(top.u_at_t(h.t1)), float(rep.u_at_t(h.t2)), h.point) for h in found)
                 # an identical replica overlaps the segment everywhere: it has hits, and is left out
-                same = bool(hits) and (ci, si) == reps[j][:2] and _same_curve(top, rep, 1e-9 * scale)
+                same = False
+                if hits and (ci, si) == reps[j][:2]:
+                    if scale is None:
+                        ends = [t.start for _, _, t in segs] + [t.end for _, _, t in segs]
+                        scale = max(1.0, float(np.max(np.abs(ends))))
+                    same = _same_curve(top, rep, 1e-9 * scale)
                 v = None if same else hits
                 _PAIRS.put(pk, v)
                 found_here[m] = (j, pk, v)

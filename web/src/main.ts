@@ -81,6 +81,8 @@ const conn = new Connection(socketUrl(window.location), {
   },
   opened(again) {
     document.body.dataset.connected = "true";
+    if (store.geometry) store.status(statusText(store.geometry));
+    else store.status("connected: open a drawing (Open..., Ctrl+O) or start a new one (New)");
     if (again && store.geometry?.path) conn.send({ type: "open", path: store.geometry.path });
     else if (!again) {
       const open = new URLSearchParams(window.location.search).get("open");

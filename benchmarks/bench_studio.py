@@ -23,7 +23,6 @@ import argparse
 import os
 import platform
 import shutil
-import socket
 import statistics
 import sys
 import tempfile
@@ -40,16 +39,19 @@ ANCHOR = {"point drag": 1.2, "apex drag": 4.2, "frame": "17-23"}
 
 # Runs in the page: n edits of one kind, one at a time, each after the previous one's frame was
 # drawn (so no frame runs while an edit is timed); returns [geometry ms, frame ms] per edit.
+# Each edit goes to a new position, so no edit finds its result in the engine's caches.
 EDITS_JS = """
 async ({kind, n}) => {
+  // every edit moves to a new place (no two drawings alike: no cached intersections reused)
+  const seed = (window.__benchSeed = (window.__benchSeed || 0) + n);
   const a = window.auszug, g0 = a.store.geometry, c = g0.curves[0];
   const last = c.vertices.length - 1, [x, y] = c.vertices[last], h = c.apex;
   const gl = a.views.renderer.getContext(), px = new Uint8Array(4);
   const out = [];
   for (let k = 0; k < n; k++) {
     const msg = kind === "point drag"
-      ? {type: "move_vertex", curve: 0, vertex: last, xy: [x + 1e-3 * (k % 7), y]}
-      : {type: "set_apex_height", curve: 0, height: h * (1 - 0.002 * (k % 7))};
+      ? {type: "move_vertex", curve: 0, vertex: last, xy: [x + 1e-3 * Math.sin(0.37 * (seed + k)), y]}
+      : {type: "set_apex_height", curve: 0, height: h * (1 - 0.01 * Math.abs(Math.sin(0.37 * (seed + k))))};
     const got = new Promise((res) => { const off = a.store.on("geometry", () => { off(); res(performance.now()); }); });
     const t0 = performance.now();
     a.ctx.send(msg);
@@ -72,11 +74,10 @@ INFO_JS = """() => {
 def serve(workspace: Path) -> tuple[str, object, threading.Thread]:
     import uvicorn
 
+    from auszug.cli.studio import bind_local
     from auszug.studio.server import create_app
 
-    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
-    sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
-    sock.bind(("127.0.0.1", 0))
+    sock = bind_local(0)
     server = uvicorn.Server(uvicorn.Config(create_app(workspace), log_level="warning", lifespan="off"))
     th = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
     th.start()

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import os
 import re
-import socket
 import threading
 import time
 from pathlib import Path
@@ -19,6 +18,7 @@ from typing import Any
 
 import pytest
 
+from auszug.cli.studio import bind_local
 from auszug.studio.server import create_app, static_dir
 from tests.conftest import REPO
 
@@ -41,8 +41,7 @@ class Studio:
         import uvicorn
 
         self.workspace = workspace
-        self.sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
-        self.sock.bind(("127.0.0.1", 0))
+        self.sock = bind_local(0)
         self.port = self.sock.getsockname()[1]
         self.url = f"http://127.0.0.1:{self.port}/"
         self.server = uvicorn.Server(uvicorn.Config(create_app(workspace, drawing), log_level="warning",

@@ -248,14 +248,22 @@ def test_undo_redo_restores_vertices(studio, workspace, page):  # noqa: F811
     before = g["curves"][0]["vertices"]
     page.mouse.move(*top_to_client(page, *before[1]))
     page.mouse.down()
-    page.mouse.move(*top_to_client(page, 0.75, 0.2))  # one step: one edit
+    page.keyboard.down("Alt")  # no snapping: the point follows the mouse
+    for k in range(1, 9):  # a drag of many steps: many edits, one undo step
+        page.mouse.move(*top_to_client(page, before[1][0] - 0.02 * k, before[1][1] + 0.025 * k))
+        page.wait_for_timeout(30)
     page.mouse.up()
-    g = wait_revision(page, g["revision"])
+    page.keyboard.up("Alt")
+    end = [before[1][0] - 0.16, before[1][1] + 0.2]
+    page.wait_for_function(f"""() => {{
+        const v = window.auszug.store.geometry.curves[0].vertices[1];
+        return Math.abs(v[0] - {end[0]}) < 0.01 && Math.abs(v[1] - {end[1]}) < 0.01; }}""")
+    g = geometry(page)
     after = g["curves"][0]["vertices"]
-    assert after != before and g["can_undo"]
+    assert g["revision"] > 0 and after != before and g["can_undo"]
     page.keyboard.press("Control+z")
     g = wait_revision(page, g["revision"])
-    assert g["curves"][0]["vertices"] == before and g["can_redo"]
+    assert g["curves"][0]["vertices"] == before and g["can_redo"] and not g["can_undo"]
     page.keyboard.press("Control+Shift+Z")
     g = wait_revision(page, g["revision"])
     assert g["curves"][0]["vertices"] == after

@@ -99,6 +99,10 @@ def test_drag_apex_sets_the_dragged_height_and_keeps_the_top_view(studio, page):
     # the view re-fits after the drag: the marker is at the new apex
     m = side_map(page)
     assert abs(z_at(m, centre(page, "apex-marker")[1]) - g["curves"][0]["apex"]) < 1 / m["k"]
+    # the whole drag is one undo step
+    page.keyboard.press("Control+z")
+    g = wait_for(page, f"g.revision > {g['revision']}")
+    assert g["curves"][0]["apex"] == g0["curves"][0]["apex"] and not g["can_undo"]
 
 
 def test_drag_prc_moves_the_apex_as_python_computes_it(studio, workspace, page):  # noqa: F811

@@ -25,7 +25,7 @@ def test_typescript_in_sync():
 def test_edit_fields_match_edit_function(cls):
     """Each edit message's fields are exactly its function's parameters after the drawing."""
     params = list(inspect.signature(cls.fn).parameters)[1:]
-    fields = [f.name for f in dataclasses.fields(cls) if f.name not in ("id", "type")]
+    fields = [f.name for f in dataclasses.fields(cls) if f.name not in P.EditOp.NOT_PARAMETERS]
     assert set(fields) == set(params)
     assert cls.fn.__name__ in edit.__all__
 

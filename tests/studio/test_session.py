@@ -255,3 +255,32 @@ def test_concurrent_edits_from_threads_are_all_kept(workspace):
     for t in threads:
         t.join()
     assert len(doc.undo_stack) == 40 and doc.changes == 40
+
+
+def test_a_drag_is_one_undo_step(workspace):
+    """Edits sharing a non-zero drag make one undo step; another drag, or drag 0, starts a new one."""
+    s = Session(Workspace(workspace))
+    s.open("tn-2.uc")
+    d0 = s.drawing
+    x, y = d0.curves[0].vertices[1]
+    for k in range(1, 6):
+        s.apply(P.MoveVertex(curve=0, vertex=1, xy=(x + 0.01 * k, y), drag=7))
+    d1 = s.drawing
+    assert d1.curves[0].vertices[1] == (x + 0.05, y) and len(s.undo_stack) == 1
+    s.apply(P.SetApexHeight(curve=0, height=2.0, drag=8))
+    s.apply(P.SetApexHeight(curve=0, height=2.2, drag=8))
+    s.apply(P.MoveVertex(curve=0, vertex=1, xy=(x, y + 0.1)))       # drag 0: a step of its own
+    s.apply(P.MoveVertex(curve=0, vertex=1, xy=(x, y + 0.2)))
+    assert len(s.undo_stack) == 4
+    s.undo()
+    s.undo()
+    assert s.drawing.curves[0].height == 2.2
+    s.undo()
+    assert s.drawing == d1
+    s.undo()
+    assert s.drawing == d0 and not s.undo_stack
+    s.redo()
+    assert s.drawing == d1
+    # after an undo the same drag number does not merge into the undone step
+    s.apply(P.MoveVertex(curve=0, vertex=1, xy=(x, y), drag=7))
+    assert len(s.undo_stack) == 2 and not s.redo_stack

@@ -36,6 +36,7 @@ export interface MoveVertex {
   curve: number;
   vertex: number;
   xy: [number, number];
+  drag?: number;
   id?: number;
   type: "move_vertex";
 }
@@ -46,6 +47,7 @@ export interface MoveHandle {
   segment: number;
   handle: number;
   xy: [number, number];
+  drag?: number;
   id?: number;
   type: "move_handle";
 }
@@ -54,6 +56,7 @@ export interface MoveHandle {
 export interface SetApexHeight {
   curve: number;
   height: number;
+  drag?: number;
   id?: number;
   type: "set_apex_height";
 }
@@ -78,6 +81,7 @@ export interface RecomputePrc {
 export interface SetLayerBottom {
   layer: number;
   z: number;
+  drag?: number;
   id?: number;
   type: "set_layer_bottom";
 }
@@ -87,6 +91,7 @@ export interface SetDecoration {
   curve: number;
   on: boolean;
   at?: number | null;
+  drag?: number;
   id?: number;
   type: "set_decoration";
 }
@@ -95,6 +100,7 @@ export interface SetDecoration {
 export interface SetPost {
   curve: number;
   top: number | null;
+  drag?: number;
   id?: number;
   type: "set_post";
 }
@@ -149,6 +155,7 @@ export interface SetPrcHeight {
   curve: number;
   z: number;
   segment?: number;
+  drag?: number;
   id?: number;
   type: "set_prc_height";
 }

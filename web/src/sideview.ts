@@ -5,6 +5,7 @@
 // snapping); a drag keeps at most one edit in flight and sends the latest value when the reply
 // comes, and the scale stays put until the drag's last reply. Only heights change: the server
 // keeps the top view as it is.
+import { newDragId } from "./gesture";
 import "./sideview.css";
 import type { Ctx } from "./context";
 import { view } from "./geometry";
@@ -129,6 +130,8 @@ interface Drag {
   floor: number;
   targets: Target[];
   snap: Target | null;
+  /** The drag number its edits carry (one undo step). */
+  gesture: number;
 }
 
 /** Sends a stream of edits: at most one in flight; while one is, only the latest waits. */
@@ -247,6 +250,7 @@ function initSide(ctx: Ctx): void {
   let map: SideMap = { k: 1, ox: 0, oy: 0 };
   let frozen = false; // the scale stays while a drag's edits are on their way
   let drag: Drag | null = null;
+  let decoGesture = 0;   // the decoration slider's drag number while it moves
   let lay: SideLayout | null = null;
   const sender = new Coalescer((m) => ctx.request(m), () => {
     if (!drag && frozen) {
@@ -281,7 +285,7 @@ function initSide(ctx: Ctx): void {
     const t = kind.what === "bottom"
       ? targets(g, (i) => g.curves[i].layer === kind.layer, kind.layer)
       : targets(g, (i) => i === c, null);
-    drag = { kind, curve: c, z, floor, targets: t, snap: null };
+    drag = { kind, curve: c, z, floor, targets: t, snap: null, gesture: newDragId() };
     frozen = true;
     sender.begin();
     draw();
@@ -289,10 +293,10 @@ function initSide(ctx: Ctx): void {
 
   function dragMessage(d: Drag): ClientMessage {
     switch (d.kind.what) {
-      case "apex": return { type: "set_apex_height", curve: d.curve, height: d.z };
-      case "prc": return { type: "set_prc_height", curve: d.curve, z: d.z, segment: d.kind.segment };
-      case "post": return { type: "set_post", curve: d.curve, top: d.z };
-      case "bottom": return { type: "set_layer_bottom", layer: d.kind.layer, z: d.z };
+      case "apex": return { type: "set_apex_height", curve: d.curve, height: d.z, drag: d.gesture };
+      case "prc": return { type: "set_prc_height", curve: d.curve, z: d.z, segment: d.kind.segment, drag: d.gesture };
+      case "post": return { type: "set_post", curve: d.curve, top: d.z, drag: d.gesture };
+      case "bottom": return { type: "set_layer_bottom", layer: d.kind.layer, z: d.z, drag: d.gesture };
     }
   }
 
@@ -464,8 +468,11 @@ function initSide(ctx: Ctx): void {
     if (c === null || !lay) return;
     const [lo, hi] = decorationRange(lay);
     sender.begin();
-    sender.push({ type: "set_decoration", curve: c, on: true, at: lo + ((hi - lo) * Number(decoAt.value)) / 1000 });
+    decoGesture ||= newDragId();
+    sender.push({ type: "set_decoration", curve: c, on: true, at: lo + ((hi - lo) * Number(decoAt.value)) / 1000,
+      drag: decoGesture });
   });
+  decoAt.addEventListener("change", () => { decoGesture = 0; });  // the slider was let go
   postToggle.addEventListener("change", () => {
     const c = selected(), g = store.geometry;
     if (c === null || !g) return;

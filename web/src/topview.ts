@@ -2,6 +2,7 @@
 // symmetry guides, the PRC and intersection markers, the curves' points and handles and the curve
 // being drawn, and turns clicks and drags into edit messages; the server answers each with new
 // geometry (so every edit is undoable). Elements are pooled and updated in place, once a frame.
+import { newDragId } from "./gesture";
 import "./topview.css";
 import type { Ctx } from "./context";
 import { view } from "./geometry";
@@ -50,6 +51,8 @@ interface Drag {
   pos: Vec | null;
   released: boolean;
   targets: SnapTargets;
+  /** The drag number its edits carry (one undo step). */
+  gesture: number;
 }
 
 interface Draft {
@@ -336,7 +339,7 @@ class TopView {
         : { kind: "handle", curve, segment: Number(d.segment), handle: Number(d.handle) };
       this.store.select(curve);
       this.drag = { target, x: ev.clientX, y: ev.clientY, moved: false, pos: null, released: false,
-        targets: this.targets(curve) };
+        targets: this.targets(curve), gesture: newDragId() };
       this.svg.setPointerCapture(ev.pointerId);
     } else if (d.testid === "intersection") {
       this.press = { index: Number(d.index), x: ev.clientX, y: ev.clientY };
@@ -355,8 +358,8 @@ class TopView {
       drag.pos = this.lastSnap.p;
       const t = drag.target, xy = drag.pos;
       this.queue(t.kind === "vertex"
-        ? { type: "move_vertex", curve: t.curve, vertex: t.vertex, xy }
-        : { type: "move_handle", curve: t.curve, segment: t.segment, handle: t.handle, xy });
+        ? { type: "move_vertex", curve: t.curve, vertex: t.vertex, xy, drag: drag.gesture }
+        : { type: "move_handle", curve: t.curve, segment: t.segment, handle: t.handle, xy, drag: drag.gesture });
       this.schedule(false);
       return;
     }

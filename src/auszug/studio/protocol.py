@@ -151,7 +151,15 @@ class Redo:
 
 
 class EditOp:
-    """Base of the edit messages: each applies one function of :mod:`auszug.microarch.edit`."""
+    """Base of the edit messages: each applies one function of :mod:`auszug.microarch.edit`.
+
+    The messages of dragging (points, handles, heights) carry ``drag``: a non-zero
+    number the client picks per drag gesture. Consecutive edits with the same
+    ``drag`` make one undo step (undo after a drag goes back to before it).
+    """
+
+    #: Fields of a message that are not parameters of its edit function.
+    NOT_PARAMETERS: ClassVar[tuple[str, ...]] = ("id", "type", "drag")
 
     #: The edit function; called as ``fn(drawing, **fields)`` without ``id`` and ``type``.
     fn: ClassVar[Callable[..., Drawing]]
@@ -159,7 +167,7 @@ class EditOp:
     def apply(self, drawing: Drawing) -> Drawing:
         """The edited drawing (the input is not changed)."""
         kw = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)  # type: ignore[arg-type]
-              if f.name not in ("id", "type")}
+              if f.name not in EditOp.NOT_PARAMETERS}
         return type(self).fn(drawing, **kw)
 
 
@@ -170,6 +178,7 @@ class MoveVertex(EditOp):
     curve: int
     vertex: int
     xy: XY
+    drag: int = 0
     id: int = 0
     type: Literal["move_vertex"] = "move_vertex"
     fn = staticmethod(edit.move_vertex)
@@ -183,6 +192,7 @@ class MoveHandle(EditOp):
     segment: int
     handle: int
     xy: XY
+    drag: int = 0
     id: int = 0
     type: Literal["move_handle"] = "move_handle"
     fn = staticmethod(edit.move_handle)
@@ -194,6 +204,7 @@ class SetApexHeight(EditOp):
 
     curve: int
     height: float
+    drag: int = 0
     id: int = 0
     type: Literal["set_apex_height"] = "set_apex_height"
     fn = staticmethod(edit.set_apex_height)
@@ -227,6 +238,7 @@ class SetLayerBottom(EditOp):
 
     layer: int
     z: float
+    drag: int = 0
     id: int = 0
     type: Literal["set_layer_bottom"] = "set_layer_bottom"
     fn = staticmethod(edit.set_layer_bottom)
@@ -239,6 +251,7 @@ class SetDecoration(EditOp):
     curve: int
     on: bool
     at: float | None = None
+    drag: int = 0
     id: int = 0
     type: Literal["set_decoration"] = "set_decoration"
     fn = staticmethod(edit.set_decoration)
@@ -250,6 +263,7 @@ class SetPost(EditOp):
 
     curve: int
     top: float | None
+    drag: int = 0
     id: int = 0
     type: Literal["set_post"] = "set_post"
     fn = staticmethod(edit.set_post)
@@ -326,6 +340,7 @@ class SetPrcHeight(EditOp):
     curve: int
     z: float
     segment: int = 0
+    drag: int = 0
     id: int = 0
     type: Literal["set_prc_height"] = "set_prc_height"
     fn = staticmethod(edit.set_prc_height)

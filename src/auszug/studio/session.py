@@ -601,6 +601,7 @@ class Document:
         self.autosave_lock = threading.Lock()  # one autosave or save at a time touches the files
         self.slow_edits = False              # the last edit was slow: the server runs the next in a thread
         self._frames: tuple[int, GeometryText, bytes] | None = None
+        self._drag = 0                       # the drag gesture of the last edit (0: none)
 
     # -- state ------------------------------------------------------------------------
     @property
@@ -651,6 +652,7 @@ class Document:
         self._frames = None
 
     def _push(self, new: Drawing, net: Network) -> None:
+        self._drag = 0
         self.undo_stack.append(self.drawing)
         del self.undo_stack[:-UNDO_DEPTH]
         self.redo_stack.clear()
@@ -663,13 +665,19 @@ class Document:
         snapshot never wait for them); the commit checks that no other change
         came in between, and else starts over from the newer drawing.
         """
+        drag = getattr(op, "drag", 0)
         while True:
             base = self.drawing
             new = op.apply(base)
             net = network_of(new)   # refuses a drawing that does not build
             with self.lock:
                 if self.drawing is base:
-                    self._push(new, net)
+                    if drag and drag == self._drag and self.undo_stack:
+                        self.redo_stack.clear()   # the same drag goes on: still one undo step
+                        self._set(new, net)
+                    else:
+                        self._push(new, net)
+                    self._drag = drag
                     return
 
     def replace_drawing(self, new: Drawing) -> None:
@@ -681,6 +689,7 @@ class Document:
     def undo(self) -> None:
         """Go back one edit."""
         with self.lock:
+            self._drag = 0
             if not self.undo_stack:
                 raise AuszugError("nothing to undo")
             prev = self.undo_stack[-1]
@@ -692,6 +701,7 @@ class Document:
     def redo(self) -> None:
         """Redo the last undone edit."""
         with self.lock:
+            self._drag = 0
             if not self.redo_stack:
                 raise AuszugError("nothing to redo")
             nxt = self.redo_stack[-1]

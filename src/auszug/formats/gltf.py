@@ -25,7 +25,7 @@ from auszug.errors import FormatError
 from auszug.formats._registry import FileFormat, register
 from auszug.formats.mesh_obj import as_mesh, part_colour
 
-__all__ = ["to_gltf", "dumps_glb", "dumps_gltf", "loads"]
+__all__ = ["to_gltf", "pack_glb", "dumps_glb", "dumps_gltf", "loads"]
 
 #: Quaternion (x, y, z, w) of the root node: z-up to y-up.
 Z_UP_TO_Y_UP = [-0.7071067811865476, 0.0, 0.0, 0.7071067811865476]
@@ -123,7 +123,11 @@ def dumps_glb(obj: Any, name: str = "") -> bytes:
     >>> data[:4], loads(data).n_faces
     (b'glTF', 1)
     """
-    doc, binary = to_gltf(obj)
+    return pack_glb(*to_gltf(obj))
+
+
+def pack_glb(doc: dict, binary: bytes) -> bytes:
+    """A glTF document and its binary buffer as one GLB file (JSON and BIN chunks, 4-byte aligned)."""
     js = json.dumps(doc, separators=(",", ":")).encode("utf-8")
     js += b" " * ((-len(js)) % 4)
     chunks = struct.pack("<I4s", len(js), b"JSON") + js

@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import math
 import weakref
-from collections import OrderedDict
 from dataclasses import dataclass, field
 from typing import Iterator, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from auszug.microarch._cache import LruCache
 from auszug.errors import DrawingError
 from auszug.geometry import TOL, Curve
 from auszug.microarch import sideview as sv
@@ -357,36 +357,7 @@ def build(
     return net
 
 
-class _Lru:
-    """A small thread-tolerant LRU dict (the studio builds from several threads)."""
-
-    def __init__(self, size: int):
-        self.size = size
-        self.data: OrderedDict = OrderedDict()
-
-    def get(self, key: object):  # noqa: ANN201
-        v = self.data.get(key)
-        if v is not None:
-            try:
-                self.data.move_to_end(key)
-            except KeyError:
-                pass
-        return v
-
-    def put(self, key: object, value: object) -> None:
-        self.data[key] = value
-        while len(self.data) > self.size:
-            try:
-                self.data.popitem(last=False)
-            except KeyError:
-                break
-
-
-#: The pieces of one basic curve, keyed by everything they depend on: the curve, its layer's
-#: bottom, its apex, its automatic PRCs, the parameterisation, samples and tolerances. An edit
-#: rebuilds only the curves it changes (pillars, which depend on other curves, always are).
-#: Cached pieces are shared between networks; their arrays are read-only.
-_CURVE_PIECES = _Lru(1024)
+_CURVE_PIECES = LruCache(1024)
 
 
 def _heights(c: BasicCurve, bottom: float, apex: float, where: str) -> list[float]:

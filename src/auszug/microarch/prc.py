@@ -17,7 +17,6 @@ curves of other layers do not meet it in 3D.
 
 from __future__ import annotations
 
-from collections import OrderedDict
 from functools import lru_cache
 from dataclasses import dataclass
 from typing import Literal
@@ -27,6 +26,7 @@ from numpy.typing import NDArray
 
 from auszug.geometry import TOL, Curve
 from auszug.geometry.intersect import _intersect_prims, _prim
+from auszug.microarch._cache import LruCache
 from auszug.microarch.model import Drawing
 
 __all__ = ["TopIntersection", "PrcChoice", "intersections", "algorithm1", "oriented_segments"]
@@ -230,45 +230,15 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
     return out
 
 
-class _PairCache:
-    """Bounded cache of the intersections of one basic segment with one replica.
-
-    Keyed by the geometry of both segments (their vertices, drawing, marks and
-    the replica's symmetry element), so an edit recomputes only the pairs it
-    touches: interactive rebuilds stay fast. Results are immutable tuples.
-    """
-
-    def __init__(self, size: int = 20000):
-        self.size = size
-        self.data: OrderedDict = OrderedDict()
-
-    def __contains__(self, key: object) -> bool:
-        return key in self.data
-
-    def get(self, key: object):  # noqa: ANN201
-        v = self.data.get(key)
-        if v is not None:
-            try:
-                self.data.move_to_end(key)
-            except KeyError:  # evicted meanwhile by another thread: still a valid result
-                pass
-        return v
-
-    def put(self, key: object, value: object) -> None:
-        self.data[key] = value
-        while len(self.data) > self.size:
-            try:
-                self.data.popitem(last=False)
-            except KeyError:  # emptied meanwhile by another thread
-                break
-
-
-_PAIRS = _PairCache()
+#: Intersections of one basic segment with one replica, keyed by the geometry of both (their
+#: vertices, handles, marks and the replica's symmetry element): an edit recomputes only the
+#: pairs it touches. Values are immutable tuples.
+_PAIRS = LruCache(20000)
 _MISS = object()
 #: The TopIntersection records of a pair at given curve/segment indices (keyed like the pairs).
-_MARKERS = _PairCache(20000)
+_MARKERS = LruCache(20000)
 #: Whole results of :func:`intersections`, keyed by the segments' key ids (an apex drag hits).
-_RESULTS = _PairCache(64)
+_RESULTS = LruCache(64)
 #: Segment keys -> small integers, so pair keys hash cheaply. Ids are never reused: when the
 #: table is cleared, keys get fresh ids and the cached pairs of the old ids simply go unused.
 _KEY_IDS: dict = {}
@@ -322,7 +292,7 @@ def algorithm1(drawing: Drawing) -> dict[tuple[int, int], PrcChoice]:
     return dict(out)
 
 
-_CHOICES = _PairCache(256)
+_CHOICES = LruCache(256)
 
 
 def _algorithm1(drawing: Drawing) -> dict[tuple[int, int], PrcChoice]:

@@ -231,10 +231,7 @@ def _parse_colours(colors: Sequence[str]) -> list[tuple[float, float, float]]:
 
 def _glb(mesh: Any, colours: list[tuple[float, float, float]]) -> bytes:  # noqa: ANN401
     """GLB bytes of ``mesh`` with the members of basic curve i in ``colours[i]`` (others unchanged)."""
-    import json
-    import struct
-
-    from auszug.formats.gltf import dumps_glb, to_gltf
+    from auszug.formats.gltf import dumps_glb, pack_glb, to_gltf
 
     if not colours:
         return dumps_glb(mesh)
@@ -244,12 +241,7 @@ def _glb(mesh: Any, colours: list[tuple[float, float, float]]) -> bytes:  # noqa
         if b is not None and 0 <= b < len(colours) and "mesh" in node:
             mat = doc["meshes"][node["mesh"]]["primitives"][0]["material"]
             doc["materials"][mat]["pbrMetallicRoughness"]["baseColorFactor"][:3] = list(colours[b])
-    js = json.dumps(doc, separators=(",", ":")).encode("utf-8")
-    js += b" " * ((-len(js)) % 4)
-    chunks = struct.pack("<I4s", len(js), b"JSON") + js
-    if binary:
-        chunks += struct.pack("<I4s", len(binary), b"BIN\0") + binary
-    return struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks
+    return pack_glb(doc, binary)
 
 
 def export_file(net: Network, name: str, *, format: str, style: str = "bar", faces: str = "none",

@@ -6,7 +6,9 @@ through Playwright with software WebGL (--disable-gpu), as the authors' demo was
 WebSocket; the clock is the page's performance.now():
 
 - edit -> geometry in the page: from sending the edit message until the page has the new
-  Geometry and every listener (scene buffers, overlays, panels) has run. Target: median <= 2 ms
+  Geometry and every listener (scene buffers, overlays, panels) has run. Measured at a drag's
+  pace (one edit per 16.7 ms, as a 60 Hz mouse sends them) and back to back (each edit right
+  after the previous one's frame, while chromium still composites it on the same 2 cores). Target: median <= 2 ms
   for a top-view point drag on U.XI.28 (demo: 1.2 ms point drag, 4.2 ms apex drag).
 - edit + rendered frame: the same plus the next animation frame drawn and finished on the GPU
   (gl.readPixels forces completion). Target <= 20 ms (demo: 17-23 ms).
@@ -41,18 +43,22 @@ ANCHOR = {"point drag": 1.2, "apex drag": 4.2, "frame": "17-23"}
 # drawn (so no frame runs while an edit is timed); returns [geometry ms, frame ms] per edit.
 # Each edit goes to a new position, so no edit finds its result in the engine's caches.
 EDITS_JS = """
-async ({kind, n}) => {
+async ({kind, n, period}) => {
   // every edit moves to a new place (no two drawings alike: no cached intersections reused)
   const seed = (window.__benchSeed = (window.__benchSeed || 0) + n);
   const a = window.auszug, g0 = a.store.geometry, c = g0.curves[0];
   const last = c.vertices.length - 1, [x, y] = c.vertices[last], h = c.apex;
   const gl = a.views.renderer.getContext(), px = new Uint8Array(4);
-  const out = [];
+  const out = [], start = performance.now();
   for (let k = 0; k < n; k++) {
     const msg = kind === "point drag"
       ? {type: "move_vertex", curve: 0, vertex: last, xy: [x + 1e-3 * Math.sin(0.37 * (seed + k)), y]}
       : {type: "set_apex_height", curve: 0, height: h * (1 - 0.01 * Math.abs(Math.sin(0.37 * (seed + k))))};
     const got = new Promise((res) => { const off = a.store.on("geometry", () => { off(); res(performance.now()); }); });
+    if (period) {  // at a drag's pace: one edit per pointer event of a 60 Hz mouse
+      const due = start + k * period - performance.now();
+      if (due > 0) await new Promise((res) => setTimeout(res, due));
+    }
     const t0 = performance.now();
     a.ctx.send(msg);
     const t1 = await got;
@@ -121,18 +127,20 @@ def main(argv: list[str] | None = None) -> int:
                 page.wait_for_function("() => window.auszug && window.auszug.timings.length > 0 "
                                        "&& window.auszug.timings[0].rendered > 0", timeout=30000)
                 loads.append(page.evaluate("() => window.auszug.timings[0].rendered"))
-            page.evaluate(EDITS_JS, {"kind": "point drag", "n": 20})  # warm up
+            page.evaluate(EDITS_JS, {"kind": "point drag", "n": 20, "period": 0})  # warm up
             for kind in ("point drag", "apex drag"):
-                res = page.evaluate(EDITS_JS, {"kind": kind, "n": args.reps})
-                g = [a for a, _ in res]
-                f = [b for _, b in res]
-                rows.append((kind, statistics.median(g), pct(g, 0.9), statistics.median(f), pct(f, 0.9)))
+                for pace, period in (("at a 60 Hz drag's pace", 1000 / 60), ("back to back", 0)):
+                    res = page.evaluate(EDITS_JS, {"kind": kind, "n": args.reps, "period": period})
+                    g = [a for a, _ in res]
+                    f = [b for _, b in res]
+                    rows.append((f"{kind}, {pace}", kind, statistics.median(g), pct(g, 0.9),
+                                 statistics.median(f), pct(f, 0.9)))
             if args.looks != "curves":
                 page.evaluate(f"() => window.auszug.store.setLooks({{style: '{args.looks}'}})")
                 page.wait_for_timeout(1500)
-            page.evaluate(EDITS_JS, {"kind": "point drag", "n": 1})
+            page.evaluate(EDITS_JS, {"kind": "point drag", "n": 1, "period": 0})
             info0 = page.evaluate(INFO_JS)
-            page.evaluate(EDITS_JS, {"kind": "point drag", "n": args.edits})
+            page.evaluate(EDITS_JS, {"kind": "point drag", "n": args.edits, "period": 0})
             if args.looks != "curves":
                 page.wait_for_timeout(1500)
             info1 = page.evaluate(INFO_JS)
@@ -151,8 +159,8 @@ def main(argv: list[str] | None = None) -> int:
     print()
     print("| edit | to geometry in page: median (ms) | p90 | + rendered frame: median (ms) | p90 | target | authors' demo (ms) |")
     print("|---|---|---|---|---|---|---|")
-    for kind, gm, g9, fm, f9 in rows:
-        print(f"| {kind} | {gm:.2f} | {g9:.2f} | {fm:.2f} | {f9:.2f} | <= 2 (point drag), <= 20 with frame | "
+    for label, kind, gm, g9, fm, f9 in rows:
+        print(f"| {label} | {gm:.2f} | {g9:.2f} | {fm:.2f} | {f9:.2f} | <= 2 (point drag), <= 20 with frame | "
               f"{ANCHOR[kind]} ({ANCHOR['frame']} with frame) |")
     print()
     print(f"| first load (navigation to first frame) | {', '.join(f'{t:.0f}' for t in loads)} ms | target < 1500 ms |")

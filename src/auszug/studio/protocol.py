@@ -18,7 +18,7 @@ Examples
 --------
 >>> msg = decode('{"type": "set_apex_height", "curve": 0, "height": 2.5}')
 >>> msg
-SetApexHeight(curve=0, height=2.5, id=0, type='set_apex_height')
+SetApexHeight(curve=0, height=2.5, drag=0, id=0, type='set_apex_height')
 >>> decode('{"type": "set_apex_height", "curve": "zero", "height": 2.5}')
 Traceback (most recent call last):
 ...

@@ -13,7 +13,7 @@ import pytest
 
 from auszug import examples
 
-from .e2e import browser, geometry, needs_browser, open_drawing, page, studio  # noqa: F401  (fixtures)
+from .e2e import SHOTS, browser, geometry, needs_browser, open_drawing, page, studio  # noqa: F401  (fixtures)
 
 pytestmark = needs_browser
 
@@ -74,6 +74,8 @@ def test_tube_and_faces_are_instanced_per_piece(studio, uxi28, page):  # noqa: F
         if o["basic"] >= 0:
             assert o["color"] == colors[o["basic"]]
     assert "faces" in page.inner_text("[data-testid=look-info]")
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    page.screenshot(path=str(SHOTS / "test_tube_and_faces_are_instanced_per_piece-tubes.png"))
 
     # back to curves without faces: the meshes go, and no more requests are made
     page.select_option("[data-testid=look-style]", "curves")

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
@@ -9,7 +11,7 @@ from auszug.errors import AuszugError
 from auszug.formats import load
 from auszug.microarch import build
 from auszug.studio import protocol as P
-from auszug.studio.session import Session, Workspace, WorkspaceError, geometry
+from auszug.studio.session import Session, Workspace, WorkspaceError, geometry, geometry_frames
 
 
 def _replicas(msg: P.Geometry, payload: bytes) -> list[np.ndarray]:
@@ -114,12 +116,13 @@ def test_empty_drawing_geometry():
 
 def test_bounds_equal_the_networks():
     from auszug import examples
-    from auszug.studio.session import _bounds
 
     for name in FAST_CASES:
-        net = build(load(examples.path(name)))
-        want = net.bounds().ravel()
-        np.testing.assert_allclose(_bounds(net), want, rtol=0, atol=1e-14 * np.abs(want).max())   # to rounding
+        d = load(examples.path(name))
+        want = build(d).bounds().ravel()
+        sent = json.loads(geometry_frames(d)[0].text())["bounds"]
+        np.testing.assert_allclose(sent, want, rtol=0, atol=1e-14 * np.abs(want).max())   # to rounding
+        np.testing.assert_allclose(geometry(d)[0].bounds, want, rtol=0, atol=1e-14 * np.abs(want).max())
 
 
 def test_network_of_reuses_one_build_per_drawing(workspace):

@@ -39,12 +39,6 @@ __all__ = [
 ]
 
 
-def _all_bottoms(d: Drawing) -> list[float]:
-    """Bottoms of every layer, including stored empty layers above the highest used one."""
-    b = list(d.bottoms())
-    return b + [float(z) for z in d.layer_bottoms[len(b):]]
-
-
 def _check_curve(d: Drawing, i: int) -> BasicCurve:
     if not 0 <= i < len(d.curves):
         raise DrawingError(f"no curve {i}: the drawing has {len(d.curves)} curves")
@@ -165,7 +159,7 @@ def recompute_prc(d: Drawing, curves: list[int] | None = None) -> Drawing:
 
 def set_layer_bottom(d: Drawing, layer: int, z: float) -> Drawing:
     """Set the bottom height of a layer (stores all bottoms explicitly)."""
-    b = _all_bottoms(d)
+    b = list(d.all_bottoms())
     if not 0 <= layer < len(b):
         raise DrawingError(f"no layer {layer}: the drawing has {len(b)} layers")
     b[layer] = float(z)
@@ -174,7 +168,7 @@ def set_layer_bottom(d: Drawing, layer: int, z: float) -> Drawing:
 
 def add_layer(d: Drawing, bottom: float | None = None) -> Drawing:
     """Add an (empty) layer on top; its bottom defaults to the highest apex of the top layer."""
-    b = _all_bottoms(d)
+    b = list(d.all_bottoms())
     if bottom is None:
         top = len(b) - 1
         hs = [d.apex_height(i, b) for i, c in enumerate(d.curves) if c.layer == top]
@@ -185,7 +179,7 @@ def add_layer(d: Drawing, bottom: float | None = None) -> Drawing:
 
 def remove_layer(d: Drawing, layer: int) -> Drawing:
     """Remove a layer and its curves; the layers above move down one index."""
-    b = _all_bottoms(d)
+    b = list(d.all_bottoms())
     if not 0 <= layer < len(b):
         raise DrawingError(f"no layer {layer}")
     curves = tuple(c.with_(layer=c.layer - (1 if c.layer > layer else 0)) for c in d.curves if c.layer != layer)
@@ -239,7 +233,7 @@ def draw_curve(
         if len(h) not in kinds:
             raise DrawingError(f"segment {i}: expected 0 (line), 1 (arc) or 2 (Bezier) handles, got {len(h)}")
         segs.append(Segment(kinds[len(h)], tuple(tuple(p) for p in h)))
-    n_layers = len(_all_bottoms(d))
+    n_layers = len(list(d.all_bottoms()))
     if isinstance(layer, bool) or not 0 <= layer <= n_layers:
         raise DrawingError(f"layer {layer} does not exist: the drawing has layers 0..{n_layers - 1} "
                            f"(or {n_layers} to add one on top)")
@@ -260,7 +254,7 @@ def set_layer(d: Drawing, curve: int, layer: int) -> Drawing:
     1
     """
     c = _check_curve(d, curve)
-    b = _all_bottoms(d)
+    b = list(d.all_bottoms())
     if isinstance(layer, bool) or not 0 <= layer < len(b):
         raise DrawingError(f"no layer {layer}: the drawing has layers 0..{len(b) - 1}")
     return replace(d.with_curve(curve, c.with_(layer=layer)), layer_bottoms=tuple(b))

@@ -351,6 +351,19 @@ class Drawing:
             out.append(max(hs) if hs else out[-1] + 1.0)
         return tuple(out)
 
+    def all_bottoms(self) -> tuple[float, ...]:
+        """:meth:`bottoms`, followed by the stored bottoms of empty layers above the highest used one.
+
+        Examples
+        --------
+        >>> c = BasicCurve(((0, 0), (1, 0)), (Segment(),), ("ground", "apex"), height=1.0)
+        >>> d = Drawing((c,), (0.0, 1.0, 2.5))
+        >>> d.bottoms(), d.all_bottoms()
+        ((0.0,), (0.0, 1.0, 2.5))
+        """
+        b = self.bottoms()
+        return b + tuple(float(z) for z in self.layer_bottoms[len(b):])
+
     def apex_height(self, i: int, bottoms: Sequence[float] | None = None) -> float:
         """Absolute apex height of curve ``i`` (stored or default)."""
         c = self.curves[i]

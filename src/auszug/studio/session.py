@@ -252,16 +252,18 @@ def _curve_dicts(drawing: Drawing) -> list[dict]:
     return [_curve_info(c, drawing.apex_height(i, bottoms), bottoms[c.layer]) for i, c in enumerate(drawing.curves)]
 
 
+def _curve_info_message(d: dict) -> P.CurveInfo:
+    """A CurveInfo from its dict (points as tuples; the cached dict is not shared)."""
+    kw = copy.deepcopy(d)
+    kw["vertices"] = [tuple(v) for v in d["vertices"]]
+    kw["handles"] = [[tuple(h) for h in hs] for hs in d["handles"]]
+    kw["center"] = tuple(d["center"])
+    return P.CurveInfo(**kw)
+
+
 def curve_infos(drawing: Drawing) -> list[P.CurveInfo]:
     """The editable definition of every basic curve, as the design tools show it."""
-    out = []
-    for d in _curve_dicts(drawing):
-        kw = copy.deepcopy(d)
-        kw["vertices"] = [tuple(v) for v in d["vertices"]]
-        kw["handles"] = [[tuple(h) for h in hs] for hs in d["handles"]]
-        kw["center"] = tuple(d["center"])
-        out.append(P.CurveInfo(**kw))
-    return out
+    return [_curve_info_message(d) for d in _curve_dicts(drawing)]
 
 
 def _side(points: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -269,30 +271,6 @@ def _side(points: NDArray[np.float64]) -> NDArray[np.float64]:
     d = np.hypot(*np.diff(points[:, :2], axis=0).T)
     s = np.concatenate([[0.0], np.cumsum(d)])
     return np.stack([s, points[:, 2]], axis=1)
-
-
-def _layer_bottoms(drawing: Drawing) -> list[float]:
-    b = list(drawing.bottoms())
-    return [float(z) for z in b] + [float(z) for z in drawing.layer_bottoms[len(b):]]
-
-
-def _bounds(net: Network) -> list[float]:
-    """:meth:`Network.bounds` (min corner, max corner) as 6 floats, by matrix products per curve."""
-    lo = np.full(3, np.inf)
-    hi = np.full(3, -np.inf)
-    by_basic: dict[int, list[NDArray[np.float64]]] = {}
-    for p in net.pieces:
-        by_basic.setdefault(p.basic, []).append(p.points)
-    for b, pts in by_basic.items():
-        sym = net.drawing.curves[b].symmetry
-        c = np.asarray(sym.center)
-        a = np.concatenate(pts) if len(pts) > 1 else pts[0]
-        xy = np.matmul(sym.matrices(), (a[:, :2] - c).T)    # (k, 2, n)
-        lo[:2] = np.minimum(lo[:2], xy.min(axis=(0, 2)) + c)
-        hi[:2] = np.maximum(hi[:2], xy.max(axis=(0, 2)) + c)
-        lo[2] = min(lo[2], float(a[:, 2].min()))
-        hi[2] = max(hi[2], float(a[:, 2].max()))
-    return [float(v) for v in lo] + [float(v) for v in hi]
 
 
 def _distinct_replicas(sym: Any, points: NDArray[np.float64]) -> list[int]:  # noqa: ANN401
@@ -428,7 +406,7 @@ class _Body:
             self.bounds = [float(v) for v in lo + hi]
         else:
             self.bounds = [0.0] * 6
-        self.layers = _layer_bottoms(drawing)
+        self.layers = [float(z) for z in drawing.all_bottoms()]
         bottoms = drawing.bottoms()
         self.curve_keys = [(c, drawing.apex_height(i, bottoms), bottoms[c.layer]) for i, c in enumerate(curves)]
 
@@ -494,13 +472,7 @@ def _message(d: dict, msg_id: int) -> P.Geometry:
     pieces = [P.PieceGeometry(**{**p, "points": P.ArrayRef(**p["points"]), "side": P.ArrayRef(**p["side"]),
                                  "transforms": P.ArrayRef(**p["transforms"])}) for p in d["pieces"]]
     markers = [P.IntersectionMarker(**{**m, "point": tuple(m["point"])}) for m in d["intersections"]]
-    curves = []
-    for c in d["curves"]:
-        kw = dict(c)
-        kw["vertices"] = [tuple(v) for v in c["vertices"]]
-        kw["handles"] = [[tuple(h) for h in hs] for hs in c["handles"]]
-        kw["center"] = tuple(c["center"])
-        curves.append(P.CurveInfo(**kw))
+    curves = [_curve_info_message(c) for c in d["curves"]]
     return P.Geometry(**{**d, "pieces": pieces, "intersections": markers, "curves": curves, "id": msg_id})
 
 

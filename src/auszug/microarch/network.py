@@ -18,7 +18,7 @@ from typing import Iterator, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from auszug.microarch._cache import LruCache
+from auszug._cache import LruCache
 from auszug.errors import DrawingError
 from auszug.geometry import TOL, Curve
 from auszug.microarch import sideview as sv

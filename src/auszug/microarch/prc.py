@@ -26,7 +26,7 @@ from numpy.typing import NDArray
 
 from auszug.geometry import TOL, Curve
 from auszug.geometry.intersect import _intersect_prims, _prim
-from auszug.microarch._cache import LruCache
+from auszug._cache import LruCache
 from auszug.microarch.model import Drawing
 
 __all__ = ["TopIntersection", "PrcChoice", "intersections", "algorithm1", "oriented_segments"]

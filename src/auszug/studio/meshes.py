@@ -18,14 +18,13 @@ float32 for positions, boundaries and transforms, uint32 for indices;
 from __future__ import annotations
 
 import re
-import threading
-from collections import OrderedDict
 from pathlib import PurePosixPath
 from typing import Any, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
+from auszug._cache import LruCache
 from auszug.errors import AuszugError
 from auszug.microarch.network import Network
 from auszug.studio import protocol as P
@@ -76,16 +75,9 @@ class Payload:
 
 # ---------------------------------------------------------------- caches (per network object)
 
-_LOCK = threading.Lock()
-_LOOPS: "OrderedDict[int, tuple[Network, list]]" = OrderedDict()
-_FACES: "OrderedDict[tuple, tuple[Network, Any]]" = OrderedDict()
-
-
-def _remember(cache: OrderedDict, key: Any, value: Any, size: int) -> None:  # noqa: ANN401
-    with _LOCK:
-        cache[key] = value
-        while len(cache) > size:
-            cache.popitem(last=False)
+#: Loops and faces computed per network object (entries hold the network, so its id stays unique).
+_LOOPS = LruCache(16)
+_FACES = LruCache(8)
 
 
 def loops_of(net: Network) -> list:
@@ -95,12 +87,11 @@ def loops_of(net: Network) -> list:
     """
     from auszug.meshing import find_loops
 
-    with _LOCK:
-        hit = _LOOPS.get(id(net))
+    hit = _LOOPS.get(id(net))
     if hit is not None and hit[0] is net:
         return hit[1]
     loops = find_loops(net) if net.pieces else []
-    _remember(_LOOPS, id(net), (net, loops), 16)
+    _LOOPS.put(id(net), (net, loops))
     return loops
 
 
@@ -112,8 +103,7 @@ def _faces(net: Network, mode: str, picked: Sequence[int]) -> Any:  # noqa: ANN4
     if mode not in ("auto", "picked"):
         raise StudioMeshError(f"faces must be none, auto or picked, got {mode!r}")
     key = (id(net), mode, tuple(picked) if mode == "picked" else ())
-    with _LOCK:
-        hit = _FACES.get(key)
+    hit = _FACES.get(key)
     if hit is not None and hit[0] is net:
         return hit[1]
     if mode == "auto":
@@ -124,7 +114,7 @@ def _faces(net: Network, mode: str, picked: Sequence[int]) -> Any:  # noqa: ANN4
         if bad:
             raise StudioMeshError(f"no loop {bad[0]}: the drawing has {len(loops)} loops (ask get_loops)")
         faces = network_faces(net, [loops[i] for i in picked]) if picked else None
-    _remember(_FACES, key, (net, faces), 8)
+    _FACES.put(key, (net, faces))
     return faces
 
 
@@ -148,9 +138,9 @@ def _check_segments(segments: int) -> int:
 
 
 def _transforms(net: Network, basic: int, replicas: Sequence[int]) -> NDArray[np.float64]:
-    from auszug.studio.session import _transforms as all_transforms
+    from auszug.studio.session import replica_transforms
 
-    return all_transforms(net.drawing.curves[basic].symmetry)[list(replicas)]
+    return replica_transforms(net.drawing, basic)[list(replicas)]
 
 
 def members(net: Network, style: str, size: float | None, segments: int) -> list:

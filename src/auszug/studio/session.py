@@ -22,7 +22,6 @@ import os
 import stat
 import threading
 import weakref
-from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from pathlib import Path, PurePosixPath
@@ -31,6 +30,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from auszug._cache import LruCache
 from auszug.errors import AuszugError, DrawingError, FormatError
 from auszug.microarch.model import Drawing
 from auszug.microarch.network import Network, build
@@ -164,9 +164,8 @@ class Workspace:
 
 # ---------------------------------------------------------------- networks and geometry
 
-_NETS: "OrderedDict[int, tuple[Drawing, Network]]" = OrderedDict()
-_NETS_LOCK = threading.Lock()
-_NETS_SIZE = 64
+#: The last networks built, keyed by drawing object (entries hold the drawing, so its id stays unique).
+_NETS = LruCache(64)
 
 
 def network_of(drawing: Drawing) -> Network:
@@ -175,17 +174,11 @@ def network_of(drawing: Drawing) -> Network:
     The cache holds the drawing itself, so its ``id`` is not reused while the
     entry lives; undo and redo find their networks here.
     """
-    key = id(drawing)
-    with _NETS_LOCK:
-        hit = _NETS.get(key)
-        if hit is not None and hit[0] is drawing:
-            _NETS.move_to_end(key)
-            return hit[1]
+    hit = _NETS.get(id(drawing))
+    if hit is not None and hit[0] is drawing:
+        return hit[1]
     net = build(drawing)
-    with _NETS_LOCK:
-        _NETS[key] = (drawing, net)
-        while len(_NETS) > _NETS_SIZE:
-            _NETS.popitem(last=False)
+    _NETS.put(id(drawing), (drawing, net))
     return net
 
 

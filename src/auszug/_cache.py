@@ -1,4 +1,4 @@
-"""A small bounded LRU dict shared by the engine's caches (pair intersections, results, pieces).
+"""A small bounded LRU dict shared by every cache of auszug (engine pairs and pieces, studio networks and faces).
 
 Thread-tolerant: the studio builds from several threads; a concurrent eviction only costs a
 recomputation, never a wrong value (values are immutable).

@@ -8,7 +8,6 @@ Every interaction is a real mouse or keyboard event at the screen position of a 
 from __future__ import annotations
 
 import shutil
-import statistics
 
 import numpy as np
 import pytest
@@ -321,7 +320,7 @@ def test_snapping(studio, workspace, page):  # noqa: F811
     np.testing.assert_allclose(q, near + [0.1, -0.35], atol=1.5 * s)
 
 
-def test_drag_is_coalesced_and_fast(studio, workspace, page):  # noqa: F811
+def test_drag_is_coalesced(studio, workspace, page):  # noqa: F811
     shutil.copy(examples.path("web/U.XI.28.uc"), workspace / "U.XI.28.uc")
     drawing = load(workspace / "U.XI.28.uc")
     g = open_drawing(page, studio, "U.XI.28.uc")
@@ -344,5 +343,4 @@ def test_drag_is_coalesced_and_fast(studio, workspace, page):  # noqa: F811
     assert 2 <= len(t) <= 41
     # one edit awaits its reply at a time
     assert all(b["sent"] >= a["received"] for a, b in zip(t, t[1:]))
-    page_ms = statistics.median(x["applied"] - x["received"] for x in t)
-    assert page_ms <= 2.0, f"median {page_ms:.2f} ms from the reply to the applied geometry"
+    # how fast: benchmarks/bench_studio.py (timings are measured there, not asserted in tests)

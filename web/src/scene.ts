@@ -187,7 +187,7 @@ export class Views {
   /** Draw every view of the current mode now. */
   render(): void {
     this.updateCameras();
-    const w = this.host.clientWidth, h = this.host.clientHeight;
+    const h = this.host.clientHeight;
     for (const v of ["top", "persp", "side"] as ViewName[]) {
       const r = this.rect(v);
       this.labels[v].hidden = !r;
@@ -199,7 +199,6 @@ export class Views {
       this.renderer.setScissor(r.x, y, r.w, r.h);
       this.renderer.render(this.scene, this.camera(v));
     }
-    void w;
     this.lastFrameAt = performance.now();
     this.frames++;
     for (const fn of this.frameListeners) fn();

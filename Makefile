@@ -43,9 +43,9 @@ web: $(WEB_BUILD)
 protocol: $(STAMP)
 	$(BIN)/python -m auszug.studio.protocol > web/src/protocol.ts
 
-## run: set up, then build and render the bundled teaching sheet and Basel drawings, and the
-## tracery style gallery, into ./out
-run: $(STAMP)
+## run: set up (the studio's front end too), then build and render the bundled teaching sheet and
+## Basel drawings, and the tracery style gallery, into ./out
+run: $(STAMP) $(WEB_BUILD)
 	$(BIN)/auszug demo -o $(OUT)
 	$(BIN)/auszug tracery --gallery $(OUT)/tracery
 

@@ -1,6 +1,7 @@
 // The selected curve's properties (#curve-panel): symmetry (fold, mirror), layer, colour, its
 // points (mark and coordinates, editable) and delete. Built once; values are updated in place
 // (never under the user's cursor: a focused field keeps what is being typed).
+import { perFrame } from "./frames";
 import "./curvepanel.css";
 import type { Ctx } from "./context";
 import type { ClientMessage, Geometry } from "./protocol";
@@ -150,8 +151,7 @@ export function initCurvePanel(ctx: Ctx): void {
     });
   };
   // once a frame: a drag's geometry stream never forces a layout in the middle of the listeners
-  let frame = 0;
-  const schedule = () => { if (!frame) frame = requestAnimationFrame(() => { frame = 0; update(); }); };
+  const schedule = perFrame(() => update());
   store.on("geometry", schedule);
   store.on("selection", schedule);
   store.on("looks", schedule);

@@ -55,10 +55,12 @@ export function initFiles(ctx: Ctx): void {
 
   store.on("geometry", (g) => {
     for (const b of needsDocument) b.disabled = false;
+    // written only when they change: an edit's geometry mostly leaves them as they are
     const label = documentLabel(g);
-    docName.textContent = label;
-    docName.title = g.dirty ? `${documentName(g)}: unsaved changes (the studio autosaves them)` : documentName(g);
-    document.title = `${label} — auszug studio`;
+    const tip = g.dirty ? `${documentName(g)}: unsaved changes (the studio autosaves them)` : documentName(g);
+    if (docName.textContent !== label) docName.textContent = label;
+    if (docName.title !== tip) docName.title = tip;
+    if (document.title !== `${label} — auszug studio`) document.title = `${label} — auszug studio`;
     renderBanner();
   });
 
@@ -332,8 +334,14 @@ export function initFiles(ctx: Ctx): void {
   let dismissed = "";
   const recoveryKey = (g: Geometry) => `${documentName(g)}\u0000${g.recoverable}`;
 
+  let bannerShows: string | null = null;
+
   function renderBanner(): void {
     const g = store.geometry;
+    // rebuilt only when what it shows changes (every edit's geometry calls this)
+    const shows = `${document.body.dataset.connected}\u0000${g ? recoveryKey(g) : ""}\u0000${dismissed}`;
+    if (shows === bannerShows) return;
+    bannerShows = shows;
     banner.replaceChildren();
     delete banner.dataset.state;
     if (document.body.dataset.connected === "false") {

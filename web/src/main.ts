@@ -40,9 +40,14 @@ function statusText(msg: Geometry): string {
 }
 
 store.on("status", ({ text, error }) => {
-  statusEl.textContent = text;
+  if (statusEl.textContent !== text) statusEl.textContent = text;
   statusEl.classList.toggle("error", error);
 });
+
+/** Set a data-* attribute of the status bar only when it changes (tests read them). */
+function statusData(key: string, value: string): void {
+  if (statusEl.dataset[key] !== value) statusEl.dataset[key] = value;
+}
 
 const conn = new Connection(socketUrl(window.location), {
   message(msg: ServerMessage, binary: ArrayBuffer | null) {
@@ -57,9 +62,9 @@ const conn = new Connection(socketUrl(window.location), {
           timings.push(t);
           if (timings.length > 5000) timings.splice(0, 1000);
         }
-        statusEl.dataset.replicas = String(replicaCount(msg));
-        statusEl.dataset.revision = String(msg.revision);
-        statusEl.dataset.curves = String(msg.n_curves);
+        statusData("replicas", String(replicaCount(msg)));
+        statusData("revision", String(msg.revision));
+        statusData("curves", String(msg.n_curves));
         store.status(statusText(msg));
         break;
       }

@@ -5,6 +5,7 @@
 // snapping); a drag keeps at most one edit in flight and sends the latest value when the reply
 // comes, and the scale stays put until the drag's last reply. Only heights change: the server
 // keeps the top view as it is.
+import { perFrame } from "./frames";
 import { newDragId } from "./gesture";
 import "./sideview.css";
 import type { Ctx } from "./context";
@@ -485,10 +486,13 @@ function initSide(ctx: Ctx): void {
     if (c !== null && postTop.value !== "" && Number.isFinite(v)) void ctx.request({ type: "set_post", curve: c, top: v }).catch(draw);
   });
 
-  store.on("geometry", draw);
-  store.on("selection", draw);
-  store.on("looks", draw);
-  new ResizeObserver(draw).observe(svg);
+  // store events redraw once a frame (a drag's stream of geometry costs one redraw per frame);
+  // the side view's own drags redraw at once
+  const later = perFrame(draw);
+  store.on("geometry", later);
+  store.on("selection", later);
+  store.on("looks", later);
+  new ResizeObserver(later).observe(svg);
   draw();
 }
 
@@ -566,8 +570,9 @@ function initLayers(ctx: Ctx): void {
     g.layers.forEach((z, l) => setValue(inputs[l], fmt(z)));
   }
 
-  store.on("geometry", draw);
-  store.on("layer", draw);
-  store.on("selection", draw);
+  const later = perFrame(draw);
+  store.on("geometry", later);
+  store.on("layer", later);
+  store.on("selection", later);
   draw();
 }

@@ -95,6 +95,17 @@ const f2 = (v: number) => v.toFixed(2);
 const moveKey = (m: MoveVertex | MoveHandle) =>
   m.type === "move_vertex" ? `v${m.curve}.${m.vertex}` : `h${m.curve}.${m.segment}.${m.handle}`;
 
+/** Set an attribute only when its value changes: a marker that stays put costs no style,
+ * paint or raster work (most markers of a drawing stay put while one point is dragged). */
+function attr(e: Element, name: string, value: string): void {
+  if (e.getAttribute(name) !== value) e.setAttribute(name, value);
+}
+
+/** The same for data-* attributes. */
+function data(e: SVGElement, values: Record<string, string>): void {
+  for (const k in values) if (e.dataset[k] !== values[k]) e.dataset[k] = values[k];
+}
+
 function setTitle(e: SVGElement, text: string): void {
   const t = e.firstChild as SVGTitleElement;
   if (t.textContent !== text) t.textContent = text;
@@ -106,15 +117,15 @@ const withTitle = (e: SVGElement) => void make(e, "title");
 type Px = (p: readonly number[]) => [number, number];
 
 function placeCircle(e: SVGCircleElement, [x, y]: [number, number]): void {
-  e.setAttribute("cx", f2(x));
-  e.setAttribute("cy", f2(y));
+  attr(e, "cx", f2(x));
+  attr(e, "cy", f2(y));
 }
 
 function placeLine(e: SVGLineElement, [x1, y1]: [number, number], [x2, y2]: [number, number]): void {
-  e.setAttribute("x1", f2(x1));
-  e.setAttribute("y1", f2(y1));
-  e.setAttribute("x2", f2(x2));
-  e.setAttribute("y2", f2(y2));
+  attr(e, "x1", f2(x1));
+  attr(e, "y1", f2(y1));
+  attr(e, "x2", f2(x2));
+  attr(e, "y2", f2(y2));
 }
 
 class TopView {
@@ -532,9 +543,9 @@ class TopView {
       images(m.point, c.center, this.mats[m.curve]).forEach((p, k) => {
         const e = marks[j++];
         placeCircle(e, px(p));
-        e.setAttribute("r", k === 0 ? "4.5" : "3.5");
-        e.setAttribute("class", `intersection hit ${m.true}${sel !== null && sel !== m.curve ? " faded" : ""}`);
-        Object.assign(e.dataset, { true: String(m.true), curve: String(m.curve), segment: String(m.segment),
+        attr(e, "r", k === 0 ? "4.5" : "3.5");
+        attr(e, "class", `intersection hit ${m.true}${sel !== null && sel !== m.curve ? " faded" : ""}`);
+        data(e, { true: String(m.true), curve: String(m.curve), segment: String(m.segment),
           replica: String(k), index: String(i) });
         setTitle(e, tip);
       });
@@ -546,9 +557,9 @@ class TopView {
       const c = g!.curves[p.basic];
       images(p.prc!, c.center, this.mats[p.basic]).forEach((q, k) => {
         const e = rects[j++], [x, y] = px(q);
-        e.setAttribute("transform", `translate(${f2(x)} ${f2(y)}) rotate(45)`);
-        e.classList.toggle("faded", sel !== null && sel !== p.basic);
-        Object.assign(e.dataset, { curve: String(p.basic), segment: String(p.segment), replica: String(k) });
+        attr(e, "transform", `translate(${f2(x)} ${f2(y)}) rotate(45)`);
+        attr(e, "class", sel !== null && sel !== p.basic ? "prc faded" : "prc");
+        data(e, { curve: String(p.basic), segment: String(p.segment), replica: String(k) });
       });
     }
   }
@@ -564,9 +575,9 @@ class TopView {
       c.vertices.forEach((v, k) => {
         const e = dots[j++];
         placeCircle(e, px(v));
-        e.setAttribute("fill", this.store.color(i));
-        e.setAttribute("class", `dot hit mark-${c.marks[k]}`);
-        Object.assign(e.dataset, { curve: String(i), vertex: String(k) });
+        attr(e, "fill", this.store.color(i));
+        attr(e, "class", `dot hit mark-${c.marks[k]}`);
+        data(e, { curve: String(i), vertex: String(k) });
         setTitle(e, `curve ${i}, ${c.marks[k]} point ${k}: drag to move`);
       });
     });
@@ -612,8 +623,8 @@ class TopView {
     this.handles.take(items.length).forEach((e, i) => {
       const it = items[i];
       placeCircle(e, px(it.p));
-      e.setAttribute("r", it.cls === "bend" ? "4" : "5.5");
-      e.setAttribute("class", `handle hit ${it.cls}`);
+      attr(e, "r", it.cls === "bend" ? "4" : "5.5");
+      attr(e, "class", `handle hit ${it.cls}`);
       delete e.dataset.vertex;
       delete e.dataset.segment;
       delete e.dataset.handle;

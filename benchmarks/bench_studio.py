@@ -80,11 +80,11 @@ INFO_JS = """() => {
 def serve(workspace: Path) -> tuple[str, object, threading.Thread]:
     import uvicorn
 
-    from auszug.cli.studio import bind_local
+    from auszug.cli.studio import bind_local, server_config
     from auszug.studio.server import create_app
 
     sock = bind_local(0)
-    server = uvicorn.Server(uvicorn.Config(create_app(workspace), log_level="warning", lifespan="off"))
+    server = uvicorn.Server(server_config(create_app(workspace), lifespan="off"))
     th = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
     th.start()
     while not server.started:

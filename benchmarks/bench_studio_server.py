@@ -11,11 +11,11 @@
    <= 2 ms end to end. The authors' demo: 1.2 ms (point drag) and 4.2 ms
    (apex drag) per edit in the page (../shared/reference/anchor/README.md).
 2. The WebSocket round trip through a real uvicorn on 127.0.0.1 (a separate
-   process, as the browser is): send the edit, receive the geometry JSON
-   and its binary frame, with the ``websockets`` client; and the same in
-   headless chromium (Playwright, /usr/bin/chromium, if present), where the
-   page also parses the JSON and views the binary frame as Float32Arrays
-   (everything but drawing).
+   process, as the browser is): send the edit, receive the geometry and its
+   payload (one binary frame, ``protocol.pack``), with the ``websockets``
+   client; and the same in headless chromium (Playwright, /usr/bin/chromium,
+   if present), where the page also parses the JSON and views the payload as
+   Float32Arrays (everything but drawing).
 3. The cost of a worker-thread hop (``asyncio.to_thread``), which the server
    skips for quick edits.
 
@@ -104,14 +104,12 @@ def serve(workspace: str) -> None:
     """Run the studio app on 127.0.0.1 (any free port); print the port, serve until killed."""
     import uvicorn
 
-    from auszug.cli.studio import bind_local
+    from auszug.cli.studio import bind_local, server_config
     from auszug.studio.server import create_app
 
-    sock = bind_local(0)   # as `auszug studio` binds (TCP_NODELAY)
+    sock = bind_local(0)   # as `auszug studio` binds (TCP_NODELAY) and configures uvicorn
     print(sock.getsockname()[1], flush=True)
-    config = uvicorn.Config(create_app(Path(workspace)), log_level="warning",
-                            ws_max_size=4 * P.MAX_MESSAGE_BYTES, lifespan="on")
-    uvicorn.Server(config).run(sockets=[sock])
+    uvicorn.Server(server_config(create_app(Path(workspace)))).run(sockets=[sock])
 
 
 async def _round_trips(port: int, name: str, kind: str, reps: int) -> list[float]:
@@ -120,8 +118,7 @@ async def _round_trips(port: int, name: str, kind: str, reps: int) -> list[float
     d = load(examples.path(DRAWINGS[name]))
     async with websockets.connect(f"ws://127.0.0.1:{port}/ws", max_size=None, compression=None) as ws:
         await ws.send(json.dumps({"type": "open_example", "name": DRAWINGS[name], "id": 1}))
-        json.loads(await ws.recv())
-        await ws.recv()
+        P.unpack(await ws.recv())
         msgs = edit_messages(d, kind, 1000 if kind == "point drag" else 5000)
         out = []
         for i in range(reps + 20):
@@ -129,18 +126,19 @@ async def _round_trips(port: int, name: str, kind: str, reps: int) -> list[float
             t0 = time.perf_counter()
             await ws.send(text)
             reply = await ws.recv()
-            payload = await ws.recv()
             dt = time.perf_counter() - t0
-            head = json.loads(reply)
-            if head.get("type") != "geometry" or not isinstance(payload, bytes):
+            if not isinstance(reply, bytes):
                 raise RuntimeError(f"unexpected reply {reply[:200]}")
+            head, payload = P.unpack(reply)
+            if head.get("type") != "geometry" or len(payload) != 4 * head["binary_floats"]:
+                raise RuntimeError(f"unexpected reply {str(head)[:200]}")
             if i >= 20:
                 out.append(dt * 1e3)
         return out
 
 
 def websocket_round_trips(reps: int, browser_reps: int) -> tuple[dict, dict | None]:
-    """(median, p90) ms of edit -> geometry + binary frame over a real uvicorn, per drawing and edit.
+    """(median, p90) ms of edit -> geometry and its payload over a real uvicorn, per drawing and edit.
 
     First with the ``websockets`` client, then in headless chromium if it is there.
     """
@@ -162,21 +160,23 @@ def websocket_round_trips(reps: int, browser_reps: int) -> tuple[dict, dict | No
 
 CHROMIUM = Path("/usr/bin/chromium")
 
-# In the page: send a prepared edit, wait for the geometry JSON (parsed) and its binary frame
-# (viewed as Float32Array, one view per piece array, as the front end does); no rendering.
+# In the page: send a prepared edit, wait for the geometry (its JSON parsed, its payload viewed as
+# Float32Array, one view per piece array, as the front end does); no rendering.
 _PAGE_JS = """
 async ({url, open, edits}) => {
   const ws = new WebSocket(url);
   ws.binaryType = "arraybuffer";
   await new Promise((ok, bad) => { ws.onopen = ok; ws.onerror = bad; });
-  let done = null, head = null;
+  let done = null;
   ws.onmessage = (ev) => {
     if (typeof ev.data === "string") {
-      head = JSON.parse(ev.data);
-      if (!["geometry", "mesh", "loops", "exported"].includes(head.type)) done(head);
+      done(JSON.parse(ev.data));
       return;
     }
-    const f = new Float32Array(ev.data);
+    // [uint32 JSON length n][n bytes of JSON][payload] (protocol.pack)
+    const len = new DataView(ev.data).getUint32(0, true);
+    const head = JSON.parse(new TextDecoder().decode(new Uint8Array(ev.data, 4, len)));
+    const f = new Float32Array(ev.data.slice(4 + len));
     let n = 0;
     for (const p of head.pieces || []) {
       for (const r of [p.points, p.side, p.transforms]) {

@@ -37,6 +37,21 @@ def client(workspace: Path):
 WS = "ws://127.0.0.1:8765/ws"
 
 
+def receive(ws) -> tuple[dict, bytes | None]:
+    """The next server message and its payload: a JSON text frame (payload None), or one
+    binary frame read by the header layout written out here, not by the code under test:
+    uint32 little-endian JSON length n (a multiple of 4), n bytes of JSON, the payload."""
+    import json
+
+    frame = ws.receive()
+    if frame.get("text") is not None:
+        return json.loads(frame["text"]), None
+    data = frame["bytes"]
+    n = int.from_bytes(data[:4], "little")
+    assert n % 4 == 0 and 4 + n <= len(data), f"bad frame header {n} for {len(data)} bytes"
+    return json.loads(data[4:4 + n].decode("utf-8")), data[4 + n:]
+
+
 def pytest_sessionfinish(session, exitstatus):
     """Close the end-to-end tests' chromium, if they started one."""
     from tests.studio import e2e

@@ -18,7 +18,7 @@ from typing import Any
 
 import pytest
 
-from auszug.cli.studio import bind_local
+from auszug.cli.studio import bind_local, server_config
 from auszug.studio.server import create_app, static_dir
 from tests.conftest import REPO
 
@@ -44,8 +44,7 @@ class Studio:
         self.sock = bind_local(0)
         self.port = self.sock.getsockname()[1]
         self.url = f"http://127.0.0.1:{self.port}/"
-        self.server = uvicorn.Server(uvicorn.Config(create_app(workspace, drawing), log_level="warning",
-                                                    lifespan="off"))
+        self.server = uvicorn.Server(server_config(create_app(workspace, drawing), lifespan="off"))
         self.thread = threading.Thread(target=self.server.run, kwargs={"sockets": [self.sock]}, daemon=True)
         self.thread.start()
         deadline = time.monotonic() + 20

@@ -20,13 +20,12 @@ from auszug.microarch import edit
 from auszug.studio import protocol as P
 from auszug.studio.server import create_app
 
-from .conftest import BASE, WS
+from .conftest import BASE, WS, receive
 
 
 def _geometry(ws) -> tuple[dict, bytes]:
-    msg = ws.receive_json()
+    msg, data = receive(ws)
     assert msg["type"] == "geometry", msg
-    data = ws.receive_bytes()
     assert len(data) == 4 * msg["binary_floats"]
     return msg, data
 

@@ -20,7 +20,7 @@ from auszug.meshing.solid import solid
 from auszug.microarch import build
 from auszug.studio import meshes as M
 
-from .conftest import WS
+from .conftest import WS, receive
 
 U28 = "web/U.XI.28.uc"
 
@@ -228,9 +228,10 @@ def test_export_refusals():
 
 
 def _frames(ws, kind: str) -> tuple[dict, bytes]:
-    msg = ws.receive_json()
+    msg, payload = receive(ws)
     assert msg["type"] == kind, msg
-    return msg, ws.receive_bytes()
+    assert payload is not None, f"{kind} came without its payload"
+    return msg, payload
 
 
 def test_mesh_loops_export_over_the_socket(client):
@@ -243,8 +244,8 @@ def test_mesh_loops_export_over_the_socket(client):
         ws.send_json({"type": "set_apex_height", "curve": 0, "height": 3.0, "id": 3})   # not held up by the jobs
         seen = {}
         for _ in range(3):
-            msg = ws.receive_json()
-            seen[msg["id"]] = (msg, ws.receive_bytes())
+            msg, payload = receive(ws)
+            seen[msg["id"]] = (msg, payload)
         loops, lpay = seen[1]
         assert loops["type"] == "loops" and loops["revision"] == g["revision"]
         assert len(loops["loops"]) == len(find_loops(net)) and len(lpay) == 4 * loops["binary_floats"]
@@ -266,8 +267,7 @@ def test_mesh_loops_export_over_the_socket(client):
         err = ws.receive_json()
         assert err["id"] == 7 and err["message"].startswith("U.XI.28.uc: no loop 42")
         ws.send_json({"type": "undo", "id": 8})
-        assert ws.receive_json()["id"] == 8   # the server lives
-        ws.receive_bytes()
+        assert _frames(ws, "geometry")[0]["id"] == 8   # the server lives
 
 
 def test_mesh_needs_a_drawing(client):

@@ -57,3 +57,26 @@ def test_decode_rejects(text, says):
     with pytest.raises(P.ProtocolError, match=None) as e:
         P.decode(text)
     assert says in str(e.value)
+
+
+def test_pack_layout_written_out():
+    """A message with a payload is one frame: JSON length, JSON padded with spaces to 4 bytes, payload."""
+    payload = b"\x00\x00\x80\x3f" + b"\x00\x00\x00\x40"   # float32 1.0, 2.0
+    frame = P.pack('{"type":"mesh"}', payload)               # 15 bytes of JSON -> padded to 16
+    assert frame == b"\x10\x00\x00\x00" + b'{"type":"mesh"} ' + payload
+    assert P.unpack(frame) == ({"type": "mesh"}, payload)
+    assert P.pack('{"a":1}!', b"") == b"\x08\x00\x00\x00" + b'{"a":1}!'     # already aligned: no padding
+    # non-ASCII JSON counts bytes, not characters
+    frame = P.pack('{"n":"\u00e9"}', b"xyzw")
+    assert int.from_bytes(frame[:4], "little") == 12 and frame[4 + 12:] == b"xyzw"
+    assert P.unpack(frame)[0] == {"n": "\u00e9"}
+
+
+@pytest.mark.parametrize("frame, says", [
+    (b"\x01\x00", "has no header"),
+    (b"\x08\x00\x00\x00{}", "cannot hold a message of 8 bytes"),
+    (b"\x03\x00\x00\x00{} xxxx", "cannot hold a message of 3 bytes"),
+])
+def test_unpack_rejects(frame, says):
+    with pytest.raises(P.ProtocolError, match=says):
+        P.unpack(frame)

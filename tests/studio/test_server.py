@@ -14,13 +14,13 @@ from auszug.microarch import build
 from auszug.studio import protocol as P
 from auszug.studio.server import create_app, static_dir
 
-from .conftest import BASE, WS
+from .conftest import BASE, WS, receive
 
 
 def _geometry(ws) -> tuple[dict, np.ndarray]:
-    msg = ws.receive_json()
+    msg, payload = receive(ws)
     assert msg["type"] == "geometry", msg
-    data = np.frombuffer(ws.receive_bytes(), dtype="<f4")
+    data = np.frombuffer(payload, dtype="<f4")
     assert data.size == msg["binary_floats"]
     return msg, data
 

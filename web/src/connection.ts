@@ -1,17 +1,18 @@
-// The WebSocket to the studio server. Messages whose type is in BINARY_FOLLOWS (geometry,
-// mesh, loops, exported) are always followed by one binary frame; this pairs them. Replies
-// carry the id of their request, so `request` can await one. The socket reconnects by itself.
-import { BINARY_FOLLOWS, type ClientMessage, type ServerMessage } from "./protocol";
+// The WebSocket to the studio server. A message with a payload (the types in WITH_PAYLOAD:
+// geometry, mesh, loops, exported) arrives as one binary frame, [JSON length][JSON][payload]
+// (see `unpack`); the others as JSON text. Replies carry the id of their request, so
+// `request` can await one. The socket reconnects by itself.
+import { WITH_PAYLOAD, type ClientMessage, type ServerMessage } from "./protocol";
 
 export interface Handlers {
-  /** Every server message, with its binary frame where one follows. */
+  /** Every server message, with its payload (null for messages without one). */
   message(msg: ServerMessage, binary: ArrayBuffer | null): void;
   /** The socket (re)opened; `again` is false the first time. */
   opened(again: boolean): void;
   closed(): void;
 }
 
-/** A reply to a request: the message and its binary frame (null where none follows). */
+/** A reply to a request: the message and its payload (null for messages without one). */
 export interface Reply {
   msg: ServerMessage;
   binary: ArrayBuffer | null;
@@ -19,7 +20,6 @@ export interface Reply {
 
 export class Connection {
   private ws!: WebSocket;
-  private pending: ServerMessage | null = null;
   private nextId = 1;
   private waiting = new Map<number, { resolve(r: Reply): void; reject(e: Error): void }>();
   private everOpened = false;
@@ -46,7 +46,6 @@ export class Connection {
       this.handlers.opened(again);
     };
     this.ws.onclose = () => {
-      this.pending = null;
       for (const w of this.waiting.values()) w.reject(new Error("disconnected from the studio server"));
       this.waiting.clear();
       this.handlers.closed();
@@ -76,15 +75,12 @@ export class Connection {
 
   private receive(data: string | ArrayBuffer): void {
     if (typeof data === "string") {
-      const msg = JSON.parse(data) as ServerMessage;
-      if (BINARY_FOLLOWS.includes(msg.type)) this.pending = msg;
-      else this.deliver(msg, null);
+      this.deliver(JSON.parse(data) as ServerMessage, null);
       return;
     }
-    if (this.pending === null) return; // a binary frame always follows its message
-    const msg = this.pending;
-    this.pending = null;
-    this.deliver(msg, data);
+    const { msg, payload } = unpack(data);
+    if (!WITH_PAYLOAD.includes(msg.type)) console.warn(`studio: ${msg.type} came with a payload`);
+    this.deliver(msg, payload);
   }
 
   private deliver(msg: ServerMessage, binary: ArrayBuffer | null): void {
@@ -101,3 +97,19 @@ export class Connection {
 export function socketUrl(loc: Location): string {
   return `${loc.protocol === "https:" ? "wss" : "ws"}://${loc.host}/ws`;
 }
+
+/** The message and the payload of a binary frame: its first 4 bytes are the JSON's length n
+ * (uint32 little-endian, a multiple of 4: the JSON is padded with spaces), then the JSON, then
+ * the payload, which thus starts 4-byte aligned. The payload is copied into its own
+ * ArrayBuffer, so Float32Array and Uint32Array views of it start at offset 0. */
+export function unpack(frame: ArrayBuffer): { msg: ServerMessage; payload: ArrayBuffer } {
+  if (frame.byteLength < 4) throw new Error(`binary frame of ${frame.byteLength} bytes has no header`);
+  const n = new DataView(frame).getUint32(0, true);
+  if (n % 4 !== 0 || 4 + n > frame.byteLength) {
+    throw new Error(`binary frame of ${frame.byteLength} bytes cannot hold a message of ${n} bytes`);
+  }
+  const msg = JSON.parse(decoder.decode(new Uint8Array(frame, 4, n))) as ServerMessage;
+  return { msg, payload: frame.slice(4 + n) };
+}
+
+const decoder = new TextDecoder();

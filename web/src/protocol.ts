@@ -3,7 +3,7 @@
 
 export const PROTOCOL_VERSION = 2;
 export const MAX_MESSAGE_BYTES = 262144;
-export const BINARY_FOLLOWS: readonly string[] = ["geometry", "mesh", "loops", "exported"];
+export const WITH_PAYLOAD: readonly string[] = ["geometry", "mesh", "loops", "exported"];
 
 /** Open a drawing; ``path`` is relative to the workspace folder. */
 export interface Open {
@@ -237,7 +237,7 @@ export interface Export {
   type: "export";
 }
 
-/** A float32 array in the binary frame that follows a :class:`Geometry` message. ``offset`` counts float32 values (not bytes) from the frame's start; ``shape`` is row-major, e.g. ``[n, 3]`` for points, ``[k, 16]`` for transforms. */
+/** A float32 array in the payload of a :class:`Geometry` message. ``offset`` counts float32 values (not bytes) from the payload's start; ``shape`` is row-major, e.g. ``[n, 3]`` for points, ``[k, 16]`` for transforms. */
 export interface ArrayRef {
   offset: number;
   shape: number[];
@@ -305,7 +305,7 @@ export interface LoopInfo {
   rim: boolean;
 }
 
-/** The drawing's network after an open, edit, undo or redo; a binary frame follows. Sent to every tab that has the document open (``id`` is the requester's, 0 for the others). ``dirty``: edited since the last save. ``recoverable``: an autosave newer than the file exists (send :class:`Recover`), else "". ``layers`` are the bottoms of all layers. */
+/** The drawing's network after an open, edit, undo or redo; it has a payload. Sent to every tab that has the document open (``id`` is the requester's, 0 for the others). ``dirty``: edited since the last save. ``recoverable``: an autosave newer than the file exists (send :class:`Recover`), else "". ``layers`` are the bottoms of all layers. */
 export interface Geometry {
   revision: number;
   path: string;
@@ -327,7 +327,7 @@ export interface Geometry {
   type: "geometry";
 }
 
-/** Members and faces of the drawing at ``revision``; a binary frame follows. */
+/** Members and faces of the drawing at ``revision``; it has a payload. */
 export interface MeshGeometry {
   revision: number;
   style: string;
@@ -340,7 +340,7 @@ export interface MeshGeometry {
   type: "mesh";
 }
 
-/** The loops faces can fill at ``revision``; a binary frame follows. */
+/** The loops faces can fill at ``revision``; it has a payload. */
 export interface Loops {
   revision: number;
   loops: LoopInfo[];
@@ -357,7 +357,7 @@ export interface Files {
   type: "files";
 }
 
-/** An exported file: ``name`` (suggested file name), ``mime``; a binary frame of ``size`` bytes follows. */
+/** An exported file: ``name`` (suggested file name), ``mime``; the payload is the file (``size`` bytes). */
 export interface Exported {
   name: string;
   mime: string;

@@ -39,8 +39,8 @@ Sender = Callable[[str, "bytes | None"], Awaitable[None]]
 class Outbox:
     """The ordered queue of frames for one connection, sent by :meth:`run`.
 
-    Each item is a JSON text frame and optionally the binary frame that follows
-    it; the pair is sent back to back. Items put with a ``coalesce`` key replace
+    Each item is a message's JSON and optionally its payload (the sender packs
+    the two into one binary frame, :func:`auszug.studio.protocol.pack`). Items put with a ``coalesce`` key replace
     a pending item with the same key (a newer broadcast geometry of the same
     document supersedes an older one that has not been sent).
     """
@@ -51,7 +51,7 @@ class Outbox:
         self._closed = False
 
     def put(self, text: str, payload: bytes | None = None, coalesce: Any = None) -> None:  # noqa: ANN401
-        """Queue a text frame (and its binary frame)."""
+        """Queue a message's JSON (and its payload)."""
         if self._closed:
             return
         if coalesce is not None:

@@ -8,11 +8,12 @@ a test fails when the two drift apart.
 Client -> server messages are JSON text frames; each may carry an ``id`` that
 the reply echoes. Edits are one message per function of
 :mod:`auszug.microarch.edit`. The server answers every message that changes
-the drawing with a :class:`Geometry` JSON frame followed by *one binary frame*:
-little-endian float32 data that the :class:`ArrayRef` fields of the geometry
-point into. Replicas are not re-sent copies: each basic piece comes once, with
-the 4x4 transforms of its replicas (column-major, as three.js's
-``Matrix4.fromArray`` reads them).
+the drawing with a :class:`Geometry` message and its *payload*: little-endian
+float32 data that the :class:`ArrayRef` fields of the geometry point into.
+A message with a payload (the types in :data:`WITH_PAYLOAD`) travels as one
+binary frame, see :func:`pack`; the others are JSON text frames. Replicas are
+not re-sent copies: each basic piece comes once, with the 4x4 transforms of
+its replicas (column-major, as three.js's ``Matrix4.fromArray`` reads them).
 
 Examples
 --------
@@ -85,11 +86,13 @@ __all__ = [
     "Exported",
     "Saved",
     "Error",
-    "BINARY_FOLLOWS",
+    "WITH_PAYLOAD",
     "CLIENT_MESSAGES",
     "SERVER_MESSAGES",
     "decode",
     "encode",
+    "pack",
+    "unpack",
     "typescript",
 ]
 
@@ -460,9 +463,9 @@ class Export:
 
 @dataclass(frozen=True)
 class ArrayRef:
-    """A float32 array in the binary frame that follows a :class:`Geometry` message.
+    """A float32 array in the payload of a :class:`Geometry` message.
 
-    ``offset`` counts float32 values (not bytes) from the frame's start;
+    ``offset`` counts float32 values (not bytes) from the payload's start;
     ``shape`` is row-major, e.g. ``[n, 3]`` for points, ``[k, 16]`` for transforms.
     """
 
@@ -542,7 +545,7 @@ class CurveInfo:
 
 @dataclass(frozen=True)
 class Geometry:
-    """The drawing's network after an open, edit, undo or redo; a binary frame follows.
+    """The drawing's network after an open, edit, undo or redo; it has a payload.
 
     Sent to every tab that has the document open (``id`` is the requester's,
     0 for the others). ``dirty``: edited since the last save. ``recoverable``:
@@ -587,7 +590,7 @@ class MeshPiece:
 
 @dataclass(frozen=True)
 class MeshGeometry:
-    """Members and faces of the drawing at ``revision``; a binary frame follows."""
+    """Members and faces of the drawing at ``revision``; it has a payload."""
 
     revision: int
     style: str
@@ -612,7 +615,7 @@ class LoopInfo:
 
 @dataclass(frozen=True)
 class Loops:
-    """The loops faces can fill at ``revision``; a binary frame follows."""
+    """The loops faces can fill at ``revision``; it has a payload."""
 
     revision: int
     loops: list[LoopInfo]
@@ -633,7 +636,7 @@ class Files:
 
 @dataclass(frozen=True)
 class Exported:
-    """An exported file: ``name`` (suggested file name), ``mime``; a binary frame of ``size`` bytes follows."""
+    """An exported file: ``name`` (suggested file name), ``mime``; the payload is the file (``size`` bytes)."""
 
     name: str
     mime: str
@@ -667,8 +670,8 @@ CLIENT_MESSAGES: tuple[type, ...] = (
     ListFiles, OpenExample, OpenText, NewDrawing, Recover, GetMesh, GetLoops, Export,
 )
 SERVER_MESSAGES: tuple[type, ...] = (Geometry, MeshGeometry, Loops, Files, Exported, Saved, Error)
-#: Server message types that are followed by exactly one binary frame.
-BINARY_FOLLOWS: tuple[str, ...] = ("geometry", "mesh", "loops", "exported")
+#: Server message types that carry a payload: each is sent as one binary frame (:func:`pack`).
+WITH_PAYLOAD: tuple[str, ...] = ("geometry", "mesh", "loops", "exported")
 #: Nested types that appear inside server messages, in the order the TypeScript lists them.
 _NESTED: tuple[type, ...] = (ArrayRef, PieceGeometry, IntersectionMarker, CurveInfo, MeshPiece, LoopInfo)
 
@@ -777,6 +780,49 @@ def encode(msg: Any) -> str:
     return json.dumps(dataclasses.asdict(msg), separators=(",", ":"), allow_nan=False)
 
 
+def pack(text: str, payload: bytes) -> bytes:
+    """One binary frame for a message with a payload.
+
+    Layout: the JSON's length ``n`` in bytes (uint32, little-endian), the
+    JSON as UTF-8 padded with spaces to a multiple of 4 bytes (``n`` counts
+    the padding), then the payload. The payload thus starts 4-byte aligned
+    at byte ``4 + n``, where float32 and uint32 views of it can be made.
+    One frame instead of a JSON frame and a binary frame: the browser wakes
+    once per reply, not twice.
+
+    Parameters
+    ----------
+    text : str
+        The message's JSON (:func:`encode`).
+    payload : bytes
+        Its binary data (float32/uint32 arrays, or an exported file).
+
+    Returns
+    -------
+    bytes
+        ``4 + n + len(payload)`` bytes.
+    """
+    head = text.encode("utf-8")
+    pad = b" " * (-len(head) % 4)
+    return b"".join(((len(head) + len(pad)).to_bytes(4, "little"), head, pad, payload))
+
+
+def unpack(frame: bytes) -> tuple[dict[str, Any], bytes]:
+    """The JSON message and the payload of a frame made by :func:`pack`.
+
+    Raises
+    ------
+    ProtocolError
+        If the frame is shorter than its header says.
+    """
+    if len(frame) < 4:
+        raise ProtocolError(f"binary frame of {len(frame)} bytes has no header")
+    n = int.from_bytes(frame[:4], "little")
+    if n % 4 or 4 + n > len(frame):
+        raise ProtocolError(f"binary frame of {len(frame)} bytes cannot hold a message of {n} bytes")
+    return json.loads(bytes(frame[4:4 + n])), bytes(frame[4 + n:])
+
+
 # ---------------------------------------------------------------- TypeScript
 
 
@@ -824,8 +870,8 @@ def typescript() -> str:
         "",
         f"export const PROTOCOL_VERSION = {PROTOCOL_VERSION};",
         f"export const MAX_MESSAGE_BYTES = {MAX_MESSAGE_BYTES};",
-        "export const BINARY_FOLLOWS: readonly string[] = "
-        + json.dumps(list(BINARY_FOLLOWS)) + ";",
+        "export const WITH_PAYLOAD: readonly string[] = "
+        + json.dumps(list(WITH_PAYLOAD)) + ";",
         "",
     ]
     for cls in CLIENT_MESSAGES:

@@ -153,9 +153,10 @@ class _Studio:
         conn = Connection()
 
         async def send(text: str, payload: bytes | None) -> None:
-            await ws.send({"type": "websocket.send", "text": text})
-            if payload is not None:
-                await ws.send({"type": "websocket.send", "bytes": payload})
+            if payload is None:
+                await ws.send({"type": "websocket.send", "text": text})
+            else:   # a message and its payload travel as one frame
+                await ws.send({"type": "websocket.send", "bytes": P.pack(text, payload)})
 
         sender = asyncio.create_task(conn.outbox.run(send))
         jobs: asyncio.Queue = asyncio.Queue()

@@ -343,4 +343,6 @@ def test_drag_is_coalesced(studio, workspace, page):  # noqa: F811
     assert 2 <= len(t) <= 41
     # one edit awaits its reply at a time
     assert all(b["sent"] >= a["received"] for a, b in zip(t, t[1:]))
+    # each edit knows the pointer event it answers (pointerrawupdate: sent without waiting for a frame)
+    assert all(0 < e["input"] <= e["sent"] for e in t)
     # how fast: benchmarks/bench_studio.py (timings are measured there, not asserted in tests)

@@ -26,6 +26,8 @@ export class Connection {
   private retryMs = 250;
   /** performance.now() of the last send, per id (for latency measurements). */
   readonly sentAt = new Map<number, number>();
+  /** The timeStamp of the user input a message was sent for, per id, where one was given. */
+  readonly inputAt = new Map<number, number>();
 
   constructor(private url: string, private handlers: Handlers) {
     this.connect();
@@ -54,21 +56,26 @@ export class Connection {
     };
   }
 
-  /** Send a message (its id is filled in) and return the id the reply will carry. */
-  send(msg: ClientMessage): number {
+  /** Send a message (its id is filled in) and return the id the reply will carry. `input`: the
+   * timeStamp of the pointer or key event it answers (kept for the latency measurements). */
+  send(msg: ClientMessage, input = 0): number {
     const id = this.nextId++;
     const text = JSON.stringify({ ...msg, id });
     this.sentAt.set(id, performance.now());
     if (this.sentAt.size > 256) this.sentAt.delete(this.sentAt.keys().next().value as number);
+    if (input) {
+      this.inputAt.set(id, input);
+      if (this.inputAt.size > 256) this.inputAt.delete(this.inputAt.keys().next().value as number);
+    }
     if (this.ws.readyState === WebSocket.OPEN) this.ws.send(text);
     else this.ws.addEventListener("open", () => this.ws.send(text), { once: true });
     return id;
   }
 
   /** Send and await the reply with the same id; an `error` reply rejects with its message. */
-  request(msg: ClientMessage): Promise<Reply> {
+  request(msg: ClientMessage, input = 0): Promise<Reply> {
     return new Promise((resolve, reject) => {
-      const id = this.send(msg);
+      const id = this.send(msg, input);
       this.waiting.set(id, { resolve, reject });
     });
   }

@@ -10,6 +10,7 @@ export interface Ctx {
   views: Views;
   /** Send a message; returns its id. */
   send(msg: ClientMessage): number;
-  /** Send and await the reply (rejects on an error reply, which is also shown in the status bar). */
-  request(msg: ClientMessage): Promise<Reply>;
+  /** Send and await the reply (rejects on an error reply, which is also shown in the status bar).
+   * `input`: the timeStamp of the user input it answers, for the edit timings. */
+  request(msg: ClientMessage, input?: number): Promise<Reply>;
 }

@@ -19,6 +19,8 @@ import { initTopView } from "./topview";
 export interface EditTiming {
   id: number;
   revision: number;
+  /** The timeStamp of the user input the edit answers (0 when none was given). */
+  input: number;
   sent: number;
   received: number;
   applied: number;
@@ -57,7 +59,7 @@ const conn = new Connection(socketUrl(window.location), {
         store.setGeometry(msg, binary!);
         const sent = conn.sentAt.get(msg.id);
         if (sent !== undefined) {
-          const t: EditTiming = { id: msg.id, revision: msg.revision, sent, received: receivedAt,
+          const t: EditTiming = { id: msg.id, revision: msg.revision, input: conn.inputAt.get(msg.id) ?? 0, sent, received: receivedAt,
             applied: performance.now(), rendered: 0 };
           timings.push(t);
           if (timings.length > 5000) timings.splice(0, 1000);
@@ -111,8 +113,8 @@ const ctx: Ctx = {
   conn,
   views,
   send: (msg: ClientMessage) => conn.send(msg),
-  request: (msg: ClientMessage): Promise<Reply> =>
-    conn.request(msg).catch((e: Error) => {
+  request: (msg: ClientMessage, input?: number): Promise<Reply> =>
+    conn.request(msg, input).catch((e: Error) => {
       store.status(e.message, true);
       throw e;
     }),

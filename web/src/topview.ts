@@ -91,6 +91,9 @@ class Pool<K extends keyof SVGElementTagNameMap> {
 
 const f2 = (v: number) => v.toFixed(2);
 
+/** Whether the browser fires pointerrawupdate (Chromium, in secure contexts such as 127.0.0.1). */
+const RAW_UPDATES = typeof window !== "undefined" && "onpointerrawupdate" in window;
+
 /** Which point a drag edit moves. */
 const moveKey = (m: MoveVertex | MoveHandle) =>
   m.type === "move_vertex" ? `v${m.curve}.${m.vertex}` : `h${m.curve}.${m.segment}.${m.handle}`;
@@ -161,10 +164,12 @@ class TopView {
   private lastSnap: Snap | null = null;
   private drag: Drag | null = null;
   private press: { index: number; x: number; y: number } | null = null;
-  /** Drag edits not sent yet (the latest position per dragged point), whether one awaits its
-   * reply, and the frame that sends the next. */
-  private outbox: (MoveVertex | MoveHandle)[] = [];
+  /** Drag edits not sent yet (the latest position per dragged point, with the timeStamp of the
+   * pointer event that put it there), whether one awaits its reply, whether one was sent since
+   * the last animation frame, and that frame. */
+  private outbox: { msg: MoveVertex | MoveHandle; at: number }[] = [];
   private inflight = false;
+  private sentThisFrame = false;
   private sendFrame = 0;
   private frame = 0;
   private full = true;
@@ -259,6 +264,10 @@ class TopView {
       run: () => this.escape() });
 
     this.svg.addEventListener("pointerdown", (e) => this.down(e));
+    // A drag follows pointerrawupdate where the browser has it: it comes as soon as the mouse
+    // moves, while pointermove waits for the next animation frame (up to 16 ms later), so the
+    // edit goes out at once and its geometry is usually back before that frame is drawn.
+    if (RAW_UPDATES) this.svg.addEventListener("pointerrawupdate", ((e: PointerEvent) => this.dragMove(e)) as EventListener);
     this.svg.addEventListener("pointermove", (e) => this.move(e));
     this.svg.addEventListener("pointerup", (e) => this.up(e));
     this.svg.addEventListener("pointercancel", (e) => this.up(e));
@@ -360,18 +369,26 @@ class TopView {
     }
   }
 
+  /** A pointer move during a drag of a point or handle: queue its edit. */
+  private dragMove(ev: PointerEvent): void {
+    const drag = this.drag;
+    if (!drag || drag.released) return;
+    if (!drag.moved && Math.hypot(ev.clientX - drag.x, ev.clientY - drag.y) < DRAG_PX) return;
+    drag.moved = true;
+    this.lastSnap = this.snapped(ev, drag.targets);
+    drag.pos = this.lastSnap.p;
+    const t = drag.target, xy = drag.pos;
+    this.queue(t.kind === "vertex"
+      ? { type: "move_vertex", curve: t.curve, vertex: t.vertex, xy, drag: drag.gesture }
+      : { type: "move_handle", curve: t.curve, segment: t.segment, handle: t.handle, xy, drag: drag.gesture },
+    ev.timeStamp);
+    this.schedule(false);
+  }
+
   private move(ev: PointerEvent): void {
     const drag = this.drag;
     if (drag && !drag.released) {
-      if (!drag.moved && Math.hypot(ev.clientX - drag.x, ev.clientY - drag.y) < DRAG_PX) return;
-      drag.moved = true;
-      this.lastSnap = this.snapped(ev, drag.targets);
-      drag.pos = this.lastSnap.p;
-      const t = drag.target, xy = drag.pos;
-      this.queue(t.kind === "vertex"
-        ? { type: "move_vertex", curve: t.curve, vertex: t.vertex, xy, drag: drag.gesture }
-        : { type: "move_handle", curve: t.curve, segment: t.segment, handle: t.handle, xy, drag: drag.gesture });
-      this.schedule(false);
+      if (!RAW_UPDATES) this.dragMove(ev);
       return;
     }
     if (this.store.tool === "select") {
@@ -457,21 +474,31 @@ class TopView {
     }, () => {});
   }
 
-  /** Drag edits: at most one a frame and one awaiting its reply; a point's latest position
-   * replaces its unsent one. */
-  private queue(msg?: MoveVertex | MoveHandle): void {
+  /** Drag edits: one awaiting its reply at a time, at most one sent per animation frame, each
+   * sent as soon as both allow; a point's latest position replaces its unsent one. */
+  private queue(msg?: MoveVertex | MoveHandle, at = 0): void {
     const last = this.outbox[this.outbox.length - 1];
-    if (msg && last && moveKey(last) === moveKey(msg)) this.outbox[this.outbox.length - 1] = msg;
-    else if (msg) this.outbox.push(msg);
-    if (!this.sendFrame) this.sendFrame = requestAnimationFrame(() => { this.sendFrame = 0; this.flush(); });
+    if (msg && last && moveKey(last.msg) === moveKey(msg)) this.outbox[this.outbox.length - 1] = { msg, at };
+    else if (msg) this.outbox.push({ msg, at });
+    this.flush();
   }
 
   private flush(): void {
     if (this.inflight || !this.outbox.length) return;
+    if (!this.sendFrame) {
+      this.sendFrame = requestAnimationFrame(() => {
+        this.sendFrame = 0;
+        this.sentThisFrame = false;
+        this.flush();
+      });
+    }
+    if (this.sentThisFrame) return;   // the frame above sends it
+    const { msg, at } = this.outbox.shift()!;
     this.inflight = true;
-    this.ctx.request(this.outbox.shift()!).catch(() => {}).finally(() => {
+    this.sentThisFrame = true;
+    this.ctx.request(msg, at).catch(() => {}).finally(() => {
       this.inflight = false;
-      if (this.outbox.length) this.queue();
+      if (this.outbox.length) this.flush();
       else if (this.drag?.released) { this.drag = null; this.schedule(false); }
     });
   }

@@ -151,7 +151,10 @@ def test_layer_and_colour_in_panel(studio, workspace, page):  # noqa: F811
         g = wait_revision(page, g["revision"])
     select_curve(page, drawing, 0)
     layer = page.locator("[data-testid=layer-select]")
-    assert layer.locator("option").all_inner_texts() == ["0 (bottom 0)", "1 (bottom 1)", "2 (bottom 2.5)"]
+    from playwright.sync_api import expect
+
+    # the panel redraws once a frame: wait for it to list the new layers
+    expect(layer.locator("option")).to_have_text(["0 (bottom 0)", "1 (bottom 1)", "2 (bottom 2.5)"])
     layer.select_option("2")  # refused by the server: the select shows the curve's layer again
     page.wait_for_function("() => document.getElementById('status').classList.contains('error')")
     page.wait_for_function("() => document.querySelector('[data-testid=layer-select]').value === '0'")

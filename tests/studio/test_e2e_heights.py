@@ -20,7 +20,13 @@ pytestmark = needs_browser
 
 
 def side_map(page: Any) -> dict:
-    """The side view's mapping and the svg's client position."""
+    """The side view's mapping and the svg's client position, once it shows the current geometry
+    and selection (it redraws once a frame)."""
+    page.wait_for_function("""() => {
+        const s = document.querySelector('[data-testid=side-svg]'), st = window.auszug.store;
+        return !!st.geometry && s.dataset.revision === String(st.geometry.revision)
+            && s.dataset.curve === String(st.selection);
+    }""")
     return page.evaluate("""() => {
         const s = document.querySelector('[data-testid=side-svg]'), b = s.getBoundingClientRect();
         return {k: +s.dataset.k, ox: +s.dataset.ox, oy: +s.dataset.oy, left: b.left, top: b.top};

@@ -174,7 +174,7 @@ export function initBackground(ctx: Ctx): void {
   // Listening on the viewport in the capture phase comes before the top view's own pan and zoom.
   const host = views.host;
   const topPoint = (ev: MouseEvent): [number, number] => {
-    const r = views.rect("top")!, b = host.getBoundingClientRect();
+    const r = views.rect("top")!, b = views.box();
     return views.screenToTop(ev.clientX - b.left - r.x, ev.clientY - b.top - r.y);
   };
   const active = (ev: MouseEvent) => ev.shiftKey && !!mesh && !!place && place.visible &&

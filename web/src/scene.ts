@@ -55,6 +55,10 @@ export class Views {
   private fittedPath: string | null = null;
   private framing = new Map<Mode, { topScale: number; topCenter: THREE.Vector2; position: THREE.Vector3; target: THREE.Vector3 }>();
   private labels: Record<ViewName, HTMLElement>;
+  /** The viewport element's size in CSS pixels and its client box (null: read it again),
+   * kept from the last resize: reading them while the DOM has changed would force a layout. */
+  private size = { w: 1, h: 1 };
+  private hostBox: DOMRect | null = null;
 
   constructor(readonly host: HTMLElement, private store: Store) {
     // MSAA doubles the cost of a frame on a software renderer (headless chromium's SwiftShader,
@@ -89,6 +93,10 @@ export class Views {
     this.labels = { top: label("top"), persp: label("3D"), side: label("side") };
     this.installTopControls();
     new ResizeObserver(() => this.resize()).observe(host);
+    // the box moves without a resize when the page scrolls or the window resizes
+    const stale = () => { this.hostBox = null; };
+    window.addEventListener("resize", stale);
+    window.addEventListener("scroll", stale, true);
     store.on("geometry", (g) => this.showGeometry(g));
     store.on("selection", () => this.recolor());
     store.on("looks", () => this.recolor());
@@ -104,14 +112,20 @@ export class Views {
   rect(v: ViewName): Rect | null {
     const span = LAYOUTS[this.mode][v];
     if (!span) return null;
-    const w = this.host.clientWidth, h = this.host.clientHeight;
+    const { w, h } = this.size;
     const x0 = Math.round(span[0] * w), x1 = Math.round(span[1] * w);
     return { x: x0, y: 0, w: x1 - x0, h };
   }
 
+  /** The viewport element's box in client coordinates. Cached: read once after a resize or
+   * scroll, never in the middle of a frame's DOM updates (that would force a layout). */
+  box(): DOMRect {
+    return (this.hostBox ??= this.host.getBoundingClientRect());
+  }
+
   /** The view under a point given in client coordinates. */
   viewAt(clientX: number, clientY: number): ViewName | null {
-    const b = this.host.getBoundingClientRect();
+    const b = this.box();
     const x = clientX - b.left, y = clientY - b.top;
     for (const v of ["top", "persp", "side"] as ViewName[]) {
       const r = this.rect(v);
@@ -137,7 +151,7 @@ export class Views {
     const r = this.rect(v);
     if (!r) return null;
     const q = p.clone().project(this.camera(v));
-    const b = this.host.getBoundingClientRect();
+    const b = this.box();
     return [b.left + r.x + ((q.x + 1) / 2) * r.w, b.top + r.y + ((1 - q.y) / 2) * r.h];
   }
 
@@ -187,7 +201,7 @@ export class Views {
   /** Draw every view of the current mode now. */
   render(): void {
     this.updateCameras();
-    const h = this.host.clientHeight;
+    const h = this.size.h;
     for (const v of ["top", "persp", "side"] as ViewName[]) {
       const r = this.rect(v);
       this.labels[v].hidden = !r;
@@ -226,6 +240,8 @@ export class Views {
 
   private resize(): void {
     const w = this.host.clientWidth, h = this.host.clientHeight;
+    this.size = { w, h };
+    this.hostBox = null;
     this.renderer.setSize(w, h, false);
     this.updateCameras();
     for (const fn of this.topListeners) fn();
@@ -271,7 +287,7 @@ export class Views {
     const zoom = (ev: WheelEvent) => {
       if (this.viewAt(ev.clientX, ev.clientY) !== "top") return;
       ev.preventDefault();
-      const r = this.rect("top")!, b = this.host.getBoundingClientRect();
+      const r = this.rect("top")!, b = this.box();
       const px = ev.clientX - b.left - r.x, py = ev.clientY - b.top - r.y;
       const [wx, wy] = this.screenToTop(px, py);
       const f = Math.exp(ev.deltaY * 0.0015);

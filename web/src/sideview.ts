@@ -220,6 +220,7 @@ function initSide(ctx: Ctx): void {
   head.append(title, curveSelect);
   const hint = el("p", "side-hint", "Select a curve to edit its heights.");
   const svg = document.createElementNS(SVG, "svg");
+  let svgWidth = 0;   // its width in CSS pixels (0 while hidden), from the resize observer below
   svg.setAttribute("class", "side-svg");
   svg.dataset.testid = "side-svg";
   const readout = el("div", "side-readout");
@@ -346,7 +347,7 @@ function initSide(ctx: Ctx): void {
     hint.hidden = on;
     svg.style.display = on ? "" : "none";
     readout.hidden = controls.hidden = !on;
-    const width = svg.getBoundingClientRect().width; // 0 while the panel is hidden (preview mode)
+    const width = svgWidth; // 0 while the panel is hidden (preview mode)
     if (!on || width <= 0) return;
     const info = g.curves[c];
     lay = sideLayout(g, store.data, c);
@@ -356,6 +357,8 @@ function initSide(ctx: Ctx): void {
     const pad = 0.06 * (zHi - zLo), xPad = 0.04 * lay.length;
     if (!frozen) map = fitMap(width, -xPad, lay.length + xPad, zLo - pad, zHi + pad);
     svg.setAttribute("height", String(HEIGHT));
+    svg.dataset.revision = String(g.revision);   // what it shows (tests wait for it: it redraws once a frame)
+    svg.dataset.curve = String(c);
     svg.dataset.k = String(map.k);
     svg.dataset.ox = String(map.ox);
     svg.dataset.oy = String(map.oy);
@@ -492,7 +495,11 @@ function initSide(ctx: Ctx): void {
   store.on("geometry", later);
   store.on("selection", later);
   store.on("looks", later);
-  new ResizeObserver(later).observe(svg);
+  // the width is kept from the resize observer: reading it in draw would force a layout
+  new ResizeObserver((entries) => {
+    svgWidth = entries[entries.length - 1].borderBoxSize?.[0]?.inlineSize ?? svg.getBoundingClientRect().width;
+    later();
+  }).observe(svg);
   draw();
 }
 

@@ -332,9 +332,10 @@ class TopView {
 
   // ------------------------------------------------------------------ pointer
 
+  /** Overlay pixels of a pointer event (the overlay covers the top view's region of the viewport). */
   private local(ev: PointerEvent): [number, number] {
-    const b = this.svg.getBoundingClientRect();
-    return [ev.clientX - b.left, ev.clientY - b.top];
+    const views = this.ctx.views, b = views.box(), r = views.rect("top") ?? { x: 0, y: 0, w: 0, h: 0 };
+    return [ev.clientX - b.left - r.x, ev.clientY - b.top - r.y];
   }
 
   private world(ev: PointerEvent): Vec {

@@ -16,7 +16,10 @@
    client; and the same in headless chromium (Playwright, /usr/bin/chromium,
    if present), where the page also parses the JSON and views the payload as
    Float32Arrays (everything but drawing).
-3. The cost of a worker-thread hop (``asyncio.to_thread``), which the server
+3. The transport alone: chromium <-> the same uvicorn configuration with an
+   echo app that does no studio work, replies of 16 B to 50 kB (the least an
+   edit can cost in the page before the server computes anything).
+4. The cost of a worker-thread hop (``asyncio.to_thread``), which the server
    skips for quick edits.
 
 Usage: python benchmarks/bench_studio_server.py [--reps N] [--ws-reps N] [--browser-reps N] [--markdown]
@@ -226,6 +229,77 @@ def browser_round_trips(port: int, reps: int) -> dict[tuple[str, str], tuple[flo
     return res
 
 
+# In the page: ask an echo server for a reply of `size` bytes, n times; ms per round trip.
+_ECHO_JS = """
+async ({url, n, size}) => {
+  const ws = new WebSocket(url);
+  ws.binaryType = "arraybuffer";
+  await new Promise((ok, bad) => { ws.onopen = ok; ws.onerror = bad; });
+  let done = null;
+  ws.onmessage = (ev) => done(ev.data);
+  const ts = [];
+  for (let k = 0; k < n; k++) {
+    const t0 = performance.now();
+    await new Promise((ok) => { done = ok; ws.send(String(size)); });
+    ts.push(performance.now() - t0);
+  }
+  ws.close();
+  return ts;
+}
+"""
+
+
+def transport_floor(reps: int, sizes: tuple[int, ...] = (16, 1000, 13000, 50000)) -> dict[int, tuple[float, float]] | None:
+    """(median, p90) ms of chromium <-> uvicorn round trips that do no studio work at all: an
+    echo app (same uvicorn configuration, same socket) answers each message with a binary frame
+    of ``size`` bytes. The least any edit can cost in the page, before the server computes."""
+    try:
+        from playwright.sync_api import sync_playwright
+    except ImportError:
+        return None
+    if not CHROMIUM.is_file():
+        return None
+    import threading
+
+    import uvicorn
+    from starlette.applications import Starlette
+    from starlette.responses import HTMLResponse
+    from starlette.routing import Route, WebSocketRoute
+
+    from auszug.cli.studio import bind_local, server_config
+
+    async def echo(ws) -> None:  # noqa: ANN001
+        await ws.accept()
+        while True:
+            m = await ws.receive()
+            if m["type"] == "websocket.disconnect":
+                return
+            await ws.send({"type": "websocket.send", "bytes": b"\0" * int(m.get("text") or 0)})
+
+    app = Starlette(routes=[WebSocketRoute("/ws", echo), Route("/", lambda _r: HTMLResponse("<p>echo</p>"))])
+    sock = bind_local(0)
+    port = sock.getsockname()[1]
+    server = uvicorn.Server(server_config(app, lifespan="off"))
+    th = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
+    th.start()
+    while not server.started:
+        time.sleep(0.02)
+    res = {}
+    try:
+        with sync_playwright() as pw:
+            browser = pw.chromium.launch(executable_path=str(CHROMIUM), args=["--no-sandbox", "--disable-gpu"])
+            page = browser.new_page()
+            page.goto(f"http://127.0.0.1:{port}/")
+            for size in sizes:
+                ts = page.evaluate(_ECHO_JS, {"url": f"ws://127.0.0.1:{port}/ws", "n": reps + 50, "size": size})[50:]
+                res[size] = (statistics.median(ts), float(np.percentile(ts, 90)))
+            browser.close()
+    finally:
+        server.should_exit = True
+        th.join(10)
+    return res
+
+
 def thread_hop(reps: int = 2000) -> float:
     """Median ms of ``await asyncio.to_thread(noop)``."""
     async def run() -> list[float]:
@@ -270,6 +344,14 @@ def main(argv: list[str] | None = None) -> int:
         print(f"| {n}, {k} | {med:.3f} | {p90:.3f} | {pm} | <= {TARGET_PAGE_MS} | {ANCHOR[k]} |")
     if page is None:
         print("\n(no chromium page measured: needs Playwright and /usr/bin/chromium)")
+    floor = transport_floor(a.browser_reps) if a.browser_reps else None
+    if floor:
+        u = rows[("U.XI.28", "point drag")]
+        print("\n| chromium <-> uvicorn, no studio work (echo of N bytes) (ms) | median | p90 |")
+        print("|---|---|---|")
+        for size, (med, p90) in floor.items():
+            print(f"| reply of {size} bytes | {med:.3f} | {p90:.3f} |")
+        print(f"(a U.XI.28 point drag's reply is {u['json_bytes'] + u['payload_bytes']} bytes)")
     hop = thread_hop()
     print(f"\n| asyncio.to_thread hop | {hop:.3f} ms median | (quick edits run on the event loop instead) |")
     if a.markdown:

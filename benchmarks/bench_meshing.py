@@ -32,7 +32,7 @@ import numpy as np
 from _timing import timed
 
 from auszug.errors import AuszugError
-from auszug.formats import load
+from auszug.formats import load, stl
 from auszug.meshing import default_size, network_faces, profile_for, sweep_network
 from auszug.meshing.solid import solid
 from auszug.microarch import build, edit
@@ -107,8 +107,10 @@ def main(argv: list[str] | None = None) -> int:
         t1 = time.perf_counter()
         s = solid(net, profile_for("bar", default_size(net), 4), 64, base=True)
         t2 = time.perf_counter()
+        back = stl.loads(stl.dumps(s.mesh))   # float32 corners read back by position, as a printer does
         rows.append((str(f.relative_to(a.corpus)), len(fs.faces), fs.converged, fs.residual,
-                     (t1 - t0) * 1e3, s.watertight and s.mesh.is_manifold, s.volume, s.components, (t2 - t1) * 1e3))
+                     (t1 - t0) * 1e3, s.watertight and s.mesh.is_manifold, s.volume, s.components, (t2 - t1) * 1e3,
+                     back.is_manifold and back.n_faces == s.mesh.n_faces))
     with_loops = [r for r in rows if r[1]]
     print(f"\n{len(rows)} corpus drawings; {len(with_loops)} have loops, {sum(r[1] for r in rows)} faces in all.")
     print("\n| corpus | result |")
@@ -118,6 +120,7 @@ def main(argv: list[str] | None = None) -> int:
     print(f"| faces time per drawing (64 boundary points) | median {statistics.median(r[4] for r in rows):.0f} ms, "
           f"worst {max(r[4] for r in rows):.0f} ms |")
     print(f"| solids watertight and manifold (bar, 64 segments, base plate) | {sum(r[5] for r in rows)} of {len(rows)} |")
+    print(f"| the same read back from binary STL (welded by position) | {sum(r[9] for r in rows)} of {len(rows)} |")
     print(f"| solid volumes | {min(r[6] for r in rows):.4g} to {max(r[6] for r in rows):.4g} (all > 0: "
           f"{all(r[6] > 0 for r in rows)}); one shell: {sum(r[7] == 1 for r in rows)} of {len(rows)} |")
     print(f"| solid time per drawing | median {statistics.median(r[8] for r in rows):.0f} ms, "

@@ -63,3 +63,16 @@ def test_parts_and_concatenate():
 def test_indices_out_of_range_are_refused():
     with pytest.raises(GeometryError, match="face indices must lie in 0..3"):
         Mesh(TET_V, TET_F + 1)
+
+
+def test_weld_merges_close_vertices_wherever_they_lie():
+    """Points within tol merge even when a grid of cell tol would split them (0.5 tol apart across a
+    cell boundary), chains of close points become one, and collapsed faces go."""
+    from auszug.meshing.mesh import weld
+
+    tol = 1e-6
+    v = [[0.5e-6 - 1e-9, 0, 0], [0.5e-6 + 1e-9, 0, 0], [1, 0, 0], [0, 1, 0], [1, 0, 0.9e-6], [1, 0, 1.8e-6]]
+    out, f = weld(v, [[0, 2, 3], [1, 3, 2], [0, 1, 2], [2, 4, 5]], tol)
+    assert len(out) == 3                        # {0, 1}, {2, 4, 5} (a chain), {3}
+    assert f.tolist() == [[0, 1, 2], [0, 2, 1]]  # the faces between merged vertices collapsed
+    np.testing.assert_array_equal(out[0], v[0])  # a group keeps its first vertex

@@ -19,7 +19,12 @@ from tests.meshing.cases import ALL, IDS, network, star
 
 @pytest.mark.parametrize("path", ALL, ids=IDS)
 def test_every_corpus_drawing_gives_a_watertight_manifold_solid(path):
+    import io
+
     import trimesh  # in the dev set (mesh extra): a missing trimesh fails, not skips
+
+    from auszug.formats import stl
+
     net = network(path)
     s = solid(net, profile_for("bar", default_size(net), 4), 24, base=True)
     assert s.watertight and s.mesh.is_manifold
@@ -27,6 +32,13 @@ def test_every_corpus_drawing_gives_a_watertight_manifold_solid(path):
     tm = trimesh.Trimesh(s.mesh.vertices, s.mesh.faces, process=False)
     assert tm.is_watertight and tm.is_winding_consistent and tm.is_volume
     assert tm.volume == pytest.approx(s.volume, rel=1e-9)
+    # as a printer gets it: binary STL (float32 corners, no topology) read back by position
+    data = stl.dumps(s.mesh)
+    back = stl.loads(data)
+    assert back.n_faces == s.mesh.n_faces and back.is_manifold, "the STL welds into a pinched or open mesh"
+    tm = trimesh.load(io.BytesIO(data), file_type="stl")   # trimesh merges vertices by position
+    assert tm.is_watertight and tm.is_winding_consistent and tm.is_volume
+    assert tm.volume == pytest.approx(s.volume, rel=1e-5)
 
 
 def test_a_level_ring_of_square_bars_has_the_exact_volume():

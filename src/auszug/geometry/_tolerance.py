@@ -36,6 +36,12 @@ class Tolerances:
         paper sec. 4.3.1) and to drop intersections at curve endpoints.
     samples : int
         Default number of samples per curve piece in outputs (>= 64).
+    solid_merge : float
+        Relative to a united solid's size: its features closer than this are
+        merged (manifold3d's tolerance, then a weld that must keep the solid
+        a closed 2-manifold). Above float32's resolution (6e-8), so that an
+        STL of the solid, read back by position, is still watertight; far
+        below anything printable.
     strict : bool
         Turn on internal invariant checks.
     """
@@ -45,6 +51,7 @@ class Tolerances:
     intersect: float = 1e-9
     param_equal: float = 1e-6
     samples: int = 65
+    solid_merge: float = 1e-6
     strict: bool = False
 
 

@@ -112,9 +112,12 @@ def edge_counts(faces: ArrayLike) -> tuple[IntArray, IntArray, IntArray]:
     """
     d = _directed_edges(np.asarray(faces))
     fwd = d[:, 0] < d[:, 1]
-    key = np.sort(d, axis=1)
-    edges, inv = np.unique(key, axis=0, return_inverse=True)
+    lo, hi = np.minimum(d[:, 0], d[:, 1]), np.maximum(d[:, 0], d[:, 1])
+    n = np.int64(hi.max() + 1) if len(hi) else np.int64(1)
+    # one int64 key per undirected edge: a 1-D unique is many times faster than unique(axis=0)
+    keys, inv = np.unique(lo * n + hi, return_inverse=True)
     inv = inv.reshape(-1)
+    edges = np.stack([keys // n, keys % n], axis=1)
     forward = np.bincount(inv[fwd], minlength=len(edges))
     backward = np.bincount(inv[~fwd], minlength=len(edges))
     return edges, forward, backward
@@ -171,26 +174,40 @@ def _vertex_manifold(faces: IntArray, n_vertices: int) -> bool:
     a_idx = np.nonzero(hit)[0]
     g = coo_matrix((np.ones(len(a_idx)), (a_idx, order_b[pos[hit]])), shape=(m, m))
     _, roots = connected_components(g, directed=False)
-    fans = np.unique(np.stack([v, roots], axis=1), axis=0)
+    fans = np.unique(v * np.int64(m) + roots)   # (vertex, fan) pairs as one int64 key each
     return bool(len(fans) == len(np.unique(v)))
 
 
 def weld(vertices: ArrayLike, faces: ArrayLike, tol: float = 0.0) -> tuple[Array, IntArray]:
     """Merge vertices closer than ``tol`` (exact duplicates for 0); drop faces that collapse.
 
-    Vertices are snapped to a grid of cell ``tol`` and merged per cell and its
-    neighbours' first representative, so points within ``tol`` of each other end
-    up as one (points up to ``2 tol`` apart may merge too).
+    Vertices within ``tol`` of each other end up as one, and so do chains of
+    such neighbours (a k-d tree finds every pair, wherever it lies). Each
+    merged vertex keeps the position of its group's first vertex; the
+    vertices keep their first-occurrence order.
 
     Returns
     -------
     vertices : (k, 3) ndarray
     faces : (l, 3) ndarray
+
+    Examples
+    --------
+    >>> v, f = weld([[0, 0, 0], [1, 0, 0], [1, 1e-9, 0], [0, 1, 0]], [[0, 1, 3], [0, 2, 3], [0, 1, 2]], 1e-6)
+    >>> len(v), f.tolist()
+    (3, [[0, 1, 2], [0, 1, 2]])
     """
     v = np.asarray(vertices, dtype=float)
     f = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
-    if tol > 0.0:
-        key = np.floor(v / tol + 0.5).astype(np.int64)
+    if tol > 0.0 and len(v):
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import connected_components
+        from scipy.spatial import cKDTree
+
+        pairs = cKDTree(v).query_pairs(tol, output_type="ndarray")
+        n = len(v)
+        g = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+        _, key = connected_components(g, directed=False)
     else:
         key = v
     _, first, inv = np.unique(key, axis=0, return_index=True, return_inverse=True)

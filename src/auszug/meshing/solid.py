@@ -19,9 +19,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from auszug.errors import GeometryError
+from auszug.geometry import TOL
 from auszug.meshing._clip import plane_loops
 from auszug.meshing.faces import Faces
-from auszug.meshing.mesh import Mesh, Part, is_closed
+from auszug.meshing.mesh import Mesh, Part, is_closed, weld
 from auszug.meshing.profile import Profile, triangulate_polygon
 from auszug.meshing.sweep import Member, sweep_members
 
@@ -165,6 +166,14 @@ def base_plate(network, thickness: float, margin: float, sink: float, segments: 
 def unite(meshes: Sequence[tuple[Array, IntArray]]) -> Mesh:
     """The union of closed meshes (manifold3d), as one :class:`Mesh`.
 
+    Members that only touch (at a point, or along a face) leave features far
+    below float32's resolution: vertices 1e-11 apart, or two at one spot
+    where shells meet in a point. They are merged (``TOL.solid_merge`` of the
+    solid's size): manifold3d simplifies to that tolerance, then vertices
+    still that close are welded if the result stays a closed 2-manifold. So
+    an STL of the solid, read back by position as printers and slicers read
+    it, is watertight too.
+
     Raises
     ------
     GeometryError
@@ -182,9 +191,16 @@ def unite(meshes: Sequence[tuple[Array, IntArray]]) -> Mesh:
     if not parts:
         return Mesh(np.empty((0, 3)), np.empty((0, 3), dtype=np.int64))
     u = m3.Manifold.batch_boolean(parts, m3.OpType.Add)
+    size = 0.0 if u.is_empty() else float(np.abs(np.asarray(u.bounding_box(), dtype=float)).max())
+    merge = TOL.solid_merge * size
+    if merge > u.get_tolerance():
+        u = u.set_tolerance(merge)
     out = u.to_mesh64()
     v = np.asarray(out.vert_properties, dtype=float)[:, :3]
     f = np.asarray(out.tri_verts, dtype=np.int64)
+    wv, wf = weld(v, f, 2.0 * merge)
+    if len(wv) < len(v) and len(wf) and Mesh(wv, wf).is_manifold:
+        v, f = wv, wf
     return Mesh(v, f, (Part("solid", "solid", -1, "", (0, len(v)), (0, len(f))),))
 
 

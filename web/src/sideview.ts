@@ -5,6 +5,7 @@
 // snapping); a drag keeps at most one edit in flight and sends the latest value when the reply
 // comes, and the scale stays put until the drag's last reply. Only heights change: the server
 // keeps the top view as it is.
+import { DragSender, RAW_UPDATES } from "./dragsender";
 import { perFrame } from "./frames";
 import { newDragId } from "./gesture";
 import "./sideview.css";
@@ -133,46 +134,8 @@ interface Drag {
   snap: Target | null;
   /** The drag number its edits carry (one undo step). */
   gesture: number;
-}
-
-/** Sends a stream of edits: at most one in flight; while one is, only the latest waits. */
-class Coalescer {
-  private busy = false;
-  private next: ClientMessage | null = null;
-  private last = "";
-
-  constructor(private request: (m: ClientMessage) => Promise<unknown>, private idle: () => void) {}
-
-  get pending(): boolean {
-    return this.busy || this.next !== null;
-  }
-
-  /** A new stream (a new drag): the first value is sent even if it equals the last one. */
-  begin(): void {
-    this.last = "";
-  }
-
-  push(msg: ClientMessage): void {
-    this.next = msg;
-    this.flush();
-  }
-
-  private flush(): void {
-    if (this.busy) return;
-    const msg = this.next;
-    this.next = null;
-    const key = JSON.stringify(msg);
-    if (msg === null || key === this.last) {
-      this.idle();
-      return;
-    }
-    this.last = key;
-    this.busy = true;
-    this.request(msg).catch(() => undefined).finally(() => { // errors are in the status bar
-      this.busy = false;
-      this.flush();
-    });
-  }
+  /** The side view's top in client pixels (read once: the panel does not move during a drag). */
+  top: number;
 }
 
 function el<K extends keyof HTMLElementTagNameMap>(tag: K, cls = "", text = ""): HTMLElementTagNameMap[K] {
@@ -254,11 +217,14 @@ function initSide(ctx: Ctx): void {
   let drag: Drag | null = null;
   let decoGesture = 0;   // the decoration slider's drag number while it moves
   let lay: SideLayout | null = null;
-  const sender = new Coalescer((m) => ctx.request(m), () => {
-    if (!drag && frozen) {
-      frozen = false;
-      draw();
-    }
+  const sender = new DragSender<ClientMessage>({
+    request: (m, input) => ctx.request(m, input),
+    idle: () => {
+      if (!drag && frozen) {
+        frozen = false;
+        draw();
+      }
+    },
   });
   const px = (x: number) => map.ox + map.k * x;
   const pz = (z: number) => map.oy - map.k * z;
@@ -287,7 +253,7 @@ function initSide(ctx: Ctx): void {
     const t = kind.what === "bottom"
       ? targets(g, (i) => g.curves[i].layer === kind.layer, kind.layer)
       : targets(g, (i) => i === c, null);
-    drag = { kind, curve: c, z, floor, targets: t, snap: null, gesture: newDragId() };
+    drag = { kind, curve: c, z, floor, targets: t, snap: null, gesture: newDragId(), top: svg.getBoundingClientRect().top };
     frozen = true;
     sender.begin();
     draw();
@@ -302,9 +268,10 @@ function initSide(ctx: Ctx): void {
     }
   }
 
-  window.addEventListener("pointermove", (ev) => {
+  // pointerrawupdate where the browser has it: the edit goes out without waiting for a frame
+  window.addEventListener(RAW_UPDATES ? "pointerrawupdate" : "pointermove", ((ev: PointerEvent) => {
     if (!drag) return;
-    const z = Math.max(drag.floor, (map.oy - (ev.clientY - svg.getBoundingClientRect().top)) / map.k);
+    const z = Math.max(drag.floor, (map.oy - (ev.clientY - drag.top)) / map.k);
     let snap: Target | null = null;
     if (!ev.altKey) {
       for (const t of drag.targets) {
@@ -314,9 +281,9 @@ function initSide(ctx: Ctx): void {
     }
     drag.snap = snap;
     drag.z = snap ? snap.z : z;
-    sender.push(dragMessage(drag));
-    draw();
-  });
+    sender.push(dragMessage(drag), ev.timeStamp);
+    later();   // the marker follows at the next frame (raw updates may come far more often)
+  }) as EventListener);
   const endDrag = () => {
     if (!drag) return;
     drag = null;

@@ -2,6 +2,7 @@
 // symmetry guides, the PRC and intersection markers, the curves' points and handles and the curve
 // being drawn, and turns clicks and drags into edit messages; the server answers each with new
 // geometry (so every edit is undoable). Elements are pooled and updated in place, once a frame.
+import { DragSender, RAW_UPDATES } from "./dragsender";
 import { newDragId } from "./gesture";
 import "./topview.css";
 import type { Ctx } from "./context";
@@ -91,8 +92,6 @@ class Pool<K extends keyof SVGElementTagNameMap> {
 
 const f2 = (v: number) => v.toFixed(2);
 
-/** Whether the browser fires pointerrawupdate (Chromium, in secure contexts such as 127.0.0.1). */
-const RAW_UPDATES = typeof window !== "undefined" && "onpointerrawupdate" in window;
 
 /** Which point a drag edit moves. */
 const moveKey = (m: MoveVertex | MoveHandle) =>
@@ -164,13 +163,8 @@ class TopView {
   private lastSnap: Snap | null = null;
   private drag: Drag | null = null;
   private press: { index: number; x: number; y: number } | null = null;
-  /** Drag edits not sent yet (the latest position per dragged point, with the timeStamp of the
-   * pointer event that put it there), whether one awaits its reply, whether one was sent since
-   * the last animation frame, and that frame. */
-  private outbox: { msg: MoveVertex | MoveHandle; at: number }[] = [];
-  private inflight = false;
-  private sentThisFrame = false;
-  private sendFrame = 0;
+  /** The drag's edits: sent at once, one awaiting its reply, at most one a frame. */
+  private readonly sender: DragSender<MoveVertex | MoveHandle>;
   private frame = 0;
   private full = true;
   /** Per geometry: symmetry matrices per basic curve and the pieces for picking. */
@@ -179,6 +173,11 @@ class TopView {
 
   constructor(private readonly ctx: Ctx) {
     this.store = ctx.store;
+    this.sender = new DragSender({
+      request: (m, input) => this.ctx.request(m, input),
+      key: moveKey,
+      idle: () => { if (this.drag?.released) { this.drag = null; this.schedule(false); } },
+    });
     this.svg = document.getElementById("top-overlay") as unknown as SVGSVGElement;
     const group = (cls: string) => make(this.svg, "g", cls);
     this.g = {
@@ -361,6 +360,7 @@ class TopView {
       this.store.select(curve);
       this.drag = { target, x: ev.clientX, y: ev.clientY, moved: false, pos: null, released: false,
         targets: this.targets(curve), gesture: newDragId() };
+      this.sender.begin();
       this.svg.setPointerCapture(ev.pointerId);
     } else if (d.testid === "intersection") {
       this.press = { index: Number(d.index), x: ev.clientX, y: ev.clientY };
@@ -379,7 +379,7 @@ class TopView {
     this.lastSnap = this.snapped(ev, drag.targets);
     drag.pos = this.lastSnap.p;
     const t = drag.target, xy = drag.pos;
-    this.queue(t.kind === "vertex"
+    this.sender.push(t.kind === "vertex"
       ? { type: "move_vertex", curve: t.curve, vertex: t.vertex, xy, drag: drag.gesture }
       : { type: "move_handle", curve: t.curve, segment: t.segment, handle: t.handle, xy, drag: drag.gesture },
     ev.timeStamp);
@@ -411,7 +411,7 @@ class TopView {
     const drag = this.drag;
     if (drag && !drag.released) {
       drag.released = true;
-      if (!this.outbox.length && !this.inflight) this.drag = null;
+      if (!this.sender.pending) this.drag = null;
       this.lastSnap = null;
       this.schedule(false);
     }
@@ -473,35 +473,6 @@ class TopView {
       const g = this.store.geometry;
       if (g) this.store.select(g.n_curves - 1);
     }, () => {});
-  }
-
-  /** Drag edits: one awaiting its reply at a time, at most one sent per animation frame, each
-   * sent as soon as both allow; a point's latest position replaces its unsent one. */
-  private queue(msg?: MoveVertex | MoveHandle, at = 0): void {
-    const last = this.outbox[this.outbox.length - 1];
-    if (msg && last && moveKey(last.msg) === moveKey(msg)) this.outbox[this.outbox.length - 1] = { msg, at };
-    else if (msg) this.outbox.push({ msg, at });
-    this.flush();
-  }
-
-  private flush(): void {
-    if (this.inflight || !this.outbox.length) return;
-    if (!this.sendFrame) {
-      this.sendFrame = requestAnimationFrame(() => {
-        this.sendFrame = 0;
-        this.sentThisFrame = false;
-        this.flush();
-      });
-    }
-    if (this.sentThisFrame) return;   // the frame above sends it
-    const { msg, at } = this.outbox.shift()!;
-    this.inflight = true;
-    this.sentThisFrame = true;
-    this.ctx.request(msg, at).catch(() => {}).finally(() => {
-      this.inflight = false;
-      if (this.outbox.length) this.flush();
-      else if (this.drag?.released) { this.drag = null; this.schedule(false); }
-    });
   }
 
   // ------------------------------------------------------------------ drawing the overlay

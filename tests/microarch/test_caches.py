@@ -14,6 +14,7 @@ NAMES = ["web/U.XI.28.uc", "web/3d-scan-final.uc", "legacy/U.XI.22.uc", "web/U.X
 
 def _cold() -> None:
     prc._PAIRS.data.clear()
+    prc._BLOCKS.data.clear()
     prc._RESULTS.data.clear()
     prc._CHOICES.data.clear()
     network._CURVE_PIECES.data.clear()

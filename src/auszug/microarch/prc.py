@@ -161,73 +161,75 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
     hit = _RESULTS.get(whole)
     if hit is not None:
         return list(hit)
-    reps: list[tuple[int, int, str, Curve, int, int]] = []   # curve, segment, label, curve, group index, key id
-    for ci, si, top in segs:
-        sym = drawing.curves[ci].symmetry
-        kid = ids[(ci, si)]
-        for k, (lab, rep) in enumerate(zip(sym.labels(), _replicas(top, sym))):
-            reps.append((ci, si, lab, rep, k, kid))
-    scale = None
+    # the work comes in blocks: one basic segment i against every replica of one segment j,
+    # cached as finished records; an edit of one curve recomputes only the blocks it touches
+    scale = [None]   # the drawing's size, for the identical-replica test (computed when needed)
     out = []
-    data = _PAIRS.data   # the OrderedDict itself: this loop runs for every pair of every rebuild
-    markers = _MARKERS.data
+    blocks = _BLOCKS.data   # the OrderedDict itself: this loop runs for every rebuild
     param_equal = tol.param_equal
     for ci, si, top in segs:
         kid_i = ids[(ci, si)]
         layer_i = drawing.curves[ci].layer
-        found_here: list = []   # per wanted replica: (index into reps, pair key, hits or _MISS)
-        missing: list[int] = []
-        for j, (cj, sj, _lab, _rep, k, kid_j) in enumerate(reps):
-            if k == 0 and ci == cj and si == sj:
-                continue
+        for cj, sj, top_j in segs:
             if layer_only and layer_i != layers[cj]:
                 continue
-            pk = (kid_i, kid_j, k)
-            v = data.get(pk, _MISS)
-            if v is _MISS:
-                missing.append(len(found_here))
+            bk = (kid_i, ids[(cj, sj)], ci, si, cj, sj, param_equal)
+            block = blocks.get(bk)
+            if block is None:
+                block = _block(drawing, segs, scale, ci, si, top, kid_i, cj, sj, top_j, ids[(cj, sj)])
+                _BLOCKS.put(bk, block)
             else:
                 try:
-                    data.move_to_end(pk)
-                except KeyError:  # evicted meanwhile by another thread; v is still right
+                    blocks.move_to_end(bk)
+                except KeyError:   # evicted meanwhile by another thread; the block is still right
                     pass
-            found_here.append((j, pk, v))
-        if missing:
-            # pair by pair: what intersect_many does after its box prefilter, which
-            # _intersect_prims repeats exactly (and for a few pairs numpy costs more than it saves)
-            ptop = _prim(top)
-            for m in missing:
-                j, pk, _ = found_here[m]
-                rep = reps[j][3]
-                found = _intersect_prims(ptop, _prim(rep))
-                hits = tuple((float(top.u_at_t(h.t1)), float(rep.u_at_t(h.t2)), h.point) for h in found)
-                # an identical replica overlaps the segment everywhere: it has hits, and is left out
-                same = False
-                if hits and (ci, si) == reps[j][:2]:
-                    if scale is None:
-                        ends = [t.start for _, _, t in segs] + [t.end for _, _, t in segs]
-                        scale = max(1.0, float(np.max(np.abs(ends))))
-                    same = _same_curve(top, rep, 1e-9 * scale)
-                v = None if same else hits
-                _PAIRS.put(pk, v)
-                found_here[m] = (j, pk, v)
-        for j, pk, hits in found_here:
-            if not hits:
-                continue
-            cj, sj, lab, _rep, _k, _ = reps[j]
-            # the same pair at the same indices gives the same (immutable) records: reuse them
-            mk = (pk, ci, si, cj, sj, lab, param_equal)
-            made = markers.get(mk)
-            if made is None or made[0] is not hits:
-                same_family = ci == cj and si == sj
-                made = (hits, tuple(
-                    TopIntersection(ci, si, cj, sj, lab, u, u2, pt, same_family,
-                                    (abs(u - u2) <= param_equal) if same_family else True)
-                    for u, u2, pt in hits))
-                _MARKERS.put(mk, made)
-            out.extend(made[1])
+            out.extend(block)
     _RESULTS.put(whole, tuple(out))
     return out
+
+
+def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Curve, kid_i: int,  # noqa: PLR0913
+           cj: int, sj: int, top_j: Curve, kid_j: int) -> tuple[TopIntersection, ...]:
+    """The intersection records of basic segment (ci, si) with every replica of (cj, sj).
+
+    Pairs come from :data:`_PAIRS` where cached (keyed by both segments' geometry and the
+    replica), else from the intersection kernel pair by pair (for a few pairs numpy would cost
+    more than it saves). The segment's own untransformed copy is left out, and so is a replica
+    identical to it (it overlaps the segment everywhere).
+    """
+    sym = drawing.curves[cj].symmetry
+    param_equal = TOL.param_equal
+    same_family = ci == cj and si == sj
+    out: list[TopIntersection] = []
+    ptop = None
+    pairs = _PAIRS.data   # (its values may be None: a miss is _MISS)
+    for k, (lab, rep) in enumerate(zip(sym.labels(), _replicas(top_j, sym))):
+        if k == 0 and same_family:
+            continue
+        pk = (kid_i, kid_j, k)
+        hits = pairs.get(pk, _MISS)
+        if hits is not _MISS:
+            try:
+                pairs.move_to_end(pk)
+            except KeyError:   # evicted meanwhile by another thread; the value is still right
+                pass
+        else:
+            if ptop is None:
+                ptop = _prim(top)
+            found = _intersect_prims(ptop, _prim(rep))
+            hits = tuple((float(top.u_at_t(h.t1)), float(rep.u_at_t(h.t2)), h.point) for h in found)
+            if hits and same_family:
+                if scale[0] is None:
+                    ends = [t.start for _, _, t in segs] + [t.end for _, _, t in segs]
+                    scale[0] = max(1.0, float(np.max(np.abs(ends))))
+                if _same_curve(top, rep, 1e-9 * scale[0]):
+                    hits = None
+            _PAIRS.put(pk, hits)
+        if hits:
+            out.extend(TopIntersection(ci, si, cj, sj, lab, u, u2, pt, same_family,
+                                       (abs(u - u2) <= param_equal) if same_family else True)
+                       for u, u2, pt in hits)
+    return tuple(out)
 
 
 #: Intersections of one basic segment with one replica, keyed by the geometry of both (their
@@ -235,8 +237,9 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
 #: pairs it touches. Values are immutable tuples.
 _PAIRS = LruCache(20000)
 _MISS = object()
-#: The TopIntersection records of a pair at given curve/segment indices (keyed like the pairs).
-_MARKERS = LruCache(20000)
+#: The TopIntersection records of one basic segment with all replicas of one segment, at given
+#: curve/segment indices (keyed by both segments' key ids and the indices).
+_BLOCKS = LruCache(20000)
 #: Whole results of :func:`intersections`, keyed by the segments' key ids (an apex drag hits).
 _RESULTS = LruCache(64)
 #: Segment keys -> small integers, so pair keys hash cheaply. Ids are never reused: when the

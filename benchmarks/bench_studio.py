@@ -17,6 +17,7 @@ WebSocket; the clock is the page's performance.now():
   edit, after 1000 edits and after 10 s idle. Target: no growth (the demo leaks a texture a frame).
 
 Usage: python benchmarks/bench_studio.py [--drawing web/U.XI.28.uc] [--edits 1000] [--idle 10] [--looks STYLE]
+       python benchmarks/bench_studio.py --diagnose ROUNDS   (each part of the page's share of an edit)
 """
 
 from __future__ import annotations
@@ -80,6 +81,18 @@ GRAB_JS = """() => {
   const x = b.left + r.x + sx, y = b.top + r.y + sy, e = document.elementFromPoint(x, y);
   const grabs = !!e && e.dataset.role === 'vertex' && e.dataset.curve === '0' && e.dataset.vertex === String(k);
   return {x, y, grabs, what: e ? e.outerHTML.slice(0, 120) : null};
+}"""
+
+# Diagnosis (--hide): parts of the page taken out of the frames (the page still computes them).
+HIDE_JS = """(parts) => {
+  const hide = {
+    canvas: ['canvas'], side: ['#side-panel'],
+    markers: ['#top-overlay .marks', '#top-overlay .prcs', '#top-overlay .dots'],
+  };
+  for (const p of parts) {
+    if (!hide[p]) throw new Error('--hide: no part ' + p + ' (canvas, side, markers)');
+    for (const sel of hide[p]) document.querySelectorAll(sel).forEach((e) => { e.style.visibility = 'hidden'; });
+  }
 }"""
 
 INFO_JS = """() => {
@@ -149,6 +162,37 @@ def mouse_drag(page, reps: int, period_s: float = 1 / 60, apex: bool = False) ->
             [e["rendered"] - e["input"] for e in t if e["rendered"] > 0])
 
 
+DIAGNOSIS = (("everything drawn", ()), ("WebGL canvas hidden", ("canvas",)),
+             ("canvas, side view and top-view markers hidden", ("canvas", "side", "markers")))
+
+
+def diagnose(browser, url: str, name: str, reps: int, rounds: int) -> int:  # noqa: ANN001
+    """The top-view mouse drag with parts of the page hidden, in alternating rounds; prints a table."""
+    res: dict[str, list[list[float]]] = {label: [[], []] for label, _ in DIAGNOSIS}
+    for r in range(rounds):
+        for label, parts in (DIAGNOSIS if r % 2 == 0 else DIAGNOSIS[::-1]):
+            page = browser.new_page(viewport={"width": 1280, "height": 800})
+            page.goto(f"{url}?open={name}")
+            page.wait_for_function("() => window.auszug && window.auszug.timings.length > 0 "
+                                   "&& window.auszug.timings[0].rendered > 0", timeout=30000)
+            page.evaluate(EDITS_JS, {"kind": "point drag", "n": 20, "period": 0})  # warm up
+            page.evaluate("() => window.auszug.store.select(0)")   # its vertex: a handle, not a marker
+            page.wait_for_timeout(100)
+            page.evaluate(HIDE_JS, list(parts))
+            di, ds, _ = mouse_drag(page, reps)
+            res[label][0] += di
+            res[label][1] += ds
+            page.close()
+    print(f"diagnosis: top-view point drag by the mouse on {name}, {rounds} alternating rounds of {reps} moves, "
+          f"{time.strftime('%Y-%m-%d')}, load average {os.getloadavg()[0]:.1f}")
+    print()
+    print("| page | pointer event -> geometry: median (ms) | p90 | edit sent -> geometry: median (ms) | p90 |")
+    print("|---|---|---|---|---|")
+    for label, (di, ds) in res.items():
+        print(f"| {label} | {statistics.median(di):.2f} | {pct(di, 0.9):.2f} | {statistics.median(ds):.2f} | {pct(ds, 0.9):.2f} |")
+    return 0
+
+
 def pct(xs: list[float], q: float) -> float:
     s = sorted(xs)
     return s[min(len(s) - 1, int(q * len(s)))]
@@ -161,6 +205,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--edits", type=int, default=1000, help="edits for the GPU-resource check (default 1000)")
     ap.add_argument("--idle", type=float, default=10.0, help="idle seconds for the GPU-resource check")
     ap.add_argument("--looks", default="curves", help="looks style while measuring resources (curves, tube, bar, ribbon)")
+    ap.add_argument("--diagnose", type=int, default=0, metavar="ROUNDS",
+                    help="only the diagnosis: the mouse drag with parts of the page hidden (nothing; the "
+                    "WebGL canvas; canvas, side view and the top view's markers), in ROUNDS alternating "
+                    "rounds of fresh pages, so every variant sees the same machine")
     args = ap.parse_args(argv)
     from playwright.sync_api import sync_playwright
 
@@ -177,6 +225,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         with sync_playwright() as pw:
             browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+            if args.diagnose:
+                return diagnose(browser, url, name, args.reps, args.diagnose)
             page = browser.new_page(viewport={"width": 1280, "height": 800})
             loads = []
             for _ in range(3):

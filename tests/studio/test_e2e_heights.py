@@ -27,6 +27,8 @@ def side_map(page: Any) -> dict:
         return !!st.geometry && s.dataset.revision === String(st.geometry.revision)
             && s.dataset.curve === String(st.selection);
     }""")
+    # two frames later any redraw the last geometry asked for has happened
+    page.evaluate("() => new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(ok)))")
     return page.evaluate("""() => {
         const s = document.querySelector('[data-testid=side-svg]'), b = s.getBoundingClientRect();
         return {k: +s.dataset.k, ox: +s.dataset.ox, oy: +s.dataset.oy, left: b.left, top: b.top};
@@ -39,9 +41,14 @@ def z_at(m: dict, client_y: float) -> float:
 
 
 def centre(page: Any, testid: str) -> tuple[float, float]:
-    box = page.locator(f"[data-testid={testid}]").first.bounding_box()
-    assert box is not None, f"no {testid}"
-    return box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    """The centre of the first element with ``testid``, measured in the page in one go (the side
+    view rebuilds its markers when it redraws)."""
+    xy = page.wait_for_function("""(testid) => {
+        const e = document.querySelector(`[data-testid=${testid}]`);
+        const b = e ? e.getBoundingClientRect() : null;
+        return b && b.width > 0 ? [b.left + b.width / 2, b.top + b.height / 2] : null;
+    }""", arg=testid).json_value()
+    return float(xy[0]), float(xy[1])
 
 
 def drag(page: Any, x: float, y: float, y2: float, alt: bool = False) -> None:

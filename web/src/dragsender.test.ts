@@ -60,3 +60,18 @@ describe("DragSender", () => {
     expect(sent.length).toBe(4);
   });
 });
+
+describe("DragSender idle", () => {
+  it("comes when a waiting repeat of the last edit is dropped at the frame", async () => {
+    const { s, sent, reply, frame, idles } = rig();
+    s.push({ k: "a", v: 1 });
+    await reply();                      // within the frame: idle once
+    expect(idles()).toBe(1);
+    s.push({ k: "a", v: 2 });           // waits for the frame
+    s.push({ k: "a", v: 1 });           // replaced by a repeat of the last one sent
+    frame();                            // dropped: nothing in flight, nothing waits
+    expect(sent.length).toBe(1);
+    expect(s.pending).toBe(false);
+    expect(idles()).toBeGreaterThanOrEqual(2);
+  });
+});

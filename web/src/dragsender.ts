@@ -8,7 +8,8 @@ export interface DragSenderOptions<M> {
   request(msg: M, input: number): Promise<unknown>;
   /** Edits with the same key replace each other while unsent (default: one stream). */
   key?(msg: M): string;
-  /** Called when the last reply is in and nothing waits. */
+  /** Called whenever nothing is in flight or waiting any more (after a reply, at a frame, or
+   * when a repeat of the last edit was dropped); may come more than once. */
   idle?(): void;
   /** Schedules a call at the next animation frame (default requestAnimationFrame). */
   frame?(fn: () => void): void;
@@ -40,6 +41,12 @@ export class DragSender<M> {
     if (tail && tail.key === key) this.queue[this.queue.length - 1] = item;
     else this.queue.push(item);
     this.flush();
+    this.settle();
+  }
+
+  /** Nothing in flight or waiting (a repeat of the last edit may just have been dropped): idle. */
+  private settle(): void {
+    if (!this.pending) this.o.idle?.();
   }
 
   private flush(): void {
@@ -56,12 +63,13 @@ export class DragSender<M> {
         this.frameDue = false;
         this.sentThisFrame = false;
         this.flush();
+        this.settle();
       });
     }
     this.o.request(msg, input).catch(() => undefined).finally(() => { // errors are in the status bar
       this.busy = false;
       this.flush();
-      if (!this.pending) this.o.idle?.();
+      this.settle();
     });
   }
 }

@@ -136,6 +136,8 @@ interface Drag {
   gesture: number;
   /** The side view's top in client pixels (read once: the panel does not move during a drag). */
   top: number;
+  /** Whether pointerrawupdate events come for it (then pointermove is ignored). */
+  raw: boolean;
 }
 
 function el<K extends keyof HTMLElementTagNameMap>(tag: K, cls = "", text = ""): HTMLElementTagNameMap[K] {
@@ -253,7 +255,7 @@ function initSide(ctx: Ctx): void {
     const t = kind.what === "bottom"
       ? targets(g, (i) => g.curves[i].layer === kind.layer, kind.layer)
       : targets(g, (i) => i === c, null);
-    drag = { kind, curve: c, z, floor, targets: t, snap: null, gesture: newDragId(), top: svg.getBoundingClientRect().top };
+    drag = { kind, curve: c, z, floor, targets: t, snap: null, gesture: newDragId(), top: svg.getBoundingClientRect().top, raw: false };
     frozen = true;
     sender.begin();
     draw();
@@ -269,7 +271,8 @@ function initSide(ctx: Ctx): void {
   }
 
   // pointerrawupdate where the browser has it: the edit goes out without waiting for a frame
-  window.addEventListener(RAW_UPDATES ? "pointerrawupdate" : "pointermove", ((ev: PointerEvent) => {
+  // (pointermove still drives a drag that gets no raw updates, whatever the reason)
+  const dragMove = (ev: PointerEvent) => {
     if (!drag) return;
     const z = Math.max(drag.floor, (map.oy - (ev.clientY - drag.top)) / map.k);
     let snap: Target | null = null;
@@ -283,7 +286,14 @@ function initSide(ctx: Ctx): void {
     drag.z = snap ? snap.z : z;
     sender.push(dragMessage(drag), ev.timeStamp);
     later();   // the marker follows at the next frame (raw updates may come far more often)
-  }) as EventListener);
+  };
+  if (RAW_UPDATES) {
+    window.addEventListener("pointerrawupdate", ((ev: PointerEvent) => {
+      if (drag) drag.raw = true;
+      dragMove(ev);
+    }) as EventListener);
+  }
+  window.addEventListener("pointermove", (ev) => { if (drag && !drag.raw) dragMove(ev); });
   const endDrag = () => {
     if (!drag) return;
     drag = null;

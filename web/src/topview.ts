@@ -54,6 +54,8 @@ interface Drag {
   targets: SnapTargets;
   /** The drag number its edits carry (one undo step). */
   gesture: number;
+  /** Whether pointerrawupdate events come for it (then pointermove is ignored). */
+  raw: boolean;
 }
 
 interface Draft {
@@ -91,7 +93,6 @@ class Pool<K extends keyof SVGElementTagNameMap> {
 }
 
 const f2 = (v: number) => v.toFixed(2);
-
 
 /** Which point a drag edit moves. */
 const moveKey = (m: MoveVertex | MoveHandle) =>
@@ -266,7 +267,13 @@ class TopView {
     // A drag follows pointerrawupdate where the browser has it: it comes as soon as the mouse
     // moves, while pointermove waits for the next animation frame (up to 16 ms later), so the
     // edit goes out at once and its geometry is usually back before that frame is drawn.
-    if (RAW_UPDATES) this.svg.addEventListener("pointerrawupdate", ((e: PointerEvent) => this.dragMove(e)) as EventListener);
+    // (pointermove still drives a drag that gets no raw updates, whatever the reason)
+    if (RAW_UPDATES) {
+      this.svg.addEventListener("pointerrawupdate", ((e: PointerEvent) => {
+        if (this.drag) this.drag.raw = true;
+        this.dragMove(e);
+      }) as EventListener);
+    }
     this.svg.addEventListener("pointermove", (e) => this.move(e));
     this.svg.addEventListener("pointerup", (e) => this.up(e));
     this.svg.addEventListener("pointercancel", (e) => this.up(e));
@@ -359,7 +366,7 @@ class TopView {
         : { kind: "handle", curve, segment: Number(d.segment), handle: Number(d.handle) };
       this.store.select(curve);
       this.drag = { target, x: ev.clientX, y: ev.clientY, moved: false, pos: null, released: false,
-        targets: this.targets(curve), gesture: newDragId() };
+        targets: this.targets(curve), gesture: newDragId(), raw: false };
       this.sender.begin();
       this.svg.setPointerCapture(ev.pointerId);
     } else if (d.testid === "intersection") {
@@ -389,7 +396,7 @@ class TopView {
   private move(ev: PointerEvent): void {
     const drag = this.drag;
     if (drag && !drag.released) {
-      if (!RAW_UPDATES) this.dragMove(ev);
+      if (!drag.raw) this.dragMove(ev);
       return;
     }
     if (this.store.tool === "select") {

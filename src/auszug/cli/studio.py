@@ -89,8 +89,8 @@ def server_config(app: Any, *, lifespan: str = "on") -> "uvicorn.Config":  # noq
     """The uvicorn configuration the studio runs with (the CLI, benchmarks and tests share it).
 
     WebSocket compression (permessage-deflate) is off: on 127.0.0.1 it only costs time,
-    about 0.2 ms to compress each frame on the server and as long to inflate it in the
-    browser, twice per edit (the geometry's JSON and its binary frame).
+    about 0.2 ms to compress a reply's frame on the server and as long to inflate it in
+    the browser.
     ``lifespan="on"`` lets shutdown flush pending autosaves.
     """
     import uvicorn

@@ -62,8 +62,10 @@ export class Views {
 
   constructor(readonly host: HTMLElement, private store: Store) {
     // MSAA doubles the cost of a frame on a software renderer (headless chromium's SwiftShader,
-    // llvmpipe): keep it for real GPUs only.
-    this.renderer = new THREE.WebGLRenderer({ antialias: !softwareRenderer(), preserveDrawingBuffer: true });
+    // llvmpipe): keep it for real GPUs only. The drawing buffer is not preserved: every frame
+    // draws all views anyway, and a preserved buffer costs the compositor a copy per frame
+    // (on U.XI.28 a mouse drag's edit came 0.35-0.7 ms later with it, bench_studio.py).
+    this.renderer = new THREE.WebGLRenderer({ antialias: !softwareRenderer(), preserveDrawingBuffer: false });
     this.renderer.setPixelRatio(window.devicePixelRatio);
     this.renderer.setClearColor(0xf4f1ea);
     this.renderer.setScissorTest(true);

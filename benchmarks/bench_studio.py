@@ -125,21 +125,16 @@ APEX_JS = """() => {
 }"""
 
 
-def mouse_drag(page, reps: int, period_s: float = 1 / 60, apex: bool = False) -> tuple[list[float], list[float], list[float]]:  # noqa: ANN001
-    """A real drag by the mouse (Alt held: no snapping), one move every ``period_s`` to a fresh
-    spot: of curve 0's last vertex in the top view, or (``apex``) of its apex marker in the side
-    view (up and down by a few pixels). Per edit (ms): input event -> geometry in the page, send
-    -> geometry, input event -> the next frame drawn with it (its draw calls issued)."""
-    if apex:
-        grab = page.evaluate(APEX_JS)
-        if grab is None:
-            raise SystemExit("apex drag: the side view shows no apex marker (select curve 0 first)")
-    else:
-        grab = page.evaluate(GRAB_JS)
-        if not grab["grabs"]:
-            raise SystemExit(f"mouse drag: pressing at curve 0's last vertex does not grab it ({grab['what']})")
-    page.evaluate("() => { window.auszug.timings.length = 0; }")
-    x0, y0 = grab["x"], grab["y"]
+def open_drawing(page, url: str, name: str) -> None:  # noqa: ANN001
+    """Navigate ``page`` to the studio at ``url`` with drawing ``name`` and wait for its first frame."""
+    page.goto(f"{url}?open={name}")
+    page.wait_for_function("() => window.auszug && window.auszug.timings.length > 0 "
+                           "&& window.auszug.timings[0].rendered > 0", timeout=30000)
+
+
+def move_mouse(page, x0: float, y0: float, reps: int, apex: bool = False, period_s: float = 1 / 60) -> None:  # noqa: ANN001
+    """Press at (x0, y0) with Alt held (no snapping), move ``reps`` times, one move every
+    ``period_s`` to a fresh spot near it (``apex``: up and down by a few pixels), release."""
     page.mouse.move(x0, y0)
     page.keyboard.down("Alt")
     page.mouse.down()
@@ -155,6 +150,28 @@ def mouse_drag(page, reps: int, period_s: float = 1 / 60, apex: bool = False) ->
     page.mouse.up()
     page.keyboard.up("Alt")
     page.wait_for_timeout(300)
+
+
+def grab_point(page, apex: bool = False) -> tuple[float, float]:  # noqa: ANN001
+    """Where to press: curve 0's last vertex in the top view, or (``apex``) its apex marker in the side view."""
+    if apex:
+        grab = page.evaluate(APEX_JS)
+        if grab is None:
+            raise SystemExit("apex drag: the side view shows no apex marker (select curve 0 first)")
+    else:
+        grab = page.evaluate(GRAB_JS)
+        if not grab["grabs"]:
+            raise SystemExit(f"mouse drag: pressing at curve 0's last vertex does not grab it ({grab['what']})")
+    return grab["x"], grab["y"]
+
+
+def mouse_drag(page, reps: int, period_s: float = 1 / 60, apex: bool = False) -> tuple[list[float], list[float], list[float]]:  # noqa: ANN001
+    """A real drag by the mouse (:func:`move_mouse`) of curve 0's last vertex in the top view, or
+    (``apex``) of its apex marker in the side view. Per edit (ms): input event -> geometry in the
+    page, send -> geometry, input event -> the next frame drawn with it (its draw calls issued)."""
+    x0, y0 = grab_point(page, apex)
+    page.evaluate("() => { window.auszug.timings.length = 0; }")
+    move_mouse(page, x0, y0, reps, apex, period_s)
     t = [e for e in page.evaluate("() => window.auszug.timings") if e["input"] > 0]
     if len(t) < reps // 2:
         raise SystemExit(f"mouse drag: only {len(t)} of {reps} moves sent an edit")
@@ -172,9 +189,7 @@ def diagnose(browser, url: str, name: str, reps: int, rounds: int) -> int:  # no
     for r in range(rounds):
         for label, parts in (DIAGNOSIS if r % 2 == 0 else DIAGNOSIS[::-1]):
             page = browser.new_page(viewport={"width": 1280, "height": 800})
-            page.goto(f"{url}?open={name}")
-            page.wait_for_function("() => window.auszug && window.auszug.timings.length > 0 "
-                                   "&& window.auszug.timings[0].rendered > 0", timeout=30000)
+            open_drawing(page, url, name)
             page.evaluate(EDITS_JS, {"kind": "point drag", "n": 20, "period": 0})  # warm up
             page.evaluate("() => window.auszug.store.select(0)")   # its vertex: a handle, not a marker
             page.wait_for_timeout(100)
@@ -230,9 +245,7 @@ def main(argv: list[str] | None = None) -> int:
             page = browser.new_page(viewport={"width": 1280, "height": 800})
             loads = []
             for _ in range(3):
-                page.goto(f"{url}?open={name}")
-                page.wait_for_function("() => window.auszug && window.auszug.timings.length > 0 "
-                                       "&& window.auszug.timings[0].rendered > 0", timeout=30000)
+                open_drawing(page, url, name)
                 loads.append(page.evaluate("() => window.auszug.timings[0].rendered"))
             page.evaluate(EDITS_JS, {"kind": "point drag", "n": 20, "period": 0})  # warm up
             for kind in ("point drag", "apex drag"):

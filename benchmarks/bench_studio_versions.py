@@ -22,7 +22,6 @@ with the repository's web/node_modules. Usage:
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import shutil
 import statistics
@@ -87,24 +86,6 @@ def checkout(rev: str, tmp: Path) -> tuple[Path, Path]:
     return tree / "src", static
 
 
-def drag(page, x0: float, y0: float, apex: bool, reps: int) -> None:  # noqa: ANN001
-    page.mouse.move(x0, y0)
-    page.keyboard.down("Alt")
-    page.mouse.down()
-    start = time.perf_counter()
-    for k in range(1, reps + 1):
-        due = start + k / 60 - time.perf_counter()
-        if due > 0:
-            time.sleep(due)
-        if apex:
-            page.mouse.move(x0, y0 - 3 - 3 * math.sin(0.37 * k))
-        else:
-            page.mouse.move(x0 + 4 * math.sin(0.37 * k), y0 + 4 * math.cos(0.23 * k))
-    page.mouse.up()
-    page.keyboard.up("Alt")
-    page.wait_for_timeout(300)
-
-
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--before", default="HEAD~1", help="git revision (default HEAD~1)")
@@ -135,21 +116,15 @@ def main(argv: list[str] | None = None) -> int:
             for r in range(a.rounds):
                 for name in (("before", "after") if r % 2 == 0 else ("after", "before")):
                     page = browser.new_page(viewport={"width": 1280, "height": 800})
-                    page.goto(urls[name] + "?open=U.XI.28.uc")
-                    page.wait_for_function("() => window.auszug && window.auszug.timings.length > 0 "
-                                           "&& window.auszug.timings[0].rendered > 0", timeout=30000)
+                    B.open_drawing(page, urls[name], "U.XI.28.uc")
                     page.evaluate(B.EDITS_JS, {"kind": "point drag", "n": 20, "period": 0})
                     for k, p in kinds:
                         sent[(name, k, p)] += page.evaluate(B.EDITS_JS, {"kind": k, "n": a.reps, "period": p})
                     page.evaluate(HOOK)
-                    grab = page.evaluate(B.GRAB_JS)
-                    if not grab["grabs"]:
-                        raise SystemExit(f"{names[name]}: pressing at curve 0's last vertex does not grab it")
-                    drag(page, grab["x"], grab["y"], False, a.reps)
+                    B.move_mouse(page, *B.grab_point(page), a.reps)
                     mouse[(name, "point")] += page.evaluate("() => window.__lat.splice(0)")
                     page.wait_for_timeout(200)
-                    apex = page.evaluate(B.APEX_JS)
-                    drag(page, apex["x"], apex["y"], True, a.reps)
+                    B.move_mouse(page, *B.grab_point(page, apex=True), a.reps, apex=True)
                     mouse[(name, "apex")] += page.evaluate("() => window.__lat.splice(0)")
                     page.close()
             browser.close()

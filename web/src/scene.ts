@@ -6,6 +6,7 @@
 // rewrites the buffers in place, so no GPU resources are created or leaked per edit.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
+import { perFrame } from "./frames";
 import { layoutKey, transforms, view } from "./geometry";
 import type { Geometry } from "./protocol";
 import type { Mode, Store } from "./store";
@@ -49,7 +50,6 @@ export class Views {
   private layout = "";
   private geoms: THREE.BufferGeometry[] = [];
   private materials = new Map<string, THREE.LineBasicMaterial>();
-  private pendingFrame = 0;
   private topListeners = new Set<() => void>();
   private frameListeners = new Set<() => void>();
   private fittedPath: string | null = null;
@@ -192,13 +192,8 @@ export class Views {
     this.updateCameras();
   }
 
-  requestRender(): void {
-    if (this.pendingFrame) return;
-    this.pendingFrame = requestAnimationFrame(() => {
-      this.pendingFrame = 0;
-      this.render();
-    });
-  }
+  /** Draw at the next animation frame (once, however often asked). */
+  readonly requestRender = perFrame(() => this.render());
 
   /** Draw every view of the current mode now. */
   render(): void {

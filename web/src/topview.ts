@@ -3,6 +3,7 @@
 // being drawn, and turns clicks and drags into edit messages; the server answers each with new
 // geometry (so every edit is undoable). Elements are pooled and updated in place, once a frame.
 import { DragSender, RAW_UPDATES } from "./dragsender";
+import { perFrame } from "./frames";
 import { newDragId } from "./gesture";
 import "./topview.css";
 import type { Ctx } from "./context";
@@ -166,7 +167,8 @@ class TopView {
   private press: { index: number; x: number; y: number } | null = null;
   /** The drag's edits: sent at once, one awaiting its reply, at most one a frame. */
   private readonly sender: DragSender<MoveVertex | MoveHandle>;
-  private frame = 0;
+  /** Redraws the overlay at the next animation frame (once, however often asked). */
+  private readonly later = perFrame(() => this.render());
   private full = true;
   /** Per geometry: symmetry matrices per basic curve and the pieces for picking. */
   private mats: Mat2[][] = [];
@@ -487,11 +489,10 @@ class TopView {
   /** Redraw at the next frame; `full` also redraws guides, markers and dots (else only the live parts). */
   private schedule(full = true): void {
     this.full ||= full;
-    if (!this.frame) this.frame = requestAnimationFrame(() => this.render());
+    this.later();
   }
 
   private render(): void {
-    this.frame = 0;
     const r = this.ctx.views.rect("top");
     const shown = !!r && this.store.mode === "design";
     this.svg.style.display = shown ? "" : "none";

@@ -470,3 +470,20 @@ def test_handles_on_end_points_do_not_break_newton():
     d = CubicBezier((0, 0), (0, 0), (0, -0.3), (0, -0.5))
     assert [(h.t1, h.t2) for h in intersect(c, d)] == [(1.0, 0.0)]
     assert [(h.t1, h.t2) for h in intersect(c, Line((0, 1), (0, -1)))] == [(0.0, 0.25), (1.0, 0.5)]
+
+
+def test_arcs_flatter_than_their_evaluation_error_are_lines():
+    """A handle off the chord by a sine below ARC_MIN_SINE gives a Line, above it an Arc whose
+    points lie on its circle to ~1e-16 of the radius and within the chord's sagitta bound."""
+    from auszug.geometry import arc_from_tangent, arc_through
+    from auszug.geometry.arc import ARC_MIN_SINE
+
+    a, b = np.array([0.0, 0.5]), np.array([0.0, -1.0])
+    assert arc_from_tangent(a, (-1e-9, 0.0), b).kind == "line"
+    assert arc_through(a, (1e-9, -0.25), b).kind == "line"
+    h = (-0.5 * 4 * ARC_MIN_SINE, 0.0)   # the handle 0.5 below a: sine 4 ARC_MIN_SINE
+    arc = arc_from_tangent(a, h, b)
+    assert arc.kind == "arc"
+    np.testing.assert_allclose(arc.point(np.array([0.0, 1.0])), [a, b], atol=1e-9)
+    mid = arc.point(0.5)
+    assert abs(mid[0]) <= 1.5 * 4 * ARC_MIN_SINE / 4 * 1.01    # sagitta ~ chord * sine / 4

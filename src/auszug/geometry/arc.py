@@ -19,6 +19,10 @@ __all__ = ["Arc", "arc_from_tangent", "arc_through"]
 TAU = 2.0 * math.pi
 #: arc_from_tangent refuses handles within asin(BACKWARD_SINE) of pointing straight away from the end
 BACKWARD_SINE = 1e-3
+#: Below this sine of the angle between tangent and chord an arc is made a Line: its centre
+#: would lie so far away (radius = chord / (2 sine)) that evaluating the arc around it errs by
+#: more (about radius * 1e-16) than the arc departs from its chord (about chord * sine / 4).
+ARC_MIN_SINE = 1e-7
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -146,7 +150,9 @@ def arc_from_tangent(start: ArrayLike, handle: ArrayLike, end: ArrayLike) -> Arc
 
     This is how the corpus stores a top-view curve (points A, T, B). When the
     three points are collinear with the handle pointing towards ``end`` the
-    result is the straight :class:`Line`.
+    result is the straight :class:`Line`; so it is when the handle is off the
+    chord by less than :data:`ARC_MIN_SINE` (an arc that flat cannot be
+    evaluated more closely than it departs from its chord).
 
     Parameters
     ----------
@@ -187,7 +193,7 @@ def arc_from_tangent(start: ArrayLike, handle: ArrayLike, end: ArrayLike) -> Arc
     d = d / dn
     cr = float(cross2(d, ch))
     dt = float(np.dot(d, ch))
-    if abs(cr) <= tol.collinear * cl:
+    if abs(cr) <= max(tol.collinear, ARC_MIN_SINE) * cl:
         if dt > 0:
             return Line(a, b)
         raise GeometryError(
@@ -224,7 +230,7 @@ def arc_through(p0: ArrayLike, p1: ArrayLike, p2: ArrayLike) -> Arc | Line:
     scale = float(np.hypot(*(m - a)) * np.hypot(*(b - a)))
     if scale <= tol.zero:
         raise GeometryError("arc_through needs three distinct points")
-    if abs(cr) <= tol.collinear * scale:
+    if abs(cr) <= max(tol.collinear, ARC_MIN_SINE) * scale:
         if np.dot(m - a, b - m) > 0:
             return Line(a, b)
         raise GeometryError("three collinear points out of order: no arc through them")

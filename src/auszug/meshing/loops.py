@@ -30,13 +30,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
 from auszug.geometry import Curve, Line
+from auszug.geometry.network import CurveNetwork, as_curve_network
 
 __all__ = ["Strand", "GraphEdge", "NetworkGraph", "Loop", "network_graph", "find_loops", "loop_through"]
 
@@ -52,7 +53,7 @@ class Strand:
     Attributes
     ----------
     piece : int
-        Index into :attr:`Network.pieces` (-1 for a rim).
+        Index into :attr:`CurveNetwork.pieces` (-1 for a rim).
     element : int
         Index into the group's matrices.
     label : str
@@ -282,13 +283,12 @@ class Loop:
 # -- building the graph -----------------------------------------------------------------------
 
 
-def _strands(network) -> list[Strand]:  # noqa: ANN001
-    d = network.drawing
+def _strands(network: CurveNetwork) -> list[Strand]:
     out: list[Strand] = []
     for pi, p in enumerate(network.pieces):
         if p.kind not in LOOP_KINDS:
             continue
-        sym = d.curves[p.basic].symmetry
+        sym = network.groups[p.basic]
         mats, labels = sym.matrices(), sym.labels()
         c = np.asarray(sym.center)
         seen: list[Array] = []
@@ -298,7 +298,7 @@ def _strands(network) -> list[Strand]:  # noqa: ANN001
             if any(np.allclose(img, q, atol=1e-9) or np.allclose(img[::-1], q, atol=1e-9) for q in seen):
                 continue
             seen.append(img)
-            out.append(Strand(pi, k, lab, m, c, p.top.transformed(m, c - m @ c), d.curves[p.basic].layer, p))
+            out.append(Strand(pi, k, lab, m, c, p.top.transformed(m, c - m @ c), network.layers[p.basic], p))
     return out
 
 
@@ -342,7 +342,7 @@ def _top_hits(strands: Sequence[Strand]) -> dict[tuple[int, int], list[tuple[flo
         return out
 
 
-def network_graph(network, meet_tol: float = 1e-2) -> NetworkGraph:  # noqa: ANN001
+def network_graph(network: Any, meet_tol: float = 1e-2) -> NetworkGraph:
     """The graph of a network's curves (see the module docstring).
 
     Parameters
@@ -357,9 +357,9 @@ def network_graph(network, meet_tol: float = 1e-2) -> NetworkGraph:  # noqa: ANN
     -------
     NetworkGraph
     """
+    network = as_curve_network(network)
     strands = _strands(network)
-    pts = [v for c in network.drawing.curves for v in c.vertices]
-    size = max(1e-9, float(np.max(np.abs(pts)))) if pts else 1.0
+    size = network.size
     tol = 1e-7 * size
     mtol = meet_tol * size
     splits: list[list[float]] = [[0.0, 1.0] for _ in strands]
@@ -549,12 +549,13 @@ def _fillable(lp: Loop) -> bool:
     return _simple_projection(b, lp.graph.centre) is not None
 
 
-def find_loops(network_or_graph, rims: bool = True, meet_tol: float = 1e-2, simple: bool = True) -> list[Loop]:  # noqa: ANN001
+def find_loops(network_or_graph: Any, rims: bool = True, meet_tol: float = 1e-2,
+               simple: bool = True) -> list[Loop]:
     """The closed loops of a network: the bounded faces of its top-view embedding.
 
     Parameters
     ----------
-    network_or_graph : Network or NetworkGraph
+    network_or_graph : CurveNetwork (or a producer of one) or NetworkGraph
     rims : bool
         Close open chains whose loose ends are at the same height with level
         rim edges (see the module docstring).

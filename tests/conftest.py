@@ -15,11 +15,15 @@ from hypothesis import settings
 from auszug import examples
 from auszug.geometry import tolerances
 
-# CI runs on a fresh clone without hypothesis' example database: derandomise there so a run is
-# reproducible; developers' runs keep searching with fresh random examples.
-settings.register_profile("ci", derandomize=True)
-if os.environ.get("CI"):
-    settings.load_profile("ci")
+# No wall-clock deadline anywhere: on a loaded 2-core machine (CI, or a developer's laptop running
+# the suite with -n 2 next to other jobs) an example's first call can take seconds, and hypothesis'
+# default 200 ms deadline then fails a correct test. Slow code is the benchmarks' business.
+# "default" (developers): no deadline, fresh random examples each run, so the search goes on.
+# "ci": no deadline, and derandomised, since CI runs on a fresh clone without hypothesis'
+# example database: a run there is reproducible.
+settings.register_profile("default", deadline=None)
+settings.register_profile("ci", deadline=None, derandomize=True)
+settings.load_profile("ci" if os.environ.get("CI") else "default")
 
 REPO = Path(__file__).resolve().parents[1]
 #: The drawings: the examples bundled with the package (``auszug.examples``).

@@ -11,10 +11,10 @@ from auszug.errors import FormatError
 from auszug.formats import load, save
 from auszug.formats.network_json import KINDS, NetworkFile, dumps, loads, to_dict
 from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry, build
-from tests.conftest import CORPUS
+from tests.conftest import CORPUS, corpus_files
 
-WEB = sorted(p for f in ("teaching-sheet", "web") for p in (CORPUS / f).rglob("*.uc")
-             if p.name != "two_curves.uc")        # two_curves.uc is v1 (legacy reader)
+WEB = [p for p in corpus_files("teaching-sheet", "web")
+       if p.name != "two_curves.uc"]        # two_curves.uc is v1 (legacy reader)
 
 TOP = {"format": str, "version": int, "source": str, "up": str, "layers": list, "curves": list}
 CURVE = {"id": str, "basic": int, "layer": int, "kind": str, "rotation": int, "mirrored": bool,

@@ -41,6 +41,7 @@ from auszug.geometry.symmetry import SymmetryGroup
 __all__ = [
     "KINDS",
     "Piece",
+    "CircularRun",
     "NetworkCurve",
     "CurveNetwork",
     "as_curve_network",
@@ -67,6 +68,8 @@ _PROBES = np.array([0.125, 0.25, 0.5, 0.75, 0.875])
 _SAFETY = 0.5
 #: Initial equal intervals of each smooth run before adaptive bisection.
 _START = 8
+#: Feature parameters closer than this are one vertex.
+_MERGE = 1e-12
 #: Bisection levels at most (2^-48 of a run is below float64 resolution).
 _LEVELS = 48
 
@@ -215,6 +218,67 @@ class Piece:
             return self.point_t(np.linspace(0.0, 1.0, n))
         return self.point3(np.linspace(0.0, self.u_end, n))
 
+    def circular_runs(self) -> list["CircularRun"]:
+        """The parts of the piece that are exact planar circular arcs in 3D.
+
+        A level piece over an arc is a horizontal arc; a piece over a straight
+        top view whose side-view coordinate is its arc length (ds/dg = 1) is a
+        chain of arcs in the vertical plane through the line, one per side-view
+        arc. Other pieces (over arcs or Beziers with a side view, or a side-view
+        coordinate that scales the line) have none: they are not planar
+        circles. Straight pieces (posts, pillars, level lines) have none
+        either; see :meth:`is_straight`.
+
+        Returns
+        -------
+        list of CircularRun
+            In order along the piece, covering it exactly when non-empty and
+            the piece is not straight.
+        """
+        top = self.top
+        if top is None:
+            return []
+        t0, t1 = self.t_span()
+        if self.side is None:
+            if top.kind != "arc":
+                return []
+            c = np.asarray(top.center, dtype=float)  # type: ignore[attr-defined]  # an Arc
+            z = float(self.z_const)
+            ccw = float(top.sweep) > 0.0  # type: ignore[attr-defined]  # an Arc
+            return [CircularRun(t0, t1, np.array([c[0], c[1], z]), np.array([0.0, 0.0, 1.0 if ccw else -1.0]),
+                                float(top.radius), self.point_t(t0), self.point_t(t1))]  # type: ignore[attr-defined]
+        if top.kind != "line":
+            return []
+        L = top.length()
+        if L <= 0.0 or abs(float(self.rule.ds_dg(top, np.array(0.5))) - 1.0) > 1e-12:
+            return []
+        p0 = np.asarray(top.start, dtype=float)
+        d2 = (np.asarray(top.end, dtype=float) - p0) / L
+        d = np.array([d2[0], d2[1], 0.0])
+        ez = np.array([0.0, 0.0, 1.0])
+        g0 = float(self.g_of_t(t0))
+        g1 = float(self.g_of_t(t1))
+        out: list[CircularRun] = []
+        br = self.side.breaks
+        for i in range(len(self.side.radii)):
+            a, b = max(float(br[i]), g0), min(float(br[i + 1]), g1)
+            if b - a <= 1e-15 * max(1.0, L):
+                continue
+            cg, cz = (float(v) for v in self.side.centers[i])
+            centre = np.array([p0[0], p0[1], 0.0]) + d * cg + ez * cz
+            ta, tb = float(self.t_of_g(a)), float(self.t_of_g(b))
+            pa, pb = self.point_t(ta), self.point_t(tb)
+            pm = self.point_t(float(self.t_of_g(0.5 * (a + b))))
+            # orientation: the normal about which the arc turns from its start through its middle
+            n = np.cross(d, ez)
+            turn = float(np.dot(np.cross(pa - centre, pm - centre), n))
+            out.append(CircularRun(ta, tb, centre, n if turn >= 0.0 else -n, float(self.side.radii[i]), pa, pb))
+        return out
+
+    def is_straight(self) -> bool:
+        """Whether the piece is a straight 3D segment (post, pillar, level line)."""
+        return self.top is None or (self.side is None and self.top.kind == "line")
+
     def to_dict(self) -> dict[str, Any]:
         """The exact description, JSON-ready (see docs/formats.md, network JSON version 2)."""
         d: dict[str, Any] = {"kind": self.kind}
@@ -229,6 +293,39 @@ class Piece:
             d["side"] = self.side.to_dict()
             d["p_of_u"] = self.rule.to_dict()
         return d
+
+
+@dataclass(frozen=True, eq=False)
+class CircularRun:
+    """A part of a piece that is an exact planar circular arc in 3D.
+
+    Attributes
+    ----------
+    t0, t1 : float
+        Top-view parameters of its ends on the piece.
+    center : (3,) ndarray
+    normal : (3,) ndarray
+        Unit normal of the arc's plane; the arc turns counter-clockwise about it
+        from ``start`` to ``end``.
+    radius : float
+    start, end : (3,) ndarray
+        Its end points (on the piece, exactly).
+    """
+
+    t0: float
+    t1: float
+    center: Array
+    normal: Array
+    radius: float
+    start: Array
+    end: Array
+
+    @property
+    def angle(self) -> float:
+        """The angle it spans, in (0, 2 pi) radians."""
+        a, b = self.start - self.center, self.end - self.center
+        ang = math.atan2(float(np.dot(np.cross(a, b), self.normal)), float(np.dot(a, b)))
+        return ang if ang > 0.0 else ang + 2.0 * math.pi
 
 
 def sample_by_tolerance(piece: Piece, tolerance: float) -> tuple[Array, list[tuple[str, int]]]:
@@ -262,6 +359,12 @@ def sample_by_tolerance(piece: Piece, tolerance: float) -> tuple[Array, list[tup
         raise GeometryError(f"tolerance must be a positive number, got {tolerance!r}")
     feats = piece.features()
     forced = np.unique(np.concatenate([piece.breaks_t(), [t for _, t in feats]]))
+    if len(forced) > 2:  # features closer than float noise to another are one vertex (a few: a loop)
+        kept = [float(forced[0])]
+        for t in forced[1:-1]:
+            if t - kept[-1] > _MERGE and forced[-1] - t > _MERGE:
+                kept.append(float(t))
+        forced = np.array(kept + [float(forced[-1])])
     if piece.top is None or (piece.side is None and piece.top.kind == "line"):
         ts = forced  # straight: its ends and features are exact
     else:
@@ -288,7 +391,10 @@ def sample_by_tolerance(piece: Piece, tolerance: float) -> tuple[Array, list[tup
                     f"{piece.kind} curve; use a larger tolerance")
         done_lo.append(lo)
         ts = np.unique(np.concatenate(done_lo + [forced]))
-    idx = np.searchsorted(ts, [t for _, t in feats])
+    ft = np.array([t for _, t in feats], dtype=float)
+    idx = np.clip(np.searchsorted(ts, ft), 0, len(ts) - 1)
+    prev = np.clip(idx - 1, 0, len(ts) - 1)
+    idx = np.where(np.abs(ts[prev] - ft) < np.abs(ts[idx] - ft), prev, idx)
     return ts, [(n, int(i)) for (n, _), i in zip(feats, idx)]
 
 

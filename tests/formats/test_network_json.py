@@ -39,7 +39,7 @@ def test_corpus_document_has_the_required_keys_and_types(path):
     doc = _doc(path)
     for key, typ in TOP.items():
         assert type(doc[key]) is typ, key
-    assert (doc["format"], doc["version"], doc["source"], doc["up"]) == ("auszug.network", 1, path.name, "z")
+    assert (doc["format"], doc["version"], doc["source"], doc["up"]) == ("auszug.network", 2, path.name, "z")
     for i, lay in enumerate(doc["layers"]):
         assert lay["index"] == i and type(lay["bottom"]) is float
     assert doc["curves"]
@@ -139,7 +139,7 @@ GOOD = dumps(build(load(CORPUS / "teaching-sheet" / "tn-1.uc")), "tn-1.uc")
 
 @pytest.mark.parametrize("edit, where", [
     (lambda d: d.update(format="other"), "format"),
-    (lambda d: d.update(version=2), "version"),
+    (lambda d: d.update(version=3), "version"),
     (lambda d: d.update(version=True), "version"),
     (lambda d: d.update(up="y"), "up"),
     (lambda d: d.pop("layers"), "layers"),

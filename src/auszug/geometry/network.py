@@ -45,6 +45,7 @@ __all__ = [
     "NetworkCurve",
     "CurveNetwork",
     "as_curve_network",
+    "curve_from_dict",
     "sample_by_tolerance",
     "DEFAULT_REL_TOLERANCE",
     "MIN_TOLERANCE",
@@ -279,6 +280,34 @@ class Piece:
         """Whether the piece is a straight 3D segment (post, pillar, level line)."""
         return self.top is None or (self.side is None and self.top.kind == "line")
 
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any], basic: int = 0, segment: int = 0) -> "Piece":
+        """A piece from its exact description (:meth:`to_dict`, :meth:`CurveNetwork.exact`).
+
+        Its ``points`` are just its two ends; :meth:`point_t` evaluates it exactly.
+
+        Examples
+        --------
+        >>> from auszug.geometry import Line
+        >>> p = Piece(0, 0, "level", Line((0.0, 0.0), (2.0, 0.0)), None, SideCoordinate("arclength", 2.0),
+        ...           np.zeros((2, 3)), z_const=1.5)
+        >>> Piece.from_dict(p.to_dict()).point_t(0.5).tolist()
+        [1.0, 0.0, 1.5]
+        """
+        kind = str(d["kind"])
+        if "line3" in d:
+            ends = np.asarray(d["line3"], dtype=float).reshape(2, 3)
+            return cls(basic, -1, kind, None, None, SideCoordinate("u"), ends)
+        top = curve_from_dict(d["top"])
+        side = SideView.from_dict(d["side"]) if "side" in d else None
+        r = d.get("p_of_u", {"mode": "arclength", "a": top.length()})
+        rule = SideCoordinate(str(r["mode"]), float(r.get("a", 1.0)), float(r.get("b", 0.0)),
+                              float(r.get("sign", 1.0)))
+        z = float(d.get("z", 0.0))
+        p = cls(basic, segment, kind, top, side, rule, np.zeros((2, 3)), z_const=z,
+                u_end=float(d.get("u_end", 1.0)))
+        return replace(p, points=p.point_t(np.array(p.t_span())))
+
     def to_dict(self) -> dict[str, Any]:
         """The exact description, JSON-ready (see docs/formats.md, network JSON version 2)."""
         d: dict[str, Any] = {"kind": self.kind}
@@ -326,6 +355,33 @@ class CircularRun:
         a, b = self.start - self.center, self.end - self.center
         ang = math.atan2(float(np.dot(np.cross(a, b), self.normal)), float(np.dot(a, b)))
         return ang if ang > 0.0 else ang + 2.0 * math.pi
+
+
+def curve_from_dict(d: Mapping[str, Any]) -> Curve:
+    """A top-view primitive from its ``to_dict()`` (line, arc or cubic Bezier).
+
+    Examples
+    --------
+    >>> from auszug.geometry import Arc
+    >>> a = Arc((0.0, 0.0), 2.0, 0.0, 1.0)
+    >>> bool(np.allclose(curve_from_dict(a.to_dict()).point(0.3), a.point(0.3), rtol=0, atol=1e-15))
+    True
+    """
+    from auszug.geometry.arc import Arc
+    from auszug.geometry.bezier import CubicBezier
+    from auszug.geometry.line import Line
+
+    kind = d.get("kind")
+    if kind == "line":
+        return Line(d["start"], d["end"])
+    if kind == "arc":
+        c = np.asarray(d["center"], dtype=float)
+        s0 = np.asarray(d["start"], dtype=float) - c
+        return Arc(c, float(d["radius"]), math.atan2(s0[1], s0[0]), float(d["sweep"]))
+    if kind == "bezier":
+        h = d["handles"]
+        return CubicBezier(d["start"], h[0], h[1], d["end"])
+    raise GeometryError(f"unknown top-view curve kind {kind!r}; expected line, arc or bezier")
 
 
 def sample_by_tolerance(piece: Piece, tolerance: float) -> tuple[Array, list[tuple[str, int]]]:
@@ -482,6 +538,8 @@ class CurveNetwork:
     features : tuple of tuple of (str, int)
         Per piece: its feature vertices (name, index into ``points``); filled
         by :meth:`resampled`, empty otherwise.
+    tolerance : float or None
+        The tolerance the pieces were sampled to (:meth:`resampled`), if any.
     """
 
     pieces: tuple[Piece, ...]
@@ -492,6 +550,7 @@ class CurveNetwork:
     name: str = ""
     meta: Mapping[str, Any] = field(default_factory=dict)
     features: tuple[tuple[tuple[str, int], ...], ...] = ()
+    tolerance: float | None = None
 
     # -- symmetry --------------------------------------------------------------------------
     def group(self, basic: int) -> tuple[Array, list[str]]:
@@ -624,7 +683,7 @@ class CurveNetwork:
                 pts = p.points[[0, -1]] if p.top is None else p.sample_uniform(n)
                 pts.setflags(write=False)
                 pieces.append(replace(p, points=pts))
-            return replace(self, pieces=tuple(pieces), features=())
+            return replace(self, pieces=tuple(pieces), features=(), tolerance=None)
         diag = self.diagonal()
         if tolerance is None:
             tolerance = DEFAULT_REL_TOLERANCE * max(diag, self.size)
@@ -638,7 +697,30 @@ class CurveNetwork:
             pts.setflags(write=False)
             pieces.append(replace(p, points=pts))
             feats.append(tuple(fv))
-        return replace(self, pieces=tuple(pieces), features=tuple(feats))
+        return replace(self, pieces=tuple(pieces), features=tuple(feats), tolerance=float(tolerance))
+
+    def exact(self, curve: NetworkCurve) -> dict[str, Any]:
+        """The exact description of a network curve, JSON-ready (network JSON version 2).
+
+        The piece's :meth:`Piece.to_dict` under the curve's symmetry element:
+        the top view is the replica's own primitive, an orthographic side-view
+        direction is mapped too, a straight 3D segment by its ends. Read back by
+        :meth:`Piece.from_dict`.
+        """
+        p = self.pieces[curve.piece]
+        d = p.to_dict()
+        m = np.asarray(curve.transform, dtype=float)
+        c = np.asarray(self.groups[p.basic].center, dtype=float)
+        if p.top is None:
+            ends = np.asarray(d["line3"], dtype=float)
+            ends[:, :2] = (ends[:, :2] - c) @ m.T + c
+            d["line3"] = ends.tolist()
+            return d
+        d["top"] = p.top.transformed(m, c - m @ c).to_dict()
+        if "p_of_u" in d and d["p_of_u"]["mode"] == "orthographic":
+            a, b = m @ np.array([d["p_of_u"]["a"], d["p_of_u"]["b"]])
+            d["p_of_u"] = {**d["p_of_u"], "a": float(a), "b": float(b)}
+        return d
 
 
 def as_curve_network(obj: Any) -> CurveNetwork:

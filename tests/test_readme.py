@@ -16,4 +16,7 @@ def test_readme_python_blocks_run(tmp_path, monkeypatch, capsys):
         exec(compile(code, "README.md", "exec"), {})
     out = capsys.readouterr().out
     assert "0/r0 ogee (65, 3)" in out
-    assert (tmp_path / "tn-2.network.json").stat().st_size > 1000
+    from auszug.formats import load
+
+    doc = load(tmp_path / "tn-2.network.json", kind="network")
+    assert doc["version"] == 2 and doc["tolerance"] > 0 and len(doc["curves"][0]["points"]) > 65

@@ -33,6 +33,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import orjson
 
 from auszug.errors import AuszugError, FormatError
 from auszug.formats._registry import FileFormat, register
@@ -116,6 +117,14 @@ def to_dict(network: Any, source: str = "") -> dict[str, Any]:
     FormatError
         If a coordinate is not finite (JSON has no NaN).
     """
+    doc = _document(network, source)
+    for c in doc["curves"]:
+        c["points"] = c["points"].tolist()
+    return doc
+
+
+def _document(network: Any, source: str = "") -> dict[str, Any]:
+    """:func:`to_dict`, with each curve's points left an (n, 3) float64 array."""
     net, src = unpack(network)
     source = source or src
     curves = []
@@ -130,7 +139,7 @@ def to_dict(network: Any, source: str = "") -> dict[str, Any]:
             "rotation": int(c.rotation),
             "mirrored": bool(c.mirrored),
             "transform": np.asarray(c.transform, dtype=float).tolist(),
-            "points": np.asarray(c.points, dtype=float).tolist(),
+            "points": np.ascontiguousarray(c.points, dtype=np.float64),
             "prc": None if c.prc is None else np.asarray(c.prc, dtype=float).tolist(),
             "segment": int(c.segment),
             "piece": int(c.piece),
@@ -185,7 +194,7 @@ def dumps(network: Any, source: str = "") -> str:
     >>> doc["source"], [c["id"] for c in doc["curves"]], len(doc["curves"][0]["points"])
     ('demo.uc', ['0/r0', '0/r1'], 65)
     """
-    doc = to_dict(network, source)
+    doc = _document(network, source)
     out = []
     for key, v in doc.items():
         if isinstance(v, list) and v:
@@ -197,7 +206,8 @@ def dumps(network: Any, source: str = "") -> str:
 
 
 def _compact(v: Any) -> str:
-    return json.dumps(v, separators=(", ", ": "), allow_nan=False)
+    """One value as compact JSON; floats in their shortest round-trip form (orjson), arrays too."""
+    return orjson.dumps(v, option=orjson.OPT_SERIALIZE_NUMPY).decode()
 
 
 def _write(obj: Any, name: str) -> str:

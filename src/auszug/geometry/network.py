@@ -67,8 +67,8 @@ MAX_TOLERANCE_POINTS = 1_000_000
 _PROBES = np.array([0.125, 0.25, 0.5, 0.75, 0.875])
 #: An interval is accepted when its probes lie within this share of the tolerance.
 _SAFETY = 0.5
-#: Initial equal intervals of each smooth run before adaptive bisection.
-_START = 8
+#: The first steps aim at this share of the tolerance (below the acceptance share).
+_FIRST = 0.4
 #: Feature parameters closer than this are one vertex.
 _MERGE = 1e-12
 #: Bisection levels at most (2^-48 of a run is below float64 resolution).
@@ -388,9 +388,9 @@ def sample_by_tolerance(piece: Piece, tolerance: float) -> tuple[Array, list[tup
     """Parameters ``t`` of a polyline within ``tolerance`` of the piece, and its feature vertices.
 
     Every feature point of :meth:`Piece.features` and every side-view break is
-    a vertex. Between them, intervals are bisected (all at once, vectorised)
-    until the curve at five probes per interval lies within half the tolerance
-    of the interval's chord.
+    a vertex. Between them, steps start as fine as the curvature asks for and
+    are bisected (all at once, vectorised) until the curve at five probes per
+    interval lies within half the tolerance of the interval's chord.
 
     Parameters
     ----------
@@ -424,34 +424,109 @@ def sample_by_tolerance(piece: Piece, tolerance: float) -> tuple[Array, list[tup
     if piece.top is None or (piece.side is None and piece.top.kind == "line"):
         ts = forced  # straight: its ends and features are exact
     else:
-        lo = np.concatenate([np.linspace(a, b, _START + 1)[:-1] for a, b in zip(forced[:-1], forced[1:])])
-        hi = np.concatenate([np.linspace(a, b, _START + 1)[1:] for a, b in zip(forced[:-1], forced[1:])])
-        done_lo: list[Array] = []
-        lim = _SAFETY * tolerance
-        for _ in range(_LEVELS):
-            if lo.size == 0:
-                break
-            pa, pb = piece.point_t(lo), piece.point_t(hi)
-            probe = lo[:, None] + (hi - lo)[:, None] * _PROBES
-            q = piece.point_t(probe)
-            err = _distance_to_segments(q, pa[:, None], pb[:, None]).max(axis=1)
-            ok = (err <= lim) | (hi - lo <= 1e-15)
-            done_lo.append(lo[ok])
-            lo, hi = lo[~ok], hi[~ok]
-            if lo.size:
-                mid = 0.5 * (lo + hi)
-                lo, hi = np.concatenate([lo, mid]), np.concatenate([mid, hi])
-            if sum(len(x) for x in done_lo) + lo.size > MAX_TOLERANCE_POINTS:
-                raise GeometryError(
-                    f"tolerance {tolerance:g} needs more than {MAX_TOLERANCE_POINTS} points on one "
-                    f"{piece.kind} curve; use a larger tolerance")
-        done_lo.append(lo)
-        ts = np.unique(np.concatenate(done_lo + [forced]))
+        ts = _refine(piece, forced, tolerance)
     ft = np.array([t for _, t in feats], dtype=float)
     idx = np.clip(np.searchsorted(ts, ft), 0, len(ts) - 1)
     prev = np.clip(idx - 1, 0, len(ts) - 1)
     idx = np.where(np.abs(ts[prev] - ft) < np.abs(ts[idx] - ft), prev, idx)
     return ts, [(n, int(i)) for (n, _), i in zip(feats, idx)]
+
+
+def _refine(piece: Piece, forced: Array, tolerance: float) -> Array:
+    """Adaptive parameters between the forced ones (see :func:`sample_by_tolerance`).
+
+    Each forced interval lies on one side-view arc (breaks are forced); there it
+    is parameterised by the arc's angle phi, in which the curve's 3D speed is
+    nearly constant, else by t. It starts with as many equal steps as the
+    curvature of the side arc and of the top view ask for (a chord error of a
+    quarter of the tolerance), then every interval whose probes stray more than
+    half the tolerance from its chord is bisected, all at once.
+    """
+    top = piece.top
+    assert top is not None
+    n = len(forced) - 1
+    ta, tb = forced[:-1], forced[1:]
+    arc = np.zeros(n, dtype=bool)
+    sa, sb = ta.copy(), tb.copy()
+    cg = np.zeros(n)
+    r = np.ones(n)
+    side = piece.side
+    if side is not None and top.kind in ("line", "arc"):   # t(g) is cheap there (no arc-length inverse)
+        gm = piece.g_of_t(0.5 * (ta + tb))
+        i = np.clip(np.searchsorted(side.breaks, gm, side="right") - 1, 0, len(side.radii) - 1)
+        cg, cz, r = side.centers[i, 0], side.centers[i, 1], side.radii[i]
+        up, vert = side.upper[i], side.vertical[i]
+
+        def phi(t: Array) -> Array:
+            g = piece.g_of_t(t)
+            d = np.abs(g - vert)
+            z = up * np.sqrt(np.maximum(d * (2.0 * r - d), 0.0))
+            return np.arctan2(z, g - cg)
+
+        sa, sb = phi(ta), phi(tb)
+        arc[:] = True
+        del cz
+
+    def s_to_t(sv: Array, k: Array) -> Array:
+        if not arc.any():
+            return sv
+        t = piece.t_of_g(cg[k] + r[k] * np.cos(sv))
+        return np.clip(t, ta[k], tb[k])
+
+    # first steps from a lower bound of the curvature (h <= sqrt(8 q T / kappa) for a chord
+    # error q T): the side arc's own for a lifted curve (the 3D curvature is at least its
+    # geodesic part), the top view's at constant height; bisection does the rest where needed
+    if side is None:
+        probe_t = ta[:, None] + (tb - ta)[:, None] * np.linspace(0.0, 1.0, 9)
+        kappa = np.abs(np.asarray(top.curvature(probe_t), dtype=float))
+        kappa = np.where(np.isfinite(kappa), kappa, 0.0).min(axis=1)
+        u = np.asarray(top.u_at_t(np.stack([ta, tb])), dtype=float)
+        length = top.length() * np.abs(u[1] - u[0])
+    else:
+        kappa = np.where(arc, 1.0 / r, 0.0)
+        length = np.where(arc, r * np.abs(sb - sa), 0.0)
+    count = np.ceil(length * np.sqrt(kappa / (8.0 * _FIRST * tolerance))).astype(np.int64)
+    count = np.clip(count, 2, MAX_TOLERANCE_POINTS)
+    if int(count.sum()) > MAX_TOLERANCE_POINTS:
+        raise GeometryError(
+            f"tolerance {tolerance:g} needs more than {MAX_TOLERANCE_POINTS} points on one "
+            f"{piece.kind} curve; use a larger tolerance")
+    k = np.repeat(np.arange(n), count)
+    j = np.concatenate([np.arange(c) for c in count])
+    frac = j / count[k]
+    lo = sa[k] + (sb - sa)[k] * frac
+    hi = sa[k] + (sb - sa)[k] * ((j + 1) / count[k])
+    done_lo: list[Array] = []
+    done_k: list[Array] = []
+    lim = _SAFETY * tolerance
+    t_lo = s_to_t(lo, k)
+    t_hi = s_to_t(hi, k)
+    pa, pb = piece.point_t(t_lo), piece.point_t(t_hi)
+    for _ in range(_LEVELS):
+        if lo.size == 0:
+            break
+        probe = lo[:, None] + (hi - lo)[:, None] * _PROBES
+        q = piece.point_t(s_to_t(probe, k[:, None]))
+        err = _distance_to_segments(q, pa[:, None], pb[:, None]).max(axis=1)
+        ok = (err <= lim) | (np.abs(hi - lo) <= 1e-15)
+        done_lo.append(t_lo[ok])
+        keep = ~ok
+        lo, hi, k, t_lo, t_hi, pa, pb = (x[keep] for x in (lo, hi, k, t_lo, t_hi, pa, pb))
+        if lo.size:
+            mid = 0.5 * (lo + hi)
+            t_mid = s_to_t(mid, k)
+            p_mid = piece.point_t(t_mid)
+            lo, hi = np.concatenate([lo, mid]), np.concatenate([mid, hi])
+            t_lo, t_hi = np.concatenate([t_lo, t_mid]), np.concatenate([t_mid, t_hi])
+            pa, pb = np.concatenate([pa, p_mid]), np.concatenate([p_mid, pb])
+            k = np.concatenate([k, k])
+        if sum(len(x) for x in done_lo) + lo.size > MAX_TOLERANCE_POINTS:
+            raise GeometryError(
+                f"tolerance {tolerance:g} needs more than {MAX_TOLERANCE_POINTS} points on one "
+                f"{piece.kind} curve; use a larger tolerance")
+    done_lo.append(t_lo)
+    del done_k
+    return np.unique(np.concatenate(done_lo + [forced]))
 
 
 def _distance_to_segments(q: Array, a: Array, b: Array) -> Array:

@@ -60,6 +60,9 @@ from auszug.tracery.profile import Profile
 
 __all__ = ["window_mesh", "Resolution", "subdivide_profile", "loop_ring", "zip_rings"]
 
+#: A recess may reach at most this share of the half slab (the rest stays solid wall).
+SLAB_SHARE = 0.98
+
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
@@ -426,9 +429,12 @@ def window_mesh(tracery: Tracery, resolution: Resolution | None = None, subdivid
                     raise ParameterError("wall.slab", wall.slab, "a plate thicker than the recesses it holds",
                                          f"{r.id} lies {r.face:.4g} deep")
                 lv = _clip_levels(lv, t_mid)
-            elif r.face + r.profile.depth * r.border >= half_s * 0.98:
-                raise ParameterError("wall.slab", wall.slab, "a plate thicker than twice the recesses' depth",
-                                     f"{r.id} reaches {r.face + r.profile.depth * r.border:.4g} deep")
+            elif r.face + r.profile.depth * r.border >= half_s * SLAB_SHARE:
+                deep = r.face + r.profile.depth * r.border
+                raise ParameterError("wall.slab", wall.slab,
+                                     f"a plate over {deep / (0.5 * SLAB_SHARE):.4g} thick (twice the "
+                                     f"recesses' depth, {100 * (1 - SLAB_SHARE):g} % spare)",
+                                     f"{r.id} reaches {deep:.4g} deep")
             smax = _max_inset(base, float(lv[:, 0].max()) * r.border) / r.border
             if smax < float(lv[:, 0].max()):
                 # the moulding would close this small opening: flatten it to 90 % of what fits

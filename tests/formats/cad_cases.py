@@ -15,14 +15,15 @@ from auszug.geometry.heights import SideCoordinate
 from auszug.geometry.network import CurveNetwork, NetworkCurve, Piece
 from auszug.microarch import build
 
-#: Drawings with circular runs: mirrored groups (tn-5, u.xi.112, U.XI.28), groups without a
-#: mirror (legacy tn-5, U.XI.27), straight posts and pillars (u.xi.112, U.XI.27), decorations (tn-5).
 #: How far a run's end, evaluated on the piece, may lie from where its arc ends: at a
 #: vertical tangent of the side view (a decoration's cusp) one ulp of the side-view
 #: coordinate g moves the height by sqrt(2 r ulp(g)), up to ~1.5e-8 of the size.
 RESOLUTION = 2e-8
 
-CASES = ["teaching-sheet/tn-5.uc", "legacy/tn-5.uc", "web/u.xi.112.uc", "legacy/U.XI.27.uc"]
+#: Drawings with circular runs: mirrored groups (tn-5, u.xi.112, U.XI.34), groups without a
+#: mirror (legacy tn-5, U.XI.27), straight posts and pillars (u.xi.112, U.XI.27), decorations
+#: (tn-5), and ogees over arc top views, which have no exact form (U.XI.34).
+CASES = ["teaching-sheet/tn-5.uc", "legacy/tn-5.uc", "web/u.xi.112.uc", "legacy/U.XI.27.uc", "web/U.XI.34.uc"]
 
 
 @lru_cache(maxsize=None)

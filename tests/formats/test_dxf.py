@@ -14,12 +14,11 @@ from ezdxf.lldxf.validator import is_valid_layer_name
 from ezdxf.math import OCS
 
 from auszug.errors import FormatError
-from auszug.formats import format_for, save
+from auszug.formats import format_for, load, save
 from auszug.formats.dxf import APPID, dumps, exact_layer_name, layer_name
 from auszug.formats.network_json import NetworkFile
 from auszug.geometry.network import as_curve_network
 from auszug.microarch import build
-from auszug.formats import load
 from tests.conftest import CORPUS
 
 

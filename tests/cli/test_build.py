@@ -19,6 +19,8 @@ from tests.conftest import CORPUS
     (".network.json", lambda p: load(p, kind="network")["source"] == "tn-7.uc"),
     (".obj", lambda p: len(load(p, kind="network")) == len(list(build(load(TN / "tn-7.uc")).curves()))),
     (".svg", lambda p: ET.parse(p).getroot().tag.endswith("svg")),
+    (".dxf", lambda p: p.read_text().startswith("  0\nSECTION\n") and "AUSZUG" in p.read_text()),
+    (".3dm", lambda p: p.read_bytes().startswith(b"3D Geometry File Format")),
 ])
 def test_output_ending_picks_the_format(cli, tmp_path, ending, check):
     out = tmp_path / f"sub/tn-7{ending}"
@@ -115,9 +117,9 @@ def test_in_a_folder_a_bad_drawing_fails_alone(cli, tmp_path, bad_uc, low_apex_u
 
 
 @pytest.mark.parametrize("out, message", [
-    ("x.xyz", "unknown file type; expected one of .network.json, .obj, .svg"),
-    ("x.json", "unknown file type; expected one of .network.json, .obj, .svg"),
-    ("x.png", "unknown file type; expected one of .network.json, .obj, .svg"),
+    ("x.xyz", "unknown file type; expected one of .3dm, .dxf, .network.json, .obj, .svg"),
+    ("x.json", "unknown file type; expected one of .3dm, .dxf, .network.json, .obj, .svg"),
+    ("x.png", "unknown file type; expected one of .3dm, .dxf, .network.json, .obj, .svg"),
 ])
 def test_unknown_output_ending_is_refused_before_any_work(cli, tmp_path, out, message):
     r = cli("build", TN / "tn-1.uc", "-o", tmp_path / out)
@@ -158,3 +160,10 @@ def test_a_network_file_is_not_taken_for_a_drawing(cli, tmp_path):
     r = cli("build", net, "-o", tmp_path / "b.obj")
     assert r.code == 2 and r.err == f"auszug: {net}: not a drawing file name; drawings end in .json, .uc\n"
     assert files_in(tmp_path) == ["a.network.json"]
+
+
+@pytest.mark.parametrize("fmt, ending", [("dxf", ".dxf"), ("3dm", ".3dm")])
+def test_cad_formats_by_name_in_a_folder(cli, tmp_path, fmt, ending):
+    r = cli("build", TN / "tn-1.uc", TN / "tn-10.uc", "-o", tmp_path / "o/", "--format", fmt)
+    assert r.code == 0, r.err
+    assert files_in(tmp_path) == [f"o/tn-1{ending}", f"o/tn-10{ending}"]

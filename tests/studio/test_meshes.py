@@ -214,6 +214,20 @@ def test_export_drawing_formats():
     assert (name, mime) == ("U.XI.28.svg", "image/svg+xml") and b"<svg" in data[:400] and data.rstrip().endswith(b"</svg>")
 
 
+def test_export_cad_formats():
+    import ezdxf
+    import rhino3dm
+
+    net = build(load(examples.path(U28)))
+    n = len(list(net.curves()))
+    name, mime, data = M.export_file(net, "U.XI.28.uc", format="dxf")
+    assert (name, mime) == ("U.XI.28.dxf", "image/vnd.dxf")
+    doc = ezdxf.read(io.StringIO(data.decode()))
+    assert len(doc.modelspace().query("POLYLINE")) == n and doc.header.custom_vars.get("source") == "U.XI.28.uc"
+    name, mime, data = M.export_file(net, "U.XI.28.uc", format="3dm")
+    assert name == "U.XI.28.3dm" and len(rhino3dm.File3dm.FromByteArray(data).Objects) == n
+
+
 def test_export_refusals():
     net = _net(U28)
     with pytest.raises(M.StudioMeshError, match="format must be one of glb, obj"):

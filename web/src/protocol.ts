@@ -225,9 +225,9 @@ export interface GetLoops {
   type: "get_loops";
 }
 
-/** Export the current drawing; answered by :class:`Exported` and the file's bytes. Mesh formats (glb, obj, stl, ply) use ``style``/``faces``/``loops`` as :class:`GetMesh`; ``solid`` unites everything into one watertight solid. ``colors`` are ``#rrggbb`` per basic curve (glb, obj). svg: top and side views; json / uc: the drawing; network.json: the 3D curve network. */
+/** Export the current drawing; answered by :class:`Exported` and the file's bytes. Mesh formats (glb, obj, stl, ply) use ``style``/``faces``/``loops`` as :class:`GetMesh`; ``solid`` unites everything into one watertight solid. ``colors`` are ``#rrggbb`` per basic curve (glb, obj). svg: top and side views; json / uc: the drawing; network.json: the 3D curve network; dxf / 3dm: the curve network for CAD programs. */
 export interface Export {
-  format: "glb" | "obj" | "stl" | "ply" | "svg" | "json" | "uc" | "network.json";
+  format: "glb" | "obj" | "stl" | "ply" | "svg" | "json" | "uc" | "network.json" | "dxf" | "3dm";
   style?: "curves" | "tube" | "bar" | "ribbon";
   faces?: "none" | "auto" | "picked";
   loops?: number[];

@@ -21,7 +21,7 @@ if TYPE_CHECKING:
 
 PARAMETERIZATIONS = ("arclength", "u", "orthographic")
 #: ``--format`` names of the network formats and the file ending each writes.
-NETWORK_SUFFIX = {"json": ".network.json", "obj": ".obj", "svg": ".svg"}
+NETWORK_SUFFIX = {"json": ".network.json", "obj": ".obj", "svg": ".svg", "dxf": ".dxf", "3dm": ".3dm"}
 
 
 def at_least(minimum: int):  # type: ignore[no-untyped-def]

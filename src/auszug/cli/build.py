@@ -1,7 +1,8 @@
-"""Build the 3D curve network of drawings and write it as network JSON, OBJ polylines or SVG.
+"""Build the 3D curve network of drawings and write it as network JSON, OBJ polylines, SVG, DXF or 3dm.
 
 One drawing and OUT a file: the ending of OUT picks the format
-(.network.json, .obj, .svg). Several drawings or a folder (searched
+(.network.json, .obj, .svg, .dxf, .3dm; DXF and Rhino's .3dm carry exact
+arcs and lines where the curves have them). Several drawings or a folder (searched
 recursively for drawings): OUT is a folder (created if needed) and every
 drawing gives OUT/<subfolder>/<stem>.network.json, or the --format chosen.
 Without -o the output goes to the current folder.
@@ -13,6 +14,7 @@ examples:
   auszug build tn-1.uc -o tn-1.network.json
   auszug build tn-1.uc -o tn-1.obj --tolerance 1e-5
   auszug build tn-1.uc -o tn-1.obj --samples 129
+  auszug build tn-1.uc -o tn-1.dxf
   auszug build corpus/ -o out/ --format svg
 """
 
@@ -25,7 +27,7 @@ from pathlib import Path
 
 from auszug.cli import _common
 
-HELP = "build 3D curve networks from drawings (network JSON, OBJ, SVG)"
+HELP = "build 3D curve networks from drawings (network JSON, OBJ, SVG, DXF, 3dm)"
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:

@@ -9,6 +9,8 @@ from auszug.formats import svg as _svg  # noqa: F401  (registers .svg top/side v
 from auszug.formats import figure as _figure  # noqa: F401  (registers .png/.pdf/.svg figures)
 from auszug.formats import tracery_json as _tracery_json  # noqa: F401  (registers .tracery.json windows)
 from auszug.formats import mesh_obj as _mesh_obj, stl as _stl, ply as _ply, gltf as _gltf  # noqa: F401,E401  (mesh .obj/.stl/.ply/.glb/.gltf)
+from auszug.formats import dxf as _dxf  # noqa: F401  (registers .dxf: polylines, exact arcs and lines)
+from auszug.formats import rhino as _rhino  # noqa: F401  (registers .3dm: exact arcs and lines, else polylines)
 from auszug.formats._registry import FileFormat, atomic_write, format_for, formats, load, register, save
 
 __all__ = ["FileFormat", "atomic_write", "format_for", "formats", "load", "register", "save"]

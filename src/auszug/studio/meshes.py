@@ -43,6 +43,8 @@ MIMES: dict[str, str] = {
     "json": "application/json",
     "uc": "text/plain",
     "network.json": "application/json",
+    "dxf": "image/vnd.dxf",
+    "3dm": "application/octet-stream",
 }
 MESH_EXPORTS = ("glb", "obj", "stl", "ply")
 _COLOUR = re.compile(r"^#[0-9a-fA-F]{6}$")
@@ -244,7 +246,8 @@ def export_file(net: Network, name: str, *, format: str, style: str = "bar", fac
     watertight solid. ``colors`` (#rrggbb per basic curve) colour the glb's
     members; OBJ is sent without its .mtl (one file per export), so it carries
     no colours; STL and PLY have none. svg: top and side views; json / uc: the
-    drawing; network.json: the 3D curve network.
+    drawing; network.json: the 3D curve network; dxf / 3dm: the curve network
+    for CAD programs, with exact arcs and lines where the curves have them.
 
     Raises
     ------
@@ -270,6 +273,10 @@ def export_file(net: Network, name: str, *, format: str, style: str = "bar", fac
             data = fmt.writer(mesh, fname)
     elif format == "svg":
         data = format_for(Path(fname), "network", want="write").writer(net, fname)
+    elif format in ("dxf", "3dm"):
+        from auszug.formats.network_json import NetworkFile
+
+        data = format_for(Path(fname), "network", want="write").writer(NetworkFile(net, name), fname)
     elif format == "network.json":
         from auszug.formats.network_json import NetworkFile
 

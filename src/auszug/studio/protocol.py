@@ -113,7 +113,7 @@ Mark = Literal["ground", "apex", "free"]
 Style = Literal["curves", "tube", "bar", "ribbon"]
 #: Faces: none, every loop the network closes (automatic), or the loops picked by index.
 FacesMode = Literal["none", "auto", "picked"]
-ExportFormat = Literal["glb", "obj", "stl", "ply", "svg", "json", "uc", "network.json"]
+ExportFormat = Literal["glb", "obj", "stl", "ply", "svg", "json", "uc", "network.json", "dxf", "3dm"]
 
 
 # ---------------------------------------------------------------- client -> server
@@ -445,7 +445,8 @@ class Export:
     Mesh formats (glb, obj, stl, ply) use ``style``/``faces``/``loops`` as
     :class:`GetMesh`; ``solid`` unites everything into one watertight solid.
     ``colors`` are ``#rrggbb`` per basic curve (glb, obj). svg: top and side
-    views; json / uc: the drawing; network.json: the 3D curve network.
+    views; json / uc: the drawing; network.json: the 3D curve network; dxf / 3dm:
+    the curve network for CAD programs.
     """
 
     format: ExportFormat

@@ -90,7 +90,7 @@ def server_path(name: str, kind: str, reps: int) -> dict[str, float]:
         out = frames.text(msg.id)
         t4 = time.perf_counter()
         if i >= 20:  # warm-up: imports, first builds of the other curves
-            for key, dt in zip(parts, (t1 - t0, t2 - t1, t3 - t2, t4 - t3, t4 - t0)):
+            for key, dt in zip(parts, (t1 - t0, t2 - t1, t3 - t2, t4 - t3, t4 - t0), strict=True):
                 parts[key].append(dt * 1e3)
         doc.undo_stack.clear()
     res = {k: statistics.median(v) for k, v in parts.items()}
@@ -249,7 +249,9 @@ async ({url, n, size}) => {
 """
 
 
-def transport_floor(reps: int, sizes: tuple[int, ...] = (16, 1000, 13000, 50000)) -> dict[int, tuple[float, float]] | None:
+def transport_floor(
+    reps: int, sizes: tuple[int, ...] = (16, 1000, 13000, 50000)
+) -> dict[int, tuple[float, float]] | None:
     """(median, p90) ms of chromium <-> uvicorn round trips that do no studio work at all: an
     echo app (same uvicorn configuration, same socket) answers each message with a binary frame
     of ``size`` bytes. The least any edit can cost in the page, before the server computes."""

@@ -10,7 +10,15 @@ import pytest
 from auszug.errors import GeometryError
 from auszug.meshing.mesh import triangle_areas
 from auszug.meshing.profile import (
-    Profile, circle, from_dict, from_segments, polygon, rectangle, ribbon, square, triangulate_polygon,
+    Profile,
+    circle,
+    from_dict,
+    from_segments,
+    polygon,
+    rectangle,
+    ribbon,
+    square,
+    triangulate_polygon,
 )
 from auszug.meshing.sweep import profile_for
 

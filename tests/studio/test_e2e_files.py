@@ -19,6 +19,8 @@ from .e2e import Studio, browser, geometry, needs_browser, open_drawing, page, s
 
 pytestmark = needs_browser
 
+TOP_VIEW = "() => [window.auszug.views.topCenter.x, window.auszug.views.topCenter.y, window.auszug.views.topScale]"
+
 
 def wait_connected(page) -> None:
     page.wait_for_function("() => document.body.dataset.connected === 'true'")
@@ -30,7 +32,7 @@ def close(a, b, where: str = "") -> None:
         assert math.isclose(a, b, rel_tol=1e-6, abs_tol=1e-6), f"{where}: {a} != {b}"
     elif isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
         assert len(a) == len(b), f"{where}: {len(a)} != {len(b)} items"
-        for i, (x, y) in enumerate(zip(a, b)):
+        for i, (x, y) in enumerate(zip(a, b, strict=True)):
             close(x, y, f"{where}[{i}]")
     elif isinstance(a, dict) and isinstance(b, dict):
         assert a.keys() == b.keys(), f"{where}: fields {sorted(a)} != {sorted(b)}"
@@ -284,7 +286,8 @@ def test_background_image(studio, page, tmp_path):  # noqa: F811
     plt.imsave(png, img)
     open_drawing(page, studio, "tn-2.uc")
     textures = "() => window.auszug.views.renderer.info.memory.textures"
-    frame = "() => new Promise(r => { window.auszug.views.requestRender(); requestAnimationFrame(() => requestAnimationFrame(r)); })"
+    frame = ("() => new Promise(r => { window.auszug.views.requestRender(); "
+             "requestAnimationFrame(() => requestAnimationFrame(r)); })")
     page.evaluate(frame)
     before = page.evaluate(textures)
     page.click("[data-testid=background]")
@@ -311,7 +314,7 @@ def test_background_image(studio, page, tmp_path):  # noqa: F811
     x = page.evaluate("() => window.auszug.views.scene.getObjectByName('background').position.x")
     assert x == pytest.approx(0.25)
     # Shift+drag on the image moves it by the drag in drawing units; the top view does not pan
-    view = page.evaluate("() => [window.auszug.views.topCenter.x, window.auszug.views.topCenter.y, window.auszug.views.topScale]")
+    view = page.evaluate(TOP_VIEW)
     from .e2e import top_to_client
 
     x0, y0 = top_to_client(page, 0.25, 0.0)
@@ -325,7 +328,7 @@ def test_background_image(studio, page, tmp_path):  # noqa: F811
     assert moved[0] == pytest.approx(0.25 + 50 * view[2], abs=1e-6)
     assert moved[1] == pytest.approx(-20 * view[2], abs=1e-6)
     assert float(page.input_value("[data-testid=background-x]")) == pytest.approx(moved[0], abs=1e-4)
-    assert page.evaluate("() => [window.auszug.views.topCenter.x, window.auszug.views.topCenter.y, window.auszug.views.topScale]") == view
+    assert page.evaluate(TOP_VIEW) == view
     page.screenshot(path=str(_shots() / "background.png"))
     # the placement is kept for this document: after a reload, the image goes back there
     stored = page.evaluate("() => JSON.parse(localStorage.getItem('auszug.background:tn-2.uc'))")

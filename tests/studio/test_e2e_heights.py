@@ -107,7 +107,7 @@ def test_drag_apex_sets_the_dragged_height_and_keeps_the_top_view(studio, page):
     assert abs(g["curves"][0]["apex"] - expected) < 1 / m["k"]
     assert g["curves"][0]["apex"] > g0["curves"][0]["apex"] + 30 / m["k"]
     assert top_view(g) == top_view(g0), "a side-view edit moved a top-view vertex or handle"
-    for a, b in zip(piece_xy(page), xy0):
+    for a, b in zip(piece_xy(page), xy0, strict=True):
         np.testing.assert_allclose(a, b, atol=1e-6)
     # the view re-fits after the drag: the marker is at the new apex
     m = side_map(page)
@@ -254,7 +254,7 @@ def test_preview_draws_all_three_views(studio, page, tmp_path):  # noqa: F811
 
     img = matplotlib.image.imread(shot)[..., :3]
     ink = np.abs(img - np.array([0xF4, 0xF1, 0xEA]) / 255).max(axis=-1) > 0.15
-    for name, r in zip(("3D", "top", "side"), rects):
+    for name, r in zip(("3D", "top", "side"), rects, strict=True):
         view = ink[40 : r["h"] - 10, r["x"] + 4 : r["x"] + r["w"] - 4]
         rows, cols = np.nonzero(view)
         assert view.sum() > 200, f"{name} view draws {view.sum()} ink pixels"

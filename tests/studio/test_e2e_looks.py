@@ -163,7 +163,8 @@ def test_preview_shows_meshes_in_all_three_views(studio, uxi28, page, tmp_path):
     assert page.evaluate(in_views) == [True, True, True]
     next_frame(page)
     bars = ink_per_view(page, tmp_path / "bars.png")
-    assert len(bars) == 3 and all(b > 1.5 * n for b, n in zip(bars, lines)), f"ink: lines {lines}, bars {bars}"
+    assert len(bars) == 3, f"ink: lines {lines}, bars {bars}"
+    assert all(b > 1.5 * n for b, n in zip(bars, lines, strict=True)), f"ink: lines {lines}, bars {bars}"
     page.click("[data-testid=mode-design]")
     assert page.evaluate(in_views) == [False, True, False]  # design: members only in the 3D view
     page.click("[data-testid=mode-preview]")

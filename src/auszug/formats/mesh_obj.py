@@ -160,7 +160,7 @@ def loads(text: str, name: str = "<string>") -> Any:
     f = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
     parts = []
     bounds = [(g, s) for g, s in groups] + [("", len(f))]
-    for (g, s), (_, e) in zip(bounds[:-1], bounds[1:]):
+    for (g, s), (_, e) in zip(bounds[:-1], bounds[1:], strict=True):
         if e > s:
             lo, hi = int(f[s:e].min()), int(f[s:e].max()) + 1
             parts.append(Part(g, "member", -1, "", (lo, hi), (s, e)))

@@ -184,7 +184,7 @@ class _Decoder(json.JSONDecoder):
         out = _Obj()
         out.pos = end - 1
         out.child_pos = {}
-        for (k, v), at in zip(pairs, starts):
+        for (k, v), at in zip(pairs, starts, strict=True):
             if k in out:
                 raise FormatError(f"key {k!r} appears twice in one object", self.path,
                                   s.count("\n", 0, at) + 1)

@@ -97,7 +97,7 @@ def loads(data: bytes | str, name: str = "<bytes>") -> Any:
             rows = []
             for _ in range(count):
                 row = []
-                for pname, typ, item in props:
+                for _name, _type, item in props:
                     if item is None:
                         row.append(float(toks[pos]))
                         pos += 1

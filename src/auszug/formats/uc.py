@@ -79,7 +79,7 @@ def read_uc(text: str, path: str = "<string>") -> Drawing:
     lines = _lines(text)
     if not lines:
         raise FormatError("empty file: expected 'numCurves N' then curves", path)
-    for no, toks in lines:
+    for _no, toks in lines:
         if toks[0] == "unitCurve":
             if len(toks) - 1 == 3:
                 from auszug.formats.uc_legacy import read_legacy

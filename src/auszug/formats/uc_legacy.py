@@ -175,7 +175,7 @@ def _symmetry(cur: _Curve) -> Symmetry:
     rule = "fixed"
     if cur.mirror:
         for cand, name in ((cur.points[0], "first point"), (cur.points[-1], "last point")):
-            if all(abs(u - v) <= _AXIS_POINT_TOL for u, v in zip(axis, cand)) and math.hypot(*cand) > 0:
+            if all(abs(u - v) <= _AXIS_POINT_TOL for u, v in zip(axis, cand, strict=True)) and math.hypot(*cand) > 0:
                 axis, rule = cand, name
                 break
         else:
@@ -337,6 +337,6 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
             ))
         except DrawingError as e:
             raise FormatError(f"curve {ci}: {e}", path, cur.line) from None
-        for a, b in zip(cur.points[:-1], cur.points[1:]):
+        for a, b in zip(cur.points[:-1], cur.points[1:], strict=True):
             longest = max(longest, math.hypot(b[0] - a[0], b[1] - a[1]))
     return Drawing(curves=tuple(basics), name=_stem(path), default_apex=max(1.0, longest))

@@ -83,30 +83,37 @@ class Arc(Curve):
         return self.theta0 + np.asarray(t, dtype=float) * self.sweep
 
     def point(self, t: ArrayLike) -> Array:
+        """Points at parameters ``t``, shape ``t.shape + (2,)``."""
         a = self._angle(t)
         return self.center + self.radius * np.stack([np.cos(a), np.sin(a)], axis=-1)
 
     def tangent(self, t: ArrayLike) -> Array:
+        """Unit tangents at ``t`` in the direction of travel, shape ``t.shape + (2,)``."""
         a = self._angle(t)
         s = 1.0 if self.sweep > 0 else -1.0
         return s * np.stack([-np.sin(a), np.cos(a)], axis=-1)
 
     def curvature(self, t: ArrayLike) -> Array:
+        """Signed curvature at ``t``: 1/radius, positive for a counter-clockwise arc."""
         return np.full(np.shape(t), (1.0 if self.sweep > 0 else -1.0) / self.radius)
 
     def length(self) -> float:
+        """Arc length: radius times the absolute sweep."""
         return self.radius * abs(self.sweep)
 
     def split(self, t: float) -> tuple[Arc, Arc]:
+        """The two arcs before and after parameter ``t``."""
         return (
             Arc(self.center, self.radius, self.theta0, self.sweep * t),
             Arc(self.center, self.radius, self.theta0 + self.sweep * t, self.sweep * (1.0 - t)),
         )
 
     def reversed(self) -> Arc:
+        """The same arc travelled from end to start."""
         return Arc(self.center, self.radius, self.theta0 + self.sweep, -self.sweep)
 
     def transformed(self, matrix: ArrayLike, offset: ArrayLike = (0.0, 0.0)) -> Arc:
+        """The arc mapped by ``x -> matrix @ x + offset`` (a similarity: rotation or reflection)."""
         m = np.asarray(matrix, dtype=float)
         c = m @ self.center + np.asarray(offset, dtype=float)
         d = m @ np.array([math.cos(self.theta0), math.sin(self.theta0)])
@@ -135,6 +142,7 @@ class Arc(Curve):
         return 0.0 if d0 <= d1 else 1.0
 
     def to_dict(self) -> dict[str, Any]:
+        """JSON-ready description: kind, start, end, center, radius and sweep."""
         return {
             "kind": "arc",
             "start": self.start.tolist(),

@@ -260,8 +260,10 @@ class _BezPrim:
         self.root: _Piece | None = None
 
     def _maybe_near(self, x: float, y: float, tol: float) -> bool:
-        """False when the point is certainly farther than ``tol`` from the curve: every
-        flat piece of the (memoised) subdivision tree is excluded by its box or strip."""
+        """False when the point is certainly farther than ``tol`` from the curve.
+
+        Every flat piece of the (memoised) subdivision tree is excluded by its box or strip.
+        """
         stack = [_root(self)]
         while stack:
             p = stack.pop()
@@ -442,9 +444,11 @@ def _endpoint_hits(a, b, tol: float, out: list[_Hit], swap: bool) -> None:  # no
 
 
 def _same_place(p, s: float, t: float, tol: float) -> bool:  # noqa: ANN001
-    """Whether parameters ``s`` and ``t`` of one point are one place of the curve ``p``,
-    not two branches through a double point (a Bezier loop): the curve between them
-    stays put. The ends of a closed curve are one place."""
+    """Whether parameters ``s`` and ``t`` of one point are one place of the curve ``p``.
+
+    Not two branches through a double point (a Bezier loop): the curve between them
+    stays put. The ends of a closed curve are one place.
+    """
     if s == t:
         return True
     if s + t == 1.0 and s * t == 0.0:
@@ -583,8 +587,10 @@ def _chord_guess(pa: _Piece, pb: _Piece) -> tuple[float, float]:
 
 
 def _split(prim, p: _Piece) -> tuple[_Piece, _Piece]:  # noqa: ANN001
-    """The two halves of a piece, memoised: a curve's subdivision tree is shared by all
-    the pairs it takes part in."""
+    """The two halves of a piece, memoised.
+
+    A curve's subdivision tree is shared by all the pairs it takes part in.
+    """
     if p.kids is None:
         if p.ctrl is not None:
             p.kids = _bez_halves(p)
@@ -602,8 +608,10 @@ def _root(prim) -> _Piece:  # noqa: ANN001
 
 
 def _fat_apart(pa: _Piece, pb: _Piece, tol: float) -> bool:
-    """Whether ``pb`` lies wholly on one side of the strip of half-width ``pa.dev`` around
-    the chord line of ``pa`` (which contains ``pa``): then the pieces cannot meet."""
+    """Whether ``pb`` lies wholly on one side of the strip around the chord line of ``pa``.
+
+    The strip has half-width ``pa.dev`` and contains ``pa``: then the pieces cannot meet.
+    """
     x0, y0, x1, y1 = pa.chord
     ln = math.hypot(x1 - x0, y1 - y0)
     if ln == 0.0:
@@ -632,8 +640,10 @@ def _near(a, b, sa: float, tol: float) -> bool:  # noqa: ANN001
 
 
 def _subdivision_hits(a, b, tol: float) -> list[_Hit]:  # noqa: ANN001
-    """Raw hits of two curves by bounding-box subdivision, Newton refinement, and the
-    end-point checks; overlaps reduced to their end points, tangential clusters merged."""
+    """Raw hits of two curves by bounding-box subdivision, Newton refinement, and the end-point checks.
+
+    Overlaps are reduced to their end points, tangential clusters merged.
+    """
     newton: list[tuple[float, float, float, float, float]] = []
     stack = [(_root(a), _root(b), 0)]
     while stack:
@@ -798,7 +808,7 @@ def intersect_many(
     if curves_b is None:
         near = np.triu(near, k=1)
     out: dict[tuple[int, int], list[Intersection]] = {}
-    for i, j in zip(*(ix.tolist() for ix in np.nonzero(near))):
+    for i, j in zip(*(ix.tolist() for ix in np.nonzero(near)), strict=True):
         hits = _intersect_prims(pa[i], pb[j])
         if hits:
             out[(i, j)] = hits

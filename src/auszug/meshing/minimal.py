@@ -579,8 +579,6 @@ def minimal_surface(
     >>> ms.converged, bool(np.abs(ms.vertices[:, 2]).max() < 1e-12)
     (True, True)
     """
-    from scipy.sparse.linalg import splu
-
     b = np.asarray(boundary, dtype=float)
     if b.ndim != 2 or b.shape[1] != 3 or len(b) < 3:
         raise GeometryError(f"a minimal surface needs a closed polygon of at least 3 3D points, got shape {b.shape}")
@@ -653,7 +651,7 @@ def minimal_surface(
     lu = None
     stale = 0
     start_it = it
-    for it in range(start_it + 1, max_iterations + 1):
+    for it in range(start_it + 1, max_iterations + 1):  # noqa: B007  (the result reports the last it)
         if res <= tol and len(areas) > 1 and abs(areas[-2] - areas[-1]) <= area_rtol * areas[-1]:
             converged = True
             break

@@ -93,8 +93,11 @@ class Segment:
 
 
 def _segment_curve(seg: Segment, p0: tuple, p1: tuple, flip: bool) -> Curve:
-    """Curves are immutable values: the same segment between the same points is
-    built once (interactive rebuilds reuse the curves an edit did not touch)."""
+    """The curve of a segment between two points, built once.
+
+    Curves are immutable values: the same segment between the same points is built
+    once (interactive rebuilds reuse the curves an edit did not touch).
+    """
     from auszug.geometry import _tolerance
 
     return _cached_curve(seg, p0, p1, flip, (_tolerance.TOL.zero, _tolerance.TOL.collinear))
@@ -267,7 +270,7 @@ class BasicCurve:
         for i in range(len(vs) - 1):
             if math.hypot(vs[i + 1][0] - vs[i][0], vs[i + 1][1] - vs[i][1]) <= 1e-12:
                 raise DrawingError(f"points {i} and {i + 1} coincide: zero-length segment")
-        for i, (a, b) in enumerate(zip(self.marks[:-1], self.marks[1:])):
+        for i, (a, b) in enumerate(zip(self.marks[:-1], self.marks[1:], strict=True)):
             if {a, b} == {"ground", "free"}:
                 raise DrawingError(f"segment {i} joins a ground point to a free end; "
                                    "a free end must follow an apex")

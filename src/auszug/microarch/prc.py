@@ -17,16 +17,16 @@ curves of other layers do not meet it in 3D.
 
 from __future__ import annotations
 
-from functools import lru_cache
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
+from auszug._cache import LruCache
 from auszug.geometry import TOL, Curve
 from auszug.geometry.intersect import _intersect_prims, _prim
-from auszug._cache import LruCache
 from auszug.microarch.model import Drawing
 
 __all__ = ["TopIntersection", "PrcChoice", "intersections", "algorithm1", "oriented_segments"]
@@ -203,7 +203,7 @@ def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Cur
     out: list[TopIntersection] = []
     ptop = None
     pairs = _PAIRS.data   # (its values may be None: a miss is _MISS)
-    for k, (lab, rep) in enumerate(zip(sym.labels(), _replicas(top_j, sym))):
+    for k, (lab, rep) in enumerate(zip(sym.labels(), _replicas(top_j, sym), strict=True)):
         if k == 0 and same_family:
             continue
         pk = (kid_i, kid_j, k)
@@ -286,7 +286,8 @@ def algorithm1(drawing: Drawing) -> dict[tuple[int, int], PrcChoice]:
     >>> ch.branch, round(ch.fraction, 12)   # meets its mirror image at x = 0
     ('own replicas', 0.666666666667)
     """
-    key = (TOL.param_equal, TOL.intersect, TOL.zero, TOL.collinear, tuple((c.vertices, c.segments, c.marks, c.symmetry, c.layer) for c in drawing.curves))
+    curves = tuple((c.vertices, c.segments, c.marks, c.symmetry, c.layer) for c in drawing.curves)
+    key = (TOL.param_equal, TOL.intersect, TOL.zero, TOL.collinear, curves)
     hit = _CHOICES.get(key)
     if hit is not None:
         return dict(hit)

@@ -32,7 +32,6 @@ import dataclasses
 import json
 import math
 import types
-import typing
 from dataclasses import dataclass, field
 from typing import Any, Callable, ClassVar, Literal, Union, get_args, get_origin, get_type_hints
 
@@ -721,7 +720,7 @@ def _convert(value: Any, tp: Any, where: str) -> Any:
         args = get_args(tp)
         if not isinstance(value, list) or len(value) != len(args):
             raise ProtocolError(f"{where}: expected a list of {len(args)} values, got {value!r}")
-        return tuple(_convert(v, a, f"{where}[{i}]") for i, (v, a) in enumerate(zip(value, args)))
+        return tuple(_convert(v, a, f"{where}[{i}]") for i, (v, a) in enumerate(zip(value, args, strict=True)))
     if origin is list:
         (arg,) = get_args(tp)
         if not isinstance(value, list):

@@ -38,8 +38,7 @@ from auszug.errors import AuszugError
 from auszug.studio import meshes
 from auszug.studio import protocol as P
 from auszug.studio.hub import AUTOSAVE_DELAY, Connection, Hub
-from auszug.studio.session import (Document, Workspace, example_document, new_document, open_document,
-                                   text_document)
+from auszug.studio.session import Document, Workspace, example_document, new_document, open_document, text_document
 
 __all__ = ["LOCAL_HOSTS", "BUILD_COMMAND", "static_dir", "create_app", "HostOriginGuard"]
 
@@ -94,6 +93,7 @@ class HostOriginGuard:
         return True
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        """Pass a request on to the app, or refuse it when its host or origin is not local."""
         if scope["type"] in ("http", "websocket") and not self._allowed(scope):
             if scope["type"] == "websocket":
                 await send({"type": "websocket.close", "code": 1008, "reason": "foreign host or origin"})

@@ -409,7 +409,7 @@ class _Body:
         d = self.drawing
         return {
             "revision": revision, "path": path, "name": d.name, "n_curves": len(d.curves),
-            "n_replicas": self.n_rep, "pieces": [p.as_dict(o) for p, o in zip(self.pieces, self.offsets)],
+            "n_replicas": self.n_rep, "pieces": [p.as_dict(o) for p, o in zip(self.pieces, self.offsets, strict=True)],
             "intersections": self.markers, "curves": [copy.deepcopy(_curve_info(*k)) for k in self.curve_keys],
             "layers": self.layers, "bounds": self.bounds, "can_undo": can_undo, "can_redo": can_redo,
             "dirty": dirty, "recoverable": recoverable, "binary_floats": self.binary_floats,
@@ -419,7 +419,7 @@ class _Body:
              recoverable: str) -> str:
         """The JSON text of :meth:`as_dict` without its closing brace (fragments cached per piece and curve)."""
         d = self.drawing
-        pieces = ",".join(p.as_json(o) for p, o in zip(self.pieces, self.offsets))
+        pieces = ",".join(p.as_json(o) for p, o in zip(self.pieces, self.offsets, strict=True))
         curves = ",".join(_curve_json(*k) for k in self.curve_keys)
         return (f'{{"revision":{int(revision)},"path":{_dumps(path)},"name":{_dumps(d.name)},'
                 f'"n_curves":{len(d.curves)},"n_replicas":{self.n_rep},"pieces":[{pieces}],'

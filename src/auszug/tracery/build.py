@@ -24,9 +24,9 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Any, Mapping
 
-from auszug.errors import GeometryError
 import numpy as np
 
+from auszug.errors import GeometryError
 from auszug.geometry import Arc, Curve, Line
 from auszug.geometry.offset import offset_curves
 from auszug.tracery._checks import ParameterError

@@ -184,7 +184,9 @@ class Profile:
 
 
 def profile_from_data(name: str, data: Mapping[str, Any] | Sequence[Sequence[float]] | ArrayLike) -> Profile:
-    """A profile from its TOML/JSON description: a list of points, or a table
+    """A profile from its TOML/JSON description.
+
+    The description is a list of points, or a table
     ``{points = [[s, t], ...], bulge = [...], wall = false}``.
 
     Examples

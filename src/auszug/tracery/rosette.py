@@ -55,7 +55,9 @@ def foil_radius(n: int) -> float:
     return s / (1.0 + s)
 
 
-def _unit_foil(n: int, pointed: bool, displacement: float) -> tuple[list[tuple[np.ndarray, float, float, float]], float]:
+def _unit_foil(
+    n: int, pointed: bool, displacement: float
+) -> tuple[list[tuple[np.ndarray, float, float, float]], float]:
     """Arcs of the foil on the +x axis in the unit circle, as (centre, radius, theta0, sweep), and the scale."""
     alpha = 2.0 * math.pi / n
     r = foil_radius(n)

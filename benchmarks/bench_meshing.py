@@ -41,7 +41,7 @@ HERE = Path(__file__).resolve().parent
 DEFAULT_CORPUS = HERE.parent.parent / "shared" / "corpus"
 
 
-def timed_ms(fn, reps: int) -> tuple[float, float]:  # noqa: ANN001
+def timed_ms(fn, reps: int) -> tuple[float, float]:
     """(min, median) milliseconds of ``fn()`` over ``reps`` runs after two warm-ups."""
     t = timed(fn, reps)
     return t.min * 1e3, t.median * 1e3
@@ -75,7 +75,7 @@ def main(argv: list[str] | None = None) -> int:
     d = chancel.drawing
     h = d.apex_height(0)
 
-    def edit_rebuild_resweep(k=[0]):  # noqa: B006
+    def edit_rebuild_resweep(k=[0]):  # noqa: B006  (the default list is the call counter)
         k[0] += 1
         net = build(edit.set_apex_height(d, 0, h * (1.0 + 0.01 * (k[0] % 7))))
         return sweep_network(net, prof, 200, basics=[0])

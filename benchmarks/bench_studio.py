@@ -125,14 +125,14 @@ APEX_JS = """() => {
 }"""
 
 
-def open_drawing(page, url: str, name: str) -> None:  # noqa: ANN001
+def open_drawing(page, url: str, name: str) -> None:
     """Navigate ``page`` to the studio at ``url`` with drawing ``name`` and wait for its first frame."""
     page.goto(f"{url}?open={name}")
     page.wait_for_function("() => window.auszug && window.auszug.timings.length > 0 "
                            "&& window.auszug.timings[0].rendered > 0", timeout=30000)
 
 
-def move_mouse(page, x0: float, y0: float, reps: int, apex: bool = False, period_s: float = 1 / 60) -> None:  # noqa: ANN001
+def move_mouse(page, x0: float, y0: float, reps: int, apex: bool = False, period_s: float = 1 / 60) -> None:
     """Press at (x0, y0) with Alt held (no snapping), move ``reps`` times, one move every
     ``period_s`` to a fresh spot near it (``apex``: up and down by a few pixels), release."""
     page.mouse.move(x0, y0)
@@ -152,7 +152,7 @@ def move_mouse(page, x0: float, y0: float, reps: int, apex: bool = False, period
     page.wait_for_timeout(300)
 
 
-def grab_point(page, apex: bool = False) -> tuple[float, float]:  # noqa: ANN001
+def grab_point(page, apex: bool = False) -> tuple[float, float]:
     """Where to press: curve 0's last vertex in the top view, or (``apex``) its apex marker in the side view."""
     if apex:
         grab = page.evaluate(APEX_JS)
@@ -165,7 +165,7 @@ def grab_point(page, apex: bool = False) -> tuple[float, float]:  # noqa: ANN001
     return grab["x"], grab["y"]
 
 
-def mouse_drag(  # noqa: ANN001
+def mouse_drag(
     page, reps: int, period_s: float = 1 / 60, apex: bool = False
 ) -> tuple[list[float], list[float], list[float]]:
     """A real drag by the mouse (:func:`move_mouse`) of curve 0's last vertex in the top view, or
@@ -185,7 +185,7 @@ DIAGNOSIS = (("everything drawn", ()), ("WebGL canvas hidden", ("canvas",)),
              ("canvas, side view and top-view markers hidden", ("canvas", "side", "markers")))
 
 
-def diagnose(browser, url: str, name: str, reps: int, rounds: int) -> int:  # noqa: ANN001
+def diagnose(browser, url: str, name: str, reps: int, rounds: int) -> int:
     """The top-view mouse drag with parts of the page hidden, in alternating rounds; prints a table."""
     res: dict[str, list[list[float]]] = {label: [[], []] for label, _ in DIAGNOSIS}
     for r in range(rounds):

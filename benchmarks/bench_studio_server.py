@@ -52,7 +52,7 @@ ANCHOR = {"point drag": 1.2, "apex drag": 4.2}
 TARGET_PAGE_MS = 2.0
 
 
-def edit_messages(drawing, kind: str, start: int):  # noqa: ANN001, ANN201
+def edit_messages(drawing, kind: str, start: int):
     """An endless stream of edit messages (JSON text) of one kind, each with fresh values."""
     c = drawing.curves[0]
     v = len(c.vertices) - 1
@@ -270,7 +270,7 @@ def transport_floor(
 
     from auszug.cli.studio import bind_local, server_config
 
-    async def echo(ws) -> None:  # noqa: ANN001
+    async def echo(ws) -> None:
         await ws.accept()
         while True:
             m = await ws.receive()

@@ -15,7 +15,7 @@ from auszug.formats import load
 from auszug.microarch import build
 from auszug.studio.session import curve_infos
 
-from .e2e import Studio, browser, geometry, needs_browser, open_drawing, page, studio, wait_revision  # noqa: F401
+from .e2e import Studio, browser, geometry, needs_browser, open_drawing, page, studio, wait_revision  # noqa: F401  (fixtures)
 
 pytestmark = needs_browser
 
@@ -66,7 +66,7 @@ def set_apex(page, height: float) -> dict:
     return g
 
 
-def test_gallery_opens_an_example(studio, page):  # noqa: F811
+def test_gallery_opens_an_example(studio, page):
     page.goto(studio.url)
     wait_connected(page)
     page.click("[data-testid=open]")
@@ -94,7 +94,7 @@ def test_gallery_opens_an_example(studio, page):  # noqa: F811
     assert page.title().startswith("U.XI.28")
 
 
-def test_open_a_local_file(studio, page, tmp_path):  # noqa: F811
+def test_open_a_local_file(studio, page, tmp_path):
     page.goto(studio.url)
     wait_connected(page)
     src = examples.path("legacy/U.XI.17.uc")
@@ -111,7 +111,7 @@ def test_open_a_local_file(studio, page, tmp_path):  # noqa: F811
     assert g["path"] == ""
 
 
-def test_edit_save_reload_save_as(studio, workspace, page):  # noqa: F811
+def test_edit_save_reload_save_as(studio, workspace, page):
     tn11 = (workspace / "tn-11.uc").read_bytes()
     open_drawing(page, studio, "tn-2.uc")
     g = set_apex(page, 2.5)
@@ -147,7 +147,7 @@ def test_edit_save_reload_save_as(studio, workspace, page):  # noqa: F811
     assert (workspace / "tn-11.uc").read_bytes() == tn11
 
 
-def test_new_drawing_is_saved_under_its_name(studio, workspace, page):  # noqa: F811
+def test_new_drawing_is_saved_under_its_name(studio, workspace, page):
     page.goto(studio.url)
     wait_connected(page)
     page.click("[data-testid=new]")
@@ -162,7 +162,7 @@ def test_new_drawing_is_saved_under_its_name(studio, workspace, page):  # noqa: 
     assert load(workspace / "pinnacle.json").curves == ()
 
 
-def test_export_glb_and_printable_stl(studio, page, tmp_path):  # noqa: F811
+def test_export_glb_and_printable_stl(studio, page, tmp_path):
     import trimesh
 
     open_drawing(page, studio, "tn-2.uc")
@@ -187,7 +187,7 @@ def test_export_glb_and_printable_stl(studio, page, tmp_path):  # noqa: F811
     assert len(solid.faces) > 0 and solid.is_watertight
 
 
-def test_autosave_is_offered_after_a_restart(workspace, browser):  # noqa: F811
+def test_autosave_is_offered_after_a_restart(workspace, browser):
     first = Studio(workspace)
     ctx = browser.new_context(viewport={"width": 1280, "height": 800})
     try:
@@ -231,7 +231,7 @@ def _shots() -> Path:
     return SHOTS
 
 
-def test_two_tabs_share_the_file(studio, page):  # noqa: F811
+def test_two_tabs_share_the_file(studio, page):
     other = page.context.new_page()
     open_drawing(page, studio, "tn-2.uc")
     open_drawing(other, studio, "tn-2.uc")
@@ -244,7 +244,7 @@ def test_two_tabs_share_the_file(studio, page):  # noqa: F811
     assert other.locator("[data-testid=doc-name]").inner_text() == "tn-2.uc •"
 
 
-def test_help_lists_shortcuts_and_text_fields_swallow_them(studio, page):  # noqa: F811
+def test_help_lists_shortcuts_and_text_fields_swallow_them(studio, page):
     open_drawing(page, studio, "tn-2.uc")
     help_dialog = page.locator("dialog[data-testid=help]")
     page.keyboard.press("?")
@@ -275,7 +275,7 @@ def test_help_lists_shortcuts_and_text_fields_swallow_them(studio, page):  # noq
     assert page.evaluate("() => window.auszug.store.mode") == "preview"
 
 
-def test_background_image(studio, page, tmp_path):  # noqa: F811
+def test_background_image(studio, page, tmp_path):
     import matplotlib.pyplot as plt
     import numpy as np
 

@@ -432,7 +432,7 @@ def _arc_arc(a: _ArcPrim, b: _ArcPrim, tol: float, out: list[_Hit]) -> None:
         out.append((ta, tb, x, y))
 
 
-def _endpoint_hits(a, b, tol: float, out: list[_Hit], swap: bool) -> None:  # noqa: ANN001
+def _endpoint_hits(a, b, tol: float, out: list[_Hit], swap: bool) -> None:
     """End points of ``a`` lying on ``b`` (this also finds the ends of overlaps)."""
     bx0, by0, bx1, by1 = b.box
     for ta, x, y in ((0.0, a.x0, a.y0), (1.0, a.x1, a.y1)):
@@ -443,7 +443,7 @@ def _endpoint_hits(a, b, tol: float, out: list[_Hit], swap: bool) -> None:  # no
             out.append((tb, ta, x, y) if swap else (ta, tb, x, y))
 
 
-def _same_place(p, s: float, t: float, tol: float) -> bool:  # noqa: ANN001
+def _same_place(p, s: float, t: float, tol: float) -> bool:
     """Whether parameters ``s`` and ``t`` of one point are one place of the curve ``p``.
 
     Not two branches through a double point (a Bezier loop): the curve between them
@@ -458,7 +458,7 @@ def _same_place(p, s: float, t: float, tol: float) -> bool:  # noqa: ANN001
     return math.hypot(xm - xs, ym - ys) <= 2.0 * tol
 
 
-def _finish(hits: list[_Hit], a, b, tol: float) -> list[Intersection]:  # noqa: ANN001
+def _finish(hits: list[_Hit], a, b, tol: float) -> list[Intersection]:
     """Snap to end points, merge duplicates, sort by t1."""
     snapped: list[_Hit] = []
     closed_a = math.hypot(a.x0 - a.x1, a.y0 - a.y1) <= tol
@@ -499,12 +499,12 @@ def _finish(hits: list[_Hit], a, b, tol: float) -> list[Intersection]:  # noqa: 
     return [Intersection(t1, t2, np.array((x, y))) for t1, t2, x, y in kept]
 
 
-def _boxes_apart(a, b, tol: float) -> bool:  # noqa: ANN001
+def _boxes_apart(a, b, tol: float) -> bool:
     ba, bb = a.box, b.box
     return ba[0] > bb[2] + tol or bb[0] > ba[2] + tol or ba[1] > bb[3] + tol or bb[1] > ba[3] + tol
 
 
-def _intersect_prims(a, b) -> list[Intersection]:  # noqa: ANN001
+def _intersect_prims(a, b) -> list[Intersection]:
     tol = _tolerance.TOL.intersect
     if _boxes_apart(a, b, tol):
         return []
@@ -535,7 +535,7 @@ _NEWTON_STEPS = 60
 _NEWTON_DONE = 1e-15  # residual (drawing units) at which Newton stops early
 
 
-def _newton(a, b, s: float, t: float) -> tuple[float, float, float, float, float]:  # noqa: ANN001
+def _newton(a, b, s: float, t: float) -> tuple[float, float, float, float, float]:
     """Refine a meeting point of ``a`` at ``s`` and ``b`` at ``t``.
 
     Levenberg-Marquardt on A(s) - B(t) = 0 with a tiny damping, i.e. Newton's
@@ -586,7 +586,7 @@ def _chord_guess(pa: _Piece, pb: _Piece) -> tuple[float, float]:
     return pa.t0 + u * (pa.t1 - pa.t0), pb.t0 + v * (pb.t1 - pb.t0)
 
 
-def _split(prim, p: _Piece) -> tuple[_Piece, _Piece]:  # noqa: ANN001
+def _split(prim, p: _Piece) -> tuple[_Piece, _Piece]:
     """The two halves of a piece, memoised.
 
     A curve's subdivision tree is shared by all the pairs it takes part in.
@@ -600,7 +600,7 @@ def _split(prim, p: _Piece) -> tuple[_Piece, _Piece]:  # noqa: ANN001
     return p.kids
 
 
-def _root(prim) -> _Piece:  # noqa: ANN001
+def _root(prim) -> _Piece:
     """The whole curve as a piece, memoised on the primitive."""
     if prim.root is None:
         prim.root = prim.piece(0.0, 1.0)
@@ -633,13 +633,13 @@ def _is_flat(p: _Piece, tol: float) -> bool:
     return p.dev <= max(_FLAT * math.hypot(x1 - x0, y1 - y0), tol)
 
 
-def _near(a, b, sa: float, tol: float) -> bool:  # noqa: ANN001
+def _near(a, b, sa: float, tol: float) -> bool:
     """Whether the point of ``a`` at ``sa`` is within ``tol`` of curve ``b``."""
     x, y, _, _ = a.ev(sa)
     return b.project(x, y)[0] <= tol
 
 
-def _subdivision_hits(a, b, tol: float) -> list[_Hit]:  # noqa: ANN001
+def _subdivision_hits(a, b, tol: float) -> list[_Hit]:
     """Raw hits of two curves by bounding-box subdivision, Newton refinement, and the end-point checks.
 
     Overlaps are reduced to their end points, tangential clusters merged.
@@ -719,8 +719,9 @@ def _subdivision_hits(a, b, tol: float) -> list[_Hit]:  # noqa: ANN001
                 and _near(b, a, 0.5 * (h[1] + k[1]), tol)
             )
             if same:
-                exact = lambda z: (z[0] in (0.0, 1.0)) + (z[1] in (0.0, 1.0))  # noqa: E731
-                if (exact(h), -res) > (exact(k), -kres):
+                exact_h = (h[0] in (0.0, 1.0)) + (h[1] in (0.0, 1.0))  # how many parameters are end points
+                exact_k = (k[0] in (0.0, 1.0)) + (k[1] in (0.0, 1.0))
+                if (exact_h, -res) > (exact_k, -kres):
                     kept[-1] = (h, res, prot or kprot)
                 continue
         kept.append((h, res, prot))

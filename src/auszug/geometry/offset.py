@@ -247,7 +247,7 @@ def signed_area(curves: Sequence[Curve]) -> float:
     return area
 
 
-def _at_offset(x: float, y: float, prims: list, lo: float, hi: float) -> bool:  # noqa: ANN001
+def _at_offset(x: float, y: float, prims: list, lo: float, hi: float) -> bool:
     """Whether the distance from (x, y) to the nearest input curve lies in [lo, hi].
 
     A point of a true offset lies at the offset distance from the input, or a
@@ -268,7 +268,7 @@ def _at_offset(x: float, y: float, prims: list, lo: float, hi: float) -> bool:  
 
 
 def _join(p: _Carrier, q: _Carrier, turn: float | None, d: float, corner: tuple[float, float],
-          miter_limit: float, prims: list) -> tuple[float, float] | None | str:  # noqa: ANN001
+          miter_limit: float, prims: list) -> tuple[float, float] | None | str:
     """Where carrier ``p`` ends and ``q`` begins: ``(b_p, a_q)``, ``"round"`` or None (no join).
 
     ``turn`` is the input turning angle at the common corner, or None for a
@@ -478,7 +478,7 @@ def _check_simple(off: OffsetCurves) -> None:
             )
 
 
-def _is_shared_end(cs: Sequence[Curve], i: int, j: int, h) -> bool:  # noqa: ANN001
+def _is_shared_end(cs: Sequence[Curve], i: int, j: int, h) -> bool:
     tol = 10 * _tolerance.TOL.intersect
     a, b = (cs[i], cs[j]) if j == i + 1 else (cs[j], cs[i])
     return bool(np.hypot(*(h.point - a.end)) <= tol and np.hypot(*(h.point - b.start)) <= tol)

@@ -120,7 +120,7 @@ def _direction(d: ArrayLike, name: str) -> Array:
     return v / n
 
 
-def _inputs(A: ArrayLike, dA: ArrayLike, B: ArrayLike, dB: ArrayLike):  # noqa: ANN202
+def _inputs(A: ArrayLike, dA: ArrayLike, B: ArrayLike, dB: ArrayLike):
     a = as_point(A, "start point A")
     b = as_point(B, "end point B")
     da = _direction(dA, "tangent direction at A")

@@ -111,7 +111,7 @@ class Faces:
         return Mesh(np.concatenate(vs), np.concatenate(fs), tuple(parts))
 
 
-def common_group(network) -> tuple[Array, Array]:  # noqa: ANN001
+def common_group(network) -> tuple[Array, Array]:
     """Symmetry elements shared by every basic curve: (k, 2, 2) matrices and the centre (2,).
 
     Only the identity when the curves have different centres.
@@ -165,7 +165,7 @@ def _map_face(ms: MinimalSurface, m: Array, centre: Array, loop: Loop, rep_loop:
 
 
 def network_faces(
-    network,  # noqa: ANN001
+    network,
     loops: Sequence[Loop] | None = None,
     resolution: int = 96,
     tol: float = RESIDUAL_TOL,

@@ -282,7 +282,7 @@ class Loop:
 # -- building the graph -----------------------------------------------------------------------
 
 
-def _strands(network) -> list[Strand]:  # noqa: ANN001
+def _strands(network) -> list[Strand]:
     d = network.drawing
     out: list[Strand] = []
     for pi, p in enumerate(network.pieces):
@@ -342,7 +342,7 @@ def _top_hits(strands: Sequence[Strand]) -> dict[tuple[int, int], list[tuple[flo
         return out
 
 
-def network_graph(network, meet_tol: float = 1e-2) -> NetworkGraph:  # noqa: ANN001
+def network_graph(network, meet_tol: float = 1e-2) -> NetworkGraph:
     """The graph of a network's curves (see the module docstring).
 
     Parameters
@@ -548,7 +548,7 @@ def _fillable(lp: Loop) -> bool:
     return _simple_projection(b, lp.graph.centre) is not None
 
 
-def find_loops(network_or_graph, rims: bool = True, meet_tol: float = 1e-2, simple: bool = True) -> list[Loop]:  # noqa: ANN001
+def find_loops(network_or_graph, rims: bool = True, meet_tol: float = 1e-2, simple: bool = True) -> list[Loop]:
     """The closed loops of a network: the bounded faces of its top-view embedding.
 
     Parameters

@@ -230,7 +230,7 @@ def _projections(b: Array, centre: Array | None) -> list[Array]:
     return out
 
 
-def _simple_projection(b: Array, centre: Array | None, mesh: bool = False):  # noqa: ANN202
+def _simple_projection(b: Array, centre: Array | None, mesh: bool = False):
     """The first projection of the closed polygon that is simple (made counter-clockwise)."""
     from auszug.meshing.profile import _first_crossing
 
@@ -270,7 +270,7 @@ def _cotans(v: Array, f: IntArray) -> tuple[Array, Array]:
     return np.stack([cot0, cot1, cot2], axis=1), 0.5 * dbl
 
 
-def cotan_laplacian(vertices: ArrayLike, faces: ArrayLike):  # noqa: ANN201
+def cotan_laplacian(vertices: ArrayLike, faces: ArrayLike):
     """The cotangent Laplacian L, with (L x)_i = sum_j w_ij (x_i - x_j), w_ij = (cot a + cot b) / 2.
 
     L x is the gradient of the surface area with respect to the vertex
@@ -365,13 +365,13 @@ class _Pattern:
         w = 0.5 * np.concatenate([cot[:, 0], cot[:, 1], cot[:, 2]])
         return np.bincount(self.pos, weights=np.tile(w, 4) * self.sign, minlength=self.nnz)
 
-    def full(self, data: Array):  # noqa: ANN201
+    def full(self, data: Array):
         """L as a CSR matrix."""
         from scipy.sparse import csr_matrix
 
         return csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
 
-    def blocks(self, data: Array, shift: Array | None = None):  # noqa: ANN201
+    def blocks(self, data: Array, shift: Array | None = None):
         """Interior-interior (CSC; symmetric) minus ``diag(shift)``, and interior-boundary (CSR)."""
         from scipy.sparse import csc_matrix, csr_matrix
 
@@ -385,7 +385,7 @@ class _Pattern:
         return lii, lib
 
 
-def _factor(mat):  # noqa: ANN001, ANN202
+def _factor(mat):
     from scipy.sparse.linalg import splu
 
     return splu(mat, permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
@@ -610,7 +610,7 @@ def minimal_surface(
     start = float(triangle_areas(x, faces).sum())
     areas = [start]
 
-    def measure(x: Array, faces: IntArray, pat: _Pattern):  # noqa: ANN202
+    def measure(x: Array, faces: IntArray, pat: _Pattern):
         cot, tri_area = _cotans(x, faces)
         data = pat.values(cot)
         g = pat.full(data) @ x

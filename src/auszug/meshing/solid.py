@@ -137,7 +137,7 @@ def thicken(vertices: Array, faces: IntArray, thickness: float) -> tuple[Array, 
     return np.concatenate([top, bot]), out_f
 
 
-def base_plate(network, thickness: float, margin: float, sink: float, segments: int = 96) -> tuple[Array, IntArray]:  # noqa: ANN001
+def base_plate(network, thickness: float, margin: float, sink: float, segments: int = 96) -> tuple[Array, IntArray]:
     """A round plate under the network: top ``sink`` above the ground, ``thickness`` thick.
 
     Its radius reaches ``margin`` beyond the farthest point of the network
@@ -246,7 +246,7 @@ def drop_slivers(mesh: Mesh, rel: float = 1e-4) -> tuple[Mesh, int, int]:
 
 
 def solid(
-    network,  # noqa: ANN001
+    network,
     profile: Profile,
     segments: int = 64,
     faces: Faces | None = None,

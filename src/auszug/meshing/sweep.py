@@ -99,7 +99,7 @@ def _wrap(a: Array) -> Array:
     return (a + np.pi) % (2.0 * np.pi) - np.pi
 
 
-def _t_of_g(piece, g: Array) -> Array:  # noqa: ANN001
+def _t_of_g(piece, g: Array) -> Array:
     mode, a, _, _ = piece.g_scale
     top = piece.top
     if mode == "arclength":
@@ -117,7 +117,7 @@ def _t_of_g(piece, g: Array) -> Array:  # noqa: ANN001
     return t
 
 
-def _ds_dg(piece, t: Array) -> Array:  # noqa: ANN001
+def _ds_dg(piece, t: Array) -> Array:
     """Top-view arc length per unit side-view coordinate at t."""
     mode = piece.g_scale[0]
     if mode == "arclength":
@@ -131,7 +131,7 @@ def _ds_dg(piece, t: Array) -> Array:  # noqa: ANN001
     return ds / dg
 
 
-def sample_piece(piece, segments: int) -> list[CurveSamples]:  # noqa: ANN001
+def sample_piece(piece, segments: int) -> list[CurveSamples]:
     """Sample a network piece for sweeping: ``segments`` steps in all, split at corners.
 
     Parameters
@@ -352,12 +352,12 @@ def _reflection_axis(m: Array) -> Array:
     return c / np.linalg.norm(c)
 
 
-def _scale(network) -> float:  # noqa: ANN001
+def _scale(network) -> float:
     pts = [v for c in network.drawing.curves for v in c.vertices]
     return max(1.0, float(np.max(np.abs(pts)))) if pts else 1.0
 
 
-def _mirror_cuts(network, pi: int, runs: list[CurveSamples]) -> list[tuple[int, int, Array]]:  # noqa: ANN001
+def _mirror_cuts(network, pi: int, runs: list[CurveSamples]) -> list[tuple[int, int, Array]]:
     """(end, element, plane normal) for each end of piece ``pi`` on a mirror axis of its group."""
     piece = network.pieces[pi]
     sym = network.drawing.curves[piece.basic].symmetry
@@ -386,7 +386,7 @@ def _mirror_cuts(network, pi: int, runs: list[CurveSamples]) -> list[tuple[int, 
     return out
 
 
-def _width0(piece, s: CurveSamples, cut_normal: Array | None) -> Array:  # noqa: ANN001
+def _width0(piece, s: CurveSamples, cut_normal: Array | None) -> Array:
     if piece.top is not None:
         th = piece.top.tangent(0.0)
         nh = np.array([-th[1], th[0], 0.0])
@@ -398,7 +398,7 @@ def _width0(piece, s: CurveSamples, cut_normal: Array | None) -> Array:  # noqa:
     return w / np.linalg.norm(w) if np.linalg.norm(w) > TOL.zero else np.array([1.0, 0.0, 0.0])
 
 
-def _replica_set(network, pi: int, pts: Array, tol: float) -> tuple[int, ...]:  # noqa: ANN001
+def _replica_set(network, pi: int, pts: Array, tol: float) -> tuple[int, ...]:
     """Group elements with distinct images of the piece (self-symmetric duplicates dropped)."""
     piece = network.pieces[pi]
     sym = network.drawing.curves[piece.basic].symmetry
@@ -416,7 +416,7 @@ def _replica_set(network, pi: int, pts: Array, tol: float) -> tuple[int, ...]:  
     return tuple(keep)
 
 
-def _member_name(network, pi: int) -> str:  # noqa: ANN001
+def _member_name(network, pi: int) -> str:
     p = network.pieces[pi]
     for j, q in enumerate(network.pieces):
         if q.basic == p.basic and q.kind == "ogee":
@@ -427,7 +427,7 @@ def _member_name(network, pi: int) -> str:  # noqa: ANN001
 
 
 def sweep_piece(network, pi: int, profile: Profile, segments: int = 200, caps: bool = True,
-                cut: bool = True) -> Member:  # noqa: ANN001
+                cut: bool = True) -> Member:
     """Sweep one basic piece: frames, caps, mirror-plane cuts; not yet replicated.
 
     Parameters
@@ -522,7 +522,7 @@ def sweep_piece(network, pi: int, profile: Profile, segments: int = 200, caps: b
 
 
 def sweep_members(network, profile: Profile, segments: int = 200, kinds: Iterable[str] = SWEPT_KINDS,
-                  basics: Sequence[int] | None = None, caps: bool = True, cut: bool = True) -> list[Member]:  # noqa: ANN001
+                  basics: Sequence[int] | None = None, caps: bool = True, cut: bool = True) -> list[Member]:
     """Sweep every basic piece of the given kinds (optionally of some basic curves only)."""
     ks = set(kinds)
     bad = ks - set(SWEPT_KINDS)
@@ -535,7 +535,7 @@ def sweep_members(network, profile: Profile, segments: int = 200, kinds: Iterabl
     ]
 
 
-def replicate(network, members: Sequence[Member]) -> Mesh:  # noqa: ANN001
+def replicate(network, members: Sequence[Member]) -> Mesh:
     """All replicas of the members as one mesh, one part per member replica.
 
     Mirrored replicas have their triangles reversed (outward orientation kept).
@@ -575,7 +575,7 @@ def replicate(network, members: Sequence[Member]) -> Mesh:  # noqa: ANN001
 
 
 def sweep_network(network, profile: Profile, segments: int = 200, kinds: Iterable[str] = SWEPT_KINDS,
-                  basics: Sequence[int] | None = None, caps: bool = True, cut: bool = True) -> Mesh:  # noqa: ANN001
+                  basics: Sequence[int] | None = None, caps: bool = True, cut: bool = True) -> Mesh:
     """Every member of a network: swept once per basic piece, replicated by its symmetries.
 
     Parameters
@@ -616,7 +616,7 @@ def sweep_network(network, profile: Profile, segments: int = 200, kinds: Iterabl
 # -- built-in looks -----------------------------------------------------------------------------
 
 
-def default_size(network) -> float:  # noqa: ANN001
+def default_size(network) -> float:
     """A member thickness that reads well: 1.2 % of the network's bounding-box diagonal."""
     b = network.bounds()
     return 0.012 * float(np.linalg.norm(b[1] - b[0]))

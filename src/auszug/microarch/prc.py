@@ -108,7 +108,7 @@ def oriented_segments(drawing: Drawing) -> list[tuple[int, int, Curve]]:
 
 
 @lru_cache(maxsize=4096)
-def _replicas(top: Curve, sym) -> tuple[Curve, ...]:  # noqa: ANN001
+def _replicas(top: Curve, sym) -> tuple[Curve, ...]:
     """Images of an (immutable, cached) top curve under a symmetry group."""
     cen = np.asarray(sym.center)
     return tuple(top.transformed(m, cen - m @ cen) for m in sym.matrices())
@@ -188,7 +188,7 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
     return out
 
 
-def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Curve, kid_i: int,  # noqa: PLR0913
+def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Curve, kid_i: int,
            cj: int, sj: int, top_j: Curve, kid_j: int) -> tuple[TopIntersection, ...]:
     """The intersection records of basic segment (ci, si) with every replica of (cj, sj).
 

@@ -60,7 +60,7 @@ class Payload:
         self.chunks: list[bytes] = []
         self.size = 0   # in 4-byte values
 
-    def put(self, a: Any, dtype: str = "f4") -> P.ArrayRef:  # noqa: ANN401
+    def put(self, a: Any, dtype: str = "f4") -> P.ArrayRef:
         """Append ``a`` as little-endian ``dtype`` ("f4" or "u4"); its reference into the frame."""
         arr = np.ascontiguousarray(a, dtype="<f4" if dtype == "f4" else "<u4")
         ref = P.ArrayRef(offset=self.size, shape=list(arr.shape), dtype=dtype)  # type: ignore[arg-type]
@@ -95,7 +95,7 @@ def loops_of(net: Network) -> list:
     return loops
 
 
-def _faces(net: Network, mode: str, picked: Sequence[int]) -> Any:  # noqa: ANN401 - Faces or None
+def _faces(net: Network, mode: str, picked: Sequence[int]) -> Any:  # Faces or None
     from auszug.meshing import network_faces
 
     if mode == "none":
@@ -118,7 +118,7 @@ def _faces(net: Network, mode: str, picked: Sequence[int]) -> Any:  # noqa: ANN4
     return faces
 
 
-def _profile(net: Network, style: str, size: float | None) -> Any:  # noqa: ANN401
+def _profile(net: Network, style: str, size: float | None) -> Any:
     from auszug.meshing import default_size, profile_for
 
     if style not in ("tube", "bar", "ribbon"):
@@ -154,7 +154,7 @@ def members(net: Network, style: str, size: float | None, segments: int) -> list
     return [sweep_piece(net, pi, prof, seg) for pi, p in enumerate(net.pieces) if p.kind in SWEPT_KINDS]
 
 
-def _member_name(net: Network, mb: Any) -> str:  # noqa: ANN401
+def _member_name(net: Network, mb: Any) -> str:
     p = net.pieces[mb.piece]
     return f"{mb.basic}/{p.kind}{p.segment if p.segment >= 0 else ''}"
 
@@ -219,7 +219,7 @@ def _parse_colours(colors: Sequence[str]) -> list[tuple[float, float, float]]:
     return out  # type: ignore[return-value]
 
 
-def _glb(mesh: Any, colours: list[tuple[float, float, float]]) -> bytes:  # noqa: ANN401
+def _glb(mesh: Any, colours: list[tuple[float, float, float]]) -> bytes:
     """GLB bytes of ``mesh`` with the members of basic curve i in ``colours[i]`` (others unchanged)."""
     from auszug.formats.gltf import dumps_glb, pack_glb, to_gltf
 
@@ -281,7 +281,7 @@ def export_file(net: Network, name: str, *, format: str, style: str = "bar", fac
 
 
 def _export_mesh(net: Network, style: str, faces: str, loops: Sequence[int], solid: bool,
-                 segments: int | None) -> Any:  # noqa: ANN401 - a Mesh
+                 segments: int | None) -> Any:  # a Mesh
     from auszug.meshing import concatenate, sweep_network
     from auszug.meshing.solid import solid as make_solid
 

@@ -184,7 +184,7 @@ class _Studio:
                     msg = P.decode(data)
                     msg_id = msg.id
                     await self.handle(conn, msg, jobs)
-                except Exception as e:  # noqa: BLE001 - a bad message must not kill the session
+                except Exception as e:  # a bad message must not kill the session
                     if msg is None:
                         msg_id = _raw_id(data)
                     # edits name the document they failed on; the other messages name their own file
@@ -204,7 +204,7 @@ class _Studio:
             msg, snapshot, label = await jobs.get()
             try:
                 reply, payload = await asyncio.to_thread(self._job, msg, snapshot, label)
-            except Exception as e:  # noqa: BLE001
+            except Exception as e:
                 reply, payload = _error(e, msg.id, label), None
             conn.outbox.put(P.encode(reply), payload)
 
@@ -227,7 +227,7 @@ class _Studio:
             raise AuszugError("no drawing is open: send an 'open' message first")
         return conn.doc
 
-    async def handle(self, conn: Connection, msg: Any, jobs: asyncio.Queue) -> None:  # noqa: ANN401
+    async def handle(self, conn: Connection, msg: Any, jobs: asyncio.Queue) -> None:
         """Carry out one decoded message for ``conn``; replies go to the outboxes."""
         hub = self.hub
         if isinstance(msg, (P.EditOp, P.Undo, P.Redo)):
@@ -291,12 +291,12 @@ class _Studio:
             raise P.ProtocolError(f"unhandled message {type(msg).__name__}")
 
     @staticmethod
-    def _edit(doc: Document, fn: Any, args: tuple) -> None:  # noqa: ANN401
+    def _edit(doc: Document, fn: Any, args: tuple) -> None:
         fn(*args)
         doc.frames()   # the geometry, computed where the edit ran (the event loop or a worker)
 
     @staticmethod
-    def _opened(make: Any, *args: Any) -> Document:  # noqa: ANN401
+    def _opened(make: Any, *args: Any) -> Document:
         doc = make(*args)
         doc.frames()
         return doc
@@ -322,7 +322,7 @@ def create_app(
         await studio.socket(ws, max_message_bytes)
 
     @contextlib.asynccontextmanager
-    async def lifespan(app: Starlette):  # noqa: ANN202
+    async def lifespan(app: Starlette):
         try:
             yield
         finally:

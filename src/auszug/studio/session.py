@@ -183,7 +183,7 @@ def network_of(drawing: Drawing) -> Network:
 
 
 @lru_cache(maxsize=1024)
-def _transforms(sym: Any) -> NDArray[np.float64]:  # noqa: ANN401 - a Symmetry
+def _transforms(sym: Any) -> NDArray[np.float64]:  # a Symmetry
     m = sym.matrices()
     c = np.asarray(sym.center)
     k = len(m)
@@ -214,12 +214,12 @@ def replica_transforms(drawing: Drawing, basic: int) -> NDArray[np.float64]:
     return _transforms(drawing.curves[basic].symmetry)
 
 
-def _xy(p: Any) -> list[float]:  # noqa: ANN401
+def _xy(p: Any) -> list[float]:
     return [float(p[0]), float(p[1])]
 
 
 @lru_cache(maxsize=4096)
-def _curve_info(c: Any, apex: float, bottom: float) -> dict:  # noqa: ANN401 - a BasicCurve
+def _curve_info(c: Any, apex: float, bottom: float) -> dict:  # a BasicCurve
     sym = c.symmetry
     return {
         "vertices": [_xy(v) for v in c.vertices],
@@ -266,7 +266,7 @@ def _side(points: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.stack([s, points[:, 2]], axis=1)
 
 
-def _distinct_replicas(sym: Any, points: NDArray[np.float64]) -> list[int]:  # noqa: ANN401
+def _distinct_replicas(sym: Any, points: NDArray[np.float64]) -> list[int]:
     """Replicas of a vertical piece that do not coincide (to 1e-12) with an earlier one.
 
     The rule of :meth:`Network.curves`; all pairs at once instead of ``allclose`` per pair.
@@ -286,7 +286,7 @@ def _ref(offset: int, shape: tuple[int, ...]) -> dict:
     return {"offset": offset, "shape": list(shape), "dtype": "f4"}
 
 
-def _dumps(v: Any) -> str:  # noqa: ANN401
+def _dumps(v: Any) -> str:
     return json.dumps(v, separators=(",", ":"), allow_nan=False)
 
 
@@ -300,7 +300,7 @@ class _PieceData:
 
     __slots__ = ("sym", "layer", "head", "n", "k", "data", "lo", "hi", "tail", "tail_json", "n_rep")
 
-    def __init__(self, p: Any, sym: Any, layer: int):  # noqa: ANN401 - a Piece and a Symmetry
+    def __init__(self, p: Any, sym: Any, layer: int):  # a Piece and a Symmetry
         self.sym, self.layer = sym, layer
         tr = _transforms(sym)
         labels = sym.labels()
@@ -355,7 +355,7 @@ class _PieceData:
 _PIECES: "weakref.WeakKeyDictionary[Any, _PieceData]" = weakref.WeakKeyDictionary()
 
 
-def _piece_data(p: Any, curves: tuple) -> _PieceData:  # noqa: ANN401
+def _piece_data(p: Any, curves: tuple) -> _PieceData:
     c = curves[p.basic]
     d = _PIECES.get(p)
     if d is None or d.layer != c.layer or not (d.sym is c.symmetry or d.sym == c.symmetry):
@@ -368,7 +368,7 @@ def _piece_data(p: Any, curves: tuple) -> _PieceData:  # noqa: ANN401
 
 
 @lru_cache(maxsize=4096)
-def _curve_json(c: Any, apex: float, bottom: float) -> str:  # noqa: ANN401
+def _curve_json(c: Any, apex: float, bottom: float) -> str:
     return _dumps(_curve_info(c, apex, bottom))
 
 
@@ -496,7 +496,7 @@ def check_file_name(name: str) -> str:
     return name
 
 
-def _drawing_format(name: str) -> Any:  # noqa: ANN401 - a FileFormat
+def _drawing_format(name: str) -> Any:  # a FileFormat
     from auszug.formats._registry import format_for
 
     low = name.lower()

@@ -35,7 +35,7 @@ FIG19_REJECTED = 2.4
 FIG19_TOTAL = 6.0
 
 
-def _plt():  # noqa: ANN202
+def _plt():
     import matplotlib
 
     matplotlib.use("Agg")

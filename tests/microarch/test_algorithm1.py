@@ -65,8 +65,8 @@ def _oracle(drawing):
                 if same and k == 0:
                     continue
                 rep = (dense[(cj, sj)] - sym.center) @ m.T + sym.center
-                own = dense[(ci, si)]
-                if same and (np.abs(rep - own).max() < 1e-9 or np.abs(rep[::-1] - own).max() < 1e-9):
+                here = dense[(ci, si)]
+                if same and (np.abs(rep - here).max() < 1e-9 or np.abs(rep[::-1] - here).max() < 1e-9):
                     continue
                 for u, u2, pt in _crossings(dense[(ci, si)], rep):
                     if not 1e-3 < u < 1 - 1e-3:

@@ -57,9 +57,11 @@ def register(fmt: FileFormat) -> FileFormat:
 
 
 def formats() -> dict[str, FileFormat]:
-    """All registered formats by name."""
-    from auszug import formats as _pkg  # noqa: F401  (imports register the built-ins)
+    """All registered formats by name.
 
+    The built-in formats register themselves when :mod:`auszug.formats` is imported,
+    which Python does before it imports this module.
+    """
     return dict(_FORMATS)
 
 

@@ -40,7 +40,7 @@ from auszug.geometry.bezier import CubicBezier
 from auszug.geometry.curve import Array, Curve
 from auszug.geometry.line import Line
 
-__all__ = ["Intersection", "intersect", "intersect_many"]
+__all__ = ["Intersection", "intersect", "intersect_many", "Prepared", "prepare", "intersect_prepared"]
 
 _TAU = 2.0 * math.pi
 
@@ -314,17 +314,22 @@ class _BezPrim:
 
 # Curves are immutable, so their float form is memoised per object (weakly: the cache
 # never keeps a curve alive). This halves the cost of intersecting a pair.
-_Prim = _LinePrim | _ArcPrim | _BezPrim
-_PRIMS: weakref.WeakKeyDictionary[Curve, _Prim] = weakref.WeakKeyDictionary()
+Prepared = _LinePrim | _ArcPrim | _BezPrim
+_PRIMS: weakref.WeakKeyDictionary[Curve, Prepared] = weakref.WeakKeyDictionary()
 
 
-def _prim(c: Curve) -> _Prim:
+def prepare(c: Curve) -> Prepared:
+    """The float form of a curve that :func:`intersect_prepared` works on, memoised per curve.
+
+    Its ``x0, y0, x1, y1`` are the end points; callers that intersect one curve with
+    many (offsets, PRC search) prepare it once.
+    """
     try:
         return _PRIMS[c]
     except (KeyError, TypeError):
         pass
     if isinstance(c, Line):
-        p: _Prim = _LinePrim(c)
+        p: Prepared = _LinePrim(c)
     elif isinstance(c, Arc):
         p = _ArcPrim(c)
     elif isinstance(c, CubicBezier):
@@ -504,7 +509,8 @@ def _boxes_apart(a, b, tol: float) -> bool:
     return ba[0] > bb[2] + tol or bb[0] > ba[2] + tol or ba[1] > bb[3] + tol or bb[1] > ba[3] + tol
 
 
-def _intersect_prims(a, b) -> list[Intersection]:
+def intersect_prepared(a: Prepared, b: Prepared) -> list[Intersection]:
+    """Intersections of two prepared curves: :func:`intersect` without the preparation."""
     tol = _tolerance.TOL.intersect
     if _boxes_apart(a, b, tol):
         return []
@@ -763,7 +769,7 @@ def intersect(c1: Curve, c2: Curve) -> list[Intersection]:
     >>> [h.t2 for h in intersect(Line((0, 1), (1, 1)), Arc((0, 0), 1.0, 0.0, 3.0))]
     [0.5235987755982988]
     """
-    return _intersect_prims(_prim(c1), _prim(c2))
+    return intersect_prepared(prepare(c1), prepare(c2))
 
 
 def intersect_many(
@@ -793,8 +799,8 @@ def intersect_many(
     >>> intersect_many(star, [Line((5, 5), (6, 6))])
     {}
     """
-    pa = [_prim(c) for c in curves_a]
-    pb = pa if curves_b is None else [_prim(c) for c in curves_b]
+    pa = [prepare(c) for c in curves_a]
+    pb = pa if curves_b is None else [prepare(c) for c in curves_b]
     if not pa or not pb:
         return {}
     tol = _tolerance.TOL.intersect
@@ -810,7 +816,7 @@ def intersect_many(
         near = np.triu(near, k=1)
     out: dict[tuple[int, int], list[Intersection]] = {}
     for i, j in zip(*(ix.tolist() for ix in np.nonzero(near)), strict=True):
-        hits = _intersect_prims(pa[i], pb[j])
+        hits = intersect_prepared(pa[i], pb[j])
         if hits:
             out[(i, j)] = hits
     return out

@@ -48,7 +48,7 @@ from auszug.errors import GeometryError
 from auszug.geometry import _tolerance
 from auszug.geometry.arc import Arc
 from auszug.geometry.curve import Curve
-from auszug.geometry.intersect import _prim
+from auszug.geometry.intersect import prepare
 from auszug.geometry.line import Line
 
 __all__ = ["OffsetCurves", "offset_curves", "is_closed", "signed_area"]
@@ -375,7 +375,7 @@ def offset_curves(
     if d == 0.0:
         return OffsetCurves(tuple(curves), np.arange(n), np.zeros(n, bool), 0.0, closed)
     car = [_Carrier(i, c, d) for i, c in enumerate(curves)]
-    prims = [_prim(c) for c in curves]
+    prims = [prepare(c) for c in curves]
     m = n if closed else n - 1  # number of corners
     turns = [_turn(car[k], car[(k + 1) % n]) for k in range(m)]
     corners = [car[k].end for k in range(m)]

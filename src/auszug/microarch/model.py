@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import DrawingError, GeometryError
-from auszug.geometry import Curve, Line, arc_from_tangent
+from auszug.geometry import TOL, Curve, Line, arc_from_tangent
 from auszug.geometry.symmetry import SymmetryGroup
 
 __all__ = [
@@ -98,9 +98,7 @@ def _segment_curve(seg: Segment, p0: tuple, p1: tuple, flip: bool) -> Curve:
     Curves are immutable values: the same segment between the same points is built
     once (interactive rebuilds reuse the curves an edit did not touch).
     """
-    from auszug.geometry import _tolerance
-
-    return _cached_curve(seg, p0, p1, flip, (_tolerance.TOL.zero, _tolerance.TOL.collinear))
+    return _cached_curve(seg, p0, p1, flip, (TOL.zero, TOL.collinear))
 
 
 @lru_cache(maxsize=1024)

@@ -235,7 +235,7 @@ def _g_setup(top: Curve, mode: str, theta: float) -> tuple[tuple[str, float, flo
 
 def _t_of_g(piece: Piece, g: float) -> float:
     """Inverse of the side-view coordinate map on the piece's top curve."""
-    from auszug.geometry._roots import find_root
+    from auszug.geometry.roots import find_root
 
     g0 = float(piece.g_of_t(0.0))
     g1 = float(piece.g_of_t(1.0))

@@ -26,7 +26,7 @@ from numpy.typing import NDArray
 
 from auszug._cache import LruCache
 from auszug.geometry import TOL, Curve
-from auszug.geometry.intersect import _intersect_prims, _prim
+from auszug.geometry.intersect import intersect_prepared, prepare
 from auszug.microarch.model import Drawing
 
 __all__ = ["TopIntersection", "PrcChoice", "intersections", "algorithm1", "oriented_segments"]
@@ -119,7 +119,7 @@ def _same_curve(a: Curve, b: Curve, tol: float) -> bool:
     # quick refusal from the end points' floats (memoised by the intersection kernel): curves
     # whose ends differ by clearly more than tol are not the same; the margin covers the
     # rounding between an end point and the curve evaluated at t = 0 or 1
-    pa_, pb_ = _prim(a), _prim(b)
+    pa_, pb_ = prepare(a), prepare(b)
     m = tol + 1e-12 * max(1.0, abs(pa_.x0), abs(pa_.y0), abs(pa_.x1), abs(pa_.y1))
     fwd = (abs(pa_.x0 - pb_.x0) <= m and abs(pa_.y0 - pb_.y0) <= m and abs(pa_.x1 - pb_.x1) <= m
            and abs(pa_.y1 - pb_.y1) <= m)
@@ -215,8 +215,8 @@ def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Cur
                 pass
         else:
             if ptop is None:
-                ptop = _prim(top)
-            found = _intersect_prims(ptop, _prim(rep))
+                ptop = prepare(top)
+            found = intersect_prepared(ptop, prepare(rep))
             hits = tuple((float(top.u_at_t(h.t1)), float(rep.u_at_t(h.t2)), h.point) for h in found)
             if hits and same_family:
                 if scale[0] is None:

@@ -147,7 +147,7 @@ def decorated(base: SideView, g_split: float) -> tuple[SideView, tuple[float, fl
     DrawingError
         If no split at ``g_split`` exists.
     """
-    from auszug.geometry._roots import find_root
+    from auszug.geometry.roots import find_root
 
     gc = float(base.breaks[1])
     G = float(base.breaks[2])

@@ -255,7 +255,7 @@ def export_file(net: Network, name: str, *, format: str, style: str = "bar", fac
     """
     from pathlib import Path
 
-    from auszug.formats._registry import format_for
+    from auszug.formats import format_for
 
     if format not in MIMES:
         raise StudioMeshError(f"format must be one of {', '.join(MIMES)}, got {format!r}")

@@ -497,7 +497,7 @@ def check_file_name(name: str) -> str:
 
 
 def _drawing_format(name: str) -> Any:  # a FileFormat
-    from auszug.formats._registry import format_for
+    from auszug.formats import format_for
 
     low = name.lower()
     if not low.endswith(DRAWING_SUFFIXES) or low.endswith((".network.json", ".tracery.json")):

@@ -46,6 +46,12 @@ class FileFormat:
     writer: Callable[[Any, str], str | bytes] | None = None
     binary: bool = False
 
+    def write(self, obj: Any, name: str) -> str | bytes:
+        """The text or bytes of ``obj`` in this format (``name`` for messages)."""
+        if self.writer is None:
+            raise FormatError(f"{self.name} files are read only", name)
+        return self.writer(obj, name)
+
 
 _FORMATS: dict[str, FileFormat] = {}
 

@@ -59,7 +59,8 @@ def part_colour(part: Any) -> tuple[float, float, float]:
     """
     if part.kind == "member":
         h = colour(part.basic).lstrip("#")
-        return tuple(int(h[i:i + 2], 16) / 255.0 for i in (0, 2, 4))  # type: ignore[return-value]
+        r, g, b = (int(h[i:i + 2], 16) / 255.0 for i in (0, 2, 4))
+        return r, g, b
     return {"face": FACE_RGB, "base": BASE_RGB}.get(part.kind, SOLID_RGB)
 
 

@@ -9,6 +9,7 @@ three (``n_points n_rot has_reflection``) the legacy or v1 dialect.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from auszug.errors import DrawingError, FormatError
 from auszug.formats import uc_text
@@ -70,7 +71,7 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
     """Read the web dialect (see FORMATS.md)."""
     lines = uc_text.lines(text)
     declared: int | None = None
-    curves: list[dict] = []
+    curves: list[dict[str, Any]] = []  # one record of the lines of each curve
     bottoms: list[float] = []
     for no, toks in lines:
         key, args = toks[0], toks[1:]
@@ -85,7 +86,7 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
                     f"'unitCurve' needs 2 numbers (rotation fold, has reflection), got {len(args)}",
                     path, no)
             fold, refl = uc_text.numbers(args, 2, key, path, no)
-            cur = {
+            cur: dict[str, Any] = {
                 "line": no,
                 "fold": uc_text.integer(fold, "unitCurve fold", path, no, 1),
                 "mirror": bool(uc_text.integer(refl, "unitCurve has_reflection", path, no, 0)),
@@ -233,6 +234,7 @@ def write_web(drawing: Drawing, name: str = "") -> str:
         for x, y in pts:
             out.append(f"ptPos {_fmt(x)} {_fmt(y)}")
         piece = net.ogee_of(ci)
+        assert piece.prc_fraction is not None  # every ogee piece has its PRC
         out.append(f"level {c.layer}")
         out.append(f"height {_fmt(net.apex_heights[ci])}")
         out.append(f"prc_t {_fmt(piece.prc_fraction)}")

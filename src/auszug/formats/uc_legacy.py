@@ -93,7 +93,7 @@ import math
 
 from auszug.errors import DrawingError, FormatError
 from auszug.formats import uc_text
-from auszug.microarch.model import BasicCurve, Drawing, Segment, Symmetry
+from auszug.microarch.model import AxisRule, BasicCurve, Drawing, Segment, Symmetry
 
 __all__ = ["LABEL_MARKS", "read_legacy"]
 
@@ -172,9 +172,11 @@ def _segments(cur: _Curve) -> list[Segment]:
 
 def _symmetry(cur: _Curve) -> Symmetry:
     axis = cur.axis if cur.axis is not None else (0.0, 1.0)
-    rule = "fixed"
+    rule: AxisRule = "fixed"
+    ends: tuple[tuple[tuple[float, float], AxisRule], ...] = ((cur.points[0], "first point"),
+                                                             (cur.points[-1], "last point"))
     if cur.mirror:
-        for cand, name in ((cur.points[0], "first point"), (cur.points[-1], "last point")):
+        for cand, name in ends:
             if all(abs(u - v) <= _AXIS_POINT_TOL for u, v in zip(axis, cand, strict=True)) and math.hypot(*cand) > 0:
                 axis, rule = cand, name
                 break
@@ -325,7 +327,7 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
         if cur.mirror and cur.axis is None:
             raise FormatError(f"curve {ci} has a reflection but no 'reflectionPoint' line",
                               path, cur.line)
-        if cur.mirror and math.hypot(*cur.axis) <= 1e-12:  # type: ignore[misc]
+        if cur.mirror and cur.axis is not None and math.hypot(*cur.axis) <= 1e-12:
             raise FormatError("mirror axis of zero length: 'reflectionPoint' is the origin",
                               path, cur.axis_line)
         try:

@@ -25,7 +25,7 @@ BACKWARD_SINE = 1e-3
 ARC_MIN_SINE = 1e-7
 
 
-@dataclass(frozen=True, eq=False, repr=False)
+@dataclass(frozen=True, eq=False, repr=False, init=False)
 class Arc(Curve):
     """Arc of the circle (``center``, ``radius``) from angle ``theta0`` over ``sweep``.
 
@@ -58,6 +58,14 @@ class Arc(Curve):
     theta0: float
     sweep: float
     kind = "arc"
+
+    # the centre field holds an array; the constructor takes any array-like and converts
+    def __init__(self, center: ArrayLike, radius: float, theta0: float, sweep: float) -> None:
+        object.__setattr__(self, "center", center)
+        object.__setattr__(self, "radius", radius)
+        object.__setattr__(self, "theta0", theta0)
+        object.__setattr__(self, "sweep", sweep)
+        self.__post_init__()
 
     def __post_init__(self) -> None:
         c = as_point(self.center, "arc centre")
@@ -131,14 +139,15 @@ class Arc(Curve):
 
     def project(self, p: ArrayLike) -> float:
         """Parameter of the point of the arc closest to ``p``."""
-        v = np.asarray(p, dtype=float) - self.center
+        q = np.asarray(p, dtype=float)
+        v = q - self.center
         if float(np.hypot(*v)) <= _tolerance.TOL.zero:
             return 0.0
         t = float(self.t_of_angle(math.atan2(v[1], v[0])))
         if 0.0 <= t <= 1.0:
             return t
-        d0 = np.hypot(*(self.point(0.0) - p))
-        d1 = np.hypot(*(self.point(1.0) - p))
+        d0 = np.hypot(*(self.point(0.0) - q))
+        d1 = np.hypot(*(self.point(1.0) - q))
         return 0.0 if d0 <= d1 else 1.0
 
     def to_dict(self) -> dict[str, Any]:

@@ -33,7 +33,7 @@ _TABLE_REL = 1e-15
 _TABLE_MAX_LEVELS = 60
 
 
-@dataclass(frozen=True, eq=False, repr=False)
+@dataclass(frozen=True, eq=False, repr=False, init=False)
 class CubicBezier(Curve):
     """The cubic Bezier curve with control points ``p0, p1, p2, p3``.
 
@@ -63,6 +63,12 @@ class CubicBezier(Curve):
     p2: Array
     p3: Array
     kind = "bezier"
+
+    # the fields hold arrays; the constructor takes any array-like and converts
+    def __init__(self, p0: ArrayLike, p1: ArrayLike, p2: ArrayLike, p3: ArrayLike) -> None:
+        for name, p in (("p0", p0), ("p1", p1), ("p2", p2), ("p3", p3)):
+            object.__setattr__(self, name, p)
+        self.__post_init__()
 
     def __post_init__(self) -> None:
         pts = [as_point(p, f"Bezier control point {i}") for i, p in enumerate(

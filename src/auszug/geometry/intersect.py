@@ -235,7 +235,8 @@ def _bez_piece(t0: float, t1: float, c: tuple[float, ...]) -> _Piece:
 
 
 def _bez_halves(p: _Piece) -> tuple[_Piece, _Piece]:
-    x0, y0, x1, y1, x2, y2, x3, y3 = p.ctrl  # type: ignore[misc]
+    assert p.ctrl is not None  # a Bezier piece
+    x0, y0, x1, y1, x2, y2, x3, y3 = p.ctrl
     ax, ay = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
     bx, by = 0.5 * (x1 + x2), 0.5 * (y1 + y2)
     cx, cy = 0.5 * (x2 + x3), 0.5 * (y2 + y3)
@@ -514,15 +515,15 @@ def intersect_prepared(a: Prepared, b: Prepared) -> list[Intersection]:
     tol = _tolerance.TOL.intersect
     if _boxes_apart(a, b, tol):
         return []
-    if type(a) is _BezPrim or type(b) is _BezPrim:
+    if isinstance(a, _BezPrim) or isinstance(b, _BezPrim):
         return _finish(_subdivision_hits(a, b, tol), a, b, tol)
     hits: list[_Hit] = []
-    la, lb = type(a) is _LinePrim, type(b) is _LinePrim
-    if la and lb:
-        _line_line(a, b, tol, hits)
-    elif la:
-        _line_arc(a, b, tol, hits, swap=False)
-    elif lb:
+    if isinstance(a, _LinePrim):
+        if isinstance(b, _LinePrim):
+            _line_line(a, b, tol, hits)
+        else:
+            _line_arc(a, b, tol, hits, swap=False)
+    elif isinstance(b, _LinePrim):
         _line_arc(b, a, tol, hits, swap=True)
     else:
         _arc_arc(a, b, tol, hits)

@@ -15,7 +15,7 @@ from auszug.geometry.curve import Array, Curve, as_point
 __all__ = ["Line"]
 
 
-@dataclass(frozen=True, eq=False, repr=False)
+@dataclass(frozen=True, eq=False, repr=False, init=False)
 class Line(Curve):
     """The segment from ``p0`` to ``p1``; t is proportional to arc length.
 
@@ -38,6 +38,12 @@ class Line(Curve):
     p1: Array
     _len: float = field(init=False)
     kind = "line"
+
+    # the fields hold arrays; the constructor takes any array-like and converts
+    def __init__(self, p0: ArrayLike, p1: ArrayLike) -> None:
+        object.__setattr__(self, "p0", p0)
+        object.__setattr__(self, "p1", p1)
+        self.__post_init__()
 
     def __post_init__(self) -> None:
         p0 = as_point(self.p0, "line start")

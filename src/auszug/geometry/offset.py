@@ -410,10 +410,11 @@ def offset_curves(
             if res is None:
                 broken = p if p.b - p.a < q.b - q.a else q
                 break
-            if res == "round":
-                round_after[p.index] = corner  # type: ignore[assignment]
+            if isinstance(res, str):  # "round", which _join answers only at a corner (turn known)
+                assert corner is not None
+                round_after[p.index] = corner
                 continue
-            p.b, q.a = res  # type: ignore[misc]
+            p.b, q.a = res
         if broken is None:
             shortest = min(alive, key=lambda i: car[i].b - car[i].a)
             if car[shortest].b - car[shortest].a > tol:

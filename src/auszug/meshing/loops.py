@@ -75,7 +75,7 @@ class Strand:
 
     def points(self, u: ArrayLike) -> Array:
         """3D points at normalised top-view arc length u of the basic piece, shape (..., 3)."""
-        p = self._piece.point3(np.asarray(u, dtype=float))  # type: ignore[attr-defined]
+        p = self._piece.point3(np.asarray(u, dtype=float))  # type: ignore[attr-defined]  # a network Piece; meshing does not name microarch types
         out = np.array(p, dtype=float)
         out[..., :2] = (p[..., :2] - self.center) @ self.matrix.T + self.center
         return out
@@ -245,7 +245,8 @@ class Loop:
         g = self.graph
         lens = np.array([g.edge_lengths[e] for e, _ in self.halfedges])
         total = float(lens.sum())
-        pts, corners = [], []
+        pts: list[Array] = []
+        corners: list[int] = []
         for (e, fw), ln in zip(self.halfedges, lens, strict=True):
             k = max(2, int(round(n * ln / total)))
             corners.append(sum(len(p) for p in pts))
@@ -375,7 +376,8 @@ def network_graph(network, meet_tol: float = 1e-2) -> NetworkGraph:
                 splits[j].append(uj)
                 meets.append((i, ui, j, uj))
     # node candidates: every split point; a meeting joins its two candidates
-    cand, owner = [], []
+    cand: list[Array] = []
+    owner: list[tuple[int, int]] = []
     first: list[int] = []
     for si, (st, sp) in enumerate(zip(strands, splits, strict=True)):
         u = np.unique(np.clip(np.asarray(sp), 0.0, 1.0))

@@ -305,7 +305,7 @@ def area_gradient(vertices: ArrayLike, faces: ArrayLike) -> tuple[Array, Array]:
     f = np.asarray(faces, dtype=np.int64)
     L = cotan_laplacian(v, f)
     ar = triangle_areas(v, f)
-    va = np.bincount(f.reshape(-1), weights=np.repeat(ar / 3.0, 3), minlength=len(v))
+    va = np.asarray(np.bincount(f.reshape(-1), weights=np.repeat(ar / 3.0, 3), minlength=len(v)), dtype=float)
     return L @ v, va
 
 
@@ -363,7 +363,7 @@ class _Pattern:
     def values(self, cot: Array) -> Array:
         """The non-zeros of L in CSR order for corner cotangents (m, 3)."""
         w = 0.5 * np.concatenate([cot[:, 0], cot[:, 1], cot[:, 2]])
-        return np.bincount(self.pos, weights=np.tile(w, 4) * self.sign, minlength=self.nnz)
+        return np.asarray(np.bincount(self.pos, weights=np.tile(w, 4) * self.sign, minlength=self.nnz), dtype=float)
 
     def full(self, data: Array):
         """L as a CSR matrix."""
@@ -414,7 +414,7 @@ def _vertex_normals_areas(x: Array, f: IntArray) -> tuple[Array, Array, Array]:
         vn[:, ax] = np.bincount(f.reshape(-1), weights=w, minlength=n)
     ln = np.linalg.norm(vn, axis=1, keepdims=True)
     vn = np.divide(vn, ln, out=np.zeros_like(vn), where=ln > 0)
-    va = np.bincount(f.reshape(-1), weights=np.repeat(dbl / 6.0, 3), minlength=n)
+    va = np.asarray(np.bincount(f.reshape(-1), weights=np.repeat(dbl / 6.0, 3), minlength=n), dtype=float)
     return vn, va, 0.5 * dbl
 
 
@@ -520,7 +520,7 @@ def _angle_defect(x: Array, f: IntArray) -> Array:
         u = x[f[:, (c + 1) % 3]] - x[f[:, c]]
         v = x[f[:, (c + 2) % 3]] - x[f[:, c]]
         ang[:, c] = np.arctan2(np.linalg.norm(np.cross(u, v), axis=1), np.einsum("ij,ij->i", u, v))
-    return 2 * np.pi - np.bincount(f.reshape(-1), weights=ang.reshape(-1), minlength=n)
+    return np.asarray(2 * np.pi - np.bincount(f.reshape(-1), weights=ang.reshape(-1), minlength=n), dtype=float)
 
 
 def minimal_surface(

@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
-from typing import Literal, Sequence
+from typing import Any, Literal, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -80,7 +80,8 @@ class Segment:
 
     def curve(self, p0: ArrayLike, p1: ArrayLike) -> Curve:
         """The top-view curve from ``p0`` to ``p1``."""
-        return _segment_curve(self, (float(p0[0]), float(p0[1])), (float(p1[0]), float(p1[1])), False)
+        a, b = np.asarray(p0, dtype=float), np.asarray(p1, dtype=float)
+        return _segment_curve(self, (float(a[0]), float(a[1])), (float(b[0]), float(b[1])), False)
 
     def _make(self, p0: ArrayLike, p1: ArrayLike) -> Curve:
         if self.kind == "line":
@@ -298,7 +299,7 @@ class BasicCurve:
         except GeometryError as e:
             raise DrawingError(f"segment {i}: {e}") from None
 
-    def with_(self, **changes: object) -> "BasicCurve":
+    def with_(self, **changes: Any) -> "BasicCurve":
         """A copy with some fields replaced (validated again)."""
         return replace(self, **changes)
 

@@ -83,10 +83,10 @@ class Piece:
         mode, a, b, c = self.g_scale
         t = np.asarray(t, dtype=float)
         if mode == "arclength":
-            return self.top.u_at_t(t) * a  # type: ignore[union-attr]
+            return self.top.u_at_t(t) * a  # type: ignore[union-attr]  # only posts/pillars lack a top; their g is 'u'
         if mode == "u":
             return t
-        p = self.top.point(t) - self.top.start  # type: ignore[union-attr]
+        p = self.top.point(t) - self.top.start  # type: ignore[union-attr]  # as above: a top curve here
         return c * (p[..., 0] * a + p[..., 1] * b)
 
     def height_at_t(self, t: ArrayLike) -> Array:
@@ -393,7 +393,8 @@ def _build_curve(
         try:
             if kind == "ogee":
                 gs, G = _g_setup(top, mode, theta)
-                f = c.prc[si] if c.prc[si] is not None else auto[(ci, si)]
+                f = c.prc[si]
+                f = auto[(ci, si)] if f is None else f
                 t_c = float(top.t_at_u(f))
                 tmp = Piece(ci, si, kind, top, None, gs, np.empty((0, 3)))
                 g_c = float(tmp.g_of_t(t_c))
@@ -480,6 +481,7 @@ def _add_pillars(net: Network, n: int) -> None:
             q = np.asarray(c.vertices[vi])
             z_bot = net.bottoms[0]
             for p in below:
+                assert p.top is not None  # below keeps the pieces with a top curve
                 sym = d.curves[p.basic].symmetry
                 cen = np.asarray(sym.center)
                 # q lies on a replica iff its pre-image m^T (q - c) + c lies on the basic piece

@@ -164,7 +164,7 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
     # the work comes in blocks: one basic segment i against every replica of one segment j,
     # cached as finished records; an edit of one curve recomputes only the blocks it touches
     scale = [None]   # the drawing's size, for the identical-replica test (computed when needed)
-    out = []
+    out: list[TopIntersection] = []
     blocks = _BLOCKS.data   # the OrderedDict itself: this loop runs for every rebuild
     param_equal = tol.param_equal
     for ci, si, top in segs:
@@ -310,7 +310,8 @@ def _algorithm1(drawing: Drawing) -> dict[tuple[int, int], PrcChoice]:
         mine = [x for x in allx if x.curve == ci and x.segment == si and eps < x.u < 1.0 - eps]
         own = [x for x in mine if x.same_family and x.true]
         other = [x for x in mine if not x.same_family]
-        for branch, cands in (("own replicas", own), ("other curves", other)):
+        ranked: tuple[tuple[Branch, list[TopIntersection]], ...] = (("own replicas", own), ("other curves", other))
+        for branch, cands in ranked:
             if cands:
                 best = min(cands, key=lambda x: (abs(x.u - 0.5), x.u))
                 out[(ci, si)] = PrcChoice(ci, si, best.u, branch, np.asarray(best.point), best)

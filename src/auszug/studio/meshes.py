@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import re
 from pathlib import PurePosixPath
-from typing import Any, Sequence
+from typing import Any, Literal, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -60,10 +60,10 @@ class Payload:
         self.chunks: list[bytes] = []
         self.size = 0   # in 4-byte values
 
-    def put(self, a: Any, dtype: str = "f4") -> P.ArrayRef:
+    def put(self, a: Any, dtype: Literal["f4", "u4"] = "f4") -> P.ArrayRef:
         """Append ``a`` as little-endian ``dtype`` ("f4" or "u4"); its reference into the frame."""
         arr = np.ascontiguousarray(a, dtype="<f4" if dtype == "f4" else "<u4")
-        ref = P.ArrayRef(offset=self.size, shape=list(arr.shape), dtype=dtype)  # type: ignore[arg-type]
+        ref = P.ArrayRef(offset=self.size, shape=list(arr.shape), dtype=dtype)
         self.chunks.append(arr.tobytes())
         self.size += arr.size
         return ref
@@ -215,8 +215,9 @@ def _parse_colours(colors: Sequence[str]) -> list[tuple[float, float, float]]:
     for i, c in enumerate(colors):
         if not isinstance(c, str) or not _COLOUR.match(c):
             raise StudioMeshError(f"colors[{i}]: expected #rrggbb, got {c!r}")
-        out.append(tuple(int(c[k:k + 2], 16) / 255.0 for k in (1, 3, 5)))
-    return out  # type: ignore[return-value]
+        r, g, b = (int(c[k:k + 2], 16) / 255.0 for k in (1, 3, 5))
+        out.append((r, g, b))
+    return out
 
 
 def _glb(mesh: Any, colours: list[tuple[float, float, float]]) -> bytes:
@@ -267,15 +268,15 @@ def export_file(net: Network, name: str, *, format: str, style: str = "bar", fac
             data: bytes | str = _glb(mesh, colours)
         else:
             fmt = format_for(Path(fname), "mesh", want="write")
-            data = fmt.writer(mesh, fname)
+            data = fmt.write(mesh, fname)
     elif format == "svg":
-        data = format_for(Path(fname), "network", want="write").writer(net, fname)
+        data = format_for(Path(fname), "network", want="write").write(net, fname)
     elif format == "network.json":
         from auszug.formats.network_json import NetworkFile
 
-        data = format_for(Path(fname), "network", want="write").writer(NetworkFile(net, name), fname)
+        data = format_for(Path(fname), "network", want="write").write(NetworkFile(net, name), fname)
     else:
-        data = format_for(Path(fname), "drawing", want="write").writer(net.drawing, fname)
+        data = format_for(Path(fname), "drawing", want="write").write(net.drawing, fname)
     raw = data.encode("utf-8") if isinstance(data, str) else bytes(data)
     return fname, MIMES[format], raw
 

@@ -76,6 +76,7 @@ class HostOriginGuard:
     def __init__(self, app: ASGIApp, hosts: Iterable[str]):
         self.app = app
         self.hosts = {h.lower() for h in hosts}
+        self.hub: Hub | None = None  # create_app hands the studio's hub out through the guard
 
     def _allowed(self, scope: Scope) -> bool:
         headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope.get("headers", [])}
@@ -341,5 +342,5 @@ def create_app(
     else:
         routes.append(Route("/{path:path}", missing))
     guard = HostOriginGuard(Starlette(routes=routes, lifespan=lifespan), hosts)
-    guard.hub = studio.hub  # type: ignore[attr-defined]
+    guard.hub = studio.hub
     return guard

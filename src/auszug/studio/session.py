@@ -770,7 +770,7 @@ class Document:
             f = self._frames
             if f is not None and f[0] == self.revision:
                 return f[1], f[2]
-            state = dict(drawing=self.drawing, net=self.net, path=self.path, revision=self.revision,
+            state: dict[str, Any] = dict(drawing=self.drawing, net=self.net, path=self.path, revision=self.revision,
                          can_undo=bool(self.undo_stack), can_redo=bool(self.redo_stack), dirty=self.dirty,
                          recoverable=self.recoverable)
         text, payload = geometry_frames(**state)

@@ -359,12 +359,12 @@ def window_mesh(tracery: Tracery, resolution: Resolution | None = None, subdivid
     res = resolution or Resolution()
     subdivide = integer("subdivide", subdivide, 0, 4)
     st = tracery.style
-    wall = st.wall  # type: ignore[attr-defined]
+    wall = st.wall
     regions = tracery.regions
     arch = regions[0]
     if arch.group != "arch":
         raise GeometryError("the first region of a tracery must be its arch")
-    span = float(tracery.params.span)  # type: ignore[attr-defined]
+    span = float(tracery.params.span)
     chord = res.chord * span
     half_t = 0.5 * wall.thickness
     half_s = 0.5 * wall.slab

@@ -139,7 +139,7 @@ def rosette(
     for j in range(n):
         phi = phi0 + j * alpha
         cs, sn = math.cos(phi), math.sin(phi)
-        foil = []
+        foil: list[Curve] = []
         for m, r, th0, sw in arcs:
             mc = c + s * np.array([cs * m[0] - sn * m[1], sn * m[0] + cs * m[1]])
             foil.append(Arc(mc, s * r, th0 + phi, sw))

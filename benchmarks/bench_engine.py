@@ -11,7 +11,7 @@
 2. The whole corpus built into network JSON by ONE `auszug build` call, wall
    clock, interpreter start included. Target: < 2 s.
 
-Usage: python benchmarks/bench_engine.py [--corpus DIR] [--reps N] [--markdown]
+Usage: python benchmarks/bench_engine.py [--corpus DIR (default: the bundled examples)] [--reps N] [--markdown]
 """
 
 from __future__ import annotations
@@ -24,14 +24,16 @@ import subprocess
 import sys
 import tempfile
 import time
+from importlib.resources import files
 from pathlib import Path
 
 from auszug.errors import AuszugError
 from auszug.formats import load
 from auszug.microarch import build, edit
 
-HERE = Path(__file__).resolve().parent
-DEFAULT_CORPUS = HERE.parent.parent / "shared" / "corpus"
+#: The drawings bundled with the package (auszug.examples): the whole corpus.
+DEFAULT_CORPUS = Path(str(files("auszug.examples")))
+#: The authors' demo per edit (ms), from tests/data/reference/anchor/README.md.
 ANCHOR = {"point drag": 1.2, "apex drag": 4.2}
 
 

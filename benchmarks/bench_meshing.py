@@ -14,7 +14,7 @@
 Times are the minimum and the median of repeated in-process runs after a
 warm-up (other processes on the machine make the median noisy).
 
-Usage: python benchmarks/bench_meshing.py [--corpus DIR] [--reps N] [--quick]
+Usage: python benchmarks/bench_meshing.py [--corpus DIR (default: the bundled examples)] [--reps N] [--quick]
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ import platform
 import statistics
 import sys
 import time
+from importlib.resources import files
 from pathlib import Path
 
 import numpy as np
@@ -37,8 +38,8 @@ from auszug.microarch import build, edit
 
 from _timing import timed
 
-HERE = Path(__file__).resolve().parent
-DEFAULT_CORPUS = HERE.parent.parent / "shared" / "corpus"
+#: The drawings bundled with the package (auszug.examples): the whole corpus.
+DEFAULT_CORPUS = Path(str(files("auszug.examples")))
 
 
 def timed_ms(fn, reps: int) -> tuple[float, float]:

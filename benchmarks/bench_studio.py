@@ -2,7 +2,7 @@
 
 The studio is served by uvicorn on 127.0.0.1 (in this process) and driven by Debian's chromium
 through Playwright with software WebGL (--disable-gpu), as the authors' demo was measured
-(../shared/reference/anchor/README.md). Every edit is sent by the page itself over its
+(tests/data/reference/anchor/README.md). Every edit is sent by the page itself over its
 WebSocket; the clock is the page's performance.now():
 
 - edit -> geometry in the page: from sending the edit message until the page has the new
@@ -39,6 +39,7 @@ from auszug import examples
 CHROMIUM = "/usr/bin/chromium"
 ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
         "--disable-sync", "--no-first-run"]
+#: The authors' demo (ms), from tests/data/reference/anchor/README.md.
 ANCHOR = {"point drag": 1.2, "apex drag": 4.2, "frame": "17-23"}
 
 # Runs in the page: n edits of one kind, one at a time, each after the previous one's frame was

@@ -9,7 +9,7 @@
    curve 0), on U.XI.28, tn-2 and the chancel (web/3d-scan-final.uc).
    Target: well under 1 ms, so that the page can show the new geometry in
    <= 2 ms end to end. The authors' demo: 1.2 ms (point drag) and 4.2 ms
-   (apex drag) per edit in the page (../shared/reference/anchor/README.md).
+   (apex drag) per edit in the page (tests/data/reference/anchor/README.md).
 2. The WebSocket round trip through a real uvicorn on 127.0.0.1 (a separate
    process, as the browser is): send the edit, receive the geometry and its
    payload (one binary frame, ``protocol.pack``), with the ``websockets``
@@ -48,6 +48,7 @@ from auszug.studio.session import Document, Workspace
 
 DRAWINGS = {"U.XI.28": "web/U.XI.28.uc", "tn-2": "teaching-sheet/tn-2.uc", "chancel": "web/3d-scan-final.uc"}
 EDITS = ("point drag", "apex drag")
+#: The authors' demo per edit (ms), from tests/data/reference/anchor/README.md.
 ANCHOR = {"point drag": 1.2, "apex drag": 4.2}
 TARGET_PAGE_MS = 2.0
 

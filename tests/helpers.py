@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import gzip
+import lzma
 import re
 from pathlib import Path
 
@@ -12,6 +14,13 @@ KIND = {"biarc": "ogee", "decoration": "decoration", "free_end": "free_end", "pi
         "vertical_line": "post"}
 
 
+def read_text(path: Path) -> str:
+    """The text of a file, decompressed when its name ends in ``.xz`` or ``.gz``."""
+    opener = {".xz": lzma.open, ".gz": gzip.open}.get(path.suffix, open)
+    with opener(path, "rt", encoding="utf-8") as f:
+        return f.read()
+
+
 def read_reference_obj(path: Path) -> dict[tuple[int, str, str], np.ndarray]:
     """Polylines of a reference OBJ keyed by (basic curve, kind, replica label).
 
@@ -20,10 +29,12 @@ def read_reference_obj(path: Path) -> dict[tuple[int, str, str], np.ndarray]:
     ``rot<k>_ref`` -> ``r<k>m``. The demo works in a y-up frame, where its
     rotation by +2 pi k / n about the up axis is, in our right-handed z-up frame,
     the rotation by -2 pi k / n: use :func:`our_label` to translate.
+    ``path`` is a plain ``.obj`` or a compressed ``.obj.xz`` / ``.obj.gz`` (as
+    ``tests/data/reference/anchor`` stores them).
     """
     out: dict[tuple[int, str, str], list] = {}
     cur = None
-    for line in path.read_text().splitlines():
+    for line in read_text(path).splitlines():
         if line.startswith("g "):
             m = _GROUP.match(line[2:].strip())
             assert m, f"unexpected group name {line!r} in {path}"

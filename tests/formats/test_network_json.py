@@ -11,10 +11,10 @@ from auszug.errors import FormatError
 from auszug.formats import load, save
 from auszug.formats.network_json import KINDS, NetworkFile, dumps, loads, to_dict
 from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry, build
-from tests.conftest import CORPUS
+from tests.conftest import CORPUS, corpus_files
 
-WEB = sorted(p for f in ("teaching-sheet", "web") for p in (CORPUS / f).rglob("*.uc")
-             if p.name != "two_curves.uc")        # two_curves.uc is v1 (legacy reader)
+WEB = [p for p in corpus_files("teaching-sheet", "web")
+       if p.name != "two_curves.uc"]        # two_curves.uc is v1 (legacy reader)
 
 TOP = {"format": str, "version": int, "source": str, "up": str, "layers": list, "curves": list}
 CURVE = {"id": str, "basic": int, "layer": int, "kind": str, "rotation": int, "mirrored": bool,
@@ -39,7 +39,7 @@ def test_corpus_document_has_the_required_keys_and_types(path):
     doc = _doc(path)
     for key, typ in TOP.items():
         assert type(doc[key]) is typ, key
-    assert (doc["format"], doc["version"], doc["source"], doc["up"]) == ("auszug.network", 1, path.name, "z")
+    assert (doc["format"], doc["version"], doc["source"], doc["up"]) == ("auszug.network", 2, path.name, "z")
     for i, lay in enumerate(doc["layers"]):
         assert lay["index"] == i and type(lay["bottom"]) is float
     assert doc["curves"]
@@ -139,7 +139,7 @@ GOOD = dumps(build(load(CORPUS / "teaching-sheet" / "tn-1.uc")), "tn-1.uc")
 
 @pytest.mark.parametrize("edit, where", [
     (lambda d: d.update(format="other"), "format"),
-    (lambda d: d.update(version=2), "version"),
+    (lambda d: d.update(version=3), "version"),
     (lambda d: d.update(version=True), "version"),
     (lambda d: d.update(up="y"), "up"),
     (lambda d: d.pop("layers"), "layers"),

@@ -33,7 +33,7 @@ def test_the_corpus_is_all_there():
     assert len(ALL) == 86
     assert sorted({_dialect(p) for p in ALL}) == ["legacy", "v1", "web"]
     assert len(WEB) == 49 and [p.name for p in ALL if _dialect(p) == "v1"] == ["two_curves.uc"]
-    assert all(_dialect(p) == "legacy" for p in (CORPUS / "legacy").glob("*.uc"))
+    assert all(_dialect(p) == "legacy" for p in corpus_files("legacy"))
 
 
 @pytest.mark.parametrize("path", ALL, ids=lambda p: str(p.relative_to(CORPUS)))
@@ -176,7 +176,7 @@ def test_apex_below_a_higher_layer_bottom():
 
 
 def test_legacy_heights_are_always_above_the_ground():
-    for p in (CORPUS / "legacy").glob("*.uc"):
+    for p in corpus_files("legacy"):
         d = load(p)
         assert d.apex_height(0) >= 1.0 > d.bottoms()[0] == 0.0
         assert math.isfinite(d.default_apex)

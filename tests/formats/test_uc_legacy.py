@@ -14,7 +14,7 @@ from auszug.errors import FormatError
 from auszug.formats import load
 from auszug.formats.uc import read_uc
 from auszug.formats.uc_legacy import read_legacy
-from tests.conftest import CORPUS
+from tests.conftest import CORPUS, corpus_files
 
 LEGACY = CORPUS / "legacy"
 
@@ -32,7 +32,7 @@ def _longest_chord(d):
 
 
 # -- every legacy file ---------------------------------------------------------------------------
-@pytest.mark.parametrize("path", sorted(LEGACY.glob("*.uc")), ids=lambda p: p.name)
+@pytest.mark.parametrize("path", corpus_files("legacy"), ids=lambda p: p.name)
 def test_legacy_heights_follow_the_prototype_rule(path):
     d = load(path)
     n_units = path.read_text().count("unitCurve")

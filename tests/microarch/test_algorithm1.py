@@ -16,9 +16,9 @@ import pytest
 from auszug.formats import load
 from auszug.microarch import build
 from auszug.microarch.prc import algorithm1, oriented_segments
-from tests.conftest import CORPUS
+from tests.conftest import CORPUS, corpus_files
 
-LEGACY = sorted((CORPUS / "legacy").glob("*.uc"))
+LEGACY = corpus_files("legacy")
 N = 1201
 
 

@@ -1,4 +1,4 @@
-"""Our reconstructions against the authors' demo (../shared/reference/anchor).
+"""Our reconstructions against the authors' demo (tests/data/reference/anchor).
 
 Every ogee and free-end curve of the 12 teaching-sheet examples and of every
 web-format corpus drawing must lie within 1e-6 of the bounding-box diagonal of
@@ -10,6 +10,7 @@ compared with our exact 3D point there.
 
 from __future__ import annotations
 
+import hashlib
 import json
 
 import numpy as np
@@ -18,7 +19,7 @@ import pytest
 from auszug.formats import load
 from auszug.microarch import build
 from tests.conftest import ANCHOR, CORPUS
-from tests.helpers import our_label, read_reference_obj
+from tests.helpers import our_label, read_reference_obj, read_text
 
 SUMMARY = json.loads((ANCHOR / "summary.json").read_text())
 CASES = sorted(k for k, v in SUMMARY.items() if v.get("ok"))
@@ -65,7 +66,7 @@ def _distances(net, piece_index, label, ref_pts):
 def test_matches_reference(case):
     drawing = load(CORPUS / case)
     net = build(drawing)
-    ref = read_reference_obj(ANCHOR / (case[:-3] + ".obj"))
+    ref = read_reference_obj(ANCHOR / (case[:-3] + ".obj.xz"))
     allref = np.concatenate(list(ref.values()))
     diag = float(np.linalg.norm(allref.max(0) - allref.min(0)))
     tol = 1e-6 * diag
@@ -86,3 +87,16 @@ def test_matches_reference(case):
         assert d.max() <= tol, f"{case} curve {basic} {label} {kind}: max distance {d.max():.3g} > {tol:.3g}"
         compared += 1
     assert compared > 0
+
+
+def test_reference_files_are_the_demos():
+    """The stored references decompress to the demo's files, byte for byte (ANCHOR/SHA256SUMS),
+    and every drawing the summary lists as read has one."""
+    sums = dict(line.split("  ")[::-1] for line in (ANCHOR / "SHA256SUMS").read_text().splitlines())
+    stored = {str(p.relative_to(ANCHOR)).removesuffix(".xz") for p in ANCHOR.rglob("*.obj.xz")}
+    assert stored == {n for n in sums if n.endswith(".obj")}
+    assert stored == {c[:-3] + ".obj" for c in CASES}
+    for name, digest in sums.items():
+        path = ANCHOR / (name + ".xz" if name.endswith(".obj") else name)
+        data = read_text(path).encode("utf-8")
+        assert hashlib.sha256(data).hexdigest() == digest, f"{name} differs from the demo's output"

@@ -50,8 +50,20 @@ def finite(text: str) -> float:
     return v
 
 
-def add_network_args(parser: argparse.ArgumentParser) -> None:
-    """The options of :func:`auszug.microarch.build`: --param, --theta, --samples."""
+def positive(text: str) -> float:
+    """An argparse type: a finite number > 0."""
+    v = finite(text)
+    if not v > 0.0:
+        raise argparse.ArgumentTypeError(f"expected a number > 0, got {text!r}")
+    return v
+
+
+def add_network_args(parser: argparse.ArgumentParser, export: bool = False) -> None:
+    """The options of :func:`auszug.microarch.build`: --param, --theta, --samples.
+
+    With ``export``, also --tolerance: the network is then sampled by tolerance
+    unless --samples is given.
+    """
     g = parser.add_argument_group("reconstruction")
     g.add_argument("--param", choices=PARAMETERIZATIONS, default="arclength",
                    help="side-view coordinate p(u) of Eq. (1): top-view arc length (default), "
@@ -59,8 +71,17 @@ def add_network_args(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--theta", type=finite, default=0.0, metavar="DEG",
                    help="angle of the vertical projection plane to the x-axis for "
                         "--param orthographic, in degrees (default 0)")
+    if not export:
+        g.add_argument("--samples", type=at_least(2), default=None, metavar="N",
+                       help="samples per curve piece (default 65)")
+        return
+    g.add_argument("--tolerance", type=positive, default=None, metavar="T",
+                   help="every written polyline lies within T (drawing units) of its exact curve, "
+                        "both ways, with every end, apex, PRC, decoration cusp, free-end turn and "
+                        "true 3D intersection a vertex (default: 1e-6 of the network's "
+                        "bounding-box diagonal)")
     g.add_argument("--samples", type=at_least(2), default=None, metavar="N",
-                   help="samples per curve piece (default 65)")
+                   help="instead of --tolerance: N points per curve piece at equal arc-length steps")
 
 
 @contextmanager
@@ -105,7 +126,12 @@ def build_network(drawing: "Drawing", source: str | os.PathLike[str], args: argp
     from auszug.microarch.network import build
 
     with about(source):
+        if getattr(args, "tolerance", None) is not None and args.samples is not None:
+            raise FormatError("give --tolerance or --samples, not both")
         net = build(drawing, args.param, math.radians(args.theta), args.samples)
+        if hasattr(args, "tolerance") and args.samples is None:   # an export: sampled by tolerance
+            return NetworkFile(net.with_intersections().resampled(tolerance=args.tolerance),
+                               Path(source).name)
     return NetworkFile(net, Path(source).name)
 
 

@@ -11,6 +11,7 @@ the others are still written, and the exit code is 2.
 
 examples:
   auszug build tn-1.uc -o tn-1.network.json
+  auszug build tn-1.uc -o tn-1.obj --tolerance 1e-5
   auszug build tn-1.uc -o tn-1.obj --samples 129
   auszug build corpus/ -o out/ --format svg
 """
@@ -35,7 +36,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                         help="output file (one drawing) or folder (several drawings or a folder)")
     parser.add_argument("--format", choices=sorted(_common.NETWORK_SUFFIX), default=None,
                         help="output format in a folder, or without -o (default json)")
-    _common.add_network_args(parser)
+    _common.add_network_args(parser, export=True)
 
 
 def _is_folder_target(out: str | None) -> bool:

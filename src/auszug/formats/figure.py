@@ -27,7 +27,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
     from mpl_toolkits.mplot3d import Axes3D
 
-    from auszug.microarch.network import Network
+    from auszug.geometry.network import CurveNetwork
 
 __all__ = ["FIGURE_FORMATS", "draw_views", "render", "contact_sheet"]
 
@@ -53,7 +53,7 @@ def _fmt(fmt: str) -> str:
     return f
 
 
-def _lines(net: "Network") -> tuple[list, list, list, list]:
+def _lines(net: "CurveNetwork") -> tuple[list, list, list, list]:
     """Per curve: points, colour, line width, z-order (basic curves on top)."""
     pts, cols, widths, order = [], [], [], []
     for c in net.curves():
@@ -66,7 +66,7 @@ def _lines(net: "Network") -> tuple[list, list, list, list]:
     return [pts[i] for i in idx], [cols[i] for i in idx], [widths[i] for i in idx], [order[i] for i in idx]
 
 
-def _prcs(net: "Network") -> tuple[np.ndarray, list[str]]:
+def _prcs(net: "CurveNetwork") -> tuple[np.ndarray, list[str]]:
     ps, cs = [], []
     for c in net.curves():
         if c.prc is not None:
@@ -94,7 +94,7 @@ def draw_views(ax_top: "Axes | None", ax_side: "Axes | None", ax_3d: "Axes3D | N
         2D axes for the top view (x, y) and the side view (x, z).
     ax_3d : mpl_toolkits.mplot3d Axes3D or None
         3D axes; drawn with a perspective camera.
-    network : Network or NetworkFile
+    network : CurveNetwork or NetworkFile (or a producer of a curve network)
     labels : bool
         Whether to title the panels.
     """
@@ -167,7 +167,7 @@ def render(network: Any, fmt: str = "png", *, width: int = 1800, height: int = 6
 
     Parameters
     ----------
-    network : Network or NetworkFile
+    network : CurveNetwork or NetworkFile (or a producer of a curve network)
     fmt : {"png", "pdf", "svg"}
     width, height : int
         Size in pixels (PNG) or in 1/dpi inches (PDF, SVG).
@@ -198,9 +198,8 @@ def render(network: Any, fmt: str = "png", *, width: int = 1800, height: int = 6
     draw_views(ax_top, ax_side, ax_3d, net, labels=False)
     for k, text in enumerate(("top view", "side view (x-z plane)", "3D view (perspective)")):
         _caption(fig, gs[k], text)
-    sym = ", ".join(sorted({f"C{c.symmetry.fold}" + ("+mirror" if c.symmetry.mirror else "")
-                            for c in net.drawing.curves}))
-    fig.suptitle(title if title is not None else f"{source}   ({len(net.drawing.curves)} basic curves; {sym})",
+    sym = ", ".join(sorted({f"C{g.n}" + ("+mirror" if g.mirror else "") for g in net.groups}))
+    fig.suptitle(title if title is not None else f"{source}   ({len(net.groups)} basic curves; {sym})",
                  fontsize=11, x=0.02, ha="left")
     return _save(fig, fmt)
 
@@ -211,7 +210,7 @@ def contact_sheet(items: Sequence[tuple[str, Any]], fmt: str = "png", *, ncols: 
 
     Parameters
     ----------
-    items : sequence of (label, Network or NetworkFile)
+    items : sequence of (label, CurveNetwork or NetworkFile)
     fmt : {"png", "pdf", "svg"}
     ncols : int
         Drawings per row.

@@ -30,53 +30,56 @@ import dataclasses
 import json
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-from auszug.errors import FormatError
+from auszug.errors import AuszugError, FormatError
 from auszug.formats._registry import FileFormat, register
+from auszug.geometry.network import KINDS, CurveNetwork, Piece, as_curve_network
 
-if TYPE_CHECKING:
-    from auszug.microarch.network import Network
-
-__all__ = ["NetworkFile", "FORMAT", "VERSION", "KINDS", "to_dict", "dumps", "loads", "unpack"]
+__all__ = ["NetworkFile", "FORMAT", "VERSION", "VERSIONS", "KINDS", "to_dict", "dumps", "loads", "unpack",
+           "exact_piece"]
 
 FORMAT = "auszug.network"
-VERSION = 1
-KINDS = ("ogee", "free_end", "decoration", "post", "pillar", "level")
+#: The version written.
+VERSION = 2
+#: The versions read (version 2 adds ``tolerance``, per curve ``features`` and ``exact``).
+VERSIONS = (1, 2)
 
 
 @dataclass(frozen=True)
 class NetworkFile:
     """What a network file holds: a network and the name of the drawing it was built from.
 
-    The network writers (JSON, OBJ, SVG, figures) accept either this or a bare
-    :class:`~auszug.microarch.network.Network` (whose drawing name then stands
-    in for the source).
+    The network writers (JSON, OBJ, SVG, DXF, 3dm, figures) accept either this
+    or a bare network (whose name then stands in for the source).
 
     Attributes
     ----------
-    network : Network
+    network : CurveNetwork or a producer of one (``auszug.microarch.Network``)
     source : str
         File name of the drawing (``"tn-1.uc"``).
     """
 
-    network: "Network"
+    network: Any
     source: str = ""
 
 
-def unpack(obj: Any) -> tuple["Network", str]:
-    """``(network, source)`` of a :class:`NetworkFile` or a bare network."""
-    from auszug.microarch.network import Network
+def unpack(obj: Any) -> tuple[CurveNetwork, str]:
+    """``(curve network, source)`` of a :class:`NetworkFile` or a bare network.
 
+    Raises
+    ------
+    TypeError
+        If ``obj`` holds no curve network.
+    """
     if isinstance(obj, NetworkFile):
         net, source = obj.network, obj.source
     else:
         net, source = obj, ""
-    if not isinstance(net, Network):
-        raise TypeError(f"expected a Network or NetworkFile, got {type(obj).__name__}")
-    return net, source or net.drawing.name
+    cn = as_curve_network(net)
+    return cn, source or cn.name
 
 
 def _plain(v: Any) -> Any:
@@ -94,14 +97,14 @@ def _plain(v: Any) -> Any:
     return v
 
 
-def to_dict(network: "Network", source: str = "") -> dict[str, Any]:
+def to_dict(network: Any, source: str = "") -> dict[str, Any]:
     """The network JSON document of ``network`` as plain Python data.
 
     Parameters
     ----------
-    network : Network
+    network : CurveNetwork or NetworkFile (or a producer of a curve network)
     source : str
-        File name of the drawing it was built from (default: the drawing's name).
+        File name of the drawing it was built from (default: the network's name).
 
     Returns
     -------
@@ -113,9 +116,10 @@ def to_dict(network: "Network", source: str = "") -> dict[str, Any]:
     FormatError
         If a coordinate is not finite (JSON has no NaN).
     """
-    d = network.drawing
+    net, src = unpack(network)
+    source = source or src
     curves = []
-    for c in network.curves():
+    for c in net.curves():
         if not np.all(np.isfinite(c.points)):
             raise FormatError(f"curve {c.id} has non-finite coordinates; cannot write JSON", source)
         curves.append({
@@ -130,38 +134,27 @@ def to_dict(network: "Network", source: str = "") -> dict[str, Any]:
             "prc": None if c.prc is None else np.asarray(c.prc, dtype=float).tolist(),
             "segment": int(c.segment),
             "piece": int(c.piece),
-            "center": list(d.curves[c.basic].symmetry.center),
+            "center": [float(v) for v in net.groups[c.basic].center],
+            "features": [[name, int(i)] for name, i in c.features],
+            "exact": _plain(net.exact(c)),
         })
-    basics = []
-    for i, b in enumerate(d.curves):
-        s = b.symmetry
-        basics.append({
-            "index": i,
-            "layer": b.layer,
-            "fold": s.fold,
-            "mirror": s.mirror,
-            "axis": list(s.axis) if s.mirror else None,
-            "center": list(s.center),
-            "vertices": [list(v) for v in b.vertices],
-            "marks": list(b.marks),
-            "apex": float(network.apex_heights[i]),
-            "post_top": b.post_top,
-            "decoration": b.decoration,
-        })
+    meta = dict(net.meta)
     choices = [
         {"curve": int(k[0]), "segment": int(k[1]), **_plain(_choice_fields(v))}
-        for k, v in sorted(network.prc_choices.items())
+        for k, v in sorted(meta.pop("prc_choices", {}).items())
     ]
     doc: dict[str, Any] = {
         "format": FORMAT,
         "version": VERSION,
-        "source": source or d.name,
+        "source": source,
         "up": "z",
-        "parameterization": network.parameterization,
-        "samples": max((len(p.points) for p in network.pieces if p.top is not None), default=0),
-        "layers": [{"index": i, "bottom": float(z)} for i, z in enumerate(network.bottoms)],
-        "basic_curves": basics,
+        "parameterization": meta.pop("parameterization", "arclength"),
+        "samples": max((len(p.points) for p in net.pieces if p.top is not None), default=0),
+        "tolerance": net.tolerance,
+        "layers": [{"index": i, "bottom": float(z)} for i, z in enumerate(net.bottoms)],
+        "basic_curves": _plain(meta.pop("basic_curves", [])),
         "prc_choices": choices,
+        **{k: _plain(v) for k, v in meta.items()},
         "curves": curves,
     }
     return doc
@@ -180,7 +173,7 @@ def _choice_fields(ch: Any) -> dict[str, Any]:
     return rec
 
 
-def dumps(network: "Network", source: str = "") -> str:
+def dumps(network: Any, source: str = "") -> str:
     """Network JSON text: one top-level key per line, one list entry (layer, curve, ...) per line.
 
     Examples
@@ -252,8 +245,8 @@ def loads(text: str, name: str = "<string>") -> dict[str, Any]:
         raise bad("document", "a JSON object")
     if doc.get("format") != FORMAT:
         raise bad("format", f'"{FORMAT}", got {doc.get("format")!r}')
-    if doc.get("version") != VERSION or not _integer(doc.get("version")):
-        raise bad("version", f"{VERSION}, got {doc.get('version')!r}")
+    if doc.get("version") not in VERSIONS or not _integer(doc.get("version")):
+        raise bad("version", f"one of {', '.join(map(str, VERSIONS))}, got {doc.get('version')!r}")
     if not isinstance(doc.get("source"), str):
         raise bad("source", "the drawing's file name (a string)")
     if doc.get("up") != "z":
@@ -297,7 +290,34 @@ def loads(text: str, name: str = "<string>") -> dict[str, Any]:
             raise bad(f"{w}.prc", "null or an [x, y, z] point")
         if "prc" not in c:
             raise bad(f"{w}.prc", "null or an [x, y, z] point (the key is required)")
+        feats = c.get("features", [])
+        if not (isinstance(feats, list) and all(
+                isinstance(f, list) and len(f) == 2 and isinstance(f[0], str) and _integer(f[1])
+                and 0 <= f[1] < len(pts) for f in feats)):
+            raise bad(f"{w}.features", f'a list of ["name", vertex index in 0..{len(pts) - 1}]')
+        ex = c.get("exact")
+        if ex is not None:
+            try:
+                exact_piece(c)
+            except (KeyError, TypeError, ValueError, AuszugError) as e:
+                raise bad(f"{w}.exact", f"an exact curve description ({type(e).__name__}: {e})") from None
     return doc
+
+
+def exact_piece(curve: dict[str, Any]) -> Piece:
+    """The exact curve of one curve record of a version-2 document, to evaluate.
+
+    Examples
+    --------
+    >>> from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry, build
+    >>> c = BasicCurve(((1.0, 0.0), (0.0, 0.0)), (Segment(),), ("ground", "apex"),
+    ...                Symmetry(2), height=1.0, prc=(0.5,))
+    >>> rec = loads(dumps(build(Drawing((c,)), samples=9)))["curves"][1]
+    >>> p = exact_piece(rec)
+    >>> bool(np.allclose(p.point_t(np.linspace(0, 1, 9)), rec["points"], rtol=0, atol=1e-12))
+    True
+    """
+    return Piece.from_dict(curve["exact"], int(curve.get("basic", 0)), int(curve.get("segment", 0)))
 
 
 register(FileFormat("network_json", (".network.json",), "network", reader=loads, writer=_write))

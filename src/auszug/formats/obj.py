@@ -44,7 +44,7 @@ def dumps(network: Any, source: str = "") -> str:
 
     Parameters
     ----------
-    network : Network
+    network : CurveNetwork or NetworkFile (or a producer of a curve network)
     source : str
         File name of the drawing, recorded in the header.
     """
@@ -54,7 +54,9 @@ def dumps(network: Any, source: str = "") -> str:
         "# auszug curve network: polylines, one group per curve and replica",
         f"# source: {source}",
         "# coordinates: x, y = top view (drawing units), z = height; Z IS UP",
-        f"# parameterization: {net.parameterization}",
+        f"# parameterization: {net.meta.get('parameterization', 'arclength')}",
+        *([f"# tolerance: {net.tolerance!r} (every polyline within it of its exact curve)"]
+          if net.tolerance is not None else []),
     ]
     base = 1
     for c in net.curves():

@@ -57,9 +57,8 @@ def colour(basic: int) -> str:
     return PALETTE[basic % len(PALETTE)]
 
 
-def _symmetry_text(c: Any) -> str:
-    s = c.symmetry
-    return f"C{s.fold}" + (" + mirror" if s.mirror else "")
+def _symmetry_text(g: Any) -> str:
+    return f"C{g.n}" + (" + mirror" if g.mirror else "")
 
 
 def dumps(network: Any, source: str = "", width_px: float = 1000.0) -> str:
@@ -67,7 +66,7 @@ def dumps(network: Any, source: str = "", width_px: float = 1000.0) -> str:
 
     Parameters
     ----------
-    network : Network or NetworkFile
+    network : CurveNetwork or NetworkFile (or a producer of a curve network)
     source : str
         Drawing file name for the title (default: from ``network``).
     width_px : float
@@ -76,7 +75,7 @@ def dumps(network: Any, source: str = "", width_px: float = 1000.0) -> str:
     net, src = unpack(network)
     source = source or src
     curves = list(net.curves())
-    nb = len(net.drawing.curves)
+    nb = len(net.groups)
     if curves:
         allp = np.concatenate([c.points for c in curves])
         lo, hi = allp.min(0), allp.max(0)
@@ -88,6 +87,8 @@ def dumps(network: Any, source: str = "", width_px: float = 1000.0) -> str:
     th = 0.09 * size                        # title band
     font = 0.045 * size
     dec = max(0, 4 - math.floor(math.log10(size)))
+    if net.tolerance is not None:   # enough digits that rounding stays below a 40th of the tolerance
+        dec = max(dec, math.ceil(-math.log10(net.tolerance / 20.0)))
     ox_side = ext[0] + 3.0 * m              # x offset of the side panel
     W = ox_side + ext[0] + m
     H = th + max(ext[1], ext[2]) + 2.0 * m
@@ -134,11 +135,10 @@ def dumps(network: Any, source: str = "", width_px: float = 1000.0) -> str:
                            f'stroke-dasharray="{f(4 * px)} {f(3 * px)}"/>')
         for b in range(nb):
             mine = [c for c in curves if c.basic == b]
-            bc = net.drawing.curves[b]
             col = colour(b)
             out.append(f'<g id="{view}-curve-{b}" class="basic-curve" data-basic="{b}" stroke="{col}" '
                        f'fill="none" stroke-width="{f(lw)}" stroke-linecap="round" stroke-linejoin="round">')
-            out.append(f"<title>curve {b}: {_symmetry_text(bc)}, layer {bc.layer}</title>")
+            out.append(f"<title>curve {b}: {_symmetry_text(net.groups[b])}, layer {net.layers[b]}</title>")
             # replicas first, the basic curve (r0) last so it lies on top
             mine.sort(key=lambda c: (c.rotation == 0 and not c.mirrored))
             for c in mine:

@@ -13,12 +13,13 @@ boundary lies exactly on them.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
 from auszug.errors import GeometryError
+from auszug.geometry.network import as_curve_network
 from auszug.meshing.loops import Loop, NetworkGraph, find_loops, network_graph
 from auszug.meshing.mesh import Mesh, Part
 from auszug.meshing.minimal import RESIDUAL_TOL, MinimalSurface, flat_area, minimal_surface
@@ -111,20 +112,20 @@ class Faces:
         return Mesh(np.concatenate(vs), np.concatenate(fs), tuple(parts))
 
 
-def common_group(network) -> tuple[Array, Array]:
+def common_group(network: Any) -> tuple[Array, Array]:
     """Symmetry elements shared by every basic curve: (k, 2, 2) matrices and the centre (2,).
 
     Only the identity when the curves have different centres.
     """
-    curves = network.drawing.curves
-    if not curves:
+    groups = as_curve_network(network).groups
+    if not groups:
         return np.eye(2)[None], np.zeros(2)
-    c0 = np.asarray(curves[0].symmetry.center)
-    mats = curves[0].symmetry.matrices()
-    for c in curves[1:]:
-        if not np.allclose(np.asarray(c.symmetry.center), c0, atol=1e-12):
+    c0 = np.asarray(groups[0].center)
+    mats = groups[0].matrices()
+    for g in groups[1:]:
+        if not np.allclose(np.asarray(g.center), c0, atol=1e-12):
             return np.eye(2)[None], c0
-        other = c.symmetry.matrices()
+        other = g.matrices()
         keep = [m for m in mats if np.any(np.all(np.abs(other - m) <= 1e-9, axis=(1, 2)))]
         mats = np.array(keep)
     return mats, c0
@@ -165,7 +166,7 @@ def _map_face(ms: MinimalSurface, m: Array, centre: Array, loop: Loop, rep_loop:
 
 
 def network_faces(
-    network,
+    network: Any,
     loops: Sequence[Loop] | None = None,
     resolution: int = 96,
     tol: float = RESIDUAL_TOL,
@@ -177,7 +178,7 @@ def network_faces(
 
     Parameters
     ----------
-    network : Network
+    network : CurveNetwork (or a producer of one, e.g. ``microarch.Network``)
     loops : sequence of Loop, optional
         Default: every loop :func:`~auszug.meshing.loops.find_loops` finds.
     resolution : int

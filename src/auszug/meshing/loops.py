@@ -30,13 +30,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
 from auszug.geometry import Curve
+from auszug.geometry.network import CurveNetwork, Piece, as_curve_network
 
 __all__ = ["Strand", "GraphEdge", "NetworkGraph", "Loop", "network_graph", "find_loops", "loop_through"]
 
@@ -52,7 +53,7 @@ class Strand:
     Attributes
     ----------
     piece : int
-        Index into :attr:`Network.pieces` (-1 for a rim).
+        Index into :attr:`CurveNetwork.pieces` (-1 for a rim).
     element : int
         Index into the group's matrices.
     label : str
@@ -71,11 +72,12 @@ class Strand:
     center: Array
     top: Curve
     layer: int
-    _piece: object = field(repr=False, default=None)
+    _piece: Piece | None = field(repr=False, default=None)
 
     def points(self, u: ArrayLike) -> Array:
         """3D points at normalised top-view arc length u of the basic piece, shape (..., 3)."""
-        p = self._piece.point3(np.asarray(u, dtype=float))  # type: ignore[attr-defined]  # a network Piece; meshing does not name microarch types
+        assert self._piece is not None  # network_graph gives every strand its piece
+        p = self._piece.point3(np.asarray(u, dtype=float))
         out = np.array(p, dtype=float)
         out[..., :2] = (p[..., :2] - self.center) @ self.matrix.T + self.center
         return out
@@ -283,13 +285,13 @@ class Loop:
 # -- building the graph -----------------------------------------------------------------------
 
 
-def _strands(network) -> list[Strand]:
-    d = network.drawing
+def _strands(network: CurveNetwork) -> list[Strand]:
     out: list[Strand] = []
     for pi, p in enumerate(network.pieces):
         if p.kind not in LOOP_KINDS:
             continue
-        sym = d.curves[p.basic].symmetry
+        assert p.top is not None  # the loop kinds run along a top curve
+        sym = network.groups[p.basic]
         mats, labels = sym.matrices(), sym.labels()
         c = np.asarray(sym.center)
         seen: list[Array] = []
@@ -299,7 +301,7 @@ def _strands(network) -> list[Strand]:
             if any(np.allclose(img, q, atol=1e-9) or np.allclose(img[::-1], q, atol=1e-9) for q in seen):
                 continue
             seen.append(img)
-            out.append(Strand(pi, k, lab, m, c, p.top.transformed(m, c - m @ c), d.curves[p.basic].layer, p))
+            out.append(Strand(pi, k, lab, m, c, p.top.transformed(m, c - m @ c), network.layers[p.basic], p))
     return out
 
 
@@ -343,7 +345,7 @@ def _top_hits(strands: Sequence[Strand]) -> dict[tuple[int, int], list[tuple[flo
         return out
 
 
-def network_graph(network, meet_tol: float = 1e-2) -> NetworkGraph:
+def network_graph(network: Any, meet_tol: float = 1e-2) -> NetworkGraph:
     """The graph of a network's curves (see the module docstring).
 
     Parameters
@@ -358,9 +360,9 @@ def network_graph(network, meet_tol: float = 1e-2) -> NetworkGraph:
     -------
     NetworkGraph
     """
+    network = as_curve_network(network)
     strands = _strands(network)
-    pts = [v for c in network.drawing.curves for v in c.vertices]
-    size = max(1e-9, float(np.max(np.abs(pts)))) if pts else 1.0
+    size = network.size
     tol = 1e-7 * size
     mtol = meet_tol * size
     splits: list[list[float]] = [[0.0, 1.0] for _ in strands]
@@ -550,12 +552,13 @@ def _fillable(lp: Loop) -> bool:
     return _simple_projection(b, lp.graph.centre) is not None
 
 
-def find_loops(network_or_graph, rims: bool = True, meet_tol: float = 1e-2, simple: bool = True) -> list[Loop]:
+def find_loops(network_or_graph: Any, rims: bool = True, meet_tol: float = 1e-2,
+               simple: bool = True) -> list[Loop]:
     """The closed loops of a network: the bounded faces of its top-view embedding.
 
     Parameters
     ----------
-    network_or_graph : Network or NetworkGraph
+    network_or_graph : CurveNetwork (or a producer of one) or NetworkGraph
     rims : bool
         Close open chains whose loose ends are at the same height with level
         rim edges (see the module docstring).

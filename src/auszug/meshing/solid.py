@@ -13,13 +13,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
 from auszug.errors import GeometryError
 from auszug.geometry import TOL
+from auszug.geometry.network import as_curve_network
 from auszug.meshing._clip import plane_loops
 from auszug.meshing.faces import Faces
 from auszug.meshing.mesh import Mesh, Part, is_closed, weld
@@ -137,15 +138,17 @@ def thicken(vertices: Array, faces: IntArray, thickness: float) -> tuple[Array, 
     return np.concatenate([top, bot]), out_f
 
 
-def base_plate(network, thickness: float, margin: float, sink: float, segments: int = 96) -> tuple[Array, IntArray]:
+def base_plate(network: Any, thickness: float, margin: float, sink: float,
+               segments: int = 96) -> tuple[Array, IntArray]:
     """A round plate under the network: top ``sink`` above the ground, ``thickness`` thick.
 
     Its radius reaches ``margin`` beyond the farthest point of the network
     from the symmetry centre.
     """
+    network = as_curve_network(network)
     b = network.bounds()
-    curves = network.drawing.curves
-    c = np.asarray(curves[0].symmetry.center if curves else (0.0, 0.0), dtype=float)
+    groups = network.groups
+    c = np.asarray(groups[0].center if groups else (0.0, 0.0), dtype=float)
     pts = np.concatenate([network.replicate(p).reshape(-1, 3) for p in network.pieces])
     r = float(np.max(np.hypot(pts[:, 0] - c[0], pts[:, 1] - c[1]))) + margin
     z0 = float(b[0, 2])
@@ -246,7 +249,7 @@ def drop_slivers(mesh: Mesh, rel: float = 1e-4) -> tuple[Mesh, int, int]:
 
 
 def solid(
-    network,
+    network: Any,
     profile: Profile,
     segments: int = 64,
     faces: Faces | None = None,
@@ -259,7 +262,7 @@ def solid(
 
     Parameters
     ----------
-    network : Network
+    network : CurveNetwork (or a producer of one, e.g. ``microarch.Network``)
     profile : Profile
         Closed.
     segments : int
@@ -302,11 +305,12 @@ def solid(
     ext = profile.points.max(0) - profile.points.min(0)
     # uncut: at a mirror joint the cut halves would touch the neighbour along a lens that ends in a
     # point (a zero-thickness contact); overlapping members unite into a clean fork instead
+    network = as_curve_network(network)
     members = sweep_members(network, profile, int(segments), cut=cut)
     inputs: list[tuple[Array, IntArray]] = []
     for mb in members:
         v, f = closed_member(mb)
-        sym = network.drawing.curves[mb.basic].symmetry
+        sym = network.groups[mb.basic]
         mats = sym.matrices()
         c = np.asarray(sym.center)
         for k in mb.replicas:

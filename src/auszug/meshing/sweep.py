@@ -39,13 +39,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import Iterable, Sequence
+from typing import Any, Iterable, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
 from auszug.errors import GeometryError
 from auszug.geometry import TOL
+from auszug.geometry.network import CurveNetwork, Piece, as_curve_network
 from auszug.meshing._clip import clip_halfspace, compact
 from auszug.meshing.frames import Frames, sweep_frames
 from auszug.meshing.mesh import Mesh, Part
@@ -99,45 +100,13 @@ def _wrap(a: Array) -> Array:
     return (a + np.pi) % (2.0 * np.pi) - np.pi
 
 
-def _t_of_g(piece, g: Array) -> Array:
-    mode, a, _, _ = piece.g_scale
-    top = piece.top
-    if mode == "arclength":
-        return top.t_at_u(np.clip(g / a, 0.0, 1.0))
-    if mode == "u":
-        return np.clip(g, 0.0, 1.0)
-    tt = np.linspace(0.0, 1.0, 513)
-    gg = piece.g_of_t(tt)
-    t = np.interp(g, gg, tt)
-    for _ in range(3):  # Newton on the monotone g(t)
-        h = 1e-7
-        dg = (piece.g_of_t(np.clip(t + h, 0, 1)) - piece.g_of_t(np.clip(t - h, 0, 1))) / (
-            np.clip(t + h, 0, 1) - np.clip(t - h, 0, 1))
-        t = np.clip(t - (piece.g_of_t(t) - g) / dg, 0.0, 1.0)
-    return t
-
-
-def _ds_dg(piece, t: Array) -> Array:
-    """Top-view arc length per unit side-view coordinate at t."""
-    mode = piece.g_scale[0]
-    if mode == "arclength":
-        return np.ones_like(t)
-    top = piece.top
-    L = top.length()
-    h = 1e-6
-    t0, t1 = np.clip(t - h, 0.0, 1.0), np.clip(t + h, 0.0, 1.0)
-    ds = L * (top.u_at_t(t1) - top.u_at_t(t0))
-    dg = piece.g_of_t(t1) - piece.g_of_t(t0)
-    return ds / dg
-
-
-def sample_piece(piece, segments: int) -> list[CurveSamples]:
+def sample_piece(piece: Piece, segments: int) -> list[CurveSamples]:
     """Sample a network piece for sweeping: ``segments`` steps in all, split at corners.
 
     Parameters
     ----------
     piece : Piece
-        A piece of :attr:`Network.pieces`.
+        A piece of :attr:`CurveNetwork.pieces`.
     segments : int
         Number of steps along the piece (>= 1; posts and pillars use 1).
 
@@ -189,10 +158,10 @@ def sample_piece(piece, segments: int) -> list[CurveSamples]:
     z = side.height(g)
     sgn = np.sign(dphi)[arc_id]
     tau = sgn[:, None] * np.stack([-(z - cz[arc_id]), g - cg[arc_id]], axis=1) / r[arc_id, None]
-    t = _t_of_g(piece, g)
+    t = piece.t_of_g(g)
     xy = top.point(t)
     th = top.tangent(t)
-    tg = tau[:, 0] * _ds_dg(piece, t)
+    tg = tau[:, 0] * piece.rule.ds_dg(top, t)
     tan = np.concatenate([th * tg[:, None], tau[:, 1:2]], axis=1)
     tan /= np.linalg.norm(tan, axis=1, keepdims=True)
     pts = np.concatenate([xy, z[:, None]], axis=1)
@@ -352,15 +321,14 @@ def _reflection_axis(m: Array) -> Array:
     return c / np.linalg.norm(c)
 
 
-def _scale(network) -> float:
-    pts = [v for c in network.drawing.curves for v in c.vertices]
-    return max(1.0, float(np.max(np.abs(pts)))) if pts else 1.0
+def _scale(network: CurveNetwork) -> float:
+    return max(1.0, network.size)
 
 
-def _mirror_cuts(network, pi: int, runs: list[CurveSamples]) -> list[tuple[int, int, Array]]:
+def _mirror_cuts(network: CurveNetwork, pi: int, runs: list[CurveSamples]) -> list[tuple[int, int, Array]]:
     """(end, element, plane normal) for each end of piece ``pi`` on a mirror axis of its group."""
     piece = network.pieces[pi]
-    sym = network.drawing.curves[piece.basic].symmetry
+    sym = network.groups[piece.basic]
     mats = sym.matrices()
     cen = np.asarray(sym.center)
     tol = AXIS_TOL * _scale(network)
@@ -386,7 +354,7 @@ def _mirror_cuts(network, pi: int, runs: list[CurveSamples]) -> list[tuple[int, 
     return out
 
 
-def _width0(piece, s: CurveSamples, cut_normal: Array | None) -> Array:
+def _width0(piece: Piece, s: CurveSamples, cut_normal: Array | None) -> Array:
     if piece.top is not None:
         th = piece.top.tangent(0.0)
         nh = np.array([-th[1], th[0], 0.0])
@@ -398,10 +366,10 @@ def _width0(piece, s: CurveSamples, cut_normal: Array | None) -> Array:
     return w / np.linalg.norm(w) if np.linalg.norm(w) > TOL.zero else np.array([1.0, 0.0, 0.0])
 
 
-def _replica_set(network, pi: int, pts: Array, tol: float) -> tuple[int, ...]:
+def _replica_set(network: CurveNetwork, pi: int, pts: Array, tol: float) -> tuple[int, ...]:
     """Group elements with distinct images of the piece (self-symmetric duplicates dropped)."""
     piece = network.pieces[pi]
-    sym = network.drawing.curves[piece.basic].symmetry
+    sym = network.groups[piece.basic]
     mats = sym.matrices()
     cen = np.asarray(sym.center)
     probe = pts[[0, len(pts) // 2, -1], :2] - cen
@@ -416,23 +384,13 @@ def _replica_set(network, pi: int, pts: Array, tol: float) -> tuple[int, ...]:
     return tuple(keep)
 
 
-def _member_name(network, pi: int) -> str:
-    p = network.pieces[pi]
-    for j, q in enumerate(network.pieces):
-        if q.basic == p.basic and q.kind == "ogee":
-            if j == pi:
-                return ""
-            break
-    return f".{p.kind}{p.segment if p.segment >= 0 else ''}"
-
-
-def sweep_piece(network, pi: int, profile: Profile, segments: int = 200, caps: bool = True,
+def sweep_piece(network: Any, pi: int, profile: Profile, segments: int = 200, caps: bool = True,
                 cut: bool = True) -> Member:
     """Sweep one basic piece: frames, caps, mirror-plane cuts; not yet replicated.
 
     Parameters
     ----------
-    network : Network
+    network : CurveNetwork (or a producer of one, e.g. ``microarch.Network``)
     pi : int
         Index into ``network.pieces``.
     profile : Profile
@@ -447,6 +405,7 @@ def sweep_piece(network, pi: int, profile: Profile, segments: int = 200, caps: b
     -------
     Member
     """
+    network = as_curve_network(network)
     piece = network.pieces[pi]
     if piece.kind not in SWEPT_KINDS:
         raise GeometryError(f"piece {pi} is a {piece.kind}; only {', '.join(SWEPT_KINDS)} pieces are swept")
@@ -518,12 +477,13 @@ def sweep_piece(network, pi: int, profile: Profile, segments: int = 200, caps: b
         V, F = compact(V, F)
     pts = np.concatenate([s.points for s in runs])
     return Member(pi, piece.basic, piece.kind, V, F, frames_l, runs, tuple(cuts),
-                  _replica_set(network, pi, pts, tol), _member_name(network, pi), profile.closed)
+                  _replica_set(network, pi, pts, tol), network.suffix(pi), profile.closed)
 
 
-def sweep_members(network, profile: Profile, segments: int = 200, kinds: Iterable[str] = SWEPT_KINDS,
+def sweep_members(network: Any, profile: Profile, segments: int = 200, kinds: Iterable[str] = SWEPT_KINDS,
                   basics: Sequence[int] | None = None, caps: bool = True, cut: bool = True) -> list[Member]:
     """Sweep every basic piece of the given kinds (optionally of some basic curves only)."""
+    network = as_curve_network(network)
     ks = set(kinds)
     bad = ks - set(SWEPT_KINDS)
     if bad:
@@ -535,15 +495,16 @@ def sweep_members(network, profile: Profile, segments: int = 200, kinds: Iterabl
     ]
 
 
-def replicate(network, members: Sequence[Member]) -> Mesh:
+def replicate(network: Any, members: Sequence[Member]) -> Mesh:
     """All replicas of the members as one mesh, one part per member replica.
 
     Mirrored replicas have their triangles reversed (outward orientation kept).
     """
+    network = as_curve_network(network)
     plan = []
     nv = nf = 0
     for mb in members:
-        sym = network.drawing.curves[mb.basic].symmetry
+        sym = network.groups[mb.basic]
         k = list(mb.replicas)
         plan.append((mb, sym, k, nv, nf))
         nv += len(k) * len(mb.vertices)
@@ -574,13 +535,13 @@ def replicate(network, members: Sequence[Member]) -> Mesh:
     return Mesh._unchecked(V, F, tuple(parts))
 
 
-def sweep_network(network, profile: Profile, segments: int = 200, kinds: Iterable[str] = SWEPT_KINDS,
+def sweep_network(network: Any, profile: Profile, segments: int = 200, kinds: Iterable[str] = SWEPT_KINDS,
                   basics: Sequence[int] | None = None, caps: bool = True, cut: bool = True) -> Mesh:
     """Every member of a network: swept once per basic piece, replicated by its symmetries.
 
     Parameters
     ----------
-    network : Network
+    network : CurveNetwork (or a producer of one, e.g. ``microarch.Network``)
     profile : Profile
         See :func:`profile_for` for the built-in looks.
     segments : int
@@ -616,9 +577,9 @@ def sweep_network(network, profile: Profile, segments: int = 200, kinds: Iterabl
 # -- built-in looks -----------------------------------------------------------------------------
 
 
-def default_size(network) -> float:
+def default_size(network: Any) -> float:
     """A member thickness that reads well: 1.2 % of the network's bounding-box diagonal."""
-    b = network.bounds()
+    b = as_curve_network(network).bounds()
     return 0.012 * float(np.linalg.norm(b[1] - b[0]))
 
 

@@ -12,15 +12,17 @@ from __future__ import annotations
 
 import math
 import weakref
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Iterator, Literal
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
 from auszug._cache import LruCache
 from auszug.errors import DrawingError
 from auszug.geometry import TOL, Curve
+from auszug.geometry.heights import SideCoordinate, orthographic_rule
+from auszug.geometry.network import CurveNetwork, NetworkCurve, Piece
 from auszug.microarch import sideview as sv
 from auszug.microarch.model import BasicCurve, Drawing
 
@@ -29,97 +31,6 @@ __all__ = ["Parameterization", "Piece", "NetworkCurve", "Network", "build"]
 Array = NDArray[np.float64]
 Parameterization = Literal["arclength", "u", "orthographic"]
 PARAMETERIZATIONS = ("arclength", "u", "orthographic")
-
-
-@dataclass(frozen=True, eq=False)
-class Piece:
-    """One 3D piece of a basic curve (before replication).
-
-    Attributes
-    ----------
-    basic : int
-        Index of the basic curve in the drawing.
-    segment : int
-        Index of the segment in the basic curve (-1 for posts and pillars).
-    kind : {"ogee", "free_end", "level", "decoration", "post", "pillar"}
-    top : Curve or None
-        Top view, oriented from the piece's start (its bottom for an ogee, the
-        apex for a free end). ``None`` for vertical posts and pillars.
-    side : SideView or None
-        Height over the side-view coordinate g (``None``: constant or vertical).
-    g_scale : tuple
-        The side-view coordinate rule ``(mode, a, b, sign)`` behind :meth:`g_of_t`:
-        arc length times ``a`` = L, the parameter itself, or ``sign`` times the
-        projection onto the direction ``(a, b)``, measured from the start.
-    points : (n, 3) ndarray
-        Samples from start to end (z = height).
-    prc : (3,) ndarray or None
-        The point of reverse curvature (ogee pieces).
-    prc_fraction : float or None
-        PRC as a fraction of the top-view arc length from the start.
-    decoration_point : tuple or None
-        ``(u, z)`` where the two equal-radius decoration arcs meet.
-    z_const : float
-        Height of a level piece (no side view).
-
-    A decoration piece is the part of its ogee (same ``basic`` and ``segment``)
-    below the PRC, listed separately so it can be drawn in its own style.
-    """
-
-    basic: int
-    segment: int
-    kind: str
-    top: Curve | None
-    side: sv.SideView | None
-    g_scale: tuple[str, float, float, float]
-    points: Array
-    prc: Array | None = None
-    prc_fraction: float | None = None
-    decoration_point: tuple[float, float] | None = None
-    z_const: float = 0.0
-
-    def g_of_t(self, t: ArrayLike) -> Array:
-        """Side-view coordinate g at top-view parameter(s) t."""
-        mode, a, b, c = self.g_scale
-        t = np.asarray(t, dtype=float)
-        if mode == "arclength":
-            return self.top.u_at_t(t) * a  # type: ignore[union-attr]  # only posts/pillars lack a top; their g is 'u'
-        if mode == "u":
-            return t
-        p = self.top.point(t) - self.top.start  # type: ignore[union-attr]  # as above: a top curve here
-        return c * (p[..., 0] * a + p[..., 1] * b)
-
-    def height_at_t(self, t: ArrayLike) -> Array:
-        """Height at top-view parameter(s) t."""
-        if self.side is None:
-            return np.full(np.shape(t), self.z_const)
-        return self.side.height(self.g_of_t(t))
-
-    def point3(self, u: ArrayLike) -> Array:
-        """3D point(s) at normalised top-view arc length u, shape (..., 3)."""
-        if self.top is None:
-            u = np.asarray(u, dtype=float)
-            return self.points[0] + u[..., None] * (self.points[-1] - self.points[0])
-        t = self.top.t_at_u(u)
-        xy = self.top.point(t)
-        return np.concatenate([xy, self.height_at_t(t)[..., None]], axis=-1)
-
-
-@dataclass(frozen=True)
-class NetworkCurve:
-    """One curve of the network: a piece of a basic curve under one symmetry element."""
-
-    id: str
-    basic: int
-    layer: int
-    kind: str
-    rotation: int
-    mirrored: bool
-    transform: Array
-    points: Array
-    prc: Array | None
-    piece: int
-    segment: int
 
 
 @dataclass(frozen=True, eq=False)
@@ -147,10 +58,70 @@ class Network:
     parameterization: str = "arclength"
     prc_choices: dict = field(default_factory=dict)
 
+    def to_curve_network(self) -> CurveNetwork:
+        """The domain-neutral :class:`~auszug.geometry.network.CurveNetwork` (cached).
+
+        Its pieces are this network's pieces; each basic curve's symmetry group
+        and layer, the layer bottoms and the drawing's size come along, and the
+        drawing's basic curves, heights and PRC choices go into ``meta`` for
+        network JSON. The true 3D intersections are not in it: see
+        :meth:`with_intersections`.
+        """
+        got = self.__dict__.get("_curve_network")
+        if got is None or got[0] != len(self.pieces):
+            d = self.drawing
+            got = (len(self.pieces), CurveNetwork(
+                pieces=tuple(self.pieces),
+                groups=tuple(c.symmetry.group for c in d.curves),
+                layers=tuple(c.layer for c in d.curves),
+                bottoms=tuple(self.bottoms),
+                size=drawing_size(d),
+                name=d.name,
+                meta=_meta(self),
+            ))
+            self.__dict__["_curve_network"] = got
+        return got[1]
+
+    def with_intersections(self) -> CurveNetwork:
+        """The curve network whose pieces also mark the true 3D intersections.
+
+        Each top-view intersection of two curves on one layer whose 3D points
+        coincide (own replicas at t = t', other curves at equal heights, within
+        :data:`MEET_TOL` of the drawing's size) becomes a feature ``intersection``
+        of both pieces, so sampling by tolerance makes it a vertex of both.
+        """
+        from auszug.microarch.prc import intersections
+
+        net = self.to_curve_network()
+        tol = MEET_TOL * net.size
+        by_seg: dict[tuple[int, int], list[int]] = {}
+        for pi, p in enumerate(self.pieces):
+            if p.top is not None and p.kind != "decoration":
+                by_seg.setdefault((p.basic, p.segment), []).append(pi)
+        marks: dict[int, set[float]] = {}
+        for h in intersections(self.drawing, layer_only=True):
+            a = by_seg.get((h.curve, h.segment))
+            b = by_seg.get((h.other_curve, h.other_segment))
+            if not a or not b:
+                continue
+            pa, pb = self.pieces[a[0]], self.pieces[b[0]]
+            za = float(pa.height_at_t(pa.top.t_at_u(h.u)))  # type: ignore[union-attr]  # top set
+            zb = float(pb.height_at_t(pb.top.t_at_u(h.u_other)))  # type: ignore[union-attr]  # top set
+            if abs(za - zb) > tol:
+                continue
+            for pi in a:
+                marks.setdefault(pi, set()).add(float(h.u))
+            for pi in b:
+                marks.setdefault(pi, set()).add(float(h.u_other))
+        pieces = tuple(
+            replace(p, marks=p.marks + tuple(("intersection", u) for u in sorted(marks[pi])))
+            if pi in marks else p
+            for pi, p in enumerate(net.pieces))
+        return replace(net, pieces=pieces)
+
     def group(self, basic: int) -> tuple[Array, list[str]]:
         """Replica transforms (k, 2, 2) and labels of basic curve ``basic``."""
-        s = self.drawing.curves[basic].symmetry
-        return s.matrices(), s.labels()
+        return self.to_curve_network().group(basic)
 
     def ogee_of(self, basic: int) -> Piece:
         """The first ogee piece of basic curve ``basic``."""
@@ -161,89 +132,64 @@ class Network:
 
     def replicate(self, piece: Piece) -> Array:
         """All replicas of a piece's points: (k, n, 3)."""
-        sym = self.drawing.curves[piece.basic].symmetry
-        m = sym.matrices()
-        c = np.asarray(sym.center)
-        xy = np.einsum("kij,nj->kni", m, piece.points[:, :2] - c) + c
-        z = np.broadcast_to(piece.points[:, 2], xy.shape[:2])[..., None]
-        return np.concatenate([xy, z], axis=-1)
+        return self.to_curve_network().replicate(piece)
 
     def curves(self) -> Iterator[NetworkCurve]:
         """Every curve of the network (all pieces under all symmetry elements)."""
-        first_ogee: dict[int, int] = {}
-        for pi, p in enumerate(self.pieces):
-            if p.kind == "ogee" and p.basic not in first_ogee:
-                first_ogee[p.basic] = pi
-        for pi, p in enumerate(self.pieces):
-            sym = self.drawing.curves[p.basic].symmetry
-            mats = sym.matrices()
-            labels = sym.labels()
-            c = np.asarray(sym.center)
-            pts = self.replicate(p)
-            prc = None
-            if p.prc is not None:
-                prc_xy = np.einsum("kij,j->ki", mats, p.prc[:2] - c) + c
-            seen: list[Array] = []
-            for k, lab in enumerate(labels):
-                if p.top is None:
-                    # a post or pillar on a mirror axis is its own mirror image: list it once
-                    if any(np.array_equal(pts[k], q) or np.allclose(pts[k], q, rtol=0, atol=1e-12) for q in seen):
-                        continue
-                    seen.append(pts[k])
-                suffix = "" if first_ogee.get(p.basic) == pi else f".{p.kind}{p.segment if p.segment >= 0 else ''}"
-                if p.prc is not None:
-                    prc = np.array([prc_xy[k, 0], prc_xy[k, 1], p.prc[2]])
-                yield NetworkCurve(
-                    id=f"{p.basic}/{lab}{suffix}",
-                    basic=p.basic,
-                    layer=self.drawing.curves[p.basic].layer,
-                    kind=p.kind,
-                    rotation=k // 2 if sym.mirror else k,
-                    mirrored=bool(sym.mirror and k % 2 == 1),
-                    transform=mats[k],
-                    points=pts[k],
-                    prc=prc,
-                    piece=pi,
-                    segment=p.segment,
-                )
+        return self.to_curve_network().curves()
 
     def bounds(self) -> Array:
         """Axis-aligned bounds of all curves, shape (2, 3): min and max corner."""
-        allp = np.concatenate([self.replicate(p).reshape(-1, 3) for p in self.pieces])
-        return np.stack([allp.min(0), allp.max(0)])
+        return self.to_curve_network().bounds()
 
 
-def _g_setup(top: Curve, mode: str, theta: float) -> tuple[tuple[str, float, float, float], float]:
-    """Side-view coordinate rule for a top curve: (mode, a, b, sign) and the extent G."""
+#: Two curves crossing in the top view meet in 3D where their heights differ by less
+#: than this share of the drawing's size.
+MEET_TOL = 1e-9
+
+
+def drawing_size(d: Drawing) -> float:
+    """The drawing's size: its largest absolute vertex coordinate (at least 1e-9)."""
+    pts = [v for c in d.curves for v in c.vertices]
+    return max(1e-9, float(np.max(np.abs(pts)))) if pts else 1.0
+
+
+def _meta(net: "Network") -> dict:
+    """The microarch extras of network JSON: parameterisation, basic curves, PRC choices."""
+    d = net.drawing
+    basics = []
+    for i, b in enumerate(d.curves):
+        s = b.symmetry
+        basics.append({
+            "index": i,
+            "layer": b.layer,
+            "fold": s.fold,
+            "mirror": s.mirror,
+            "axis": list(s.axis) if s.mirror else None,
+            "center": list(s.center),
+            "vertices": [list(v) for v in b.vertices],
+            "marks": list(b.marks),
+            "apex": float(net.apex_heights[i]),
+            "post_top": b.post_top,
+            "decoration": b.decoration,
+        })
+    return {"parameterization": net.parameterization, "basic_curves": basics,
+            "prc_choices": dict(net.prc_choices)}
+
+
+def _g_setup(top: Curve, mode: str, theta: float) -> tuple[SideCoordinate, float]:
+    """Side-view coordinate rule for a top curve and the extent G."""
     if mode == "arclength":
         L = top.length()
-        return ("arclength", L, 0.0, 1.0), L
+        return SideCoordinate("arclength", L), L
     if mode == "u":
-        return ("u", 1.0, 0.0, 1.0), 1.0
-    a, b = math.cos(theta), math.sin(theta)
-    t = np.linspace(0.0, 1.0, 129)
-    p = top.point(t)
-    g = p[:, 0] * a + p[:, 1] * b
-    d = np.diff(g)
-    sign = 1.0 if g[-1] >= g[0] else -1.0
-    if np.any(d * sign <= 0.0):
+        return SideCoordinate("u"), 1.0
+    got = orthographic_rule(top, theta)
+    if got is None:
         raise DrawingError(
             f"the orthographic side view at angle {math.degrees(theta):g} deg is not one-to-one "
             "on this curve; use the arc-length parameterisation")
-    return ("orthographic", a, b, sign), abs(float(g[-1] - g[0]))
-
-
-def _t_of_g(piece: Piece, g: float) -> float:
-    """Inverse of the side-view coordinate map on the piece's top curve."""
-    from auszug.geometry.roots import find_root
-
-    g0 = float(piece.g_of_t(0.0))
-    g1 = float(piece.g_of_t(1.0))
-    if g <= g0:
-        return 0.0
-    if g >= g1:
-        return 1.0
-    return float(find_root(lambda t: float(piece.g_of_t(t)) - g, 0.0, 1.0, xtol=1e-15))
+    return got
 
 
 _UNIFORM_T: "weakref.WeakKeyDictionary[Curve, dict[int, Array]]" = weakref.WeakKeyDictionary()
@@ -260,14 +206,11 @@ def _uniform_t(top: Curve, n: int) -> Array:
     return t
 
 
-def _sample_piece(top: Curve, side: sv.SideView | None, gs: tuple, n: int, z_const: float = 0.0) -> Array:
+def _sample_piece(top: Curve, side: sv.SideView | None, gs: SideCoordinate, n: int,
+                  z_const: float = 0.0) -> Array:
     t = _uniform_t(top, n)
     xy = top.point(t)
-    if side is None:
-        z = np.full(n, z_const)
-    else:
-        tmp = Piece(0, 0, "", top, side, gs, np.empty((0, 3)))
-        z = side.height(tmp.g_of_t(t))
+    z = np.full(n, z_const) if side is None else side.height(gs.g_of_t(top, t))
     return np.concatenate([xy, z[:, None]], axis=1)
 
 
@@ -396,16 +339,15 @@ def _build_curve(
                 f = c.prc[si]
                 f = auto[(ci, si)] if f is None else f
                 t_c = float(top.t_at_u(f))
-                tmp = Piece(ci, si, kind, top, None, gs, np.empty((0, 3)))
-                g_c = float(tmp.g_of_t(t_c))
+                g_c = float(gs.g_of_t(top, t_c))
                 side = sv.ogee(G, bottom, apex, g_c)
                 deco = None
                 pieces_here = []
                 if c.decoration:
                     f_d = c.decoration_at if c.decoration_at is not None else f / 2.0
-                    g_d = float(tmp.g_of_t(float(top.t_at_u(f_d))))
+                    g_d = float(gs.g_of_t(top, float(top.t_at_u(f_d))))
                     side, (g_d, z_d) = sv.decorated(side, g_d)
-                    deco = (float(top.u_at_t(_t_of_g(tmp, g_d))), z_d)
+                    deco = (float(top.u_at_t(gs.t_of_g(top, g_d))), z_d)
                 ogee_sides[si] = side
                 prc = np.array([*top.point(t_c), float(side.height(g_c))])
                 pts = _sample_piece(top, side, gs, n)
@@ -414,7 +356,8 @@ def _build_curve(
                 if deco is not None:
                     # the decoration: the two equal arcs below the PRC (also part of the ogee)
                     dpts = pc.point3(np.linspace(0.0, 1.0, n) * f)
-                    pieces_here.append(Piece(ci, si, "decoration", top, side, gs, dpts, None, None, deco))
+                    pieces_here.append(Piece(ci, si, "decoration", top, side, gs, dpts, None, None, deco,
+                                             u_end=float(f)))
                 built[si] = pieces_here
             elif kind == "free_end":
                 flip = c.marks[si] == "free"
@@ -447,7 +390,7 @@ def _build_curve(
         for vi in tops:
             x, y = c.vertices[vi]
             pts = np.array([[x, y, apex], [x, y, c.post_top]])
-            out.append(Piece(ci, -1, "post", None, None, ("u", 1, 0, 1), pts))
+            out.append(Piece(ci, -1, "post", None, None, SideCoordinate("u"), pts))
     return out
 
 
@@ -495,5 +438,5 @@ def _add_pillars(net: Network, n: int) -> None:
                         z_bot = max(z_bot, float(zs.max()))
             if z_top - z_bot > 1e-9 * size:
                 pts = np.array([[q[0], q[1], z_bot], [q[0], q[1], z_top]])
-                new.append(Piece(ci, -1, "pillar", None, None, ("u", 1, 0, 1), pts))
+                new.append(Piece(ci, -1, "pillar", None, None, SideCoordinate("u"), pts))
     net.pieces.extend(new)

@@ -9,59 +9,16 @@ function z(g) over its g-interval, so every top-view point gets one height.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
 from auszug.errors import DrawingError
+from auszug.geometry.heights import SideView
 
 __all__ = ["SideView", "ogee", "decorated", "free_end"]
 
 Array = NDArray[np.float64]
-
-
-@dataclass(frozen=True)
-class SideView:
-    """A chain of k arcs, each a graph z(g), joined G1.
-
-    Attributes
-    ----------
-    breaks : (k + 1,) ndarray
-        g at the start and end of each arc (increasing, breaks[0] = 0).
-    centers : (k, 2) ndarray
-        Arc centres (g, z).
-    radii : (k,) ndarray
-    upper : (k,) ndarray of float
-        +1 where the arc is on the upper half of its circle, -1 on the lower.
-    vertical : (k,) ndarray
-        g of a point where each arc's circle has a vertical tangent (c_g - r or
-        c_g + r): heights are measured from there, exactly.
-    """
-
-    breaks: Array
-    centers: Array
-    radii: Array
-    upper: Array
-    vertical: Array
-
-    @property
-    def extent(self) -> float:
-        """Total horizontal extent G."""
-        return float(self.breaks[-1])
-
-    def height(self, g: ArrayLike) -> Array:
-        """Heights z at side-view coordinates ``g`` (clamped to [0, G]), shape preserved.
-
-        Evaluated as c_z +- sqrt(d (2 r - d)), d the horizontal distance from the
-        circle's nearest vertical-tangent point, so heights at the vertical end
-        tangents are exact (no cancellation in r^2 - (g - c_g)^2).
-        """
-        g = np.clip(np.asarray(g, dtype=float), 0.0, self.breaks[-1])
-        i = np.clip(np.searchsorted(self.breaks, g, side="right") - 1, 0, len(self.radii) - 1)
-        r = self.radii[i]
-        d = np.abs(g - self.vertical[i])
-        return self.centers[i, 1] + self.upper[i] * np.sqrt(np.maximum(d * (2.0 * r - d), 0.0))
 
 
 def _arc_radius(dg: float, dz: float) -> float:

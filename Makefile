@@ -49,8 +49,10 @@ run: $(STAMP) $(WEB_BUILD)
 	$(BIN)/auszug demo -o $(OUT)
 	$(BIN)/auszug tracery --gallery $(OUT)/tracery
 
-## test: set up, then run every test
+## test: set up, then lint (ruff), type-check (mypy) and run every test
 test: $(STAMP) $(NODE_STAMP) $(WEB_BUILD) $(CHROMIUM)
+	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/mypy src/auszug
 	cd web && npm run --silent typecheck && npm test --silent
 	AUSZUG_REQUIRE_NODE=1 $(BIN)/python -m pytest -n 2 -q
 

@@ -20,7 +20,6 @@ from pathlib import Path
 
 import numpy as np
 
-from auszug import examples
 from auszug.formats import load
 from auszug.formats.network_json import dumps
 from auszug.geometry.network import sample_by_tolerance
@@ -68,7 +67,7 @@ def main() -> None:
         pts = sum(len(c.points) for c in fine.curves())
         old = sum(len(c.points) for c in cn.curves())
         e_old = e_new = 0.0
-        for p0, p in zip(net.with_intersections().pieces, fine.pieces):
+        for p0, p in zip(net.with_intersections().pieces, fine.pieces, strict=True):
             if p.top is None:
                 continue
             t_old = p.top.t_at_u(np.linspace(0.0, p.u_end, 65))

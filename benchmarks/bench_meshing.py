@@ -30,19 +30,19 @@ from pathlib import Path
 
 import numpy as np
 
-from _timing import timed
-
 from auszug.errors import AuszugError
 from auszug.formats import load, stl
 from auszug.meshing import default_size, network_faces, profile_for, sweep_network
 from auszug.meshing.solid import solid
 from auszug.microarch import build, edit
 
+from _timing import timed
+
 #: The drawings bundled with the package (auszug.examples): the whole corpus.
 DEFAULT_CORPUS = Path(str(files("auszug.examples")))
 
 
-def timed_ms(fn, reps: int) -> tuple[float, float]:  # noqa: ANN001
+def timed_ms(fn, reps: int) -> tuple[float, float]:
     """(min, median) milliseconds of ``fn()`` over ``reps`` runs after two warm-ups."""
     t = timed(fn, reps)
     return t.min * 1e3, t.median * 1e3
@@ -65,18 +65,18 @@ def main(argv: list[str] | None = None) -> int:
     for style in ("bar", "tube"):
         prof = profile_for(style, size, 40)
         m = sweep_network(chancel, prof, 200)
-        lo, med = timed_ms(lambda: sweep_network(chancel, prof, 200), a.reps)
+        lo, med = timed_ms(lambda prof=prof: sweep_network(chancel, prof, 200), a.reps)
         print(f"| all members, {style} | {m.n_vertices} | {m.n_faces} | {lo:.1f} | {med:.1f} | < 100 |")
     prof = profile_for("bar", size, 40)
     for b in range(len(chancel.drawing.curves)):
         m = sweep_network(chancel, prof, 200, basics=[b])
-        lo, med = timed_ms(lambda: sweep_network(chancel, prof, 200, basics=[b]), a.reps)
+        lo, med = timed_ms(lambda b=b: sweep_network(chancel, prof, 200, basics=[b]), a.reps)
         print(f"| one basic curve ({b}) and its {len(m.parts)} replicas, bar | {m.n_vertices} | {m.n_faces} "
               f"| {lo:.2f} | {med:.2f} | < 5 |")
     d = chancel.drawing
     h = d.apex_height(0)
 
-    def edit_rebuild_resweep(k=[0]):  # noqa: B006
+    def edit_rebuild_resweep(k=[0]):  # noqa: B006  (the default list is the call counter)
         k[0] += 1
         net = build(edit.set_apex_height(d, 0, h * (1.0 + 0.01 * (k[0] % 7))))
         return sweep_network(net, prof, 200, basics=[0])
@@ -120,7 +120,8 @@ def main(argv: list[str] | None = None) -> int:
           f"(worst residual {max(r[3] for r in rows):.1e}) |")
     print(f"| faces time per drawing (64 boundary points) | median {statistics.median(r[4] for r in rows):.0f} ms, "
           f"worst {max(r[4] for r in rows):.0f} ms |")
-    print(f"| solids watertight and manifold (bar, 64 segments, base plate) | {sum(r[5] for r in rows)} of {len(rows)} |")
+    print(f"| solids watertight and manifold (bar, 64 segments, base plate) "
+          f"| {sum(r[5] for r in rows)} of {len(rows)} |")
     print(f"| the same read back from binary STL (welded by position) | {sum(r[9] for r in rows)} of {len(rows)} |")
     print(f"| solid volumes | {min(r[6] for r in rows):.4g} to {max(r[6] for r in rows):.4g} (all > 0: "
           f"{all(r[6] > 0 for r in rows)}); one shell: {sum(r[7] == 1 for r in rows)} of {len(rows)} |")

@@ -126,14 +126,14 @@ APEX_JS = """() => {
 }"""
 
 
-def open_drawing(page, url: str, name: str) -> None:  # noqa: ANN001
+def open_drawing(page, url: str, name: str) -> None:
     """Navigate ``page`` to the studio at ``url`` with drawing ``name`` and wait for its first frame."""
     page.goto(f"{url}?open={name}")
     page.wait_for_function("() => window.auszug && window.auszug.timings.length > 0 "
                            "&& window.auszug.timings[0].rendered > 0", timeout=30000)
 
 
-def move_mouse(page, x0: float, y0: float, reps: int, apex: bool = False, period_s: float = 1 / 60) -> None:  # noqa: ANN001
+def move_mouse(page, x0: float, y0: float, reps: int, apex: bool = False, period_s: float = 1 / 60) -> None:
     """Press at (x0, y0) with Alt held (no snapping), move ``reps`` times, one move every
     ``period_s`` to a fresh spot near it (``apex``: up and down by a few pixels), release."""
     page.mouse.move(x0, y0)
@@ -153,7 +153,7 @@ def move_mouse(page, x0: float, y0: float, reps: int, apex: bool = False, period
     page.wait_for_timeout(300)
 
 
-def grab_point(page, apex: bool = False) -> tuple[float, float]:  # noqa: ANN001
+def grab_point(page, apex: bool = False) -> tuple[float, float]:
     """Where to press: curve 0's last vertex in the top view, or (``apex``) its apex marker in the side view."""
     if apex:
         grab = page.evaluate(APEX_JS)
@@ -166,7 +166,9 @@ def grab_point(page, apex: bool = False) -> tuple[float, float]:  # noqa: ANN001
     return grab["x"], grab["y"]
 
 
-def mouse_drag(page, reps: int, period_s: float = 1 / 60, apex: bool = False) -> tuple[list[float], list[float], list[float]]:  # noqa: ANN001
+def mouse_drag(
+    page, reps: int, period_s: float = 1 / 60, apex: bool = False
+) -> tuple[list[float], list[float], list[float]]:
     """A real drag by the mouse (:func:`move_mouse`) of curve 0's last vertex in the top view, or
     (``apex``) of its apex marker in the side view. Per edit (ms): input event -> geometry in the
     page, send -> geometry, input event -> the next frame drawn with it (its draw calls issued)."""
@@ -184,7 +186,7 @@ DIAGNOSIS = (("everything drawn", ()), ("WebGL canvas hidden", ("canvas",)),
              ("canvas, side view and top-view markers hidden", ("canvas", "side", "markers")))
 
 
-def diagnose(browser, url: str, name: str, reps: int, rounds: int) -> int:  # noqa: ANN001
+def diagnose(browser, url: str, name: str, reps: int, rounds: int) -> int:
     """The top-view mouse drag with parts of the page hidden, in alternating rounds; prints a table."""
     res: dict[str, list[list[float]]] = {label: [[], []] for label, _ in DIAGNOSIS}
     for r in range(rounds):
@@ -205,7 +207,8 @@ def diagnose(browser, url: str, name: str, reps: int, rounds: int) -> int:  # no
     print("| page | pointer event -> geometry: median (ms) | p90 | edit sent -> geometry: median (ms) | p90 |")
     print("|---|---|---|---|---|")
     for label, (di, ds) in res.items():
-        print(f"| {label} | {statistics.median(di):.2f} | {pct(di, 0.9):.2f} | {statistics.median(ds):.2f} | {pct(ds, 0.9):.2f} |")
+        print(f"| {label} | {statistics.median(di):.2f} | {pct(di, 0.9):.2f} "
+              f"| {statistics.median(ds):.2f} | {pct(ds, 0.9):.2f} |")
     return 0
 
 
@@ -220,7 +223,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--reps", type=int, default=200, help="timed edits per kind (default 200)")
     ap.add_argument("--edits", type=int, default=1000, help="edits for the GPU-resource check (default 1000)")
     ap.add_argument("--idle", type=float, default=10.0, help="idle seconds for the GPU-resource check")
-    ap.add_argument("--looks", default="curves", help="looks style while measuring resources (curves, tube, bar, ribbon)")
+    ap.add_argument("--looks", default="curves",
+                    help="looks style while measuring resources (curves, tube, bar, ribbon)")
     ap.add_argument("--diagnose", type=int, default=0, metavar="ROUNDS",
                     help="only the diagnosis: the mouse drag with parts of the page hidden (nothing; the "
                     "WebGL canvas; canvas, side view and the top view's markers), in ROUNDS alternating "
@@ -281,26 +285,33 @@ def main(argv: list[str] | None = None) -> int:
     print(f"studio speed: {args.drawing} in headless chromium {platform.machine()}, {os.cpu_count()} cores, "
           f"Python {platform.python_version()}, {time.strftime('%Y-%m-%d')}")
     print()
-    print("| edit | to geometry in page: median (ms) | p90 | + rendered frame: median (ms) | p90 | target | authors' demo (ms) |")
+    print("| edit | to geometry in page: median (ms) | p90 | + rendered frame: median (ms) | p90 | target "
+          "| authors' demo (ms) |")
     print("|---|---|---|---|---|---|---|")
     for label, kind, gm, g9, fm, f9 in rows:
         print(f"| {label} | {gm:.2f} | {g9:.2f} | {fm:.2f} | {f9:.2f} | <= 2 (point drag), <= 20 with frame | "
               f"{ANCHOR[kind]} ({ANCHOR['frame']} with frame) |")
     di, ds, dr = drag
     print()
-    print("| top-view point drag by the mouse (60 Hz, real pointer events) | median (ms) | p90 | target | authors' demo (ms) |")
+    print("| top-view point drag by the mouse (60 Hz, real pointer events) | median (ms) | p90 | target "
+          "| authors' demo (ms) |")
     print("|---|---|---|---|---|")
-    print(f"| pointer event -> geometry in page | {statistics.median(di):.2f} | {pct(di, 0.9):.2f} | <= 2 | {ANCHOR['point drag']} |")
+    print(f"| pointer event -> geometry in page | {statistics.median(di):.2f} | {pct(di, 0.9):.2f} | <= 2 "
+          f"| {ANCHOR['point drag']} |")
     print(f"| edit sent -> geometry in page | {statistics.median(ds):.2f} | {pct(ds, 0.9):.2f} | | |")
-    print(f"| pointer event -> next frame drawn with it | {statistics.median(dr):.2f} | {pct(dr, 0.9):.2f} | <= 20 | {ANCHOR['frame']} |")
+    print(f"| pointer event -> next frame drawn with it | {statistics.median(dr):.2f} | {pct(dr, 0.9):.2f} | <= 20 "
+          f"| {ANCHOR['frame']} |")
     print(f"({len(di)} edits of {args.reps} moves)")
     ai, as_, ar = apex
     print()
-    print("| side-view apex drag by the mouse (60 Hz, curve 0 selected) | median (ms) | p90 | target | authors' demo (ms) |")
+    print("| side-view apex drag by the mouse (60 Hz, curve 0 selected) | median (ms) | p90 | target "
+          "| authors' demo (ms) |")
     print("|---|---|---|---|---|")
-    print(f"| pointer event -> geometry in page | {statistics.median(ai):.2f} | {pct(ai, 0.9):.2f} | | {ANCHOR['apex drag']} |")
+    print(f"| pointer event -> geometry in page | {statistics.median(ai):.2f} | {pct(ai, 0.9):.2f} | "
+          f"| {ANCHOR['apex drag']} |")
     print(f"| edit sent -> geometry in page | {statistics.median(as_):.2f} | {pct(as_, 0.9):.2f} | | |")
-    print(f"| pointer event -> next frame drawn with it | {statistics.median(ar):.2f} | {pct(ar, 0.9):.2f} | <= 20 | {ANCHOR['frame']} |")
+    print(f"| pointer event -> next frame drawn with it | {statistics.median(ar):.2f} | {pct(ar, 0.9):.2f} | <= 20 "
+          f"| {ANCHOR['frame']} |")
     print(f"({len(ai)} edits of {args.reps} moves)")
     print()
     print(f"| first load (navigation to first frame) | {', '.join(f'{t:.0f}' for t in loads)} ms | target < 1500 ms |")

@@ -53,7 +53,7 @@ ANCHOR = {"point drag": 1.2, "apex drag": 4.2}
 TARGET_PAGE_MS = 2.0
 
 
-def edit_messages(drawing, kind: str, start: int):  # noqa: ANN001, ANN201
+def edit_messages(drawing, kind: str, start: int):
     """An endless stream of edit messages (JSON text) of one kind, each with fresh values."""
     c = drawing.curves[0]
     v = len(c.vertices) - 1
@@ -91,7 +91,7 @@ def server_path(name: str, kind: str, reps: int) -> dict[str, float]:
         out = frames.text(msg.id)
         t4 = time.perf_counter()
         if i >= 20:  # warm-up: imports, first builds of the other curves
-            for key, dt in zip(parts, (t1 - t0, t2 - t1, t3 - t2, t4 - t3, t4 - t0)):
+            for key, dt in zip(parts, (t1 - t0, t2 - t1, t3 - t2, t4 - t3, t4 - t0), strict=True):
                 parts[key].append(dt * 1e3)
         doc.undo_stack.clear()
     res = {k: statistics.median(v) for k, v in parts.items()}
@@ -250,7 +250,9 @@ async ({url, n, size}) => {
 """
 
 
-def transport_floor(reps: int, sizes: tuple[int, ...] = (16, 1000, 13000, 50000)) -> dict[int, tuple[float, float]] | None:
+def transport_floor(
+    reps: int, sizes: tuple[int, ...] = (16, 1000, 13000, 50000)
+) -> dict[int, tuple[float, float]] | None:
     """(median, p90) ms of chromium <-> uvicorn round trips that do no studio work at all: an
     echo app (same uvicorn configuration, same socket) answers each message with a binary frame
     of ``size`` bytes. The least any edit can cost in the page, before the server computes."""
@@ -269,7 +271,7 @@ def transport_floor(reps: int, sizes: tuple[int, ...] = (16, 1000, 13000, 50000)
 
     from auszug.cli.studio import bind_local, server_config
 
-    async def echo(ws) -> None:  # noqa: ANN001
+    async def echo(ws) -> None:
         await ws.accept()
         while True:
             m = await ws.receive()

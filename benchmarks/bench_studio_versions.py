@@ -148,7 +148,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"| {k}, {pace} | {statistics.median(x for x, _ in b):.2f} | {statistics.median(f for _, f in b):.2f} | "
               f"{statistics.median(x for x, _ in n):.2f} | {statistics.median(f for _, f in n):.2f} |")
     print()
-    print("| mouse drag (60 Hz): pointer event -> geometry in page | before: median (ms) | p90 | after: median (ms) | p90 |")
+    print("| mouse drag (60 Hz): pointer event -> geometry in page | before: median (ms) | p90 "
+          "| after: median (ms) | p90 |")
     print("|---|---|---|---|---|")
     for k, label in (("point", "top-view point drag"), ("apex", "side-view apex drag")):
         b, n = mouse[("before", k)], mouse[("after", k)]

@@ -29,7 +29,7 @@ class LruCache:
     def __contains__(self, key: object) -> bool:
         return key in self.data
 
-    def get(self, key: object):  # noqa: ANN201
+    def get(self, key: object):
         """The value of ``key`` (made the newest), or None."""
         v = self.data.get(key)
         if v is not None:

@@ -75,7 +75,8 @@ def test_reconstruction_options_reach_the_network(cli, tmp_path):
 
 def test_theta_is_in_degrees(cli, tmp_path):
     out = tmp_path / "n.network.json"
-    assert cli("build", TN / "tn-3.uc", "-o", out, "--param", "orthographic", "--theta", "30", "--samples", "65").code == 0
+    args = ("--param", "orthographic", "--theta", "30", "--samples", "65")
+    assert cli("build", TN / "tn-3.uc", "-o", out, *args).code == 0
     got = load(out, kind="network")["curves"][0]["points"]
     d = load(TN / "tn-3.uc")
     np.testing.assert_array_equal(got, build(d, "orthographic", theta=math.radians(30.0)).pieces[0].points)

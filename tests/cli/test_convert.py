@@ -12,7 +12,7 @@ from tests.cli.conftest import BAD_LINE, TN, files_in
 def _same_network(a, b):
     na, nb = build(load(a)), build(load(b))
     assert [c.id for c in na.curves()] == [c.id for c in nb.curves()]
-    for ca, cb in zip(na.curves(), nb.curves()):
+    for ca, cb in zip(na.curves(), nb.curves(), strict=True):
         np.testing.assert_allclose(ca.points, cb.points, rtol=0, atol=1e-12)
 
 

@@ -44,7 +44,7 @@ def level_arcs() -> CurveNetwork:
     cw = Arc((-0.5, 1.0), 0.4, 1.0, -4.0)
     rule = SideCoordinate("arclength")
 
-    def level(basic: int, seg: int, top, z: float) -> Piece:  # noqa: ANN001
+    def level(basic: int, seg: int, top, z: float) -> Piece:
         t = np.linspace(0.0, 1.0, 17)
         pts = np.concatenate([top.point(t), np.full((17, 1), z)], axis=1)
         return Piece(basic, seg, "level", top, None, rule, pts, z_const=z)

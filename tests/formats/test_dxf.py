@@ -26,7 +26,7 @@ def read(text: str) -> ezdxf.document.Drawing:
     return ezdxf.read(io.StringIO(text))
 
 
-def entities(doc) -> dict[str, dict[str, list]]:  # noqa: ANN001
+def entities(doc) -> dict[str, dict[str, list]]:
     """Model space entities by curve id (their XDATA), then by what they are."""
     out: dict[str, dict[str, list]] = defaultdict(lambda: defaultdict(list))
     for e in doc.modelspace():
@@ -35,7 +35,7 @@ def entities(doc) -> dict[str, dict[str, list]]:  # noqa: ANN001
     return out
 
 
-def arc_points(e, angles_deg: np.ndarray) -> np.ndarray:  # noqa: ANN001
+def arc_points(e, angles_deg: np.ndarray) -> np.ndarray:
     """WCS points of a re-read ARC at OCS angles (degrees), from its re-read centre, radius and extrusion."""
     ocs = OCS(e.dxf.extrusion)
     c = np.array(e.dxf.center)
@@ -44,11 +44,11 @@ def arc_points(e, angles_deg: np.ndarray) -> np.ndarray:  # noqa: ANN001
     return np.array([tuple(ocs.to_wcs(tuple(p))) for p in local])
 
 
-def sweep_deg(e) -> float:  # noqa: ANN001
+def sweep_deg(e) -> float:
     return (e.dxf.end_angle - e.dxf.start_angle) % 360.0
 
 
-def check_network(net, text: str) -> dict[str, int]:  # noqa: ANN001
+def check_network(net, text: str) -> dict[str, int]:
     """Every re-read entity against the network; returns counts of what was checked."""
     diag = net.diagonal()
     doc = read(text)
@@ -65,7 +65,7 @@ def check_network(net, text: str) -> dict[str, int]:  # noqa: ANN001
         runs = mapped_runs(net, c)
         arcs = [e for _, e in sorted(got["arc"], key=lambda x: x[0])]
         assert len(arcs) == len(runs), c.id
-        for run, e in zip(runs, arcs):
+        for run, e in zip(runs, arcs, strict=True):
             assert e.dxf.layer == exact_layer_name(c.basic)
             ocs = OCS(e.dxf.extrusion)
             assert np.allclose(np.array(e.dxf.extrusion), run["normal"], rtol=0, atol=1e-12)

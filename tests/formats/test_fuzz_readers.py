@@ -148,7 +148,7 @@ def test_legacy_like_files(text):
     d = _check_reader(read_uc, text)
     if d is not None:
         assert d.default_apex == max(1.0, max(
-            math.dist(a, b) for c in d.curves for a, b in zip(c.vertices, c.vertices[1:])))
+            math.dist(a, b) for c in d.curves for a, b in zip(c.vertices, c.vertices[1:], strict=False)))
         _check_build(d)
 
 

@@ -106,15 +106,23 @@ CHECK = r"""
 import fs from 'node:fs';
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
-globalThis.ProgressEvent ??= class ProgressEvent extends Event { constructor(t, o = {}) { super(t); Object.assign(this, o); } };
+globalThis.ProgressEvent ??= class ProgressEvent extends Event {
+  constructor(t, o = {}) { super(t); Object.assign(this, o); }
+};
 const loader = new GLTFLoader();
 const out = [];
 for (const path of process.argv.slice(2)) {
   const buf = fs.readFileSync(path);
-  const data = path.endsWith('.glb') ? buf.buffer.slice(buf.byteOffset, buf.byteOffset + buf.byteLength) : buf.toString('utf8');
+  const data = path.endsWith('.glb')
+    ? buf.buffer.slice(buf.byteOffset, buf.byteOffset + buf.byteLength) : buf.toString('utf8');
   await new Promise((resolve, reject) => loader.parse(data, '', (gltf) => {
     let meshes = 0, verts = 0, tris = 0; const names = [];
-    gltf.scene.traverse((o) => { if (o.isMesh) { meshes++; verts += o.geometry.attributes.position.count; tris += o.geometry.index.count / 3; names.push(o.name); } });
+    gltf.scene.traverse((o) => {
+      if (o.isMesh) {
+        meshes++; verts += o.geometry.attributes.position.count; tris += o.geometry.index.count / 3;
+        names.push(o.name);
+      }
+    });
     const box = new THREE.Box3().setFromObject(gltf.scene);
     out.push({meshes, verts, tris, names, ymax: box.max.y});
     resolve();

@@ -7,8 +7,8 @@ import pytest
 
 from auszug.errors import FormatError
 from auszug.formats import load, save
-from auszug.formats.ply import dumps, loads
 from auszug.formats.mesh_obj import part_colour
+from auszug.formats.ply import dumps, loads
 from auszug.meshing import profile_for, sweep_network
 from auszug.microarch import build
 from tests.conftest import CORPUS

@@ -49,7 +49,8 @@ def test_trimesh_reads_a_watertight_volume(printable, tmp_path):
 
 
 def test_ascii_stl_and_errors():
-    text = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n"
+    text = ("solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+            "endloop\nendfacet\nendsolid\n")
     assert loads(text).n_faces == 1
     with pytest.raises(FormatError, match="too short"):
         loads(b"abc")

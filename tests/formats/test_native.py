@@ -25,7 +25,7 @@ def assert_same_drawing(a: Drawing, b: Drawing) -> None:
         if f.name != "curves":
             assert getattr(a, f.name) == getattr(b, f.name), f.name
     assert len(a.curves) == len(b.curves)
-    for i, (ca, cb) in enumerate(zip(a.curves, b.curves)):
+    for i, (ca, cb) in enumerate(zip(a.curves, b.curves, strict=True)):
         for f in fields(BasicCurve):
             va, vb = getattr(ca, f.name), getattr(cb, f.name)
             assert va == vb, f"curves[{i}].{f.name}: {va!r} != {vb!r}"

@@ -106,9 +106,9 @@ def test_round_trip_is_exact_and_does_not_touch_the_network(tmp_path):
     text = dumps(net, "tn-5.uc")
     doc = loads(text, "tn-5.network.json")
     assert doc == json.loads(json.dumps(to_dict(net, "tn-5.uc")))
-    for c, nc in zip(doc["curves"], net.curves()):
+    for c, nc in zip(doc["curves"], net.curves(), strict=True):
         assert np.array_equal(np.array(c["points"]), nc.points)    # floats survive exactly
-    assert all(np.array_equal(a, p.points) for a, p in zip(before, net.pieces))
+    assert all(np.array_equal(a, p.points) for a, p in zip(before, net.pieces, strict=True))
     out = save(NetworkFile(net, "tn-5.uc"), tmp_path / "tn-5.network.json")
     assert out.read_text() == text
     assert load(out, kind="network") == doc

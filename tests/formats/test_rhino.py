@@ -18,11 +18,11 @@ from auszug.microarch import build
 from tests.conftest import CORPUS
 
 
-def v(p) -> np.ndarray:  # noqa: ANN001
+def v(p) -> np.ndarray:
     return np.array([p.X, p.Y, p.Z])
 
 
-def check_network(net, data: bytes) -> dict[str, int]:  # noqa: ANN001
+def check_network(net, data: bytes) -> dict[str, int]:
     """Every re-read object against the network; returns counts of what was checked."""
     diag = net.diagonal()
     f = r.File3dm.FromByteArray(data)
@@ -31,7 +31,7 @@ def check_network(net, data: bytes) -> dict[str, int]:  # noqa: ANN001
     assert [o.Attributes.Name for o in objs] == [c.id for c in curves]     # one object each, in order
     layers = [ly.Name for ly in f.Layers]
     counts: dict[str, int] = defaultdict(int)
-    for o, c in zip(objs, curves):
+    for o, c in zip(objs, curves, strict=True):
         g = o.Geometry
         assert layers[o.Attributes.LayerIndex] == layer_name(c.basic)
         assert o.Attributes.GetUserString("kind") == c.kind

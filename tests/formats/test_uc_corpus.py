@@ -90,7 +90,7 @@ def test_web_round_trip_keeps_the_geometry(path):
     e = read_uc(text, str(path))
     assert e.name == d.name and len(e.curves) == len(d.curves)
     net = build(d)
-    for i, (a, b) in enumerate(zip(d.curves, e.curves)):
+    for i, (a, b) in enumerate(zip(d.curves, e.curves, strict=True)):
         assert b.vertices == a.vertices
         assert b.segments == a.segments  # kinds and handles, exactly (floats written by repr)
         assert b.marks == a.marks and b.layer == a.layer and b.symmetry == a.symmetry

@@ -28,7 +28,7 @@ def _legacy(name):
 
 
 def _longest_chord(d):
-    return max(math.dist(a, b) for c in d.curves for a, b in zip(c.vertices[:-1], c.vertices[1:]))
+    return max(math.dist(a, b) for c in d.curves for a, b in zip(c.vertices[:-1], c.vertices[1:], strict=True))
 
 
 # -- every legacy file ---------------------------------------------------------------------------

@@ -167,7 +167,7 @@ def test_arc_length_maps_are_inverse(b, tlist):
     if no_cusp(b):
         np.testing.assert_allclose(b.t_at_u(u), t, atol=1e-10)
     # u_at_t agrees with an independent quadrature (near-cusps: test_length_near_cusp)
-    for ti, ui in zip(t[:3] if no_cusp(b, 1e-2) else [], u[:3]):
+    for ti, ui in zip(t[:3] if no_cusp(b, 1e-2) else [], u[:3], strict=False):
         assert ui * b.length() == pytest.approx(quad_length(b, 0.0, ti), abs=1e-11)
 
 
@@ -180,7 +180,7 @@ def test_u_monotone_and_sample_equally_spaced(b):
     assert b.t_at_u(0.0) == 0.0 and b.t_at_u(1.0) == 1.0
     tk = b.t_at_u(np.linspace(0, 1, 9))
     if no_cusp(b, 1e-2):  # the reference quadrature is not reliable at near-cusps
-        pieces = [quad_length(b, a, c) for a, c in zip(tk[:-1], tk[1:])]
+        pieces = [quad_length(b, a, c) for a, c in zip(tk[:-1], tk[1:], strict=True)]
         np.testing.assert_allclose(pieces, b.length() / 8, atol=1e-11)
     np.testing.assert_allclose(b.sample(9), b.point(tk), atol=0)
 

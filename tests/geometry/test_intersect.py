@@ -116,7 +116,7 @@ def test_rigid_motion_invariance(c1, c2, motion):
     hits = intersect(c1, c2)
     moved = intersect(c1.transformed(m, off), c2.transformed(m, off))
     assert same_params(hits, moved)
-    for h, g in zip(sorted(hits, key=lambda h: h.t1), sorted(moved, key=lambda h: h.t1)):
+    for h, g in zip(sorted(hits, key=lambda h: h.t1), sorted(moved, key=lambda h: h.t1), strict=True):
         np.testing.assert_allclose(m @ h.point + off, g.point, atol=1e-8)
 
 

@@ -76,7 +76,7 @@ def test_every_corpus_polyline_is_within_the_tolerance_both_ways(path):
     fine = _fine(net)
     T = fine.tolerance
     assert T == pytest.approx(DEFAULT_REL_TOLERANCE * net.to_curve_network().diagonal(), rel=1e-12)
-    for pi, (p0, p) in enumerate(zip(net.with_intersections().pieces, fine.pieces)):
+    for pi, (p0, p) in enumerate(zip(net.with_intersections().pieces, fine.pieces, strict=True)):
         if p.top is None:
             assert len(p.points) == 2
             continue
@@ -136,7 +136,7 @@ def test_network_json_v2_exact_curves_reevaluate_every_point(name):
     doc = loads(dumps(fine, name))
     assert doc["version"] == 2 and doc["tolerance"] == fine.tolerance
     marked = net.with_intersections().pieces
-    for rec, c in zip(doc["curves"], fine.curves()):
+    for rec, c in zip(doc["curves"], fine.curves(), strict=True):
         assert rec["id"] == c.id
         p = exact_piece(rec)
         pts = np.asarray(rec["points"])

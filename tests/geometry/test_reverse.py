@@ -25,6 +25,7 @@ from auszug.geometry import (
     winds,
 )
 
+
 def single_arc_fits(A, dA, B, dB, eps=1e-3):
     """One arc (or the line) already joins A and B with both tangents: reverse curves
     degenerate (a zero-length arc), so the random tests keep away from it."""

@@ -5,7 +5,6 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
-
 from auszug.formats import load
 from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry, build
 from tests.conftest import CORPUS, corpus_files

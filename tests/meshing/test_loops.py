@@ -63,7 +63,7 @@ def test_boundary_points_are_exactly_on_their_strands():
     net = network("web/U.XI.28.uc")
     lp = find_loops(net)[0]
     g = lp.graph
-    for e, fw in lp.halfedges:
+    for e, _ in lp.halfedges:
         ed = g.edges[e]
         st = g.strands[ed.strand]
         pts = g.edge_points(e, 9)

@@ -10,7 +10,15 @@ import pytest
 from auszug.errors import GeometryError
 from auszug.meshing.mesh import triangle_areas
 from auszug.meshing.profile import (
-    Profile, circle, from_dict, from_segments, polygon, rectangle, ribbon, square, triangulate_polygon,
+    Profile,
+    circle,
+    from_dict,
+    from_segments,
+    polygon,
+    rectangle,
+    ribbon,
+    square,
+    triangulate_polygon,
 )
 from auszug.meshing.sweep import profile_for
 
@@ -140,5 +148,5 @@ def test_an_open_profile_where_a_closed_one_is_needed():
     with pytest.raises(GeometryError, match="profile 'profile' is open; a solid needs a closed profile"):
         p.require_closed("a solid")
     with pytest.raises(GeometryError, match="caps and solids need a closed profile"):
-        p.cap  # noqa: B018
+        p.cap  # noqa: B018  (the property raises)
     assert Profile(p.points, False).closed is False

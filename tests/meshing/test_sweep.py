@@ -9,10 +9,10 @@ import pytest
 
 from auszug.meshing import Mesh, default_size, profile_for, sweep_network
 from auszug.meshing._clip import plane_loops
+from auszug.meshing.frames import sweep_frames
 from auszug.meshing.profile import circle, ribbon, square
 from auszug.meshing.solid import closed_member
 from auszug.meshing.sweep import SWEPT_KINDS, sample_piece, sweep_members, sweep_profile
-from auszug.meshing.frames import sweep_frames
 from auszug.microarch import build
 from tests.meshing.cases import ALL, IDS, arc_curve, network, star
 

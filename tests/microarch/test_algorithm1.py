@@ -42,7 +42,7 @@ def _crossings(p: np.ndarray, q: np.ndarray) -> list[tuple[float, float, np.ndar
         v = (w[..., 0] * r[:, None, 1] - w[..., 1] * r[:, None, 0]) / den
     ok = (np.abs(den) > 1e-15) & (t >= 0) & (t < 1) & (v >= 0) & (v < 1)
     out = []
-    for i, j in zip(*np.nonzero(ok)):
+    for i, j in zip(*np.nonzero(ok), strict=True):
         out.append(((ip[i] + t[i, j]) / (len(p) - 1), (iq[j] + v[i, j]) / (len(q) - 1), a[i] + t[i, j] * r[i]))
     return out
 
@@ -51,7 +51,7 @@ def _oracle(drawing):
     segs = oriented_segments(drawing)
     dense = {(ci, si): top.point_at(np.linspace(0, 1, N)) for ci, si, top in segs}
     out = {}
-    for ci, si, top in segs:
+    for ci, si, _ in segs:
         c = drawing.curves[ci]
         if c.segment_kind(si) != "ogee":
             continue
@@ -65,7 +65,8 @@ def _oracle(drawing):
                 if same and k == 0:
                     continue
                 rep = (dense[(cj, sj)] - sym.center) @ m.T + sym.center
-                if same and (np.abs(rep - dense[(ci, si)]).max() < 1e-9 or np.abs(rep[::-1] - dense[(ci, si)]).max() < 1e-9):
+                here = dense[(ci, si)]
+                if same and (np.abs(rep - here).max() < 1e-9 or np.abs(rep[::-1] - here).max() < 1e-9):
                     continue
                 for u, u2, pt in _crossings(dense[(ci, si)], rep):
                     if not 1e-3 < u < 1 - 1e-3:

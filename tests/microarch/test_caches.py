@@ -56,7 +56,7 @@ def test_build_with_cached_curves_equals_a_cold_build(name):
     build(d)
     warm = build(edited)
     assert len(cold.pieces) == len(warm.pieces)
-    for a, b in zip(cold.pieces, warm.pieces):
+    for a, b in zip(cold.pieces, warm.pieces, strict=True):
         assert (a.basic, a.segment, a.kind) == (b.basic, b.segment, b.kind)
         np.testing.assert_array_equal(a.points, b.points)
     shared = [p for p in warm.pieces if p.basic != 1 and p.kind not in ("pillar",)]

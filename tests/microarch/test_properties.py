@@ -9,8 +9,7 @@ from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
 from auszug.errors import DrawingError, GeometryError
-from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry, build
-from auszug.microarch import edit
+from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry, build, edit
 from auszug.microarch.prc import algorithm1
 
 coord = st.floats(-1.0, 1.0, allow_nan=False, allow_infinity=False)
@@ -53,7 +52,7 @@ def test_top_view_unchanged_by_side_view_edits(d, h, f):
     net = _build(d)
     d2 = edit.set_prc(edit.set_apex_height(d, 0, h), 0, f)
     net2 = _build(d2)
-    for p, q in zip(net.pieces, net2.pieces):
+    for p, q in zip(net.pieces, net2.pieces, strict=True):
         np.testing.assert_array_equal(p.points[:, :2], q.points[:, :2])
 
 
@@ -66,7 +65,7 @@ def test_side_view_unchanged_by_top_view_edits(d, xy):
     d2 = edit.move_handle(d, 0, 0, 0, xy)
     net2 = _build(d2, parameterization="u")
     # p(u) = u: the side view (height over u) is exactly the same
-    for p, q in zip(net.pieces, net2.pieces):
+    for p, q in zip(net.pieces, net2.pieces, strict=True):
         np.testing.assert_allclose(p.points[:, 2], q.points[:, 2], rtol=0, atol=1e-12)
     # arc length: bottom, PRC and apex heights are kept
     a, b = _build(d), _build(d2)
@@ -136,7 +135,7 @@ def test_automatic_prc_on_true_intersection(d):
     d = Drawing(tuple(c.with_(prc=(None,)) for c in d.curves))
     net = _build(d)
     choices = algorithm1(d)
-    for (ci, si), ch in choices.items():
+    for (ci, _), ch in choices.items():
         piece = net.ogee_of(ci)
         if ch.branch == "own replicas":
             x = ch.intersection

@@ -108,7 +108,7 @@ def page(browser, request):
     pg = ctx.new_page()
     errors: list[str] = []
     pg.on("pageerror", lambda e: errors.append(str(e)))
-    pg.errors = errors  # type: ignore[attr-defined]
+    pg.errors = errors  # type: ignore[attr-defined]  # the tests read the page's errors from it
     yield pg
     SHOTS.mkdir(parents=True, exist_ok=True)
     try:

@@ -14,8 +14,7 @@ import pytest
 from starlette.testclient import TestClient
 
 from auszug import examples
-from auszug.formats import load
-from auszug.formats._registry import format_for
+from auszug.formats import format_for, load
 from auszug.microarch import edit
 from auszug.studio import protocol as P
 from auszug.studio.server import create_app

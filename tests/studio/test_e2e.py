@@ -12,7 +12,7 @@ from .e2e import browser, needs_browser, open_drawing, page, studio  # noqa: F40
 pytestmark = needs_browser
 
 
-def test_studio_renders_drawing(studio, workspace, page, tmp_path):  # noqa: F811
+def test_studio_renders_drawing(studio, workspace, page, tmp_path):  # noqa: F811  (fixtures from e2e.py)
     expected = len(list(build(load(workspace / "tn-2.uc")).curves()))
     g = open_drawing(page, studio, "tn-2.uc")
     assert g["n_replicas"] == expected

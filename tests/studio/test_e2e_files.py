@@ -15,9 +15,11 @@ from auszug.formats import load
 from auszug.microarch import build
 from auszug.studio.session import curve_infos
 
-from .e2e import Studio, browser, geometry, needs_browser, open_drawing, page, studio, wait_revision  # noqa: F401
+from .e2e import Studio, browser, geometry, needs_browser, open_drawing, page, studio, wait_revision  # noqa: F401  (fixtures)
 
 pytestmark = needs_browser
+
+TOP_VIEW = "() => [window.auszug.views.topCenter.x, window.auszug.views.topCenter.y, window.auszug.views.topScale]"
 
 
 def wait_connected(page) -> None:
@@ -30,7 +32,7 @@ def close(a, b, where: str = "") -> None:
         assert math.isclose(a, b, rel_tol=1e-6, abs_tol=1e-6), f"{where}: {a} != {b}"
     elif isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
         assert len(a) == len(b), f"{where}: {len(a)} != {len(b)} items"
-        for i, (x, y) in enumerate(zip(a, b)):
+        for i, (x, y) in enumerate(zip(a, b, strict=True)):
             close(x, y, f"{where}[{i}]")
     elif isinstance(a, dict) and isinstance(b, dict):
         assert a.keys() == b.keys(), f"{where}: fields {sorted(a)} != {sorted(b)}"
@@ -64,7 +66,7 @@ def set_apex(page, height: float) -> dict:
     return g
 
 
-def test_gallery_opens_an_example(studio, page):  # noqa: F811
+def test_gallery_opens_an_example(studio, page):
     page.goto(studio.url)
     wait_connected(page)
     page.click("[data-testid=open]")
@@ -92,7 +94,7 @@ def test_gallery_opens_an_example(studio, page):  # noqa: F811
     assert page.title().startswith("U.XI.28")
 
 
-def test_open_a_local_file(studio, page, tmp_path):  # noqa: F811
+def test_open_a_local_file(studio, page, tmp_path):
     page.goto(studio.url)
     wait_connected(page)
     src = examples.path("legacy/U.XI.17.uc")
@@ -109,7 +111,7 @@ def test_open_a_local_file(studio, page, tmp_path):  # noqa: F811
     assert g["path"] == ""
 
 
-def test_edit_save_reload_save_as(studio, workspace, page):  # noqa: F811
+def test_edit_save_reload_save_as(studio, workspace, page):
     tn11 = (workspace / "tn-11.uc").read_bytes()
     open_drawing(page, studio, "tn-2.uc")
     g = set_apex(page, 2.5)
@@ -145,7 +147,7 @@ def test_edit_save_reload_save_as(studio, workspace, page):  # noqa: F811
     assert (workspace / "tn-11.uc").read_bytes() == tn11
 
 
-def test_new_drawing_is_saved_under_its_name(studio, workspace, page):  # noqa: F811
+def test_new_drawing_is_saved_under_its_name(studio, workspace, page):
     page.goto(studio.url)
     wait_connected(page)
     page.click("[data-testid=new]")
@@ -160,7 +162,7 @@ def test_new_drawing_is_saved_under_its_name(studio, workspace, page):  # noqa: 
     assert load(workspace / "pinnacle.json").curves == ()
 
 
-def test_export_glb_and_printable_stl(studio, page, tmp_path):  # noqa: F811
+def test_export_glb_and_printable_stl(studio, page, tmp_path):
     import trimesh
 
     open_drawing(page, studio, "tn-2.uc")
@@ -185,7 +187,7 @@ def test_export_glb_and_printable_stl(studio, page, tmp_path):  # noqa: F811
     assert len(solid.faces) > 0 and solid.is_watertight
 
 
-def test_autosave_is_offered_after_a_restart(workspace, browser):  # noqa: F811
+def test_autosave_is_offered_after_a_restart(workspace, browser):
     first = Studio(workspace)
     ctx = browser.new_context(viewport={"width": 1280, "height": 800})
     try:
@@ -229,7 +231,7 @@ def _shots() -> Path:
     return SHOTS
 
 
-def test_two_tabs_share_the_file(studio, page):  # noqa: F811
+def test_two_tabs_share_the_file(studio, page):
     other = page.context.new_page()
     open_drawing(page, studio, "tn-2.uc")
     open_drawing(other, studio, "tn-2.uc")
@@ -242,7 +244,7 @@ def test_two_tabs_share_the_file(studio, page):  # noqa: F811
     assert other.locator("[data-testid=doc-name]").inner_text() == "tn-2.uc •"
 
 
-def test_help_lists_shortcuts_and_text_fields_swallow_them(studio, page):  # noqa: F811
+def test_help_lists_shortcuts_and_text_fields_swallow_them(studio, page):
     open_drawing(page, studio, "tn-2.uc")
     help_dialog = page.locator("dialog[data-testid=help]")
     page.keyboard.press("?")
@@ -273,7 +275,7 @@ def test_help_lists_shortcuts_and_text_fields_swallow_them(studio, page):  # noq
     assert page.evaluate("() => window.auszug.store.mode") == "preview"
 
 
-def test_background_image(studio, page, tmp_path):  # noqa: F811
+def test_background_image(studio, page, tmp_path):
     import matplotlib.pyplot as plt
     import numpy as np
 
@@ -284,7 +286,8 @@ def test_background_image(studio, page, tmp_path):  # noqa: F811
     plt.imsave(png, img)
     open_drawing(page, studio, "tn-2.uc")
     textures = "() => window.auszug.views.renderer.info.memory.textures"
-    frame = "() => new Promise(r => { window.auszug.views.requestRender(); requestAnimationFrame(() => requestAnimationFrame(r)); })"
+    frame = ("() => new Promise(r => { window.auszug.views.requestRender(); "
+             "requestAnimationFrame(() => requestAnimationFrame(r)); })")
     page.evaluate(frame)
     before = page.evaluate(textures)
     page.click("[data-testid=background]")
@@ -311,7 +314,7 @@ def test_background_image(studio, page, tmp_path):  # noqa: F811
     x = page.evaluate("() => window.auszug.views.scene.getObjectByName('background').position.x")
     assert x == pytest.approx(0.25)
     # Shift+drag on the image moves it by the drag in drawing units; the top view does not pan
-    view = page.evaluate("() => [window.auszug.views.topCenter.x, window.auszug.views.topCenter.y, window.auszug.views.topScale]")
+    view = page.evaluate(TOP_VIEW)
     from .e2e import top_to_client
 
     x0, y0 = top_to_client(page, 0.25, 0.0)
@@ -325,7 +328,7 @@ def test_background_image(studio, page, tmp_path):  # noqa: F811
     assert moved[0] == pytest.approx(0.25 + 50 * view[2], abs=1e-6)
     assert moved[1] == pytest.approx(-20 * view[2], abs=1e-6)
     assert float(page.input_value("[data-testid=background-x]")) == pytest.approx(moved[0], abs=1e-4)
-    assert page.evaluate("() => [window.auszug.views.topCenter.x, window.auszug.views.topCenter.y, window.auszug.views.topScale]") == view
+    assert page.evaluate(TOP_VIEW) == view
     page.screenshot(path=str(_shots() / "background.png"))
     # the placement is kept for this document: after a reload, the image goes back there
     stored = page.evaluate("() => JSON.parse(localStorage.getItem('auszug.background:tn-2.uc'))")

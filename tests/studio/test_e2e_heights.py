@@ -14,7 +14,7 @@ from auszug.formats import load
 from auszug.microarch import build, edit
 from auszug.studio.session import curve_infos
 
-from .e2e import browser, geometry, needs_browser, open_drawing, page, studio, wait_revision  # noqa: F401
+from .e2e import browser, geometry, needs_browser, open_drawing, page, studio, wait_revision  # noqa: F401  (fixtures)
 
 pytestmark = needs_browser
 
@@ -92,7 +92,7 @@ def piece_xy(page: Any) -> list[list[float]]:
     }""")
 
 
-def test_drag_apex_sets_the_dragged_height_and_keeps_the_top_view(studio, page):  # noqa: F811
+def test_drag_apex_sets_the_dragged_height_and_keeps_the_top_view(studio, page):
     g0 = open_drawing(page, studio, "tn-2.uc")
     page.select_option("[data-testid=side-curve]", "0")
     m = side_map(page)
@@ -107,7 +107,7 @@ def test_drag_apex_sets_the_dragged_height_and_keeps_the_top_view(studio, page):
     assert abs(g["curves"][0]["apex"] - expected) < 1 / m["k"]
     assert g["curves"][0]["apex"] > g0["curves"][0]["apex"] + 30 / m["k"]
     assert top_view(g) == top_view(g0), "a side-view edit moved a top-view vertex or handle"
-    for a, b in zip(piece_xy(page), xy0):
+    for a, b in zip(piece_xy(page), xy0, strict=True):
         np.testing.assert_allclose(a, b, atol=1e-6)
     # the view re-fits after the drag: the marker is at the new apex
     m = side_map(page)
@@ -118,7 +118,7 @@ def test_drag_apex_sets_the_dragged_height_and_keeps_the_top_view(studio, page):
     assert g["curves"][0]["apex"] == g0["curves"][0]["apex"] and not g["can_undo"]
 
 
-def test_drag_prc_moves_the_apex_as_python_computes_it(studio, workspace, page):  # noqa: F811
+def test_drag_prc_moves_the_apex_as_python_computes_it(studio, workspace, page):
     g0 = open_drawing(page, studio, "tn-2.uc")
     page.select_option("[data-testid=side-curve]", "0")
     m = side_map(page)
@@ -137,7 +137,7 @@ def test_drag_prc_moves_the_apex_as_python_computes_it(studio, workspace, page):
     assert top_view(g) == top_view(g0)
 
 
-def test_layers_add_set_bottom_drag_move_remove(studio, page):  # noqa: F811
+def test_layers_add_set_bottom_drag_move_remove(studio, page):
     g0 = open_drawing(page, studio, "tn-2.uc")
     apex = g0["curves"][0]["apex"]
     page.select_option("[data-testid=side-curve]", "0")
@@ -194,7 +194,7 @@ def test_layers_add_set_bottom_drag_move_remove(studio, page):  # noqa: F811
     assert g["n_curves"] == 0
 
 
-def test_decoration_and_post(studio, workspace, page):  # noqa: F811
+def test_decoration_and_post(studio, workspace, page):
     g0 = open_drawing(page, studio, "tn-2.uc")
     page.select_option("[data-testid=side-curve]", "0")
     assert {p["kind"] for p in g0["pieces"]} == {"ogee"}
@@ -232,7 +232,7 @@ def test_decoration_and_post(studio, workspace, page):  # noqa: F811
     assert g["curves"][0]["post_top"] is None
 
 
-def test_side_view_asks_for_a_curve(studio, page):  # noqa: F811
+def test_side_view_asks_for_a_curve(studio, page):
     open_drawing(page, studio, "tn-11.uc")
     assert page.locator(".side-hint").is_visible()
     assert not page.locator("[data-testid=side-svg]").is_visible()
@@ -242,7 +242,7 @@ def test_side_view_asks_for_a_curve(studio, page):  # noqa: F811
     assert page.locator("[data-testid=prc-marker]").count() >= 1
 
 
-def test_preview_draws_all_three_views(studio, page, tmp_path):  # noqa: F811
+def test_preview_draws_all_three_views(studio, page, tmp_path):
     open_drawing(page, studio, "tn-2.uc")
     page.click("[data-testid=mode-preview]")
     page.wait_for_function("() => document.body.classList.contains('preview')")
@@ -254,7 +254,7 @@ def test_preview_draws_all_three_views(studio, page, tmp_path):  # noqa: F811
 
     img = matplotlib.image.imread(shot)[..., :3]
     ink = np.abs(img - np.array([0xF4, 0xF1, 0xEA]) / 255).max(axis=-1) > 0.15
-    for name, r in zip(("3D", "top", "side"), rects):
+    for name, r in zip(("3D", "top", "side"), rects, strict=True):
         view = ink[40 : r["h"] - 10, r["x"] + 4 : r["x"] + r["w"] - 4]
         rows, cols = np.nonzero(view)
         assert view.sum() > 200, f"{name} view draws {view.sum()} ink pixels"

@@ -50,7 +50,7 @@ def memory(page: Any) -> dict:
     return page.evaluate("() => ({...window.auszug.views.renderer.info.memory})")
 
 
-def test_tube_and_faces_are_instanced_per_piece(studio, uxi28, page):  # noqa: F811
+def test_tube_and_faces_are_instanced_per_piece(studio, uxi28, page):
     g = open_drawing(page, studio, uxi28)
     page.select_option("[data-testid=look-style]", "tube")
     page.select_option("[data-testid=look-faces]", "auto")
@@ -83,7 +83,7 @@ def test_tube_and_faces_are_instanced_per_piece(studio, uxi28, page):  # noqa: F
     page.wait_for_function("() => window.auszug.views.scene.getObjectByName('meshes').children.length === 0")
 
 
-def test_gpu_memory_stays_constant_over_edits(studio, uxi28, page):  # noqa: F811
+def test_gpu_memory_stays_constant_over_edits(studio, uxi28, page):
     open_drawing(page, studio, uxi28)
     page.select_option("[data-testid=side-curve]", "0")
     page.select_option("[data-testid=look-style]", "tube")
@@ -106,7 +106,7 @@ def test_gpu_memory_stays_constant_over_edits(studio, uxi28, page):  # noqa: F81
     assert memory(page) == first
 
 
-def test_picked_faces_toggle_by_click(studio, uxi28, page):  # noqa: F811
+def test_picked_faces_toggle_by_click(studio, uxi28, page):
     open_drawing(page, studio, uxi28)
     page.select_option("[data-testid=look-faces]", "picked")
     page.wait_for_function("""() => { const s = window.auszug.store;
@@ -151,7 +151,7 @@ def ink_per_view(page: Any, path: Any) -> list[int]:
     return [int(ink[30 : r["h"] - 10, r["x"] + 4 : r["x"] + r["w"] - 4].sum()) for r in rects]
 
 
-def test_preview_shows_meshes_in_all_three_views(studio, uxi28, page, tmp_path):  # noqa: F811
+def test_preview_shows_meshes_in_all_three_views(studio, uxi28, page, tmp_path):
     open_drawing(page, studio, uxi28)
     in_views = """() => { const v = window.auszug.views, ms = v.scene.getObjectByName('meshes').children;
         return ['top', 'persp', 'side'].map((c) => ms.every((m) => m.layers.test(v[c].layers))); }"""
@@ -163,7 +163,8 @@ def test_preview_shows_meshes_in_all_three_views(studio, uxi28, page, tmp_path):
     assert page.evaluate(in_views) == [True, True, True]
     next_frame(page)
     bars = ink_per_view(page, tmp_path / "bars.png")
-    assert len(bars) == 3 and all(b > 1.5 * n for b, n in zip(bars, lines)), f"ink: lines {lines}, bars {bars}"
+    assert len(bars) == 3, f"ink: lines {lines}, bars {bars}"
+    assert all(b > 1.5 * n for b, n in zip(bars, lines, strict=True)), f"ink: lines {lines}, bars {bars}"
     page.click("[data-testid=mode-design]")
     assert page.evaluate(in_views) == [False, True, False]  # design: members only in the 3D view
     page.click("[data-testid=mode-preview]")

@@ -111,7 +111,7 @@ def test_faces_auto_and_picked_match_get_loops():
     lmsg, lpay = M.loops_message(net, revision=3, msg_id=2)
     assert (lmsg.revision, lmsg.id, len(lmsg.loops)) == (3, 2, len(loops)) and len(loops) >= 2
     f4, _ = _arrays(lpay)
-    for info, lp in zip(lmsg.loops, loops):
+    for info, lp in zip(lmsg.loops, loops, strict=True):
         b = _get(f4, info.boundary)
         want, _ = lp.boundary(96)
         np.testing.assert_allclose(b, want, atol=1e-6 * np.abs(want).max())
@@ -211,7 +211,8 @@ def test_export_drawing_formats():
     assert (name, mime) == ("U.XI.28.network.json", "application/json")
     assert len(read_network(data.decode(), name)["curves"]) == len(list(net.curves()))
     name, mime, data = M.export_file(net, "U.XI.28.uc", format="svg")
-    assert (name, mime) == ("U.XI.28.svg", "image/svg+xml") and b"<svg" in data[:400] and data.rstrip().endswith(b"</svg>")
+    assert (name, mime) == ("U.XI.28.svg", "image/svg+xml")
+    assert b"<svg" in data[:400] and data.rstrip().endswith(b"</svg>")
 
 
 def test_export_cad_formats():

@@ -37,7 +37,7 @@ def test_geometry_reproduces_network(workspace, name):
     curves = sorted(build(d).curves(), key=lambda c: c.piece)
     reps = _replicas(msg, payload)
     assert msg.n_replicas == len(curves) == len(reps)
-    for c, r in zip(curves, reps):
+    for c, r in zip(curves, reps, strict=True):
         np.testing.assert_allclose(r, c.points, atol=1e-4 * max(1.0, float(np.abs(c.points).max())))
 
 

@@ -49,7 +49,7 @@ def window_params(draw: st.DrawFn) -> WindowParams:
     )
 
 
-def dist_to_curves(p: np.ndarray, curves) -> float:  # noqa: ANN001
+def dist_to_curves(p: np.ndarray, curves) -> float:
     """Distance of point ``p`` to the nearest of ``curves`` (by projection)."""
     return min(float(np.hypot(*(c.point(c.project(p)) - p))) for c in curves)
 

@@ -75,7 +75,7 @@ def test_analytic_offset_equals_the_generic_offset_of_the_loop(name, d):
     generic = offset_curves(a.curves(), d)
     analytic = a.offset(d).curves()
     assert len(generic.curves) == len(analytic)
-    for g, h in zip(generic.curves, analytic):
+    for g, h in zip(generic.curves, analytic, strict=True):
         assert g.kind == h.kind
         assert np.allclose(g.start, h.start, atol=1e-12) and np.allclose(g.end, h.end, atol=1e-12)
         if isinstance(g, Arc):
@@ -101,7 +101,8 @@ def test_invalid_arches_name_the_parameter(bad, name):
 # -- the pointed trefoil arch (Fig. 12) ------------------------------------------------------
 
 @pytest.mark.parametrize("name, params", [
-    (n, p) for n in ("equilateral", "lancet", "off-centre") for p in ((0.5, 0.5, 0.55), (0.6, 0.55, 0.35), (0.7, 0.6, 0.25))
+    (n, p) for n in ("equilateral", "lancet", "off-centre")
+    for p in ((0.5, 0.5, 0.55), (0.6, 0.55, 0.35), (0.7, 0.6, 0.25))
     if (n, p) != ("off-centre", (0.7, 0.6, 0.25))
 ])
 def test_trefoil_is_closed_symmetric_and_tangent_where_the_paper_says(name, params):

@@ -55,7 +55,7 @@ def test_congruent_regions_share_templates_and_are_translates():
         ref = g[0]
         for r in g[1:]:
             d = np.array(r.origin) - np.array(ref.origin)
-            for a, b in zip(ref.curves, r.curves):
+            for a, b in zip(ref.curves, r.curves, strict=True):
                 assert np.allclose(a.start + d, b.start, atol=1e-12)
                 assert a.kind == b.kind
 

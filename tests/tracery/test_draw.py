@@ -54,7 +54,8 @@ def test_svg_document_structure():
     text = svg(build("fig20b"))
     root = ET.fromstring(text.split("\n", 1)[1])
     paths = root.findall(".//{http://www.w3.org/2000/svg}path")
-    assert [p.get("data-group") for p in paths] == ["arch", "sub-arch", "sub-arch", "circle", "rosette"] + ["fillet"] * 4
+    groups = ["arch", "sub-arch", "sub-arch", "circle", "rosette"] + ["fillet"] * 4
+    assert [p.get("data-group") for p in paths] == groups
     assert paths[3].get("data-role") == "frame" and paths[4].get("data-role") == "light"
     assert root.find(".//{http://www.w3.org/2000/svg}g").get("transform") == "scale(1,-1)"
     vb = [float(v) for v in root.get("viewBox").split()]

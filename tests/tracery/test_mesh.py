@@ -59,7 +59,7 @@ def test_the_check_finds_intersections():
 def test_the_mesh_is_symmetric_about_the_middle_plane_and_the_axis():
     m = window_mesh(build("fig20c"))
     v = m.vertices
-    key = lambda a: np.unique(np.round(a, 9), axis=0)  # noqa: E731
+    key = lambda a: np.unique(np.round(a, 9), axis=0)  # noqa: E731  (a one-line helper)
     assert np.array_equal(key(v), key(v * [1, -1, 1]))
     assert np.array_equal(key(v), key(v * [-1, 1, 1]))
     # the front face of the wall is y = -thickness / 2 with normal (0, -1, 0) as in the paper's call

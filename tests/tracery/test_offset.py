@@ -116,7 +116,7 @@ def test_offsets_commute_with_rigid_motions(name, angle, dx, dy):
     off = offset_curves(base, 0.02).curves
     moved = offset_curves([c.transformed(m, (dx, dy)) for c in base], 0.02).curves
     assert len(off) == len(moved)
-    for a, b in zip(off, moved):
+    for a, b in zip(off, moved, strict=True):
         assert np.allclose(m @ a.start + [dx, dy], b.start, atol=1e-9)
 
 

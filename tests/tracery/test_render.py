@@ -15,7 +15,7 @@ def test_view_matrix_is_a_rotation():
 
 def test_nearest_face_wins_and_back_faces_are_culled():
     # two squares facing the eye (-y), the near one (y = -1) smaller and in front
-    sq = lambda y, s: np.array([[-s, y, -s], [s, y, -s], [s, y, s], [-s, y, s]])  # noqa: E731
+    sq = lambda y, s: np.array([[-s, y, -s], [s, y, -s], [s, y, s], [-s, y, s]])  # noqa: E731  (a one-line helper)
     v = np.concatenate([sq(0.0, 1.0), sq(-1.0, 0.5)])
     f = np.array([[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]])
     img = shade(v, f, 64, 64, azimuth=0, elevation=0, depth_cue=0.5, supersample=1)

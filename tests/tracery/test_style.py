@@ -64,7 +64,8 @@ def test_refine_nests_the_style_in_itself():
 
 
 def test_style_files_toml_and_json_with_relative_references(tmp_path):
-    (tmp_path / "base.toml").write_text('extends = "fig20a"\ndescription = "mine"\n[circle]\ndecoration = "rosette"\nfoils = 5\n')
+    (tmp_path / "base.toml").write_text(
+        'extends = "fig20a"\ndescription = "mine"\n[circle]\ndecoration = "rosette"\nfoils = 5\n')
     (tmp_path / "top.json").write_text(json.dumps({
         "extends": "base.toml", "sub-arch": {"decoration": "window", "window": "base.toml"},
         "profiles": {"deep": {"points": [[0, 0], [0.5, 0.5], [0.5, 2.5]]}}, "fillet": {"profile": "deep"}}))

@@ -50,7 +50,7 @@ def test_the_worked_call_yields_exactly_eight_polygons(oracle):
             assert set(s) >= {"kind", "start", "end", "center"}
             assert (s["center"] is None) == (s["kind"] == "line")
         # the segments chain into a closed loop and the boundary polygon follows them
-        for a, b in zip(r["segments"], r["segments"][1:] + r["segments"][:1]):
+        for a, b in zip(r["segments"], r["segments"][1:] + r["segments"][:1], strict=True):
             assert np.allclose(a["end"], b["start"], atol=1e-12)
         assert np.allclose(r["boundary"][0], r["segments"][0]["start"])
 
@@ -97,19 +97,19 @@ def test_write_read_round_trip_is_exact_and_does_not_mutate(tmp_path):
     back = load(p, kind="tracery")
     assert back.style == "fig20g" and back.params == t.params
     assert [r.id for r in back.regions] == [r.id for r in t.regions]
-    for a, b in zip(t.regions, back.regions):
+    for a, b in zip(t.regions, back.regions, strict=True):
         assert (a.group, a.depth, a.role, a.border, a.face, a.profile) == (b.group, b.depth, b.role, b.border,
                                                                           b.face, b.profile)
-        for ca, cb in zip(a.curves, b.curves):
+        for ca, cb in zip(a.curves, b.curves, strict=True):
             assert ca.kind == cb.kind
             assert np.array_equal(ca.start, cb.start) or np.allclose(ca.start, cb.start, rtol=0, atol=1e-15)
             assert np.allclose(ca.end, cb.end, rtol=0, atol=1e-14)
     assert [r.curves[0].start.tolist() for r in t.regions] == [x.tolist() for x in before]
     # writing what was read gives the same document, to rounding
     d1, d2 = json.loads(dumps(back)), json.loads(dumps(loads(dumps(back))))
-    for r1, r2 in zip(d1["regions"], d2["regions"]):
+    for r1, r2 in zip(d1["regions"], d2["regions"], strict=True):
         assert np.allclose(r1["boundary"], r2["boundary"], rtol=0, atol=1e-12)
-        for s1, s2 in zip(r1["segments"], r2["segments"]):
+        for s1, s2 in zip(r1["segments"], r2["segments"], strict=True):
             assert np.allclose(s1["start"] + s1["end"], s2["start"] + s2["end"], rtol=0, atol=1e-12)
 
 

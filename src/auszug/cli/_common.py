@@ -24,7 +24,7 @@ PARAMETERIZATIONS = ("arclength", "u", "orthographic")
 NETWORK_SUFFIX = {"json": ".network.json", "obj": ".obj", "svg": ".svg", "dxf": ".dxf", "3dm": ".3dm"}
 
 
-def at_least(minimum: int):  # type: ignore[no-untyped-def]
+def at_least(minimum: int) -> Callable[[str], int]:
     """An argparse type: an integer >= ``minimum``."""
 
     def parse(text: str) -> int:

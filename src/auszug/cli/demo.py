@@ -115,7 +115,8 @@ def run(args: argparse.Namespace) -> int:
     errors = [e for _, e in results if e]
     for e in errors:
         print(f"auszug: {e}", file=sys.stderr)
-    counts = {s: sum(1 for (d, _, _), (p, _) in zip(drawings, results) if d == s and p) for s, _, _ in SETS}
+    counts = {s: sum(1 for (d, _, _), (p, _) in zip(drawings, results, strict=True) if d == s and p)
+              for s, _, _ in SETS}
     print(f"demo: {counts['teaching-sheet']} teaching-sheet and {counts['basel']} Basel drawings in {out}/")
     print(f"  {sheet_path}  contact sheet of the teaching sheet (cf. paper Fig. 9)")
     for s, _, _ in SETS:

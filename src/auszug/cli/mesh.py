@@ -224,8 +224,7 @@ def _report(out: Path, mesh: Any, info: dict) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Make and write the meshes; return 0, or 2 if any drawing failed."""
-    from auszug.errors import AuszugError, FormatError
-
+    from auszug.errors import FormatError
     from auszug.meshing.profile import STYLES
 
     if args.style not in STYLES and not args.style.lower().endswith(".json"):

@@ -14,7 +14,7 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal
 
 from auszug.cli import _common
 
@@ -85,7 +85,7 @@ def bind_local(port: int) -> "socket.socket":
     return sock
 
 
-def server_config(app: Any, *, lifespan: str = "on") -> "uvicorn.Config":  # noqa: ANN401
+def server_config(app: Any, *, lifespan: Literal["auto", "on", "off"] = "on") -> "uvicorn.Config":
     """The uvicorn configuration the studio runs with (the CLI, benchmarks and tests share it).
 
     WebSocket compression (permessage-deflate) is off: on 127.0.0.1 it only costs time,

@@ -1,5 +1,9 @@
 """File formats: one module per format, registered by extension; :func:`load` / :func:`save` dispatch."""
 
+# Each format module registers its extensions when imported. The order is precedence: where
+# two formats share an ending (.obj polylines and meshes, .svg views and figures), the one
+# registered first is chosen when no kind is asked for, so the import sorter leaves it be.
+# isort: off
 from auszug.formats import uc as _uc  # noqa: F401  (registers .uc)
 from auszug.formats import uc_legacy as _uc_legacy  # noqa: F401  (legacy/v1 .uc, read through .uc)
 from auszug.formats import native as _native  # noqa: F401  (registers .json drawings)
@@ -8,9 +12,13 @@ from auszug.formats import obj as _obj  # noqa: F401  (registers .obj polylines)
 from auszug.formats import svg as _svg  # noqa: F401  (registers .svg top/side views)
 from auszug.formats import figure as _figure  # noqa: F401  (registers .png/.pdf/.svg figures)
 from auszug.formats import tracery_json as _tracery_json  # noqa: F401  (registers .tracery.json windows)
-from auszug.formats import mesh_obj as _mesh_obj, stl as _stl, ply as _ply, gltf as _gltf  # noqa: F401,E401  (mesh .obj/.stl/.ply/.glb/.gltf)
+from auszug.formats import mesh_obj as _mesh_obj  # noqa: F401  (registers .obj meshes)
+from auszug.formats import stl as _stl  # noqa: F401  (registers .stl meshes)
+from auszug.formats import ply as _ply  # noqa: F401  (registers .ply meshes)
+from auszug.formats import gltf as _gltf  # noqa: F401  (registers .glb/.gltf meshes)
 from auszug.formats import dxf as _dxf  # noqa: F401  (registers .dxf: polylines, exact arcs and lines)
 from auszug.formats import rhino as _rhino  # noqa: F401  (registers .3dm: exact arcs and lines, else polylines)
+# isort: on
 from auszug.formats._registry import FileFormat, atomic_write, format_for, formats, load, register, save
 
 __all__ = ["FileFormat", "atomic_write", "format_for", "formats", "load", "register", "save"]

@@ -113,7 +113,7 @@ def _joined(arcs: tuple[Arc3, ...]) -> tuple[Arc3, ...]:
     if len(arcs) < 2:
         return arcs
     joints = [a.end for a in arcs[:-1]]
-    for i, (a, b) in enumerate(zip(arcs[:-1], arcs[1:])):
+    for i, (a, b) in enumerate(zip(arcs[:-1], arcs[1:], strict=False)):
         e = b.center - a.center
         d = float(np.linalg.norm(e))
         if d == 0.0 or abs(float(np.dot(a.normal, b.normal))) < 1.0 - 1e-12:

@@ -46,6 +46,12 @@ class FileFormat:
     writer: Callable[[Any, str], str | bytes] | None = None
     binary: bool = False
 
+    def write(self, obj: Any, name: str) -> str | bytes:
+        """The text or bytes of ``obj`` in this format (``name`` for messages)."""
+        if self.writer is None:
+            raise FormatError(f"{self.name} files are read only", name)
+        return self.writer(obj, name)
+
 
 _FORMATS: dict[str, FileFormat] = {}
 
@@ -57,9 +63,11 @@ def register(fmt: FileFormat) -> FileFormat:
 
 
 def formats() -> dict[str, FileFormat]:
-    """All registered formats by name."""
-    from auszug import formats as _pkg  # noqa: F401  (imports register the built-ins)
+    """All registered formats by name.
 
+    The built-in formats register themselves when :mod:`auszug.formats` is imported,
+    which Python does before it imports this module.
+    """
     return dict(_FORMATS)
 
 

@@ -25,6 +25,7 @@ from auszug.formats.svg import colour
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from mpl_toolkits.mplot3d import Axes3D
 
     from auszug.geometry.network import CurveNetwork
 
@@ -83,7 +84,7 @@ def _plain_axes(ax: "Axes", label: str) -> None:
     ax.set_title(label, fontsize=9, color="#555", loc="left")
 
 
-def draw_views(ax_top: "Axes | None", ax_side: "Axes | None", ax_3d: "Axes | None",
+def draw_views(ax_top: "Axes | None", ax_side: "Axes | None", ax_3d: "Axes3D | None",
                network: Any, *, labels: bool = True) -> None:
     """Draw a network's top view, side view and 3D view into the given axes.
 

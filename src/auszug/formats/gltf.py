@@ -137,7 +137,7 @@ def pack_glb(doc: dict, binary: bytes) -> bytes:
 
 
 def dumps_gltf(obj: Any, name: str = "") -> str:
-    """glTF JSON text with the buffer embedded as a base64 data URI."""
+    """Serialise to glTF JSON text with the buffer embedded as a base64 data URI."""
     doc, binary = to_gltf(obj)
     if "buffers" in doc:
         doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(binary).decode()

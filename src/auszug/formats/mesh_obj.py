@@ -59,7 +59,8 @@ def part_colour(part: Any) -> tuple[float, float, float]:
     """
     if part.kind == "member":
         h = colour(part.basic).lstrip("#")
-        return tuple(int(h[i:i + 2], 16) / 255.0 for i in (0, 2, 4))  # type: ignore[return-value]
+        r, g, b = (int(h[i:i + 2], 16) / 255.0 for i in (0, 2, 4))
+        return r, g, b
     return {"face": FACE_RGB, "base": BASE_RGB}.get(part.kind, SOLID_RGB)
 
 
@@ -160,7 +161,7 @@ def loads(text: str, name: str = "<string>") -> Any:
     f = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
     parts = []
     bounds = [(g, s) for g, s in groups] + [("", len(f))]
-    for (g, s), (_, e) in zip(bounds[:-1], bounds[1:]):
+    for (g, s), (_, e) in zip(bounds[:-1], bounds[1:], strict=True):
         if e > s:
             lo, hi = int(f[s:e].min()), int(f[s:e].max()) + 1
             parts.append(Part(g, "member", -1, "", (lo, hi), (s, e)))

@@ -35,7 +35,7 @@ import json
 import json.decoder
 import json.scanner
 import math
-from typing import Any
+from typing import Any, Literal, cast
 
 from auszug.errors import DrawingError, FormatError
 from auszug.formats._registry import FileFormat, register
@@ -164,9 +164,10 @@ class _Decoder(json.JSONDecoder):
     def __init__(self, path: str):
         super().__init__(parse_constant=float)
         self.path = path
-        self.parse_object = self._object  # type: ignore[assignment]
-        self.parse_array = self._array  # type: ignore[assignment]
-        self.scan_once = json.scanner.py_make_scanner(self)
+        self.parse_object = self._object
+        self.parse_array = self._array
+        # the pure-Python scanner and its object/array parsers are undocumented, so not in typeshed
+        self.scan_once = json.scanner.py_make_scanner(self)  # type: ignore[attr-defined]  # see above
 
     @staticmethod
     def _recording(scan_once, starts: list[int]):
@@ -179,12 +180,12 @@ class _Decoder(json.JSONDecoder):
     def _object(self, s_and_end, strict, scan_once, object_hook, object_pairs_hook, memo):
         s, end = s_and_end
         starts: list[int] = []
-        pairs, e = json.decoder.JSONObject(
+        pairs, e = json.decoder.JSONObject(  # type: ignore[attr-defined]  # undocumented, as above
             s_and_end, strict, self._recording(scan_once, starts), None, list, memo)
         out = _Obj()
         out.pos = end - 1
         out.child_pos = {}
-        for (k, v), at in zip(pairs, starts):
+        for (k, v), at in zip(pairs, starts, strict=True):
             if k in out:
                 raise FormatError(f"key {k!r} appears twice in one object", self.path,
                                   s.count("\n", 0, at) + 1)
@@ -195,7 +196,8 @@ class _Decoder(json.JSONDecoder):
     def _array(self, s_and_end, scan_once):
         end = s_and_end[1]
         starts: list[int] = []
-        values, e = json.decoder.JSONArray(s_and_end, self._recording(scan_once, starts))
+        values, e = json.decoder.JSONArray(  # type: ignore[attr-defined]  # undocumented, as above
+            s_and_end, self._recording(scan_once, starts))
         out = _Arr(values)
         out.pos = end - 1
         out.child_pos = dict(enumerate(starts))
@@ -382,8 +384,8 @@ class _Reader:
         if len(hs) != _HANDLES[kind]:
             raise self.fail(f"{where}.handles", f"a {kind} segment needs {_HANDLES[kind]} handle(s), "
                             f"got {len(hs)}", s, "handles")
-        return Segment(kind, tuple(self.point(h, f"{where}.handles[{i}]", hs, i)  # type: ignore[arg-type]
-                                   for i, h in enumerate(hs)))
+        known = cast(Literal["line", "arc", "bezier"], kind)  # one of _HANDLES, checked above
+        return Segment(known, tuple(self.point(h, f"{where}.handles[{i}]", hs, i) for i, h in enumerate(hs)))
 
     def symmetry(self, s: Any, where: str, parent: Any, key: Any) -> Symmetry:
         s = self.obj(s, where, _SYM_KEYS, (), parent, key)
@@ -399,7 +401,7 @@ class _Reader:
             raise self.fail(f"{where}.axis", "a mirror axis needs a direction of non-zero length",
                             s, "axis" if "axis" in s else None)
         try:
-            return Symmetry(fold, mirror, axis, center, rule)  # type: ignore[arg-type]
+            return Symmetry(fold, mirror, axis, center, rule)
         except DrawingError as e:  # pragma: no cover - checked above
             raise self.fail(where, str(e), s) from None
 

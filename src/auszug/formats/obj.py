@@ -73,7 +73,7 @@ def _write(obj: Any, name: str) -> str:
 
 
 def read_polylines(text: str, name: str = "<string>") -> dict[str, NDArray[np.float64]]:
-    """The polylines of OBJ text by group name.
+    r"""The polylines of OBJ text by group name.
 
     Parameters
     ----------
@@ -95,7 +95,7 @@ def read_polylines(text: str, name: str = "<string>") -> dict[str, NDArray[np.fl
 
     Examples
     --------
-    >>> read_polylines("v 0 0 0\\nv 1 0 0\\ng a\\nl 1 2\\n")["a"].tolist()
+    >>> read_polylines("v 0 0 0\nv 1 0 0\ng a\nl 1 2\n")["a"].tolist()
     [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]
     """
     verts: list[tuple[float, float, float]] = []

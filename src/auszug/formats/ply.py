@@ -97,7 +97,7 @@ def loads(data: bytes | str, name: str = "<bytes>") -> Any:
             rows = []
             for _ in range(count):
                 row = []
-                for pname, typ, item in props:
+                for _name, _type, item in props:
                     if item is None:
                         row.append(float(toks[pos]))
                         pos += 1
@@ -117,6 +117,7 @@ def loads(data: bytes | str, name: str = "<bytes>") -> Any:
             if any(item is not None for _, _, item in props):
                 # faces: assume a fixed count per list (triangles); check it
                 (pname, cnt_t, item_t), = [p for p in props if p[2] is not None]
+                assert item_t is not None
                 ct = np.dtype(_TYPES[cnt_t])
                 it = np.dtype(_TYPES[item_t])
                 k = int(np.frombuffer(body, dtype=ct, count=1, offset=off)[0]) if count else 3

@@ -64,7 +64,7 @@ def _rgba(basic: int) -> tuple[int, int, int, int]:
     return int(h[1:3], 16), int(h[3:5], 16), int(h[5:7], 16), 255
 
 
-def _arc(r: Any, a: Arc3) -> Any:  # noqa: ANN401 - rhino3dm.Arc
+def _arc(r: Any, a: Arc3) -> Any:
     """The rhino3dm Arc of ``a``: plane at the centre, x axis through the start, z axis the normal."""
     x = (a.start - a.center) / np.linalg.norm(a.start - a.center)
     y = np.cross(a.normal, x)
@@ -73,7 +73,7 @@ def _arc(r: Any, a: Arc3) -> Any:  # noqa: ANN401 - rhino3dm.Arc
     return arc
 
 
-def _geometry(r: Any, cc: CadCurve) -> Any:  # noqa: ANN401 - a rhino3dm.Curve
+def _geometry(r: Any, cc: CadCurve) -> Any:
     if cc.arcs:
         pc = r.PolyCurve()
         for a in cc.arcs:

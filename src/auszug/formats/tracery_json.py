@@ -121,7 +121,7 @@ def loads(text: str, name: str = "<string>") -> Any:
     FormatError
         Naming the file, and the line for JSON syntax errors.
     """
-    from auszug.geometry import Arc, Line
+    from auszug.geometry import Arc, Curve, Line
     from auszug.geometry.offset import is_closed
     from auszug.tracery.model import GROUPS, ROLES, Region, Tracery
     from auszug.tracery.profile import Profile
@@ -146,7 +146,7 @@ def loads(text: str, name: str = "<string>") -> Any:
         role = _need(rd, "role", str, where, name)
         if group not in GROUPS or role not in ROLES:
             raise FormatError(f"{where}: unknown group {group!r} or role {role!r}", name)
-        curves = []
+        curves: list[Curve] = []
         for j, sd in enumerate(_need(rd, "segments", list, where, name)):
             w2 = f"{where}.segments[{j}]"
             kind = _need(sd, "kind", str, w2, name)

@@ -9,58 +9,21 @@ three (``n_points n_rot has_reflection``) the legacy or v1 dialect.
 from __future__ import annotations
 
 import math
-import re
+from typing import Any
 
 from auszug.errors import DrawingError, FormatError
+from auszug.formats import uc_text
 from auszug.formats._registry import FileFormat, register
+from auszug.formats.uc_legacy import read_legacy
+from auszug.formats.uc_text import MAX_NUMBER
 from auszug.microarch.model import BasicCurve, Drawing, Segment, Symmetry
 
-__all__ = ["read_uc", "read_web", "write_web"]
+__all__ = ["MAX_NUMBER", "read_uc", "read_web", "write_web"]
 
 _WEB_KEYS = {
     "numCurves", "unitCurve", "reflectionPoint", "ref_symmetry_type", "ptPos", "level",
     "height", "prc_t", "decoration_t", "decoration_height", "vertical_line_top", "layer_bottom",
 }
-_TOKEN = re.compile(r"\S+")
-
-# Largest magnitude a number in a drawing file may have: squared distances of
-# larger coordinates overflow in the geometry kernel (NaN or OverflowError).
-MAX_NUMBER = 1e100
-
-
-def _numbers(tokens: list[str], n: int | None, key: str, path: str, line: int) -> list[float]:
-    if n is not None and len(tokens) != n:
-        raise FormatError(f"'{key}' needs {n} number(s), got {len(tokens)}", path, line)
-    out = []
-    for tok in tokens:
-        try:
-            v = float(tok)
-        except ValueError:
-            raise FormatError(f"'{key}': {tok!r} is not a number", path, line) from None
-        if not math.isfinite(v):
-            raise FormatError(f"'{key}': {tok} is not a finite number", path, line)
-        if abs(v) > MAX_NUMBER:
-            raise FormatError(f"'{key}': {tok} is too large; expected a number within "
-                              f"+-{MAX_NUMBER:g}", path, line)
-        out.append(v)
-    return out
-
-
-def _integer(v: float, key: str, path: str, line: int, minimum: int) -> int:
-    if v != int(v) or v < minimum:
-        raise FormatError(f"'{key}' must be a whole number >= {minimum}, got {v:g}", path, line)
-    return int(v)
-
-
-def _lines(text: str) -> list[tuple[int, list[str]]]:
-    out = []
-    for no, raw in enumerate(text.splitlines(), 1):
-        toks = _TOKEN.findall(raw)
-        if toks:
-            out.append((no, toks))
-    return out
-
-
 def read_uc(text: str, path: str = "<string>") -> Drawing:
     """Read any dialect of ``.uc`` text into a :class:`Drawing`.
 
@@ -76,22 +39,15 @@ def read_uc(text: str, path: str = "<string>") -> Drawing:
     FormatError
         Naming the file, the line and the problem.
     """
-    lines = _lines(text)
+    lines = uc_text.lines(text)
     if not lines:
         raise FormatError("empty file: expected 'numCurves N' then curves", path)
-    for no, toks in lines:
+    for _no, toks in lines:
         if toks[0] == "unitCurve":
             if len(toks) - 1 == 3:
-                from auszug.formats.uc_legacy import read_legacy
-
                 return read_legacy(text, path)
             break
     return read_web(text, path)
-
-
-def _stem(path: str) -> str:
-    name = path.replace("\\", "/").rsplit("/", 1)[-1]
-    return name[:-3] if name.lower().endswith(".uc") else name
 
 
 # The authors' web demo draws A, T, B as a straight line when the handle T deviates
@@ -113,27 +69,27 @@ def _web_segment(a: tuple, t: tuple, b: tuple) -> Segment:
 
 def read_web(text: str, path: str = "<string>") -> Drawing:
     """Read the web dialect (see FORMATS.md)."""
-    lines = _lines(text)
+    lines = uc_text.lines(text)
     declared: int | None = None
-    curves: list[dict] = []
+    curves: list[dict[str, Any]] = []  # one record of the lines of each curve
     bottoms: list[float] = []
     for no, toks in lines:
         key, args = toks[0], toks[1:]
         if key not in _WEB_KEYS:
             raise FormatError(f"unknown keyword {key!r}", path, no)
         if key == "numCurves":
-            declared = _integer(_numbers(args, 1, key, path, no)[0], key, path, no, 0)
+            declared = uc_text.integer(uc_text.numbers(args, 1, key, path, no)[0], key, path, no, 0)
             continue
         if key == "unitCurve":
             if len(args) != 2:
                 raise FormatError(
                     f"'unitCurve' needs 2 numbers (rotation fold, has reflection), got {len(args)}",
                     path, no)
-            fold, refl = _numbers(args, 2, key, path, no)
-            cur = {
+            fold, refl = uc_text.numbers(args, 2, key, path, no)
+            cur: dict[str, Any] = {
                 "line": no,
-                "fold": _integer(fold, "unitCurve fold", path, no, 1),
-                "mirror": bool(_integer(refl, "unitCurve has_reflection", path, no, 0)),
+                "fold": uc_text.integer(fold, "unitCurve fold", path, no, 1),
+                "mirror": bool(uc_text.integer(refl, "unitCurve has_reflection", path, no, 0)),
                 "points": [],
             }
             if refl not in (0.0, 1.0):
@@ -141,7 +97,7 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
             curves.append(cur)
             continue
         if key == "layer_bottom":
-            bottoms.append(_numbers(args, 1, key, path, no)[0])
+            bottoms.append(uc_text.numbers(args, 1, key, path, no)[0])
             continue
         if not curves:
             raise FormatError(f"{key!r} before the first 'unitCurve'", path, no)
@@ -149,9 +105,9 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
             raise FormatError(f"{key!r} after the 'layer_bottom' lines", path, no)
         cur = curves[-1]
         if key == "ptPos":
-            cur["points"].append((tuple(_numbers(args, 2, key, path, no)), no))
+            cur["points"].append((tuple(uc_text.numbers(args, 2, key, path, no)), no))
         elif key == "reflectionPoint":
-            cur["axis"] = tuple(_numbers(args, 2, key, path, no))
+            cur["axis"] = tuple(uc_text.numbers(args, 2, key, path, no))
             cur["axis_line"] = no
         elif key == "ref_symmetry_type":
             rule = {"first": "first point", "last": "last point", "y": "y axis"}.get(
@@ -164,7 +120,7 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
         else:
             if key in cur:
                 raise FormatError(f"{key!r} given twice for one curve", path, no)
-            cur[key] = (_numbers(args, 1, key, path, no)[0], no)
+            cur[key] = (uc_text.numbers(args, 1, key, path, no)[0], no)
     if not curves:
         raise FormatError("no 'unitCurve' found: not a drawing", path)
     if declared is not None and declared != len(curves):
@@ -181,7 +137,7 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
         level = 0
         if "level" in cur:
             v, no = cur["level"]
-            level = _integer(v, "level", path, no, 0)
+            level = uc_text.integer(v, "level", path, no, 0)
         prc = None
         if "prc_t" in cur:
             v, no = cur["prc_t"]
@@ -225,7 +181,7 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
                 what = "tangent handle" if b in (1, 3) else "end point"
                 raise FormatError(f"{where}: {what} (point {b}) coincides with point {a}", path, pts[b][1])
     n_layers = max(c.layer for c in basics) + 1
-    return Drawing(curves=tuple(basics), layer_bottoms=tuple(bottoms[:n_layers]), name=_stem(path))
+    return Drawing(curves=tuple(basics), layer_bottoms=tuple(bottoms[:n_layers]), name=uc_text.stem(path))
 
 
 def _fmt(v: float) -> str:
@@ -278,6 +234,7 @@ def write_web(drawing: Drawing, name: str = "") -> str:
         for x, y in pts:
             out.append(f"ptPos {_fmt(x)} {_fmt(y)}")
         piece = net.ogee_of(ci)
+        assert piece.prc_fraction is not None  # every ogee piece has its PRC
         out.append(f"level {c.layer}")
         out.append(f"height {_fmt(net.apex_heights[ci])}")
         out.append(f"prc_t {_fmt(piece.prc_fraction)}")

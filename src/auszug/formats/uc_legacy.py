@@ -92,8 +92,8 @@ from __future__ import annotations
 import math
 
 from auszug.errors import DrawingError, FormatError
-from auszug.formats.uc import _integer, _lines, _numbers, _stem
-from auszug.microarch.model import BasicCurve, Drawing, Segment, Symmetry
+from auszug.formats import uc_text
+from auszug.microarch.model import AxisRule, BasicCurve, Drawing, Segment, Symmetry
 
 __all__ = ["LABEL_MARKS", "read_legacy"]
 
@@ -172,10 +172,12 @@ def _segments(cur: _Curve) -> list[Segment]:
 
 def _symmetry(cur: _Curve) -> Symmetry:
     axis = cur.axis if cur.axis is not None else (0.0, 1.0)
-    rule = "fixed"
+    rule: AxisRule = "fixed"
+    ends: tuple[tuple[tuple[float, float], AxisRule], ...] = ((cur.points[0], "first point"),
+                                                             (cur.points[-1], "last point"))
     if cur.mirror:
-        for cand, name in ((cur.points[0], "first point"), (cur.points[-1], "last point")):
-            if all(abs(u - v) <= _AXIS_POINT_TOL for u, v in zip(axis, cand)) and math.hypot(*cand) > 0:
+        for cand, name in ends:
+            if all(abs(u - v) <= _AXIS_POINT_TOL for u, v in zip(axis, cand, strict=True)) and math.hypot(*cand) > 0:
                 axis, rule = cand, name
                 break
         else:
@@ -223,7 +225,7 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
     >>> d.default_apex
     1.0
     """
-    lines = _lines(text)
+    lines = uc_text.lines(text)
     if not lines:
         raise FormatError("empty file: expected 'numCurves N' then curves", path)
     declared: tuple[int, int] | None = None
@@ -238,19 +240,19 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
         if key == "numCurves":
             if declared is not None or curves:
                 raise FormatError("'numCurves' must come once, before the first 'unitCurve'", path, no)
-            declared = (_integer(_numbers(args, 1, key, path, no)[0], key, path, no, 0), no)
+            declared = (uc_text.integer(uc_text.numbers(args, 1, key, path, no)[0], key, path, no, 0), no)
             continue
         if key == "unitCurve":
             if len(args) != 3:
                 raise FormatError(
                     f"'unitCurve' needs 3 numbers (points, rotation fold, has reflection) in the "
                     f"legacy dialect, got {len(args)}", path, no)
-            n, fold, refl = _numbers(args, 3, key, path, no)
-            n_points = _integer(n, "unitCurve points", path, no, 0)
+            n, fold, refl = uc_text.numbers(args, 3, key, path, no)
+            n_points = uc_text.integer(n, "unitCurve points", path, no, 0)
             if n_points < 2:
                 raise FormatError(f"'unitCurve' declares {n_points} point(s); a curve needs at least 2",
                                   path, no)
-            fold_i = _integer(fold, "unitCurve rotation fold", path, no, 1)
+            fold_i = uc_text.integer(fold, "unitCurve rotation fold", path, no, 1)
             if refl not in (0.0, 1.0):
                 raise FormatError(f"'unitCurve' reflection flag must be 0 or 1, got {refl:g}", path, no)
             curves.append(_Curve(no, n_points, fold_i, refl == 1.0))
@@ -261,10 +263,10 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
         if key == "reflectionPoint":
             if cur.axis is not None:
                 raise FormatError(f"'reflectionPoint' given twice for curve {ci}", path, no)
-            x, y = _numbers(args, 2, key, path, no)
+            x, y = uc_text.numbers(args, 2, key, path, no)
             cur.axis, cur.axis_line = (x, y), no
         elif key == "ptPos":
-            _add_point(cur, ci, _numbers(args, 2, key, path, no), path, no)
+            _add_point(cur, ci, uc_text.numbers(args, 2, key, path, no), path, no)
         elif key in ("ptTan", "ptTangent"):
             if dialect is None:
                 dialect = (key, no)
@@ -274,7 +276,7 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
                     "('ptTan' vectors) or v1 ('ptTangent' control points)", path, no)
             if not cur.points:
                 raise FormatError(f"{key!r} before the first 'ptPos' of curve {ci}", path, no)
-            xy = _numbers(args, 2, key, path, no)
+            xy = uc_text.numbers(args, 2, key, path, no)
             if key == "ptTan":
                 if cur.tans[-1] is not None:
                     raise FormatError(f"a second 'ptTan' for point {len(cur.points) - 1} of curve {ci}",
@@ -292,8 +294,8 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
                 cur.gaps[-1].append(((xy[0], xy[1]), no))
                 cur.n_controls += 1
         else:  # ptLab
-            v = _numbers(args, 1, key, path, no)[0]
-            lab = _integer(v, key, path, no, 0)
+            v = uc_text.numbers(args, 1, key, path, no)[0]
+            lab = uc_text.integer(v, key, path, no, 0)
             if lab not in LABEL_MARKS:
                 raise FormatError(f"'ptLab' must be 0 (ground), 1 (apex) or 2 (free end), got {lab}",
                                   path, no)
@@ -325,7 +327,7 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
         if cur.mirror and cur.axis is None:
             raise FormatError(f"curve {ci} has a reflection but no 'reflectionPoint' line",
                               path, cur.line)
-        if cur.mirror and math.hypot(*cur.axis) <= 1e-12:  # type: ignore[misc]
+        if cur.mirror and cur.axis is not None and math.hypot(*cur.axis) <= 1e-12:
             raise FormatError("mirror axis of zero length: 'reflectionPoint' is the origin",
                               path, cur.axis_line)
         try:
@@ -337,6 +339,6 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
             ))
         except DrawingError as e:
             raise FormatError(f"curve {ci}: {e}", path, cur.line) from None
-        for a, b in zip(cur.points[:-1], cur.points[1:]):
+        for a, b in zip(cur.points[:-1], cur.points[1:], strict=True):
             longest = max(longest, math.hypot(b[0] - a[0], b[1] - a[1]))
-    return Drawing(curves=tuple(basics), name=_stem(path), default_apex=max(1.0, longest))
+    return Drawing(curves=tuple(basics), name=uc_text.stem(path), default_apex=max(1.0, longest))

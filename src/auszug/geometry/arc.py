@@ -25,7 +25,7 @@ BACKWARD_SINE = 1e-3
 ARC_MIN_SINE = 1e-7
 
 
-@dataclass(frozen=True, eq=False, repr=False)
+@dataclass(frozen=True, eq=False, repr=False, init=False)
 class Arc(Curve):
     """Arc of the circle (``center``, ``radius``) from angle ``theta0`` over ``sweep``.
 
@@ -59,6 +59,14 @@ class Arc(Curve):
     sweep: float
     kind = "arc"
 
+    # the centre field holds an array; the constructor takes any array-like and converts
+    def __init__(self, center: ArrayLike, radius: float, theta0: float, sweep: float) -> None:
+        object.__setattr__(self, "center", center)
+        object.__setattr__(self, "radius", radius)
+        object.__setattr__(self, "theta0", theta0)
+        object.__setattr__(self, "sweep", sweep)
+        self.__post_init__()
+
     def __post_init__(self) -> None:
         c = as_point(self.center, "arc centre")
         r, th, sw = float(self.radius), float(self.theta0), float(self.sweep)
@@ -83,30 +91,37 @@ class Arc(Curve):
         return self.theta0 + np.asarray(t, dtype=float) * self.sweep
 
     def point(self, t: ArrayLike) -> Array:
+        """Points at parameters ``t``, shape ``t.shape + (2,)``."""
         a = self._angle(t)
         return self.center + self.radius * np.stack([np.cos(a), np.sin(a)], axis=-1)
 
     def tangent(self, t: ArrayLike) -> Array:
+        """Unit tangents at ``t`` in the direction of travel, shape ``t.shape + (2,)``."""
         a = self._angle(t)
         s = 1.0 if self.sweep > 0 else -1.0
         return s * np.stack([-np.sin(a), np.cos(a)], axis=-1)
 
     def curvature(self, t: ArrayLike) -> Array:
+        """Signed curvature at ``t``: 1/radius, positive for a counter-clockwise arc."""
         return np.full(np.shape(t), (1.0 if self.sweep > 0 else -1.0) / self.radius)
 
     def length(self) -> float:
+        """Arc length: radius times the absolute sweep."""
         return self.radius * abs(self.sweep)
 
     def split(self, t: float) -> tuple[Arc, Arc]:
+        """The two arcs before and after parameter ``t``."""
         return (
             Arc(self.center, self.radius, self.theta0, self.sweep * t),
             Arc(self.center, self.radius, self.theta0 + self.sweep * t, self.sweep * (1.0 - t)),
         )
 
     def reversed(self) -> Arc:
+        """The same arc travelled from end to start."""
         return Arc(self.center, self.radius, self.theta0 + self.sweep, -self.sweep)
 
     def transformed(self, matrix: ArrayLike, offset: ArrayLike = (0.0, 0.0)) -> Arc:
+        """The arc mapped by ``x -> matrix @ x + offset`` (a similarity: rotation or reflection)."""
         m = np.asarray(matrix, dtype=float)
         c = m @ self.center + np.asarray(offset, dtype=float)
         d = m @ np.array([math.cos(self.theta0), math.sin(self.theta0)])
@@ -124,17 +139,19 @@ class Arc(Curve):
 
     def project(self, p: ArrayLike) -> float:
         """Parameter of the point of the arc closest to ``p``."""
-        v = np.asarray(p, dtype=float) - self.center
+        q = np.asarray(p, dtype=float)
+        v = q - self.center
         if float(np.hypot(*v)) <= _tolerance.TOL.zero:
             return 0.0
         t = float(self.t_of_angle(math.atan2(v[1], v[0])))
         if 0.0 <= t <= 1.0:
             return t
-        d0 = np.hypot(*(self.point(0.0) - p))
-        d1 = np.hypot(*(self.point(1.0) - p))
+        d0 = np.hypot(*(self.point(0.0) - q))
+        d1 = np.hypot(*(self.point(1.0) - q))
         return 0.0 if d0 <= d1 else 1.0
 
     def to_dict(self) -> dict[str, Any]:
+        """JSON-ready description: kind, start, end, center, radius and sweep."""
         return {
             "kind": "arc",
             "start": self.start.tolist(),

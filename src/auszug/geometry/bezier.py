@@ -33,7 +33,7 @@ _TABLE_REL = 1e-15
 _TABLE_MAX_LEVELS = 60
 
 
-@dataclass(frozen=True, eq=False, repr=False)
+@dataclass(frozen=True, eq=False, repr=False, init=False)
 class CubicBezier(Curve):
     """The cubic Bezier curve with control points ``p0, p1, p2, p3``.
 
@@ -64,6 +64,12 @@ class CubicBezier(Curve):
     p3: Array
     kind = "bezier"
 
+    # the fields hold arrays; the constructor takes any array-like and converts
+    def __init__(self, p0: ArrayLike, p1: ArrayLike, p2: ArrayLike, p3: ArrayLike) -> None:
+        for name, p in (("p0", p0), ("p1", p1), ("p2", p2), ("p3", p3)):
+            object.__setattr__(self, name, p)
+        self.__post_init__()
+
     def __post_init__(self) -> None:
         pts = [as_point(p, f"Bezier control point {i}") for i, p in enumerate(
             (self.p0, self.p1, self.p2, self.p3))]
@@ -72,7 +78,7 @@ class CubicBezier(Curve):
             raise GeometryError(
                 f"Bezier control points all coincide at {pts[0].tolist()}: expected a curve"
             )
-        for name, p in zip(("p0", "p1", "p2", "p3"), pts):
+        for name, p in zip(("p0", "p1", "p2", "p3"), pts, strict=True):
             object.__setattr__(self, name, p)
 
     # -- construction ---------------------------------------------------------------------
@@ -97,6 +103,7 @@ class CubicBezier(Curve):
 
     # -- evaluation -----------------------------------------------------------------------
     def point(self, t: ArrayLike) -> Array:
+        """Points at parameters ``t`` (Bernstein form), shape ``t.shape + (2,)``."""
         t = np.asarray(t, dtype=float)[..., None]
         m = 1.0 - t
         return (m * m * m) * self.p0 + (3.0 * m * m * t) * self.p1 + (
@@ -214,6 +221,7 @@ class CubicBezier(Curve):
         return r[(r > 0.0) & (r < 1.0)]
 
     def length(self) -> float:
+        """Arc length, from the arc-length table."""
         return float(self._table[1][-1])
 
     def u_at_t(self, t: ArrayLike) -> Array:
@@ -302,9 +310,11 @@ class CubicBezier(Curve):
         return CubicBezier(c[0], c[1], c[2], c[3])
 
     def reversed(self) -> CubicBezier:
+        """The same curve from end to start (control points in reverse order)."""
         return CubicBezier(self.p3, self.p2, self.p1, self.p0)
 
     def transformed(self, matrix: ArrayLike, offset: ArrayLike = (0.0, 0.0)) -> CubicBezier:
+        """The curve mapped by ``x -> matrix @ x + offset`` (applied to the control points)."""
         m = np.asarray(matrix, dtype=float)
         c = self.controls @ m.T + np.asarray(offset, dtype=float)
         return CubicBezier(c[0], c[1], c[2], c[3])
@@ -352,6 +362,7 @@ class CubicBezier(Curve):
         return tuple(self.controls.ravel().tolist())
 
     def to_dict(self) -> dict[str, Any]:
+        """JSON-ready description: kind, start, the two handles and end."""
         return {
             "kind": "bezier",
             "start": self.p0.tolist(),

@@ -51,7 +51,8 @@ class Curve(ABC):
     """A planar parametric curve on t in [0, 1].
 
     Subclasses implement :meth:`point`, :meth:`tangent`, :meth:`length`,
-    :meth:`split`, :meth:`reversed`, :meth:`transformed`, :meth:`to_dict`, and,
+    :meth:`split`, :meth:`reversed`, :meth:`transformed`, :meth:`to_dict`,
+    :meth:`curvature`, :meth:`project`, and,
     when t is not proportional to arc length, :meth:`u_at_t` and :meth:`t_at_u`.
     """
 
@@ -89,6 +90,10 @@ class Curve(ABC):
     @abstractmethod
     def curvature(self, t: ArrayLike) -> Array:
         """Signed curvature at ``t`` (positive = turning left): shape (...,) -> (...,)."""
+
+    @abstractmethod
+    def project(self, p: ArrayLike) -> float:
+        """Parameter ``t`` of the point of the curve closest to the point ``p``."""
 
     # -- arc-length parameter ----------------------------------------------------------
     def u_at_t(self, t: ArrayLike) -> Array:

@@ -40,7 +40,7 @@ from auszug.geometry.bezier import CubicBezier
 from auszug.geometry.curve import Array, Curve
 from auszug.geometry.line import Line
 
-__all__ = ["Intersection", "intersect", "intersect_many"]
+__all__ = ["Intersection", "intersect", "intersect_many", "Prepared", "prepare", "intersect_prepared"]
 
 _TAU = 2.0 * math.pi
 
@@ -235,7 +235,8 @@ def _bez_piece(t0: float, t1: float, c: tuple[float, ...]) -> _Piece:
 
 
 def _bez_halves(p: _Piece) -> tuple[_Piece, _Piece]:
-    x0, y0, x1, y1, x2, y2, x3, y3 = p.ctrl  # type: ignore[misc]
+    assert p.ctrl is not None  # a Bezier piece
+    x0, y0, x1, y1, x2, y2, x3, y3 = p.ctrl
     ax, ay = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
     bx, by = 0.5 * (x1 + x2), 0.5 * (y1 + y2)
     cx, cy = 0.5 * (x2 + x3), 0.5 * (y2 + y3)
@@ -260,8 +261,10 @@ class _BezPrim:
         self.root: _Piece | None = None
 
     def _maybe_near(self, x: float, y: float, tol: float) -> bool:
-        """False when the point is certainly farther than ``tol`` from the curve: every
-        flat piece of the (memoised) subdivision tree is excluded by its box or strip."""
+        """False when the point is certainly farther than ``tol`` from the curve.
+
+        Every flat piece of the (memoised) subdivision tree is excluded by its box or strip.
+        """
         stack = [_root(self)]
         while stack:
             p = stack.pop()
@@ -312,17 +315,22 @@ class _BezPrim:
 
 # Curves are immutable, so their float form is memoised per object (weakly: the cache
 # never keeps a curve alive). This halves the cost of intersecting a pair.
-_Prim = _LinePrim | _ArcPrim | _BezPrim
-_PRIMS: weakref.WeakKeyDictionary[Curve, _Prim] = weakref.WeakKeyDictionary()
+Prepared = _LinePrim | _ArcPrim | _BezPrim
+_PRIMS: weakref.WeakKeyDictionary[Curve, Prepared] = weakref.WeakKeyDictionary()
 
 
-def _prim(c: Curve) -> _Prim:
+def prepare(c: Curve) -> Prepared:
+    """The float form of a curve that :func:`intersect_prepared` works on, memoised per curve.
+
+    Its ``x0, y0, x1, y1`` are the end points; callers that intersect one curve with
+    many (offsets, PRC search) prepare it once.
+    """
     try:
         return _PRIMS[c]
     except (KeyError, TypeError):
         pass
     if isinstance(c, Line):
-        p: _Prim = _LinePrim(c)
+        p: Prepared = _LinePrim(c)
     elif isinstance(c, Arc):
         p = _ArcPrim(c)
     elif isinstance(c, CubicBezier):
@@ -430,7 +438,7 @@ def _arc_arc(a: _ArcPrim, b: _ArcPrim, tol: float, out: list[_Hit]) -> None:
         out.append((ta, tb, x, y))
 
 
-def _endpoint_hits(a, b, tol: float, out: list[_Hit], swap: bool) -> None:  # noqa: ANN001
+def _endpoint_hits(a, b, tol: float, out: list[_Hit], swap: bool) -> None:
     """End points of ``a`` lying on ``b`` (this also finds the ends of overlaps)."""
     bx0, by0, bx1, by1 = b.box
     for ta, x, y in ((0.0, a.x0, a.y0), (1.0, a.x1, a.y1)):
@@ -441,10 +449,12 @@ def _endpoint_hits(a, b, tol: float, out: list[_Hit], swap: bool) -> None:  # no
             out.append((tb, ta, x, y) if swap else (ta, tb, x, y))
 
 
-def _same_place(p, s: float, t: float, tol: float) -> bool:  # noqa: ANN001
-    """Whether parameters ``s`` and ``t`` of one point are one place of the curve ``p``,
-    not two branches through a double point (a Bezier loop): the curve between them
-    stays put. The ends of a closed curve are one place."""
+def _same_place(p, s: float, t: float, tol: float) -> bool:
+    """Whether parameters ``s`` and ``t`` of one point are one place of the curve ``p``.
+
+    Not two branches through a double point (a Bezier loop): the curve between them
+    stays put. The ends of a closed curve are one place.
+    """
     if s == t:
         return True
     if s + t == 1.0 and s * t == 0.0:
@@ -454,7 +464,7 @@ def _same_place(p, s: float, t: float, tol: float) -> bool:  # noqa: ANN001
     return math.hypot(xm - xs, ym - ys) <= 2.0 * tol
 
 
-def _finish(hits: list[_Hit], a, b, tol: float) -> list[Intersection]:  # noqa: ANN001
+def _finish(hits: list[_Hit], a, b, tol: float) -> list[Intersection]:
     """Snap to end points, merge duplicates, sort by t1."""
     snapped: list[_Hit] = []
     closed_a = math.hypot(a.x0 - a.x1, a.y0 - a.y1) <= tol
@@ -495,24 +505,25 @@ def _finish(hits: list[_Hit], a, b, tol: float) -> list[Intersection]:  # noqa: 
     return [Intersection(t1, t2, np.array((x, y))) for t1, t2, x, y in kept]
 
 
-def _boxes_apart(a, b, tol: float) -> bool:  # noqa: ANN001
+def _boxes_apart(a, b, tol: float) -> bool:
     ba, bb = a.box, b.box
     return ba[0] > bb[2] + tol or bb[0] > ba[2] + tol or ba[1] > bb[3] + tol or bb[1] > ba[3] + tol
 
 
-def _intersect_prims(a, b) -> list[Intersection]:  # noqa: ANN001
+def intersect_prepared(a: Prepared, b: Prepared) -> list[Intersection]:
+    """Intersections of two prepared curves: :func:`intersect` without the preparation."""
     tol = _tolerance.TOL.intersect
     if _boxes_apart(a, b, tol):
         return []
-    if type(a) is _BezPrim or type(b) is _BezPrim:
+    if isinstance(a, _BezPrim) or isinstance(b, _BezPrim):
         return _finish(_subdivision_hits(a, b, tol), a, b, tol)
     hits: list[_Hit] = []
-    la, lb = type(a) is _LinePrim, type(b) is _LinePrim
-    if la and lb:
-        _line_line(a, b, tol, hits)
-    elif la:
-        _line_arc(a, b, tol, hits, swap=False)
-    elif lb:
+    if isinstance(a, _LinePrim):
+        if isinstance(b, _LinePrim):
+            _line_line(a, b, tol, hits)
+        else:
+            _line_arc(a, b, tol, hits, swap=False)
+    elif isinstance(b, _LinePrim):
         _line_arc(b, a, tol, hits, swap=True)
     else:
         _arc_arc(a, b, tol, hits)
@@ -531,7 +542,7 @@ _NEWTON_STEPS = 60
 _NEWTON_DONE = 1e-15  # residual (drawing units) at which Newton stops early
 
 
-def _newton(a, b, s: float, t: float) -> tuple[float, float, float, float, float]:  # noqa: ANN001
+def _newton(a, b, s: float, t: float) -> tuple[float, float, float, float, float]:
     """Refine a meeting point of ``a`` at ``s`` and ``b`` at ``t``.
 
     Levenberg-Marquardt on A(s) - B(t) = 0 with a tiny damping, i.e. Newton's
@@ -582,9 +593,11 @@ def _chord_guess(pa: _Piece, pb: _Piece) -> tuple[float, float]:
     return pa.t0 + u * (pa.t1 - pa.t0), pb.t0 + v * (pb.t1 - pb.t0)
 
 
-def _split(prim, p: _Piece) -> tuple[_Piece, _Piece]:  # noqa: ANN001
-    """The two halves of a piece, memoised: a curve's subdivision tree is shared by all
-    the pairs it takes part in."""
+def _split(prim, p: _Piece) -> tuple[_Piece, _Piece]:
+    """The two halves of a piece, memoised.
+
+    A curve's subdivision tree is shared by all the pairs it takes part in.
+    """
     if p.kids is None:
         if p.ctrl is not None:
             p.kids = _bez_halves(p)
@@ -594,7 +607,7 @@ def _split(prim, p: _Piece) -> tuple[_Piece, _Piece]:  # noqa: ANN001
     return p.kids
 
 
-def _root(prim) -> _Piece:  # noqa: ANN001
+def _root(prim) -> _Piece:
     """The whole curve as a piece, memoised on the primitive."""
     if prim.root is None:
         prim.root = prim.piece(0.0, 1.0)
@@ -602,8 +615,10 @@ def _root(prim) -> _Piece:  # noqa: ANN001
 
 
 def _fat_apart(pa: _Piece, pb: _Piece, tol: float) -> bool:
-    """Whether ``pb`` lies wholly on one side of the strip of half-width ``pa.dev`` around
-    the chord line of ``pa`` (which contains ``pa``): then the pieces cannot meet."""
+    """Whether ``pb`` lies wholly on one side of the strip around the chord line of ``pa``.
+
+    The strip has half-width ``pa.dev`` and contains ``pa``: then the pieces cannot meet.
+    """
     x0, y0, x1, y1 = pa.chord
     ln = math.hypot(x1 - x0, y1 - y0)
     if ln == 0.0:
@@ -625,15 +640,17 @@ def _is_flat(p: _Piece, tol: float) -> bool:
     return p.dev <= max(_FLAT * math.hypot(x1 - x0, y1 - y0), tol)
 
 
-def _near(a, b, sa: float, tol: float) -> bool:  # noqa: ANN001
+def _near(a, b, sa: float, tol: float) -> bool:
     """Whether the point of ``a`` at ``sa`` is within ``tol`` of curve ``b``."""
     x, y, _, _ = a.ev(sa)
     return b.project(x, y)[0] <= tol
 
 
-def _subdivision_hits(a, b, tol: float) -> list[_Hit]:  # noqa: ANN001
-    """Raw hits of two curves by bounding-box subdivision, Newton refinement, and the
-    end-point checks; overlaps reduced to their end points, tangential clusters merged."""
+def _subdivision_hits(a, b, tol: float) -> list[_Hit]:
+    """Raw hits of two curves by bounding-box subdivision, Newton refinement, and the end-point checks.
+
+    Overlaps are reduced to their end points, tangential clusters merged.
+    """
     newton: list[tuple[float, float, float, float, float]] = []
     stack = [(_root(a), _root(b), 0)]
     while stack:
@@ -709,8 +726,9 @@ def _subdivision_hits(a, b, tol: float) -> list[_Hit]:  # noqa: ANN001
                 and _near(b, a, 0.5 * (h[1] + k[1]), tol)
             )
             if same:
-                exact = lambda z: (z[0] in (0.0, 1.0)) + (z[1] in (0.0, 1.0))  # noqa: E731
-                if (exact(h), -res) > (exact(k), -kres):
+                exact_h = (h[0] in (0.0, 1.0)) + (h[1] in (0.0, 1.0))  # how many parameters are end points
+                exact_k = (k[0] in (0.0, 1.0)) + (k[1] in (0.0, 1.0))
+                if (exact_h, -res) > (exact_k, -kres):
                     kept[-1] = (h, res, prot or kprot)
                 continue
         kept.append((h, res, prot))
@@ -752,7 +770,7 @@ def intersect(c1: Curve, c2: Curve) -> list[Intersection]:
     >>> [h.t2 for h in intersect(Line((0, 1), (1, 1)), Arc((0, 0), 1.0, 0.0, 3.0))]
     [0.5235987755982988]
     """
-    return _intersect_prims(_prim(c1), _prim(c2))
+    return intersect_prepared(prepare(c1), prepare(c2))
 
 
 def intersect_many(
@@ -782,8 +800,8 @@ def intersect_many(
     >>> intersect_many(star, [Line((5, 5), (6, 6))])
     {}
     """
-    pa = [_prim(c) for c in curves_a]
-    pb = pa if curves_b is None else [_prim(c) for c in curves_b]
+    pa = [prepare(c) for c in curves_a]
+    pb = pa if curves_b is None else [prepare(c) for c in curves_b]
     if not pa or not pb:
         return {}
     tol = _tolerance.TOL.intersect
@@ -798,8 +816,8 @@ def intersect_many(
     if curves_b is None:
         near = np.triu(near, k=1)
     out: dict[tuple[int, int], list[Intersection]] = {}
-    for i, j in zip(*(ix.tolist() for ix in np.nonzero(near))):
-        hits = _intersect_prims(pa[i], pb[j])
+    for i, j in zip(*(ix.tolist() for ix in np.nonzero(near)), strict=True):
+        hits = intersect_prepared(pa[i], pb[j])
         if hits:
             out[(i, j)] = hits
     return out

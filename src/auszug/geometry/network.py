@@ -34,6 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
+from auszug.geometry.arc import Arc
 from auszug.geometry.curve import Curve
 from auszug.geometry.heights import SideCoordinate, SideView
 from auszug.geometry.symmetry import SymmetryGroup
@@ -241,13 +242,13 @@ class Piece:
             return []
         t0, t1 = self.t_span()
         if self.side is None:
-            if top.kind != "arc":
+            if not isinstance(top, Arc):
                 return []
-            c = np.asarray(top.center, dtype=float)  # type: ignore[attr-defined]  # an Arc
+            c = np.asarray(top.center, dtype=float)
             z = float(self.z_const)
-            ccw = float(top.sweep) > 0.0  # type: ignore[attr-defined]  # an Arc
+            ccw = float(top.sweep) > 0.0
             return [CircularRun(t0, t1, np.array([c[0], c[1], z]), np.array([0.0, 0.0, 1.0 if ccw else -1.0]),
-                                float(top.radius), self.point_t(t0), self.point_t(t1))]  # type: ignore[attr-defined]
+                                float(top.radius), self.point_t(t0), self.point_t(t1))]
         if top.kind != "line":
             return []
         L = top.length()
@@ -429,7 +430,7 @@ def sample_by_tolerance(piece: Piece, tolerance: float) -> tuple[Array, list[tup
     idx = np.clip(np.searchsorted(ts, ft), 0, len(ts) - 1)
     prev = np.clip(idx - 1, 0, len(ts) - 1)
     idx = np.where(np.abs(ts[prev] - ft) < np.abs(ts[idx] - ft), prev, idx)
-    return ts, [(n, int(i)) for (n, _), i in zip(feats, idx)]
+    return ts, [(n, int(i)) for (n, _), i in zip(feats, idx, strict=True)]
 
 
 def _refine(piece: Piece, forced: Array, tolerance: float) -> Array:
@@ -467,7 +468,7 @@ def _refine(piece: Piece, forced: Array, tolerance: float) -> Array:
         arc[:] = True
         del cz
 
-    def s_to_t(sv: Array, k: Array) -> Array:
+    def s_to_t(sv: Array, k: NDArray[np.intp]) -> Array:
         if not arc.any():
             return sv
         t = piece.t_of_g(cg[k] + r[k] * np.cos(sv))

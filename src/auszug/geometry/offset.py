@@ -48,7 +48,7 @@ from auszug.errors import GeometryError
 from auszug.geometry import _tolerance
 from auszug.geometry.arc import Arc
 from auszug.geometry.curve import Curve
-from auszug.geometry.intersect import _prim
+from auszug.geometry.intersect import prepare
 from auszug.geometry.line import Line
 
 __all__ = ["OffsetCurves", "offset_curves", "is_closed", "signed_area"]
@@ -247,7 +247,7 @@ def signed_area(curves: Sequence[Curve]) -> float:
     return area
 
 
-def _at_offset(x: float, y: float, prims: list, lo: float, hi: float) -> bool:  # noqa: ANN001
+def _at_offset(x: float, y: float, prims: list, lo: float, hi: float) -> bool:
     """Whether the distance from (x, y) to the nearest input curve lies in [lo, hi].
 
     A point of a true offset lies at the offset distance from the input, or a
@@ -268,7 +268,7 @@ def _at_offset(x: float, y: float, prims: list, lo: float, hi: float) -> bool:  
 
 
 def _join(p: _Carrier, q: _Carrier, turn: float | None, d: float, corner: tuple[float, float],
-          miter_limit: float, prims: list) -> tuple[float, float] | None | str:  # noqa: ANN001
+          miter_limit: float, prims: list) -> tuple[float, float] | None | str:
     """Where carrier ``p`` ends and ``q`` begins: ``(b_p, a_q)``, ``"round"`` or None (no join).
 
     ``turn`` is the input turning angle at the common corner, or None for a
@@ -375,7 +375,7 @@ def offset_curves(
     if d == 0.0:
         return OffsetCurves(tuple(curves), np.arange(n), np.zeros(n, bool), 0.0, closed)
     car = [_Carrier(i, c, d) for i, c in enumerate(curves)]
-    prims = [_prim(c) for c in curves]
+    prims = [prepare(c) for c in curves]
     m = n if closed else n - 1  # number of corners
     turns = [_turn(car[k], car[(k + 1) % n]) for k in range(m)]
     corners = [car[k].end for k in range(m)]
@@ -410,10 +410,11 @@ def offset_curves(
             if res is None:
                 broken = p if p.b - p.a < q.b - q.a else q
                 break
-            if res == "round":
-                round_after[p.index] = corner  # type: ignore[assignment]
+            if isinstance(res, str):  # "round", which _join answers only at a corner (turn known)
+                assert corner is not None
+                round_after[p.index] = corner
                 continue
-            p.b, q.a = res  # type: ignore[misc]
+            p.b, q.a = res
         if broken is None:
             shortest = min(alive, key=lambda i: car[i].b - car[i].a)
             if car[shortest].b - car[shortest].a > tol:
@@ -478,7 +479,7 @@ def _check_simple(off: OffsetCurves) -> None:
             )
 
 
-def _is_shared_end(cs: Sequence[Curve], i: int, j: int, h) -> bool:  # noqa: ANN001
+def _is_shared_end(cs: Sequence[Curve], i: int, j: int, h) -> bool:
     tol = 10 * _tolerance.TOL.intersect
     a, b = (cs[i], cs[j]) if j == i + 1 else (cs[j], cs[i])
     return bool(np.hypot(*(h.point - a.end)) <= tol and np.hypot(*(h.point - b.start)) <= tol)

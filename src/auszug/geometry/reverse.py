@@ -120,7 +120,7 @@ def _direction(d: ArrayLike, name: str) -> Array:
     return v / n
 
 
-def _inputs(A: ArrayLike, dA: ArrayLike, B: ArrayLike, dB: ArrayLike):  # noqa: ANN202
+def _inputs(A: ArrayLike, dA: ArrayLike, B: ArrayLike, dB: ArrayLike):
     a = as_point(A, "start point A")
     b = as_point(B, "end point B")
     da = _direction(dA, "tangent direction at A")
@@ -470,7 +470,7 @@ def _check_turn(t: object) -> None:
 
 
 def _normal_intersection(a: Array, na: Array, b: Array, nb: Array) -> float | None:
-    """s with F = A + s n_A on the normal line at B, or None for parallel normals."""
+    """The s with F = A + s n_A on the normal line at B, or None for parallel normals."""
     den = na[0] * nb[1] - na[1] * nb[0]
     if abs(den) <= _tolerance.TOL.collinear:
         return None
@@ -479,8 +479,11 @@ def _normal_intersection(a: Array, na: Array, b: Array, nb: Array) -> float | No
 
 
 def _one_minus_cos(da: Array, db: Array) -> float:
-    """1 - d_A . d_B, exactly 0 for parallel tangents (not a rounding residue, which
-    would turn an impossible turn into a reverse curve of radius ~1e15)."""
+    """The 1 - d_A . d_B, exactly 0 for parallel tangents.
+
+    Not a rounding residue, which would turn an impossible turn into a reverse curve of
+    radius ~1e15.
+    """
     c = float(da @ db)
     if c > 0 and _parallel(da, db):
         return 0.0

@@ -193,7 +193,7 @@ class SymmetryGroup:
         """
         offs = self.offsets()
         return [curve] + [
-            curve.transformed(m, t) for m, t in zip(self._matrices[1:], offs[1:])
+            curve.transformed(m, t) for m, t in zip(self._matrices[1:], offs[1:], strict=True)
         ]
 
     # -- group structure ----------------------------------------------------------------

@@ -36,8 +36,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
-from auszug.geometry import Curve, Line
-from auszug.geometry.network import CurveNetwork, as_curve_network
+from auszug.geometry import Curve
+from auszug.geometry.network import CurveNetwork, Piece, as_curve_network
 
 __all__ = ["Strand", "GraphEdge", "NetworkGraph", "Loop", "network_graph", "find_loops", "loop_through"]
 
@@ -72,11 +72,12 @@ class Strand:
     center: Array
     top: Curve
     layer: int
-    _piece: object = field(repr=False, default=None)
+    _piece: Piece | None = field(repr=False, default=None)
 
     def points(self, u: ArrayLike) -> Array:
         """3D points at normalised top-view arc length u of the basic piece, shape (..., 3)."""
-        p = self._piece.point3(np.asarray(u, dtype=float))  # type: ignore[attr-defined]
+        assert self._piece is not None  # network_graph gives every strand its piece
+        p = self._piece.point3(np.asarray(u, dtype=float))
         out = np.array(p, dtype=float)
         out[..., :2] = (p[..., :2] - self.center) @ self.matrix.T + self.center
         return out
@@ -246,8 +247,9 @@ class Loop:
         g = self.graph
         lens = np.array([g.edge_lengths[e] for e, _ in self.halfedges])
         total = float(lens.sum())
-        pts, corners = [], []
-        for (e, fw), ln in zip(self.halfedges, lens):
+        pts: list[Array] = []
+        corners: list[int] = []
+        for (e, fw), ln in zip(self.halfedges, lens, strict=True):
             k = max(2, int(round(n * ln / total)))
             corners.append(sum(len(p) for p in pts))
             pts.append(g.edge_points(e, k + 1, reverse=not fw)[:-1])
@@ -288,12 +290,13 @@ def _strands(network: CurveNetwork) -> list[Strand]:
     for pi, p in enumerate(network.pieces):
         if p.kind not in LOOP_KINDS:
             continue
+        assert p.top is not None  # the loop kinds run along a top curve
         sym = network.groups[p.basic]
         mats, labels = sym.matrices(), sym.labels()
         c = np.asarray(sym.center)
         seen: list[Array] = []
         probe = p.points[[0, len(p.points) // 2, -1], :2]
-        for k, (m, lab) in enumerate(zip(mats, labels)):
+        for k, (m, lab) in enumerate(zip(mats, labels, strict=True)):
             img = (probe - c) @ m.T + c
             if any(np.allclose(img, q, atol=1e-9) or np.allclose(img[::-1], q, atol=1e-9) for q in seen):
                 continue
@@ -314,7 +317,7 @@ def _polyline_hits(a: Array, b: Array) -> list[tuple[float, float]]:
     ok = (den != 0) & (t >= 0) & (t <= 1) & (u >= 0) & (u <= 1)
     i, j = np.nonzero(ok)
     na, nb = len(a) - 1, len(b) - 1
-    return [((ii + t[ii, jj]) / na, (jj + u[ii, jj]) / nb) for ii, jj in zip(i, j)]
+    return [((ii + t[ii, jj]) / na, (jj + u[ii, jj]) / nb) for ii, jj in zip(i, j, strict=True)]
 
 
 def _top_hits(strands: Sequence[Strand]) -> dict[tuple[int, int], list[tuple[float, float]]]:
@@ -375,9 +378,10 @@ def network_graph(network: Any, meet_tol: float = 1e-2) -> NetworkGraph:
                 splits[j].append(uj)
                 meets.append((i, ui, j, uj))
     # node candidates: every split point; a meeting joins its two candidates
-    cand, owner = [], []
+    cand: list[Array] = []
+    owner: list[tuple[int, int]] = []
     first: list[int] = []
-    for si, (st, sp) in enumerate(zip(strands, splits)):
+    for si, (st, sp) in enumerate(zip(strands, splits, strict=True)):
         u = np.unique(np.clip(np.asarray(sp), 0.0, 1.0))
         keep = np.concatenate([[True], np.diff(u) > 1e-9])
         u = u[keep]
@@ -451,7 +455,6 @@ def _trace_faces(graph: NetworkGraph) -> list[list[tuple[int, bool]]]:
             face.append(h)
             e, fw = h
             ed = graph.edges[e]
-            head = ed.b if fw else ed.a
             twin = (e, not fw)
             v, i = order[twin]
             h = rot[v][(i - 1) % len(rot[v])]
@@ -530,7 +533,7 @@ def _add_rims(graph: NetworkGraph) -> NetworkGraph:
             continue
         clear = True
         for s in samples:
-            for sa, sb in _polyline_hits(seg, s):
+            for sa, _ in _polyline_hits(seg, s):
                 if 1e-6 < sa < 1 - 1e-6:
                     clear = False
                     break
@@ -645,7 +648,7 @@ def loop_through(graph: NetworkGraph, vertices: Sequence[int] | ArrayLike) -> Lo
     mat = coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr()
     used: set[int] = set()
     halfedges: list[tuple[int, bool]] = []
-    for a, b in zip(ids, ids[1:] + ids[:1]):
+    for a, b in zip(ids, ids[1:] + ids[:1], strict=True):
         if a == b:
             continue
         _, pred = shortest_path(mat, indices=a, return_predecessors=True)
@@ -655,7 +658,7 @@ def loop_through(graph: NetworkGraph, vertices: Sequence[int] | ArrayLike) -> Lo
         while path[-1] != a:
             path.append(int(pred[path[-1]]))
         path.reverse()
-        for x, y in zip(path, path[1:]):
+        for x, y in zip(path, path[1:], strict=False):
             e = best[(min(x, y), max(x, y))][1]
             if e in used:
                 raise GeometryError(f"the loop uses the curve between nodes {x} and {y} twice")

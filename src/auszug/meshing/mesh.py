@@ -338,7 +338,8 @@ class Mesh:
     def _sub(self, p: Part) -> "Mesh":
         v0, v1 = p.vertices
         f0, f1 = p.faces
-        return Mesh(self.vertices[v0:v1], self.faces[f0:f1] - v0, (replace(p, vertices=(0, v1 - v0), faces=(0, f1 - f0)),))
+        part = replace(p, vertices=(0, v1 - v0), faces=(0, f1 - f0))
+        return Mesh(self.vertices[v0:v1], self.faces[f0:f1] - v0, (part,))
 
     def split_parts(self) -> list["Mesh"]:
         """Every part as a mesh of its own."""

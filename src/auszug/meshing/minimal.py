@@ -230,7 +230,7 @@ def _projections(b: Array, centre: Array | None) -> list[Array]:
     return out
 
 
-def _simple_projection(b: Array, centre: Array | None, mesh: bool = False):  # noqa: ANN202
+def _simple_projection(b: Array, centre: Array | None, mesh: bool = False):
     """The first projection of the closed polygon that is simple (made counter-clockwise)."""
     from auszug.meshing.profile import _first_crossing
 
@@ -270,7 +270,7 @@ def _cotans(v: Array, f: IntArray) -> tuple[Array, Array]:
     return np.stack([cot0, cot1, cot2], axis=1), 0.5 * dbl
 
 
-def cotan_laplacian(vertices: ArrayLike, faces: ArrayLike):  # noqa: ANN201
+def cotan_laplacian(vertices: ArrayLike, faces: ArrayLike):
     """The cotangent Laplacian L, with (L x)_i = sum_j w_ij (x_i - x_j), w_ij = (cot a + cot b) / 2.
 
     L x is the gradient of the surface area with respect to the vertex
@@ -305,7 +305,7 @@ def area_gradient(vertices: ArrayLike, faces: ArrayLike) -> tuple[Array, Array]:
     f = np.asarray(faces, dtype=np.int64)
     L = cotan_laplacian(v, f)
     ar = triangle_areas(v, f)
-    va = np.bincount(f.reshape(-1), weights=np.repeat(ar / 3.0, 3), minlength=len(v))
+    va = np.asarray(np.bincount(f.reshape(-1), weights=np.repeat(ar / 3.0, 3), minlength=len(v)), dtype=float)
     return L @ v, va
 
 
@@ -363,15 +363,15 @@ class _Pattern:
     def values(self, cot: Array) -> Array:
         """The non-zeros of L in CSR order for corner cotangents (m, 3)."""
         w = 0.5 * np.concatenate([cot[:, 0], cot[:, 1], cot[:, 2]])
-        return np.bincount(self.pos, weights=np.tile(w, 4) * self.sign, minlength=self.nnz)
+        return np.asarray(np.bincount(self.pos, weights=np.tile(w, 4) * self.sign, minlength=self.nnz), dtype=float)
 
-    def full(self, data: Array):  # noqa: ANN201
+    def full(self, data: Array):
         """L as a CSR matrix."""
         from scipy.sparse import csr_matrix
 
         return csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
 
-    def blocks(self, data: Array, shift: Array | None = None):  # noqa: ANN201
+    def blocks(self, data: Array, shift: Array | None = None):
         """Interior-interior (CSC; symmetric) minus ``diag(shift)``, and interior-boundary (CSR)."""
         from scipy.sparse import csc_matrix, csr_matrix
 
@@ -385,7 +385,7 @@ class _Pattern:
         return lii, lib
 
 
-def _factor(mat):  # noqa: ANN001, ANN202
+def _factor(mat):
     from scipy.sparse.linalg import splu
 
     return splu(mat, permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
@@ -414,7 +414,7 @@ def _vertex_normals_areas(x: Array, f: IntArray) -> tuple[Array, Array, Array]:
         vn[:, ax] = np.bincount(f.reshape(-1), weights=w, minlength=n)
     ln = np.linalg.norm(vn, axis=1, keepdims=True)
     vn = np.divide(vn, ln, out=np.zeros_like(vn), where=ln > 0)
-    va = np.bincount(f.reshape(-1), weights=np.repeat(dbl / 6.0, 3), minlength=n)
+    va = np.asarray(np.bincount(f.reshape(-1), weights=np.repeat(dbl / 6.0, 3), minlength=n), dtype=float)
     return vn, va, 0.5 * dbl
 
 
@@ -520,7 +520,7 @@ def _angle_defect(x: Array, f: IntArray) -> Array:
         u = x[f[:, (c + 1) % 3]] - x[f[:, c]]
         v = x[f[:, (c + 2) % 3]] - x[f[:, c]]
         ang[:, c] = np.arctan2(np.linalg.norm(np.cross(u, v), axis=1), np.einsum("ij,ij->i", u, v))
-    return 2 * np.pi - np.bincount(f.reshape(-1), weights=ang.reshape(-1), minlength=n)
+    return np.asarray(2 * np.pi - np.bincount(f.reshape(-1), weights=ang.reshape(-1), minlength=n), dtype=float)
 
 
 def minimal_surface(
@@ -579,8 +579,6 @@ def minimal_surface(
     >>> ms.converged, bool(np.abs(ms.vertices[:, 2]).max() < 1e-12)
     (True, True)
     """
-    from scipy.sparse.linalg import splu
-
     b = np.asarray(boundary, dtype=float)
     if b.ndim != 2 or b.shape[1] != 3 or len(b) < 3:
         raise GeometryError(f"a minimal surface needs a closed polygon of at least 3 3D points, got shape {b.shape}")
@@ -612,7 +610,7 @@ def minimal_surface(
     start = float(triangle_areas(x, faces).sum())
     areas = [start]
 
-    def measure(x: Array, faces: IntArray, pat: _Pattern):  # noqa: ANN202
+    def measure(x: Array, faces: IntArray, pat: _Pattern):
         cot, tri_area = _cotans(x, faces)
         data = pat.values(cot)
         g = pat.full(data) @ x
@@ -653,7 +651,7 @@ def minimal_surface(
     lu = None
     stale = 0
     start_it = it
-    for it in range(start_it + 1, max_iterations + 1):
+    for it in range(start_it + 1, max_iterations + 1):  # noqa: B007  (the result reports the last it)
         if res <= tol and len(areas) > 1 and abs(areas[-2] - areas[-1]) <= area_rtol * areas[-1]:
             converged = True
             break

@@ -415,7 +415,7 @@ def from_segments(start: ArrayLike, segments: Sequence[Mapping[str, Any]], close
     lengths = np.array([c.length() for c in curves])
     around = max(int(around), 3)
     pts = []
-    for c, ln in zip(curves, lengths):
+    for c, ln in zip(curves, lengths, strict=True):
         k = max(1, int(round(around * ln / lengths.sum())))
         if isinstance(c, Arc):
             k = max(k, int(math.ceil(abs(c.sweep) / (math.pi / 8))))

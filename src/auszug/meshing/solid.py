@@ -244,7 +244,8 @@ def drop_slivers(mesh: Mesh, rel: float = 1e-4) -> tuple[Mesh, int, int]:
         return mesh, len(ids), 0
     f = mesh.faces[np.isin(lab, keep_ids)]
     v, f = compact(mesh.vertices, f)
-    return Mesh(v, f, (Part("solid", "solid", -1, "", (0, len(v)), (0, len(f))),)), len(keep_ids), len(ids) - len(keep_ids)
+    part = Part("solid", "solid", -1, "", (0, len(v)), (0, len(f)))
+    return Mesh(v, f, (part,)), len(keep_ids), len(ids) - len(keep_ids)
 
 
 def solid(

@@ -127,6 +127,7 @@ def set_prc_height(d: Drawing, curve: int, z: float, segment: int = 0) -> Drawin
 
     net = build(d)
     piece = next(p for p in net.pieces if p.basic == curve and p.segment == segment and p.kind == "ogee")
+    assert piece.top is not None and piece.prc_fraction is not None  # an ogee piece has both
     c = d.curves[curve]
     z0 = net.bottoms[c.layer]
     g_c = float(piece.g_of_t(piece.top.t_at_u(piece.prc_fraction)))
@@ -227,19 +228,19 @@ def draw_curve(
     """
     if len(handles) != len(vertices) - 1:
         raise DrawingError(f"{len(vertices)} points need {len(vertices) - 1} handle lists, got {len(handles)}")
-    kinds = {0: "line", 1: "arc", 2: "bezier"}
+    kinds: dict[int, Literal["line", "arc", "bezier"]] = {0: "line", 1: "arc", 2: "bezier"}
     segs = []
     for i, h in enumerate(handles):
         if len(h) not in kinds:
             raise DrawingError(f"segment {i}: expected 0 (line), 1 (arc) or 2 (Bezier) handles, got {len(h)}")
-        segs.append(Segment(kinds[len(h)], tuple(tuple(p) for p in h)))
+        segs.append(Segment(kinds[len(h)], tuple((float(p[0]), float(p[1])) for p in h)))
     n_layers = len(list(d.all_bottoms()))
     if isinstance(layer, bool) or not 0 <= layer <= n_layers:
         raise DrawingError(f"layer {layer} does not exist: the drawing has layers 0..{n_layers - 1} "
                            f"(or {n_layers} to add one on top)")
     if layer == n_layers:
         d = add_layer(d)
-    c = BasicCurve(tuple(tuple(v) for v in vertices), tuple(segs), tuple(marks), layer=layer)
+    c = BasicCurve(tuple((float(v[0]), float(v[1])) for v in vertices), tuple(segs), tuple(marks), layer=layer)
     out = add_curve(d, c)
     return set_symmetry(out, len(out.curves) - 1, fold=fold, mirror=mirror)
 

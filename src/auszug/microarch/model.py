@@ -25,13 +25,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
-from typing import Literal, Sequence
+from typing import Any, Literal, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import DrawingError, GeometryError
-from auszug.geometry import Curve, Line, arc_from_tangent
+from auszug.geometry import TOL, Curve, Line, arc_from_tangent
 from auszug.geometry.symmetry import SymmetryGroup
 
 __all__ = [
@@ -80,7 +80,8 @@ class Segment:
 
     def curve(self, p0: ArrayLike, p1: ArrayLike) -> Curve:
         """The top-view curve from ``p0`` to ``p1``."""
-        return _segment_curve(self, (float(p0[0]), float(p0[1])), (float(p1[0]), float(p1[1])), False)
+        a, b = np.asarray(p0, dtype=float), np.asarray(p1, dtype=float)
+        return _segment_curve(self, (float(a[0]), float(a[1])), (float(b[0]), float(b[1])), False)
 
     def _make(self, p0: ArrayLike, p1: ArrayLike) -> Curve:
         if self.kind == "line":
@@ -93,11 +94,12 @@ class Segment:
 
 
 def _segment_curve(seg: Segment, p0: tuple, p1: tuple, flip: bool) -> Curve:
-    """Curves are immutable values: the same segment between the same points is
-    built once (interactive rebuilds reuse the curves an edit did not touch)."""
-    from auszug.geometry import _tolerance
+    """The curve of a segment between two points, built once.
 
-    return _cached_curve(seg, p0, p1, flip, (_tolerance.TOL.zero, _tolerance.TOL.collinear))
+    Curves are immutable values: the same segment between the same points is built
+    once (interactive rebuilds reuse the curves an edit did not touch).
+    """
+    return _cached_curve(seg, p0, p1, flip, (TOL.zero, TOL.collinear))
 
 
 @lru_cache(maxsize=1024)
@@ -267,7 +269,7 @@ class BasicCurve:
         for i in range(len(vs) - 1):
             if math.hypot(vs[i + 1][0] - vs[i][0], vs[i + 1][1] - vs[i][1]) <= 1e-12:
                 raise DrawingError(f"points {i} and {i + 1} coincide: zero-length segment")
-        for i, (a, b) in enumerate(zip(self.marks[:-1], self.marks[1:])):
+        for i, (a, b) in enumerate(zip(self.marks[:-1], self.marks[1:], strict=True)):
             if {a, b} == {"ground", "free"}:
                 raise DrawingError(f"segment {i} joins a ground point to a free end; "
                                    "a free end must follow an apex")
@@ -297,7 +299,7 @@ class BasicCurve:
         except GeometryError as e:
             raise DrawingError(f"segment {i}: {e}") from None
 
-    def with_(self, **changes: object) -> "BasicCurve":
+    def with_(self, **changes: Any) -> "BasicCurve":
         """A copy with some fields replaced (validated again)."""
         return replace(self, **changes)
 

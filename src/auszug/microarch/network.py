@@ -16,7 +16,7 @@ from dataclasses import dataclass, field, replace
 from typing import Iterator, Literal
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
 from auszug._cache import LruCache
 from auszug.errors import DrawingError
@@ -336,7 +336,8 @@ def _build_curve(
         try:
             if kind == "ogee":
                 gs, G = _g_setup(top, mode, theta)
-                f = c.prc[si] if c.prc[si] is not None else auto[(ci, si)]
+                f = c.prc[si]
+                f = auto[(ci, si)] if f is None else f
                 t_c = float(top.t_at_u(f))
                 g_c = float(gs.g_of_t(top, t_c))
                 side = sv.ogee(G, bottom, apex, g_c)
@@ -423,6 +424,7 @@ def _add_pillars(net: Network, n: int) -> None:
             q = np.asarray(c.vertices[vi])
             z_bot = net.bottoms[0]
             for p in below:
+                assert p.top is not None  # below keeps the pieces with a top curve
                 sym = d.curves[p.basic].symmetry
                 cen = np.asarray(sym.center)
                 # q lies on a replica iff its pre-image m^T (q - c) + c lies on the basic piece

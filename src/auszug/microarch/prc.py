@@ -17,16 +17,16 @@ curves of other layers do not meet it in 3D.
 
 from __future__ import annotations
 
-from functools import lru_cache
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
-from auszug.geometry import TOL, Curve
-from auszug.geometry.intersect import _intersect_prims, _prim
 from auszug._cache import LruCache
+from auszug.geometry import TOL, Curve
+from auszug.geometry.intersect import intersect_prepared, prepare
 from auszug.microarch.model import Drawing
 
 __all__ = ["TopIntersection", "PrcChoice", "intersections", "algorithm1", "oriented_segments"]
@@ -108,7 +108,7 @@ def oriented_segments(drawing: Drawing) -> list[tuple[int, int, Curve]]:
 
 
 @lru_cache(maxsize=4096)
-def _replicas(top: Curve, sym) -> tuple[Curve, ...]:  # noqa: ANN001
+def _replicas(top: Curve, sym) -> tuple[Curve, ...]:
     """Images of an (immutable, cached) top curve under a symmetry group."""
     cen = np.asarray(sym.center)
     return tuple(top.transformed(m, cen - m @ cen) for m in sym.matrices())
@@ -119,7 +119,7 @@ def _same_curve(a: Curve, b: Curve, tol: float) -> bool:
     # quick refusal from the end points' floats (memoised by the intersection kernel): curves
     # whose ends differ by clearly more than tol are not the same; the margin covers the
     # rounding between an end point and the curve evaluated at t = 0 or 1
-    pa_, pb_ = _prim(a), _prim(b)
+    pa_, pb_ = prepare(a), prepare(b)
     m = tol + 1e-12 * max(1.0, abs(pa_.x0), abs(pa_.y0), abs(pa_.x1), abs(pa_.y1))
     fwd = (abs(pa_.x0 - pb_.x0) <= m and abs(pa_.y0 - pb_.y0) <= m and abs(pa_.x1 - pb_.x1) <= m
            and abs(pa_.y1 - pb_.y1) <= m)
@@ -164,7 +164,7 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
     # the work comes in blocks: one basic segment i against every replica of one segment j,
     # cached as finished records; an edit of one curve recomputes only the blocks it touches
     scale = [None]   # the drawing's size, for the identical-replica test (computed when needed)
-    out = []
+    out: list[TopIntersection] = []
     blocks = _BLOCKS.data   # the OrderedDict itself: this loop runs for every rebuild
     param_equal = tol.param_equal
     for ci, si, top in segs:
@@ -188,7 +188,7 @@ def intersections(drawing: Drawing, layer_only: bool = False) -> list[TopInterse
     return out
 
 
-def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Curve, kid_i: int,  # noqa: PLR0913
+def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Curve, kid_i: int,
            cj: int, sj: int, top_j: Curve, kid_j: int) -> tuple[TopIntersection, ...]:
     """The intersection records of basic segment (ci, si) with every replica of (cj, sj).
 
@@ -203,7 +203,7 @@ def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Cur
     out: list[TopIntersection] = []
     ptop = None
     pairs = _PAIRS.data   # (its values may be None: a miss is _MISS)
-    for k, (lab, rep) in enumerate(zip(sym.labels(), _replicas(top_j, sym))):
+    for k, (lab, rep) in enumerate(zip(sym.labels(), _replicas(top_j, sym), strict=True)):
         if k == 0 and same_family:
             continue
         pk = (kid_i, kid_j, k)
@@ -215,8 +215,8 @@ def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Cur
                 pass
         else:
             if ptop is None:
-                ptop = _prim(top)
-            found = _intersect_prims(ptop, _prim(rep))
+                ptop = prepare(top)
+            found = intersect_prepared(ptop, prepare(rep))
             hits = tuple((float(top.u_at_t(h.t1)), float(rep.u_at_t(h.t2)), h.point) for h in found)
             if hits and same_family:
                 if scale[0] is None:
@@ -286,7 +286,8 @@ def algorithm1(drawing: Drawing) -> dict[tuple[int, int], PrcChoice]:
     >>> ch.branch, round(ch.fraction, 12)   # meets its mirror image at x = 0
     ('own replicas', 0.666666666667)
     """
-    key = (TOL.param_equal, TOL.intersect, TOL.zero, TOL.collinear, tuple((c.vertices, c.segments, c.marks, c.symmetry, c.layer) for c in drawing.curves))
+    curves = tuple((c.vertices, c.segments, c.marks, c.symmetry, c.layer) for c in drawing.curves)
+    key = (TOL.param_equal, TOL.intersect, TOL.zero, TOL.collinear, curves)
     hit = _CHOICES.get(key)
     if hit is not None:
         return dict(hit)
@@ -309,7 +310,8 @@ def _algorithm1(drawing: Drawing) -> dict[tuple[int, int], PrcChoice]:
         mine = [x for x in allx if x.curve == ci and x.segment == si and eps < x.u < 1.0 - eps]
         own = [x for x in mine if x.same_family and x.true]
         other = [x for x in mine if not x.same_family]
-        for branch, cands in (("own replicas", own), ("other curves", other)):
+        ranked: tuple[tuple[Branch, list[TopIntersection]], ...] = (("own replicas", own), ("other curves", other))
+        for branch, cands in ranked:
             if cands:
                 best = min(cands, key=lambda x: (abs(x.u - 0.5), x.u))
                 out[(ci, si)] = PrcChoice(ci, si, best.u, branch, np.asarray(best.point), best)

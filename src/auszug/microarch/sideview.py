@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
 from auszug.errors import DrawingError
 from auszug.geometry.heights import SideView
@@ -104,7 +104,7 @@ def decorated(base: SideView, g_split: float) -> tuple[SideView, tuple[float, fl
     DrawingError
         If no split at ``g_split`` exists.
     """
-    from auszug.geometry._roots import find_root
+    from auszug.geometry.roots import find_root
 
     gc = float(base.breaks[1])
     G = float(base.breaks[2])

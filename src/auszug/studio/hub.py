@@ -50,7 +50,7 @@ class Outbox:
         self._wake = asyncio.Event()
         self._closed = False
 
-    def put(self, text: str, payload: bytes | None = None, coalesce: Any = None) -> None:  # noqa: ANN401
+    def put(self, text: str, payload: bytes | None = None, coalesce: Any = None) -> None:
         """Queue a message's JSON (and its payload)."""
         if self._closed:
             return
@@ -78,7 +78,7 @@ class Outbox:
                 _, text, payload = self._items.popleft()
                 try:
                     await send(text, payload)
-                except Exception:  # noqa: BLE001 - the socket is gone; the reader notices too
+                except Exception:  # the socket is gone; the reader notices too
                     self._closed = True
                     self._items.clear()
                     return
@@ -125,7 +125,7 @@ class Autosaver:
                 return
             try:
                 await asyncio.to_thread(doc.write_autosave)
-            except Exception:  # noqa: BLE001 - a full disk must not kill the editor
+            except Exception:  # a full disk must not kill the editor
                 log.exception("studio: autosave of %s failed", doc.label)
                 return
 
@@ -137,7 +137,7 @@ class Autosaver:
         if doc.changes != doc.autosaved_changes:
             try:
                 await asyncio.to_thread(doc.write_autosave)
-            except Exception:  # noqa: BLE001
+            except Exception:
                 log.exception("studio: autosave of %s failed", doc.label)
 
     async def flush_all(self, docs: list[Document]) -> None:

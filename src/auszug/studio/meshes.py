@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import re
 from pathlib import PurePosixPath
-from typing import Any, Sequence
+from typing import Any, Literal, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -62,10 +62,10 @@ class Payload:
         self.chunks: list[bytes] = []
         self.size = 0   # in 4-byte values
 
-    def put(self, a: Any, dtype: str = "f4") -> P.ArrayRef:  # noqa: ANN401
+    def put(self, a: Any, dtype: Literal["f4", "u4"] = "f4") -> P.ArrayRef:
         """Append ``a`` as little-endian ``dtype`` ("f4" or "u4"); its reference into the frame."""
         arr = np.ascontiguousarray(a, dtype="<f4" if dtype == "f4" else "<u4")
-        ref = P.ArrayRef(offset=self.size, shape=list(arr.shape), dtype=dtype)  # type: ignore[arg-type]
+        ref = P.ArrayRef(offset=self.size, shape=list(arr.shape), dtype=dtype)
         self.chunks.append(arr.tobytes())
         self.size += arr.size
         return ref
@@ -97,7 +97,7 @@ def loops_of(net: Network) -> list:
     return loops
 
 
-def _faces(net: Network, mode: str, picked: Sequence[int]) -> Any:  # noqa: ANN401 - Faces or None
+def _faces(net: Network, mode: str, picked: Sequence[int]) -> Any:  # Faces or None
     from auszug.meshing import network_faces
 
     if mode == "none":
@@ -120,7 +120,7 @@ def _faces(net: Network, mode: str, picked: Sequence[int]) -> Any:  # noqa: ANN4
     return faces
 
 
-def _profile(net: Network, style: str, size: float | None) -> Any:  # noqa: ANN401
+def _profile(net: Network, style: str, size: float | None) -> Any:
     from auszug.meshing import default_size, profile_for
 
     if style not in ("tube", "bar", "ribbon"):
@@ -156,7 +156,7 @@ def members(net: Network, style: str, size: float | None, segments: int) -> list
     return [sweep_piece(net, pi, prof, seg) for pi, p in enumerate(net.pieces) if p.kind in SWEPT_KINDS]
 
 
-def _member_name(net: Network, mb: Any) -> str:  # noqa: ANN401
+def _member_name(net: Network, mb: Any) -> str:
     p = net.pieces[mb.piece]
     return f"{mb.basic}/{p.kind}{p.segment if p.segment >= 0 else ''}"
 
@@ -217,11 +217,12 @@ def _parse_colours(colors: Sequence[str]) -> list[tuple[float, float, float]]:
     for i, c in enumerate(colors):
         if not isinstance(c, str) or not _COLOUR.match(c):
             raise StudioMeshError(f"colors[{i}]: expected #rrggbb, got {c!r}")
-        out.append(tuple(int(c[k:k + 2], 16) / 255.0 for k in (1, 3, 5)))
-    return out  # type: ignore[return-value]
+        r, g, b = (int(c[k:k + 2], 16) / 255.0 for k in (1, 3, 5))
+        out.append((r, g, b))
+    return out
 
 
-def _glb(mesh: Any, colours: list[tuple[float, float, float]]) -> bytes:  # noqa: ANN401
+def _glb(mesh: Any, colours: list[tuple[float, float, float]]) -> bytes:
     """GLB bytes of ``mesh`` with the members of basic curve i in ``colours[i]`` (others unchanged)."""
     from auszug.formats.gltf import dumps_glb, pack_glb, to_gltf
 
@@ -258,7 +259,7 @@ def export_file(net: Network, name: str, *, format: str, style: str = "bar", fac
     """
     from pathlib import Path
 
-    from auszug.formats._registry import format_for
+    from auszug.formats import format_for
 
     if format not in MIMES:
         raise StudioMeshError(f"format must be one of {', '.join(MIMES)}, got {format!r}")
@@ -270,25 +271,25 @@ def export_file(net: Network, name: str, *, format: str, style: str = "bar", fac
             data: bytes | str = _glb(mesh, colours)
         else:
             fmt = format_for(Path(fname), "mesh", want="write")
-            data = fmt.writer(mesh, fname)
+            data = fmt.write(mesh, fname)
     elif format == "svg":
-        data = format_for(Path(fname), "network", want="write").writer(net, fname)
+        data = format_for(Path(fname), "network", want="write").write(net, fname)
     elif format in ("dxf", "3dm"):
         from auszug.formats.network_json import NetworkFile
 
-        data = format_for(Path(fname), "network", want="write").writer(NetworkFile(net, name), fname)
+        data = format_for(Path(fname), "network", want="write").write(NetworkFile(net, name), fname)
     elif format == "network.json":
         from auszug.formats.network_json import NetworkFile
 
-        data = format_for(Path(fname), "network", want="write").writer(NetworkFile(net, name), fname)
+        data = format_for(Path(fname), "network", want="write").write(NetworkFile(net, name), fname)
     else:
-        data = format_for(Path(fname), "drawing", want="write").writer(net.drawing, fname)
+        data = format_for(Path(fname), "drawing", want="write").write(net.drawing, fname)
     raw = data.encode("utf-8") if isinstance(data, str) else bytes(data)
     return fname, MIMES[format], raw
 
 
 def _export_mesh(net: Network, style: str, faces: str, loops: Sequence[int], solid: bool,
-                 segments: int | None) -> Any:  # noqa: ANN401 - a Mesh
+                 segments: int | None) -> Any:  # a Mesh
     from auszug.meshing import concatenate, sweep_network
     from auszug.meshing.solid import solid as make_solid
 

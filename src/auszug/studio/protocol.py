@@ -32,7 +32,6 @@ import dataclasses
 import json
 import math
 import types
-import typing
 from dataclasses import dataclass, field
 from typing import Any, Callable, ClassVar, Literal, Union, get_args, get_origin, get_type_hints
 
@@ -166,10 +165,12 @@ class EditOp:
 
     #: The edit function; called as ``fn(drawing, **fields)`` without ``id`` and ``type``.
     fn: ClassVar[Callable[..., Drawing]]
+    #: The request number the reply echoes (a field of every edit message).
+    id: int
 
     def apply(self, drawing: Drawing) -> Drawing:
         """The edited drawing (the input is not changed)."""
-        kw = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)  # type: ignore[arg-type]
+        kw = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)  # type: ignore[arg-type]  # edit messages are dataclasses
               if f.name not in EditOp.NOT_PARAMETERS}
         return type(self).fn(drawing, **kw)
 
@@ -676,7 +677,12 @@ WITH_PAYLOAD: tuple[str, ...] = ("geometry", "mesh", "loops", "exported")
 #: Nested types that appear inside server messages, in the order the TypeScript lists them.
 _NESTED: tuple[type, ...] = (ArrayRef, PieceGeometry, IntersectionMarker, CurveInfo, MeshPiece, LoopInfo)
 
-_BY_TYPE: dict[str, type] = {c.__dataclass_fields__["type"].default: c for c in CLIENT_MESSAGES}
+_BY_TYPE: dict[str, type] = {
+    f.default: c
+    for c in CLIENT_MESSAGES
+    for f in dataclasses.fields(c)
+    if f.name == "type" and isinstance(f.default, str)
+}
 
 
 # ---------------------------------------------------------------- decoding
@@ -722,7 +728,7 @@ def _convert(value: Any, tp: Any, where: str) -> Any:
         args = get_args(tp)
         if not isinstance(value, list) or len(value) != len(args):
             raise ProtocolError(f"{where}: expected a list of {len(args)} values, got {value!r}")
-        return tuple(_convert(v, a, f"{where}[{i}]") for i, (v, a) in enumerate(zip(value, args)))
+        return tuple(_convert(v, a, f"{where}[{i}]") for i, (v, a) in enumerate(zip(value, args, strict=True)))
     if origin is list:
         (arg,) = get_args(tp)
         if not isinstance(value, list):
@@ -846,7 +852,7 @@ def _ts_type(tp: Any) -> str:
     if origin is list:
         inner = _ts_type(get_args(tp)[0])
         return f"({inner})[]" if "|" in inner else f"{inner}[]"
-    if dataclasses.is_dataclass(tp):
+    if isinstance(tp, type) and dataclasses.is_dataclass(tp):
         return tp.__name__
     raise TypeError(f"no TypeScript for {tp!r}")  # pragma: no cover
 

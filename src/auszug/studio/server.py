@@ -38,8 +38,7 @@ from auszug.errors import AuszugError
 from auszug.studio import meshes
 from auszug.studio import protocol as P
 from auszug.studio.hub import AUTOSAVE_DELAY, Connection, Hub
-from auszug.studio.session import (Document, Workspace, example_document, new_document, open_document,
-                                   text_document)
+from auszug.studio.session import Document, Workspace, example_document, new_document, open_document, text_document
 
 __all__ = ["LOCAL_HOSTS", "BUILD_COMMAND", "static_dir", "create_app", "HostOriginGuard"]
 
@@ -77,6 +76,7 @@ class HostOriginGuard:
     def __init__(self, app: ASGIApp, hosts: Iterable[str]):
         self.app = app
         self.hosts = {h.lower() for h in hosts}
+        self.hub: Hub | None = None  # create_app hands the studio's hub out through the guard
 
     def _allowed(self, scope: Scope) -> bool:
         headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope.get("headers", [])}
@@ -94,6 +94,7 @@ class HostOriginGuard:
         return True
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        """Pass a request on to the app, or refuse it when its host or origin is not local."""
         if scope["type"] in ("http", "websocket") and not self._allowed(scope):
             if scope["type"] == "websocket":
                 await send({"type": "websocket.close", "code": 1008, "reason": "foreign host or origin"})
@@ -184,7 +185,7 @@ class _Studio:
                     msg = P.decode(data)
                     msg_id = msg.id
                     await self.handle(conn, msg, jobs)
-                except Exception as e:  # noqa: BLE001 - a bad message must not kill the session
+                except Exception as e:  # a bad message must not kill the session
                     if msg is None:
                         msg_id = _raw_id(data)
                     # edits name the document they failed on; the other messages name their own file
@@ -204,7 +205,7 @@ class _Studio:
             msg, snapshot, label = await jobs.get()
             try:
                 reply, payload = await asyncio.to_thread(self._job, msg, snapshot, label)
-            except Exception as e:  # noqa: BLE001
+            except Exception as e:
                 reply, payload = _error(e, msg.id, label), None
             conn.outbox.put(P.encode(reply), payload)
 
@@ -227,7 +228,7 @@ class _Studio:
             raise AuszugError("no drawing is open: send an 'open' message first")
         return conn.doc
 
-    async def handle(self, conn: Connection, msg: Any, jobs: asyncio.Queue) -> None:  # noqa: ANN401
+    async def handle(self, conn: Connection, msg: Any, jobs: asyncio.Queue) -> None:
         """Carry out one decoded message for ``conn``; replies go to the outboxes."""
         hub = self.hub
         if isinstance(msg, (P.EditOp, P.Undo, P.Redo)):
@@ -291,12 +292,12 @@ class _Studio:
             raise P.ProtocolError(f"unhandled message {type(msg).__name__}")
 
     @staticmethod
-    def _edit(doc: Document, fn: Any, args: tuple) -> None:  # noqa: ANN401
+    def _edit(doc: Document, fn: Any, args: tuple) -> None:
         fn(*args)
         doc.frames()   # the geometry, computed where the edit ran (the event loop or a worker)
 
     @staticmethod
-    def _opened(make: Any, *args: Any) -> Document:  # noqa: ANN401
+    def _opened(make: Any, *args: Any) -> Document:
         doc = make(*args)
         doc.frames()
         return doc
@@ -322,7 +323,7 @@ def create_app(
         await studio.socket(ws, max_message_bytes)
 
     @contextlib.asynccontextmanager
-    async def lifespan(app: Starlette):  # noqa: ANN202
+    async def lifespan(app: Starlette):
         try:
             yield
         finally:
@@ -341,5 +342,5 @@ def create_app(
     else:
         routes.append(Route("/{path:path}", missing))
     guard = HostOriginGuard(Starlette(routes=routes, lifespan=lifespan), hosts)
-    guard.hub = studio.hub  # type: ignore[attr-defined]
+    guard.hub = studio.hub
     return guard

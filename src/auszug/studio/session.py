@@ -183,7 +183,7 @@ def network_of(drawing: Drawing) -> Network:
 
 
 @lru_cache(maxsize=1024)
-def _transforms(sym: Any) -> NDArray[np.float64]:  # noqa: ANN401 - a Symmetry
+def _transforms(sym: Any) -> NDArray[np.float64]:  # a Symmetry
     m = sym.matrices()
     c = np.asarray(sym.center)
     k = len(m)
@@ -214,12 +214,12 @@ def replica_transforms(drawing: Drawing, basic: int) -> NDArray[np.float64]:
     return _transforms(drawing.curves[basic].symmetry)
 
 
-def _xy(p: Any) -> list[float]:  # noqa: ANN401
+def _xy(p: Any) -> list[float]:
     return [float(p[0]), float(p[1])]
 
 
 @lru_cache(maxsize=4096)
-def _curve_info(c: Any, apex: float, bottom: float) -> dict:  # noqa: ANN401 - a BasicCurve
+def _curve_info(c: Any, apex: float, bottom: float) -> dict:  # a BasicCurve
     sym = c.symmetry
     return {
         "vertices": [_xy(v) for v in c.vertices],
@@ -266,7 +266,7 @@ def _side(points: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.stack([s, points[:, 2]], axis=1)
 
 
-def _distinct_replicas(sym: Any, points: NDArray[np.float64]) -> list[int]:  # noqa: ANN401
+def _distinct_replicas(sym: Any, points: NDArray[np.float64]) -> list[int]:
     """Replicas of a vertical piece that do not coincide (to 1e-12) with an earlier one.
 
     The rule of :meth:`Network.curves`; all pairs at once instead of ``allclose`` per pair.
@@ -286,7 +286,7 @@ def _ref(offset: int, shape: tuple[int, ...]) -> dict:
     return {"offset": offset, "shape": list(shape), "dtype": "f4"}
 
 
-def _dumps(v: Any) -> str:  # noqa: ANN401
+def _dumps(v: Any) -> str:
     return json.dumps(v, separators=(",", ":"), allow_nan=False)
 
 
@@ -300,7 +300,7 @@ class _PieceData:
 
     __slots__ = ("sym", "layer", "head", "n", "k", "data", "lo", "hi", "tail", "tail_json", "n_rep")
 
-    def __init__(self, p: Any, sym: Any, layer: int):  # noqa: ANN401 - a Piece and a Symmetry
+    def __init__(self, p: Any, sym: Any, layer: int):  # a Piece and a Symmetry
         self.sym, self.layer = sym, layer
         tr = _transforms(sym)
         labels = sym.labels()
@@ -355,7 +355,7 @@ class _PieceData:
 _PIECES: "weakref.WeakKeyDictionary[Any, _PieceData]" = weakref.WeakKeyDictionary()
 
 
-def _piece_data(p: Any, curves: tuple) -> _PieceData:  # noqa: ANN401
+def _piece_data(p: Any, curves: tuple) -> _PieceData:
     c = curves[p.basic]
     d = _PIECES.get(p)
     if d is None or d.layer != c.layer or not (d.sym is c.symmetry or d.sym == c.symmetry):
@@ -368,7 +368,7 @@ def _piece_data(p: Any, curves: tuple) -> _PieceData:  # noqa: ANN401
 
 
 @lru_cache(maxsize=4096)
-def _curve_json(c: Any, apex: float, bottom: float) -> str:  # noqa: ANN401
+def _curve_json(c: Any, apex: float, bottom: float) -> str:
     return _dumps(_curve_info(c, apex, bottom))
 
 
@@ -409,7 +409,7 @@ class _Body:
         d = self.drawing
         return {
             "revision": revision, "path": path, "name": d.name, "n_curves": len(d.curves),
-            "n_replicas": self.n_rep, "pieces": [p.as_dict(o) for p, o in zip(self.pieces, self.offsets)],
+            "n_replicas": self.n_rep, "pieces": [p.as_dict(o) for p, o in zip(self.pieces, self.offsets, strict=True)],
             "intersections": self.markers, "curves": [copy.deepcopy(_curve_info(*k)) for k in self.curve_keys],
             "layers": self.layers, "bounds": self.bounds, "can_undo": can_undo, "can_redo": can_redo,
             "dirty": dirty, "recoverable": recoverable, "binary_floats": self.binary_floats,
@@ -419,7 +419,7 @@ class _Body:
              recoverable: str) -> str:
         """The JSON text of :meth:`as_dict` without its closing brace (fragments cached per piece and curve)."""
         d = self.drawing
-        pieces = ",".join(p.as_json(o) for p, o in zip(self.pieces, self.offsets))
+        pieces = ",".join(p.as_json(o) for p, o in zip(self.pieces, self.offsets, strict=True))
         curves = ",".join(_curve_json(*k) for k in self.curve_keys)
         return (f'{{"revision":{int(revision)},"path":{_dumps(path)},"name":{_dumps(d.name)},'
                 f'"n_curves":{len(d.curves)},"n_replicas":{self.n_rep},"pieces":[{pieces}],'
@@ -496,8 +496,8 @@ def check_file_name(name: str) -> str:
     return name
 
 
-def _drawing_format(name: str) -> Any:  # noqa: ANN401 - a FileFormat
-    from auszug.formats._registry import format_for
+def _drawing_format(name: str) -> Any:  # a FileFormat
+    from auszug.formats import format_for
 
     low = name.lower()
     if not low.endswith(DRAWING_SUFFIXES) or low.endswith((".network.json", ".tracery.json")):
@@ -770,7 +770,7 @@ class Document:
             f = self._frames
             if f is not None and f[0] == self.revision:
                 return f[1], f[2]
-            state = dict(drawing=self.drawing, net=self.net, path=self.path, revision=self.revision,
+            state: dict[str, Any] = dict(drawing=self.drawing, net=self.net, path=self.path, revision=self.revision,
                          can_undo=bool(self.undo_stack), can_redo=bool(self.redo_stack), dirty=self.dirty,
                          recoverable=self.recoverable)
         text, payload = geometry_frames(**state)

@@ -127,7 +127,7 @@ class PointedArch:
 
     @property
     def mid(self) -> float:
-        """x of the axis of symmetry."""
+        """The x of the axis of symmetry."""
         return 0.5 * (self.left + self.right)
 
     @property
@@ -171,8 +171,8 @@ class PointedArch:
         arcs = (self.right_arc(), self.left_arc())
         if self.bottom is None:
             return arcs
-        l, r, y, b = self.left, self.right, self.springing, self.bottom
-        return (Line((l, b), (r, b)), Line((r, b), (r, y)), *arcs, Line((l, y), (l, b)))
+        lt, rt, y, b = self.left, self.right, self.springing, self.bottom
+        return (Line((lt, b), (rt, b)), Line((rt, b), (rt, y)), *arcs, Line((lt, y), (lt, b)))
 
     def offset(self, d: float) -> PointedArch:
         """The arch offset inwards by ``d`` (outwards if negative): same centres, new excess.
@@ -290,5 +290,5 @@ def trefoil_arch(arch: PointedArch, split: float = 0.5, lobe: float = 0.5, upper
     head: list[Curve] = [*right_side, *left_side]
     if arch.bottom is None:
         return tuple(head)
-    l, rr, y, b = arch.left, arch.right, arch.springing, arch.bottom
-    return (Line((l, b), (rr, b)), Line((rr, b), (rr, y)), *head, Line((l, y), (l, b)))
+    lt, rt, y, b = arch.left, arch.right, arch.springing, arch.bottom
+    return (Line((lt, b), (rt, b)), Line((rt, b), (rt, y)), *head, Line((lt, y), (lt, b)))

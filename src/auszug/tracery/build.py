@@ -24,9 +24,9 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Any, Mapping
 
-from auszug.errors import GeometryError
 import numpy as np
 
+from auszug.errors import GeometryError
 from auszug.geometry import Arc, Curve, Line
 from auszug.geometry.offset import offset_curves
 from auszug.tracery._checks import ParameterError
@@ -131,12 +131,13 @@ def _prefixed(err: ParameterError, prefix: str) -> ParameterError:
 
 
 def _window(a: PointedArch, p: WindowParams, st: Style, depth: int, prefix: str, where: str, face: float,
-            out: list[Region], memo: dict[Any, list[Region]]) -> None:
+            out: list[Region], memo: dict[Any, Any]) -> None:
     """Append the regions filling the arch region ``a`` (the window's tracery).
 
     Windows are symmetric, so congruent windows (the same style and shape at
     the same depth, as the sub-windows of a recursive style) are constructed
-    once at the origin and translated into place.
+    once at the origin and translated into place. ``memo`` holds those region lists
+    by shape key, and under ``"templates"`` a one-item list counting the templates.
     """
     dx, dy = p.x, p.y
     key = (id(st), depth, face, p.span, p.height, p.excess, p.drop, p.outer, p.inner,
@@ -147,7 +148,7 @@ def _window(a: PointedArch, p: WindowParams, st: Style, depth: int, prefix: str,
         a0 = PointedArch(a.left - dx, a.right - dx, a.springing - dy, a.excess,
                          None if a.bottom is None else a.bottom - dy)
         _window_at_origin(a0, replace(p, x=0.0, y=0.0), st, depth, where, face, rel, memo)
-        counter = memo.setdefault("templates", [0])  # type: ignore[arg-type]
+        counter = memo.setdefault("templates", [0])
         fresh = []
         for r in rel:
             if r.template < 0:
@@ -159,7 +160,7 @@ def _window(a: PointedArch, p: WindowParams, st: Style, depth: int, prefix: str,
 
 
 def _window_at_origin(a: PointedArch, p: WindowParams, st: Style, depth: int, where: str, face: float,
-                      out: list[Region], memo: dict[Any, list[Region]]) -> None:
+                      out: list[Region], memo: dict[Any, Any]) -> None:
     """The regions of one window, ids relative to the window (``where`` names it in errors)."""
     prefix = where  # in error messages
     b = p.inner
@@ -201,9 +202,10 @@ def _window_at_origin(a: PointedArch, p: WindowParams, st: Style, depth: int, wh
                     raise ParameterError(_name(prefix, "sub-arch.profile"), g.profile.name,
                                          "a recess profile whose floor fits in the sub-arch") from None
                 k = floor.span / a.span
+                assert floor.bottom is not None  # sub-arches stand on the window's sill
                 q = WindowParams(span=floor.span, height=floor.springing - floor.bottom, excess=p.excess,
                                  drop=p.drop * k, outer=p.outer * k, inner=p.inner * k,
-                                 x=floor.mid, y=floor.bottom)  # type: ignore[arg-type]
+                                 x=floor.mid, y=floor.bottom)
                 _window(floor, q, g.window, depth + 1, rid, f"{where}/{rid}", face + g.profile.depth * b,
                         out, memo)
         elif group == "circle":

@@ -35,7 +35,7 @@ FIG19_REJECTED = 2.4
 FIG19_TOTAL = 6.0
 
 
-def _plt():  # noqa: ANN202
+def _plt():
     import matplotlib
 
     matplotlib.use("Agg")
@@ -97,7 +97,7 @@ def _fig19(width: int) -> bytes:
     values = (*FIG19_EXCESS, FIG19_REJECTED)
     fig, axs = plt.subplots(1, len(values), figsize=(2.1 * len(values), 5.6), dpi=110)
     base = builtin_style("fig20c")
-    for ax, e in zip(axs, values):
+    for ax, e in zip(axs, values, strict=True):
         h = FIG19_TOTAL - math.sqrt(4.0 * e - 1.0)
         ax.axis("off")
         try:
@@ -129,12 +129,12 @@ def _prototype() -> bytes:
     t = structure()
     fig, axs = plt.subplots(1, 2, figsize=(9.0, 7.6), dpi=110)
     ax = axs[0]
-    for name, cell in w.cells.items():
+    for cell in w.cells.values():
         pts = np.concatenate([c.sample(64) for c in cell])
         ax.plot(pts[:, 0], pts[:, 1], color="0.55", lw=0.8)
     pts = np.concatenate([c.sample(64) for c in w.arch.curves()])
     ax.plot(pts[:, 0], pts[:, 1], color="k", lw=1.2)
-    e, (sl, sr) = w.ensemble, w.sub_arches
+    e, (_, sr) = w.ensemble, w.sub_arches
     f1, f2 = e.centers[1], sr.centers[0]
     a = 0.5 * (e.radius + sr.radius)
     c = 0.5 * (f1 + f2)

@@ -126,7 +126,7 @@ def loop_ring(curves: tuple[Curve, ...] | list[Curve], source: Any, is_join: Any
     """
     pts = []
     keys = []
-    for c, src, join in zip(curves, source, is_join):
+    for c, src, join in zip(curves, source, is_join, strict=True):
         if isinstance(c, Arc):
             step = max_angle
             if chord < c.radius:
@@ -362,12 +362,12 @@ def window_mesh(tracery: Tracery, resolution: Resolution | None = None, subdivid
     res = resolution or Resolution()
     subdivide = integer("subdivide", subdivide, 0, 4)
     st = tracery.style
-    wall = st.wall  # type: ignore[attr-defined]
+    wall = st.wall
     regions = tracery.regions
     arch = regions[0]
     if arch.group != "arch":
         raise GeometryError("the first region of a tracery must be its arch")
-    span = float(tracery.params.span)  # type: ignore[attr-defined]
+    span = float(tracery.params.span)
     chord = res.chord * span
     half_t = 0.5 * wall.thickness
     half_s = 0.5 * wall.slab
@@ -388,9 +388,8 @@ def window_mesh(tracery: Tracery, resolution: Resolution | None = None, subdivid
     max_edge = res.max_edge * span
     reveal = _loft(arch, np.column_stack([wlv[:, 0], wlv[:, 1]]), res, chord, arch.curves, max_edge)
     depth_r = half_t - half_s
-    ring_ids: dict[str, list[int]] = {}
     starts = []
-    for ring, t in zip(reveal.rings, wlv[:, 1]):
+    for ring, t in zip(reveal.rings, wlv[:, 1], strict=True):
         y = -half_t + float(t) * depth_r
         starts.append(front.add(np.column_stack([ring[:, 0], np.full(len(ring), y), ring[:, 1]])))
     front.tri(reveal.tris + starts[0])
@@ -450,7 +449,7 @@ def window_mesh(tracery: Tracery, resolution: Resolution | None = None, subdivid
         n_tot = sum(len(g) for g in lf.rings)
         v = np.empty((n_tot, 3))
         k = 0
-        for ring, y in zip(lf.rings, lf.ys):
+        for ring, y in zip(lf.rings, lf.ys, strict=True):
             n = len(ring)
             v[k:k + n, 0] = ring[:, 0] + ox
             v[k:k + n, 1] = y_face + y

@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -26,6 +27,10 @@ from numpy.typing import NDArray
 from auszug.geometry import Arc, Curve
 from auszug.geometry.offset import signed_area
 from auszug.tracery.profile import Profile
+
+if TYPE_CHECKING:  # style and window import this module
+    from auszug.tracery.style import Style
+    from auszug.tracery.window import WindowParams
 
 __all__ = ["Region", "Tracery", "GROUPS", "ROLES", "polygon"]
 
@@ -139,8 +144,8 @@ class Tracery:
     """
 
     regions: tuple[Region, ...]
-    params: object
-    style: object
+    params: WindowParams
+    style: Style
 
     def group(self, name: str) -> list[Region]:
         """The regions of one group."""

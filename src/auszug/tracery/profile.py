@@ -30,7 +30,7 @@ True
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
 
 import numpy as np
@@ -43,7 +43,7 @@ __all__ = ["Profile", "profile_from_data"]
 Array = NDArray[np.float64]
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class Profile:
     """A line/arc polyline in the (inset, depth) plane.
 
@@ -66,8 +66,16 @@ class Profile:
 
     name: str
     points: Array
-    bulge: Array = field(default=None)  # type: ignore[assignment]
-    wall: bool = False
+    bulge: Array
+    wall: bool
+
+    # the fields hold arrays; the constructor takes any array-like (no bulge: straight segments)
+    def __init__(self, name: str, points: ArrayLike, bulge: ArrayLike | None = None, wall: bool = False) -> None:
+        object.__setattr__(self, "name", name)
+        object.__setattr__(self, "points", points)
+        object.__setattr__(self, "bulge", bulge)
+        object.__setattr__(self, "wall", wall)
+        self.__post_init__()
 
     def __post_init__(self) -> None:
         pts = np.asarray(self.points, dtype=float)
@@ -184,7 +192,9 @@ class Profile:
 
 
 def profile_from_data(name: str, data: Mapping[str, Any] | Sequence[Sequence[float]] | ArrayLike) -> Profile:
-    """A profile from its TOML/JSON description: a list of points, or a table
+    """A profile from its TOML/JSON description.
+
+    The description is a list of points, or a table
     ``{points = [[s, t], ...], bulge = [...], wall = false}``.
 
     Examples
@@ -199,4 +209,4 @@ def profile_from_data(name: str, data: Mapping[str, Any] | Sequence[Sequence[flo
         if "points" not in data:
             raise ParameterError(f"profile {name!r}", dict(data), "a table with points = [[s, t], ...]")
         return Profile(name, data["points"], data.get("bulge"), bool(data.get("wall", False)))
-    return Profile(name, data)  # type: ignore[arg-type]
+    return Profile(name, data)

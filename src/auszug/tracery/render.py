@@ -25,7 +25,9 @@ from numpy.typing import ArrayLike, NDArray
 __all__ = ["shade", "view_matrix"]
 
 
-def _raster(P: NDArray[np.float64], tris: NDArray[np.int64], W: int, H: int) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+def _raster(
+    P: NDArray[np.float64], tris: NDArray[np.int64], W: int, H: int
+) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
     """Index of the nearest triangle at every pixel centre (-1: none) and its depth, shapes (W * H,).
 
     Scanline spans: every (triangle, pixel row) pair gets its x-span from the

@@ -55,7 +55,9 @@ def foil_radius(n: int) -> float:
     return s / (1.0 + s)
 
 
-def _unit_foil(n: int, pointed: bool, displacement: float) -> tuple[list[tuple[np.ndarray, float, float, float]], float]:
+def _unit_foil(
+    n: int, pointed: bool, displacement: float
+) -> tuple[list[tuple[np.ndarray, float, float, float]], float]:
     """Arcs of the foil on the +x axis in the unit circle, as (centre, radius, theta0, sweep), and the scale."""
     alpha = 2.0 * math.pi / n
     r = foil_radius(n)
@@ -137,7 +139,7 @@ def rosette(
     for j in range(n):
         phi = phi0 + j * alpha
         cs, sn = math.cos(phi), math.sin(phi)
-        foil = []
+        foil: list[Curve] = []
         for m, r, th0, sw in arcs:
             mc = c + s * np.array([cs * m[0] - sn * m[1], sn * m[0] + cs * m[1]])
             foil.append(Arc(mc, s * r, th0 + phi, sw))

@@ -319,7 +319,7 @@ def parse_overrides(items: list[str]) -> dict[str, Any]:
 
 # -- library -----------------------------------------------------------------------------
 
-def _library():  # noqa: ANN202
+def _library():
     return files("auszug.tracery") / "styles"
 
 

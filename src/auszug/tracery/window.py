@@ -112,7 +112,8 @@ class WindowParams:
         known = {f.name for f in fields(cls)}
         unknown = sorted(set(values) - known)
         if unknown:
-            raise ParameterError(unknown[0], values[unknown[0]], "a known window parameter: " + ", ".join(sorted(known)))
+            raise ParameterError(unknown[0], values[unknown[0]],
+                                 "a known window parameter: " + ", ".join(sorted(known)))
         return cls(**{k: float(v) for k, v in values.items()})
 
     def scaled(self, factor: float) -> WindowParams:

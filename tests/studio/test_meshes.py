@@ -209,7 +209,11 @@ def test_export_drawing_formats():
         [c.vertices for c in d.curves]
     name, mime, data = M.export_file(net, "U.XI.28.uc", format="network.json")
     assert (name, mime) == ("U.XI.28.network.json", "application/json")
-    assert len(read_network(data.decode(), name)["curves"]) == len(list(net.curves()))
+    doc = read_network(data.decode(), name)
+    assert len(doc["curves"]) == len(list(net.curves()))
+    # sampled to the default tolerance, as `auszug build` writes it (not the page's 65 samples)
+    diag = net.to_curve_network().diagonal()
+    assert doc["tolerance"] == 1e-6 * diag and all(len(c["points"]) > 65 for c in doc["curves"])
     name, mime, data = M.export_file(net, "U.XI.28.uc", format="svg")
     assert (name, mime) == ("U.XI.28.svg", "image/svg+xml")
     assert b"<svg" in data[:400] and data.rstrip().endswith(b"</svg>")

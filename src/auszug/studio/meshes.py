@@ -248,7 +248,9 @@ def export_file(net: Network, name: str, *, format: str, style: str = "bar", fac
     members; OBJ is sent without its .mtl (one file per export), so it carries
     no colours; STL and PLY have none. svg: top and side views; json / uc: the
     drawing; network.json: the 3D curve network; dxf / 3dm: the curve network
-    for CAD programs, with exact arcs and lines where the curves have them.
+    for CAD programs, with exact arcs and lines where the curves have them. The
+    curve exports (svg, network.json, dxf, 3dm) are sampled to the default
+    tolerance (1e-6 of the bounding-box diagonal, every feature point a vertex).
 
     Raises
     ------
@@ -272,16 +274,12 @@ def export_file(net: Network, name: str, *, format: str, style: str = "bar", fac
         else:
             fmt = format_for(Path(fname), "mesh", want="write")
             data = fmt.write(mesh, fname)
-    elif format == "svg":
-        data = format_for(Path(fname), "network", want="write").write(net, fname)
-    elif format in ("dxf", "3dm"):
+    elif format in ("svg", "dxf", "3dm", "network.json"):
         from auszug.formats.network_json import NetworkFile
 
-        data = format_for(Path(fname), "network", want="write").write(NetworkFile(net, name), fname)
-    elif format == "network.json":
-        from auszug.formats.network_json import NetworkFile
-
-        data = format_for(Path(fname), "network", want="write").write(NetworkFile(net, name), fname)
+        # curve exports are exact to the default tolerance, as `auszug build` writes them
+        exact = net.with_intersections().resampled() if net.pieces else net
+        data = format_for(Path(fname), "network", want="write").write(NetworkFile(exact, name), fname)
     else:
         data = format_for(Path(fname), "drawing", want="write").write(net.drawing, fname)
     raw = data.encode("utf-8") if isinstance(data, str) else bytes(data)

@@ -145,7 +145,7 @@ def _document(network: Any, source: str = "") -> dict[str, Any]:
             "piece": int(c.piece),
             "center": [float(v) for v in net.groups[c.basic].center],
             "features": [[name, int(i)] for name, i in c.features],
-            "exact": _plain(net.exact(c)),
+            "exact": net.exact(c),   # already JSON-ready (lists and floats)
         })
     meta = dict(net.meta)
     choices = [

@@ -452,7 +452,8 @@ def _refine(piece: Piece, forced: Array, tolerance: float) -> Array:
     cg = np.zeros(n)
     r = np.ones(n)
     side = piece.side
-    if side is not None and top.kind in ("line", "arc"):   # t(g) is cheap there (no arc-length inverse)
+    side_angle = np.zeros(n)
+    if side is not None:
         gm = piece.g_of_t(0.5 * (ta + tb))
         i = np.clip(np.searchsorted(side.breaks, gm, side="right") - 1, 0, len(side.radii) - 1)
         cg, cz, r = side.centers[i, 0], side.centers[i, 1], side.radii[i]
@@ -464,8 +465,11 @@ def _refine(piece: Piece, forced: Array, tolerance: float) -> Array:
             z = up * np.sqrt(np.maximum(d * (2.0 * r - d), 0.0))
             return np.arctan2(z, g - cg)
 
-        sa, sb = phi(ta), phi(tb)
-        arc[:] = True
+        pa_, pb_ = phi(ta), phi(tb)
+        side_angle = np.abs(pb_ - pa_)
+        if top.kind in ("line", "arc"):   # step in the angle where t(g) is cheap (no arc-length inverse)
+            sa, sb = pa_, pb_
+            arc[:] = True
         del cz
 
     def s_to_t(sv: Array, k: NDArray[np.intp]) -> Array:
@@ -484,8 +488,8 @@ def _refine(piece: Piece, forced: Array, tolerance: float) -> Array:
         u = np.asarray(top.u_at_t(np.stack([ta, tb])), dtype=float)
         length = top.length() * np.abs(u[1] - u[0])
     else:
-        kappa = np.where(arc, 1.0 / r, 0.0)
-        length = np.where(arc, r * np.abs(sb - sa), 0.0)
+        kappa = 1.0 / r
+        length = r * side_angle
     count = np.ceil(length * np.sqrt(kappa / (8.0 * _FIRST * tolerance))).astype(np.int64)
     count = np.clip(count, 2, MAX_TOLERANCE_POINTS)
     if int(count.sum()) > MAX_TOLERANCE_POINTS:

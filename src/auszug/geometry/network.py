@@ -56,7 +56,7 @@ __all__ = [
 Array = NDArray[np.float64]
 
 #: Kinds of network curves.
-KINDS: tuple[str, ...] = ("ogee", "free_end", "decoration", "post", "pillar", "level")
+KINDS: tuple[str, ...] = ("ogee", "free_end", "decoration", "post", "pillar", "level", "border")
 #: Default export tolerance, relative to the network's bounding-box diagonal.
 DEFAULT_REL_TOLERANCE = 1e-6
 #: Smallest accepted tolerance, relative to the bounding-box diagonal (float64 evaluation
@@ -86,7 +86,8 @@ class Piece:
         Index of the basic curve (the symmetry group and layer it belongs to).
     segment : int
         Index of the segment in the basic curve (-1 for posts and pillars).
-    kind : {"ogee", "free_end", "level", "decoration", "post", "pillar"}
+    kind : {"ogee", "free_end", "level", "decoration", "post", "pillar", "border"}
+        ("border": a tracery region's border, at constant height.)
     top : Curve or None
         Top view, oriented from the piece's start (its bottom for an ogee, the
         apex for a free end). ``None`` for vertical posts and pillars.

@@ -20,6 +20,7 @@ from auszug.tracery.arch import PointedArch, apex_height, arch_kind, trefoil_arc
 from auszug.tracery.build import build, structure
 from auszug.tracery.mesh import Resolution, window_mesh
 from auszug.tracery.model import Region, Tracery
+from auszug.tracery.network import border_network
 from auszug.tracery.profile import Profile
 from auszug.tracery.rosette import foil_radius, rosette
 from auszug.tracery.style import Style, builtin_style, builtin_styles, load_style, parse_style, refine
@@ -38,6 +39,7 @@ __all__ = [
     "prototype",
     "Region",
     "Tracery",
+    "border_network",
     "Resolution",
     "window_mesh",
     "build",

@@ -204,12 +204,11 @@ def loops_message(net: Network, *, revision: int = 0, msg_id: int = 0,
 
 
 def _stem(name: str) -> str:
-    stem = PurePosixPath(name).name or "drawing"
-    low = stem.lower()
-    for suf in (".network.json", ".json", ".uc"):
-        if low.endswith(suf) and len(stem) > len(suf):
-            return stem[: -len(suf)]
-    return stem
+    """The drawing's name without the ending of any registered format (``tn-2.uc`` -> ``tn-2``)."""
+    from auszug.formats import stem, suffix_of
+
+    base = PurePosixPath(name).name or "drawing"
+    return stem(base) if suffix_of(base) else base
 
 
 def _parse_colours(colors: Sequence[str]) -> list[tuple[float, float, float]]:

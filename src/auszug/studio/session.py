@@ -228,9 +228,18 @@ def _xy(p: Any) -> list[float]:
     return [float(p[0]), float(p[1])]
 
 
+@lru_cache(maxsize=1024)
+def _replicas(group: Any) -> tuple[list[list[float]], list[str]]:  # a geometry.symmetry.SymmetryGroup
+    """The group's 2x2 matrices (row-major, as lists) and labels: what the page maps points with."""
+    return [[float(v) for v in m.ravel()] for m in group.matrices()], list(group.labels())
+
+
 @lru_cache(maxsize=4096)
-def _curve_info(c: Any, apex: float, bottom: float) -> dict:  # a BasicCurve
+def _curve_info(c: Any, apex: float, bottom: float, index: int) -> dict:  # a BasicCurve
+    from auszug.formats.palette import colour
+
     sym = c.symmetry
+    replicas, labels = _replicas(sym.group)
     return {
         "vertices": [_xy(v) for v in c.vertices],
         "handles": [[_xy(h) for h in sg.handles] for sg in c.segments],
@@ -247,12 +256,15 @@ def _curve_info(c: Any, apex: float, bottom: float) -> dict:  # a BasicCurve
         "decoration_at": c.decoration_at,
         "post_top": c.post_top,
         "name": c.name,
+        "replicas": replicas,
+        "labels": labels,
+        "color": colour(index),
     }
 
 
 def _curve_dicts(drawing: Drawing) -> list[dict]:
     bottoms = drawing.bottoms()
-    return [_curve_info(c, drawing.apex_height(i, bottoms), bottoms[c.layer]) for i, c in enumerate(drawing.curves)]
+    return [_curve_info(c, drawing.apex_height(i, bottoms), bottoms[c.layer], i) for i, c in enumerate(drawing.curves)]
 
 
 def _curve_info_message(d: dict) -> P.CurveInfo:
@@ -378,8 +390,8 @@ def _piece_data(p: Any, curves: tuple) -> _PieceData:
 
 
 @lru_cache(maxsize=4096)
-def _curve_json(c: Any, apex: float, bottom: float) -> str:
-    return _dumps(_curve_info(c, apex, bottom))
+def _curve_json(c: Any, apex: float, bottom: float, index: int) -> str:
+    return _dumps(_curve_info(c, apex, bottom, index))
 
 
 class _Body:
@@ -411,7 +423,7 @@ class _Body:
             self.bounds = [0.0] * 6
         self.layers = [float(z) for z in drawing.all_bottoms()]
         bottoms = drawing.bottoms()
-        self.curve_keys = [(c, drawing.apex_height(i, bottoms), bottoms[c.layer]) for i, c in enumerate(curves)]
+        self.curve_keys = [(c, drawing.apex_height(i, bottoms), bottoms[c.layer], i) for i, c in enumerate(curves)]
 
     def as_dict(self, *, path: str, revision: int, can_undo: bool, can_redo: bool, dirty: bool,
                 recoverable: str) -> dict:

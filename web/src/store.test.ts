@@ -13,8 +13,8 @@ describe("curve colours", () => {
     const s = new Store();
     expect(s.color(0)).toBe(NO_COLOR);                       // no geometry yet
     s.geometry = geometry(["#0072B2", "#D55E00"]);           // auszug.formats.palette.PALETTE[:2]
-    expect([s.color(0), s.color(1), s.color(2)]).toEqual(["#0072B2", "#D55E00", NO_COLOR]);
-    s.setLooks({ colors: ["", "#112233"] });
-    expect([s.color(0), s.color(1)]).toEqual(["#0072B2", "#112233"]);
+    expect([s.color(0), s.color(1), s.color(2)]).toEqual(["#0072b2", "#d55e00", NO_COLOR]);
+    s.setLooks({ colors: ["", "#AABBCC"] });
+    expect([s.color(0), s.color(1)]).toEqual(["#0072b2", "#aabbcc"]);
   });
 });

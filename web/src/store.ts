@@ -115,9 +115,10 @@ export class Store {
     this.emit("looks", this.looks);
   }
 
-  /** The colour of basic curve `i`: the user's choice, else the server's (one palette, auszug.formats.palette). */
+  /** The colour of basic curve `i` as lower-case `#rrggbb` (as colour inputs and three.js write it): the
+   * user's choice, else the server's (one palette, auszug.formats.palette). */
   color(i: number): string {
-    return this.looks.colors[i] || this.geometry?.curves[i]?.color || NO_COLOR;
+    return (this.looks.colors[i] || this.geometry?.curves[i]?.color || NO_COLOR).toLowerCase();
   }
 
   status(text: string, error = false): void {

@@ -80,3 +80,30 @@ def test_pack_layout_written_out():
 def test_unpack_rejects(frame, says):
     with pytest.raises(P.ProtocolError, match=says):
         P.unpack(frame)
+
+
+FIXTURE = REPO / "web" / "src" / "replicas.fixture.json"
+
+
+def replica_fixture() -> str:
+    """The matrices of C_n (+ mirror) that the page's preview of a curve being drawn must reproduce."""
+    from auszug.geometry.symmetry import SymmetryGroup
+
+    cases = []
+    for fold in (1, 2, 3, 4, 5, 6, 7, 8, 12, 16):
+        for axis in (None, (1.0, 0.0), (0.0, 1.0), (0.3, 0.7), (-2.0, 1.0)):
+            g = SymmetryGroup(fold, axis is not None, axis=axis or (0.0, 1.0))
+            cases.append({"fold": fold, "axis": None if axis is None else list(axis), "labels": g.labels(),
+                          "matrices": [[float(v) for v in m.ravel()] for m in g.matrices()]})
+    return json.dumps(cases, indent=0) + "\n"
+
+
+def test_replica_fixture_in_sync():
+    """web/src/replicas.fixture.json is what geometry.symmetry computes (regenerate: AUSZUG_WRITE_FIXTURES=1)."""
+    import os
+
+    want = replica_fixture()
+    if os.environ.get("AUSZUG_WRITE_FIXTURES"):
+        FIXTURE.write_text(want)
+    assert FIXTURE.read_text() == want, (
+        "web/src/replicas.fixture.json is out of date: run this test with AUSZUG_WRITE_FIXTURES=1")

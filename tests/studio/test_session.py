@@ -287,3 +287,39 @@ def test_a_drag_is_one_undo_step(workspace):
     # after an undo the same drag number does not merge into the undone step
     s.apply(P.MoveVertex(curve=0, vertex=1, xy=(x, y), drag=7))
     assert len(s.undo_stack) == 2 and not s.redo_stack
+
+
+@pytest.mark.parametrize("name", ["teaching-sheet/tn-2.uc", "teaching-sheet/tn-11.uc", "web/U.XI.28.uc",
+                                  "web/3d-scan-final.uc"])
+def test_curves_carry_the_networks_replica_transforms_and_the_palette(name):
+    """Each curve's replicas, labels and centre are the curve network's group; its colour the palette's."""
+    from auszug import examples
+    from auszug.formats.palette import colour
+
+    d = load(examples.path(name))
+    net = build(d)
+    groups = net.to_curve_network().groups
+    msg, payload = geometry(d, net=net)
+    text, _ = geometry_frames(d, net=net)
+    sent = json.loads(text.text())["curves"]
+    assert len(msg.curves) == len(groups) == len(sent)
+    for i, (c, g, s) in enumerate(zip(msg.curves, groups, sent, strict=True)):
+        mats = np.asarray(c.replicas).reshape(-1, 2, 2)
+        np.testing.assert_array_equal(mats, g.matrices())            # exactly: float64 through JSON
+        np.testing.assert_array_equal(np.asarray(s["replicas"]).reshape(-1, 2, 2), g.matrices())
+        assert c.labels == s["labels"] == g.labels() and c.labels[0] == "r0"
+        assert tuple(c.center) == tuple(float(v) for v in g.center)
+        assert c.color == s["color"] == colour(i)
+    # the replicas map each piece's points as its 4x4 transforms do
+    data = np.frombuffer(payload, dtype="<f4")
+    for p in msg.pieces:
+        c = msg.curves[p.basic]
+        n, k = p.points.shape[0], p.transforms.shape[0]
+        pts = data[p.points.offset:p.points.offset + 3 * n].reshape(n, 3).astype(float)
+        tr = data[p.transforms.offset:p.transforms.offset + 16 * k].reshape(k, 4, 4).transpose(0, 2, 1)
+        mats = np.asarray(c.replicas).reshape(-1, 2, 2)
+        ctr = np.asarray(c.center)
+        by_label = {lb: m for lb, m in zip(c.labels, mats, strict=True)}
+        for lb, t in zip(p.labels, tr, strict=True):
+            want = (pts[:, :2] - ctr) @ by_label[lb].T + ctr
+            np.testing.assert_allclose(pts[:, :2] @ t[:2, :2].T + t[:2, 3], want, atol=1e-5)

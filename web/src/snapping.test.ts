@@ -1,7 +1,8 @@
 import { describe, expect, it } from "vitest";
+import fixture from "./replicas.fixture.json";
 import {
-  arcPoints, guideLines, images, mirrorAxis, pickCurve, projectOnLine, replicaVertices, segmentDistance, snap,
-  symmetryMatrices, type Vec,
+  arcPoints, guideLines, images, mirrorAxis, pickCurve, projectOnLine, replicaMatrices, replicaVertices,
+  segmentDistance, snap, symmetryMatrices, type Vec,
 } from "./snapping";
 
 describe("symmetry", () => {
@@ -23,13 +24,27 @@ describe("symmetry", () => {
     ]);
   });
 
-  it("lists every replica vertex, skipping one curve", () => {
+  it("lists every replica vertex with the server's matrices, skipping one curve", () => {
+    // CurveInfo.replicas as the server sends them: C_2 about (0, 0), C_1 (the identity only), and a
+    // quarter turn about (1, 1) that the page must use as given
     const curves = [
-      { vertices: [[1, 0], [2, 0]], fold: 2, axis: null, center: [0, 0] },
-      { vertices: [[0, 3], [0, 4]], fold: 1, axis: null, center: [0, 0] },
+      { vertices: [[1, 0], [2, 0]], replicas: [[1, 0, 0, 1], [-1, 0, 0, -1]], center: [0, 0] },
+      { vertices: [[0, 3], [0, 4]], replicas: [[1, 0, 0, 1]], center: [0, 0] },
+      { vertices: [[2, 1]], replicas: [[1, 0, 0, 1], [0, -1, 1, 0]], center: [1, 1] },
     ];
-    expect(replicaVertices(curves)).toEqual([[1, 0], [-1, 0], [2, 0], [-2, 0], [0, 3], [0, 4]]);
-    expect(replicaVertices(curves, 0)).toEqual([[0, 3], [0, 4]]);
+    expect(replicaVertices(curves)).toEqual([[1, 0], [-1, 0], [2, 0], [-2, 0], [0, 3], [0, 4], [2, 1], [1, 2]]);
+    expect(replicaVertices(curves, 0)).toEqual([[0, 3], [0, 4], [2, 1], [1, 2]]);
+    expect(replicaMatrices(curves[2])).toEqual([[1, 0, 0, 1], [0, -1, 1, 0]]);
+  });
+
+  it("previews a curve being drawn with Python's matrices (web/src/replicas.fixture.json)", () => {
+    // geometry.symmetry.SymmetryGroup(fold, mirror, axis=axis).matrices() for many folds and axes
+    expect(fixture.length).toBeGreaterThan(40);
+    for (const c of fixture) {
+      const got = symmetryMatrices(c.fold, c.axis);
+      expect(got.length).toBe(c.matrices.length);
+      got.forEach((m, k) => m.forEach((v, i) => expect(v).toBeCloseTo(c.matrices[k][i], 14)));
+    }
   });
 
   it("derives a new curve's mirror axis from its rule", () => {

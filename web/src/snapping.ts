@@ -1,6 +1,9 @@
 // The plane math of the design tools, on [x, y] pairs in drawing units (no DOM): symmetry
-// images (as auszug.geometry.symmetry computes them, so a snapped point equals Python's replica
-// point), guide lines, snapping, picking a replica polyline, and the arc of a curve being drawn.
+// images, guide lines, snapping, picking a replica polyline, and the arc of a curve being drawn.
+// The replicas of existing curves use the matrices the server sends with each curve
+// (`CurveInfo.replicas`, the curve network's groups), so a snapped point equals Python's replica
+// point; only a curve still being drawn, which the server has not seen, is previewed with
+// `symmetryMatrices` (pinned to Python's by web/src/replicas.fixture.json).
 
 export type Vec = [number, number];
 /** A 2x2 matrix, row-major: [a, b, c, d] maps (x, y) to (a x + b y, c x + d y). */
@@ -30,7 +33,20 @@ export interface Snap {
   kind: "point" | "line" | null;
 }
 
-/** Linear parts of C_n (+ the mirror along `axis`) in the order r0, r0m, r1, r1m, ...: R^k, R^k Q. */
+/** What the server sends about a curve's replicas: row-major 2x2 matrices about `center`, r0 first. */
+export interface CurveReplicas {
+  replicas: readonly (readonly number[])[];
+  center: readonly number[];
+}
+
+/** The sent replica matrices of a curve (CurveInfo.replicas) as Mat2s, in the server's order. */
+export function replicaMatrices(c: CurveReplicas): Mat2[] {
+  return c.replicas.map((m) => [m[0], m[1], m[2], m[3]]);
+}
+
+/** Linear parts of C_n (+ the mirror along `axis`) in the order r0, r0m, r1, r1m, ...: R^k, R^k Q.
+ * For the preview of a curve being drawn only: existing curves come with their matrices
+ * from the server (`replicaMatrices`). */
 export function symmetryMatrices(fold: number, axis: readonly number[] | null): Mat2[] {
   const rots: Mat2[] = [];
   for (let k = 0; k < fold; k++) {
@@ -66,12 +82,12 @@ export function images(p: readonly number[], center: readonly number[], mats: Ma
 }
 
 /** Every vertex of every replica of the given curves (segment endpoints), skipping curve `skip`. */
-export function replicaVertices(curves: readonly (CurveSymmetry & { vertices: readonly number[][] })[],
+export function replicaVertices(curves: readonly (CurveReplicas & { vertices: readonly number[][] })[],
   skip = -1): Vec[] {
   const out: Vec[] = [];
   curves.forEach((c, i) => {
     if (i === skip) return;
-    const mats = symmetryMatrices(c.fold, c.axis);
+    const mats = replicaMatrices(c);
     for (const v of c.vertices) out.push(...images(v, c.center, mats));
   });
   return out;

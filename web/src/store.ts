@@ -11,7 +11,7 @@ export interface Looks {
   faces: FacesMode;
   /** Loop indices (from the last Loops reply) filled when faces == "picked". */
   loops: number[];
-  /** `#rrggbb` per basic curve; missing entries use the palette. */
+  /** `#rrggbb` per basic curve; missing entries use the curve's colour from the server (CurveInfo.color). */
   colors: string[];
 }
 
@@ -33,8 +33,8 @@ export interface StoreEvents {
 
 type Listener<T> = (value: T) => void;
 
-/** Default colours per basic curve (cycled). */
-export const PALETTE = ["#7a2e1d", "#1d4e7a", "#3b6e2b", "#8a5a00", "#5b2a7a", "#0f6f6f", "#a0304f", "#44515c"];
+/** The colour of a basic curve the geometry does not (yet) list. */
+export const NO_COLOR = "#808080";
 
 export class Store {
   geometry: Geometry | null = null;
@@ -115,9 +115,10 @@ export class Store {
     this.emit("looks", this.looks);
   }
 
-  /** The colour of basic curve `i`. */
+  /** The colour of basic curve `i` as lower-case `#rrggbb` (as colour inputs and three.js write it): the
+   * user's choice, else the server's (one palette, auszug.formats.palette). */
   color(i: number): string {
-    return this.looks.colors[i] || PALETTE[i % PALETTE.length];
+    return (this.looks.colors[i] || this.geometry?.curves[i]?.color || NO_COLOR).toLowerCase();
   }
 
   status(text: string, error = false): void {

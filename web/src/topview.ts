@@ -12,7 +12,7 @@ import type { CurveInfo, DrawCurve, Geometry, MoveHandle, MoveVertex } from "./p
 import { registerShortcut } from "./shortcuts";
 import type { Store, Tool } from "./store";
 import {
-  arcPoints, guideLines, images, mirrorAxis, pickCurve, replicaVertices, snap, symmetryMatrices,
+  arcPoints, guideLines, images, mirrorAxis, pickCurve, replicaMatrices, replicaVertices, snap, symmetryMatrices,
   type CurveSymmetry, type Mat2, type PickPiece, type Snap, type SnapTargets, type Vec,
 } from "./snapping";
 
@@ -298,7 +298,7 @@ class TopView {
   // ------------------------------------------------------------------ state
 
   private geometry(g: Geometry): void {
-    this.mats = g.curves.map((c) => symmetryMatrices(c.fold, c.axis));
+    this.mats = g.curves.map(replicaMatrices);   // the server's, as the network's groups give them
     this.pick = g.pieces.map((p) => ({
       basic: p.basic, points: view(this.store.data, p.points), transforms: view(this.store.data, p.transforms),
     }));

@@ -97,17 +97,12 @@ def about(path: str | os.PathLike[str]) -> Iterator[None]:
         raise FormatError(str(e), os.fspath(path)) from None
 
 
-def drawing_suffixes() -> list[str]:
-    """Endings of the registered drawing formats."""
-    from auszug.formats import formats
-
-    return sorted({s for f in formats().values() if f.kind == "drawing" for s in f.suffixes})
-
-
 def check_drawing_name(path: str | os.PathLike[str]) -> None:
     """Refuse a file name that is not a drawing's (``x.network.json`` ends in ``.json`` too)."""
-    if drawing_suffix(path) is None:
-        raise FormatError(f"not a drawing file name; drawings end in {', '.join(drawing_suffixes())}",
+    from auszug.formats import suffix_of, suffixes
+
+    if suffix_of(path, "drawing") is None:
+        raise FormatError(f"not a drawing file name; drawings end in {', '.join(sorted(suffixes('drawing')))}",
                           os.fspath(path))
 
 
@@ -140,30 +135,11 @@ def network_of(path: str | os.PathLike[str], args: argparse.Namespace) -> "Netwo
     return build_network(read_drawing(path), path, args)
 
 
-def drawing_suffix(path: str | os.PathLike[str]) -> str | None:
-    """The drawing-format ending of ``path`` (``".uc"``), or None if it is no drawing file.
-
-    A name counts as a drawing when the longest registered ending it has
-    belongs to a drawing format: ``x.network.json`` is a network, not a
-    ``.json`` drawing.
-    """
-    from auszug.formats import format_for
-
-    name = os.fspath(path).lower()
-    try:
-        fmt = format_for(name, None)
-    except FormatError:
-        return None
-    if fmt.kind != "drawing":
-        return None
-    return max((s for s in fmt.suffixes if name.endswith(s)), key=len)
-
-
 def stem(path: str | os.PathLike[str]) -> str:
     """File name without its drawing ending: ``U.XI.28.fixed.uc`` -> ``U.XI.28.fixed``."""
-    name = Path(path).name
-    suf = drawing_suffix(name)
-    return name[: len(name) - len(suf)] if suf else Path(name).stem
+    from auszug.formats import stem as file_stem
+
+    return file_stem(path, "drawing")
 
 
 def find_drawings(inputs: Sequence[str]) -> list[tuple[Path, Path]]:
@@ -180,13 +156,15 @@ def find_drawings(inputs: Sequence[str]) -> list[tuple[Path, Path]]:
     FormatError
         For a path that does not exist, or a folder without drawings.
     """
+    from auszug.formats import suffix_of, suffixes
+
     out: list[tuple[Path, Path]] = []
     for arg in inputs:
         p = Path(arg)
         if p.is_dir():
-            found = sorted(q for q in p.rglob("*") if q.is_file() and drawing_suffix(q.name))
+            found = sorted(q for q in p.rglob("*") if q.is_file() and suffix_of(q.name, "drawing"))
             if not found:
-                raise FormatError(f"no drawings ({', '.join(drawing_suffixes())}) in this folder", arg)
+                raise FormatError(f"no drawings ({', '.join(sorted(suffixes('drawing')))}) in this folder", arg)
             out.extend((q, q.parent.relative_to(p)) for q in found)
         elif p.exists():
             out.append((p, Path(".")))

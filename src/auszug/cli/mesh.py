@@ -85,15 +85,11 @@ def _suffix(path: Path) -> str:
                       "(or .png, .svg, .pdf for a picture)", str(path))
 
 
-def _profile(args: argparse.Namespace, net: Any) -> Any:
+def _profile_file(args: argparse.Namespace) -> Any:
+    """The Profile of a --style PROFILE.json file."""
     from auszug.errors import FormatError, GeometryError
-    from auszug.meshing import default_size, profile_for
     from auszug.meshing.profile import STYLES, from_dict
 
-    size = args.size if args.size is not None else default_size(net)
-    if args.style in STYLES:
-        around = args.around
-        return profile_for(args.style, size, around)
     path = Path(args.style)
     if not path.suffix.lower() == ".json":
         raise FormatError(f"--style must be one of {', '.join(STYLES)} or a profile .json file, "
@@ -132,33 +128,38 @@ def _loops(args: argparse.Namespace, net: Any) -> Any:
         return [loop_through(graph, lp) for lp in data]
 
 
+def look_of(args: argparse.Namespace, net: Any) -> Any:
+    """The :class:`~auszug.meshing.Look` of the options (profile and loops files read here)."""
+    from auszug.meshing import Look
+    from auszug.meshing.profile import STYLES
+
+    builtin = args.style in STYLES
+    style = args.style if builtin else _profile_file(args)
+    loops = _loops(args, net)
+    segments = args.segments
+    if segments is None and args.picture and not args.solid:
+        segments = 48
+    return Look(style=style,
+                size=args.size if builtin else None, around=args.around if builtin else None,
+                faces="none" if loops is None else loops if loops == "auto" else tuple(loops),
+                resolution=args.face_resolution, segments=segments, solid=args.solid,
+                thickness=args.thickness, base=args.base)
+
+
 def _make(src: Path, args: argparse.Namespace) -> tuple[Any, dict]:
     """The mesh (or solid) of one drawing and a summary."""
-    from auszug.meshing import concatenate, network_faces, sweep_network
-    from auszug.meshing.solid import solid
+    from auszug.meshing import mesh_network
 
     nf = _common.network_of(src, args)
     net = nf.network
     with _common.about(src):
-        prof = _profile(args, net)
-        loops = _loops(args, net)
-        faces = None
-        info: dict[str, Any] = {}
-        if loops is not None:
-            faces = network_faces(net, None if loops == "auto" else loops, resolution=args.face_resolution)
-            info["faces"] = len(faces.faces)
-            info["converged"] = faces.converged
-            info["residual"] = faces.residual
-        if args.solid:
-            seg = args.segments or 64
-            s = solid(net, prof, seg, faces=faces, thickness=args.thickness, base=args.base)
-            info.update(volume=s.volume, watertight=s.watertight, shells=s.components)
-            return s.mesh, info
-        seg = args.segments or (48 if args.picture else 200)
-        parts = [sweep_network(net, prof, seg)]
-        if faces is not None:
-            parts.append(faces.mesh())
-        return concatenate(parts), info
+        r = mesh_network(net, look_of(args, net))
+    info: dict[str, Any] = {}
+    if r.faces is not None:
+        info.update(faces=len(r.faces.faces), converged=r.faces.converged, residual=r.faces.residual)
+    if r.solid is not None:
+        info.update(volume=r.solid.volume, watertight=r.solid.watertight, shells=r.solid.components)
+    return r.mesh, info
 
 
 def _write(mesh: Any, out: Path) -> None:

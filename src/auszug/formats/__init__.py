@@ -19,6 +19,19 @@ from auszug.formats import gltf as _gltf  # noqa: F401  (registers .glb/.gltf me
 from auszug.formats import dxf as _dxf  # noqa: F401  (registers .dxf: polylines, exact arcs and lines)
 from auszug.formats import rhino as _rhino  # noqa: F401  (registers .3dm: exact arcs and lines, else polylines)
 # isort: on
-from auszug.formats._registry import FileFormat, atomic_write, format_for, formats, load, register, save
+from auszug.formats._registry import (
+    FileFormat,
+    atomic_write,
+    format_for,
+    formats,
+    kind_of,
+    load,
+    register,
+    save,
+    stem,
+    suffix_of,
+    suffixes,
+)
 
-__all__ = ["FileFormat", "atomic_write", "format_for", "formats", "load", "register", "save"]
+__all__ = ["FileFormat", "atomic_write", "format_for", "formats", "kind_of", "load", "register", "save", "stem",
+           "suffix_of", "suffixes"]

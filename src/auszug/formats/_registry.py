@@ -16,7 +16,8 @@ from typing import Any, Callable
 
 from auszug.errors import FormatError
 
-__all__ = ["FileFormat", "register", "formats", "format_for", "load", "save", "atomic_write"]
+__all__ = ["FileFormat", "register", "formats", "format_for", "suffix_of", "kind_of", "suffixes", "stem",
+           "load", "save", "atomic_write"]
 
 
 @dataclass(frozen=True)
@@ -87,6 +88,86 @@ def format_for(path: str | os.PathLike[str], kind: str | None = None, *, want: s
         known = sorted({s for f in formats().values() if kind in (None, f.kind) for s in f.suffixes})
         raise FormatError(f"unknown file type; expected one of {', '.join(known)}", os.fspath(path))
     return best[1]
+
+
+def _ending(path: str | os.PathLike[str]) -> tuple[str, list[FileFormat]]:
+    """The longest registered ending of ``path``'s name and the formats with it (registration order)."""
+    name = os.path.basename(os.fspath(path)).lower()
+    best, fmts = "", list[FileFormat]()
+    for fmt in formats().values():
+        for suf in fmt.suffixes:
+            if name.endswith(suf) and len(suf) >= len(best):
+                if len(suf) > len(best):
+                    best, fmts = suf, []
+                fmts.append(fmt)
+    return best, fmts
+
+
+def suffix_of(path: str | os.PathLike[str], kind: str | None = None) -> str | None:
+    """The registered ending that decides ``path``'s format, or None.
+
+    The longest registered ending of the name counts (``".network.json"``
+    beats ``".json"``); with ``kind``, only if a format of that kind has it,
+    so ``x.network.json`` is a network, not a ``.json`` drawing. This is how
+    the commands and the studio recognise drawing files: a newly registered
+    drawing format is picked up everywhere.
+
+    Examples
+    --------
+    >>> suffix_of("U.XI.28.UC", "drawing"), suffix_of("a/b.network.json", "drawing")
+    ('.uc', None)
+    >>> suffix_of("b.network.json"), suffix_of("notes.txt")
+    ('.network.json', None)
+    """
+    best, fmts = _ending(path)
+    if not best or kind is not None and all(f.kind != kind for f in fmts):
+        return None
+    return best
+
+
+def kind_of(path: str | os.PathLike[str]) -> str | None:
+    """What a file of this name holds (``"drawing"``, ``"network"``, ...), None for an unknown ending.
+
+    Where formats of several kinds share the ending, the first registered wins
+    (as in :func:`format_for` without a kind).
+
+    Examples
+    --------
+    >>> kind_of("tn-2.uc"), kind_of("tn-2.network.json"), kind_of("w.tracery.json"), kind_of("x.glb")
+    ('drawing', 'network', 'tracery', 'mesh')
+    """
+    best, fmts = _ending(path)
+    return fmts[0].kind if best else None
+
+
+def suffixes(kind: str | None = None) -> list[str]:
+    """Every registered ending (of formats of ``kind``), once each, in registration order.
+
+    Examples
+    --------
+    >>> suffixes("drawing")
+    ['.uc', '.json']
+    """
+    return list(dict.fromkeys(s for f in formats().values() if kind in (None, f.kind) for s in f.suffixes))
+
+
+def stem(path: str | os.PathLike[str], kind: str | None = None) -> str:
+    """The file name without its :func:`suffix_of` ending (of ``kind``), else without its last ending.
+
+    A name that is only an ending keeps it.
+
+    Examples
+    --------
+    >>> stem("corpus/U.XI.28.fixed.uc", "drawing"), stem("tn-2.network.json"), stem("tn-2.network.json", "drawing")
+    ('U.XI.28.fixed', 'tn-2', 'tn-2.network')
+    >>> stem(".uc"), stem("notes.txt")
+    ('.uc', 'notes')
+    """
+    name = os.path.basename(os.fspath(path))
+    suf = suffix_of(name, kind)
+    if suf and len(name) > len(suf):
+        return name[: len(name) - len(suf)]
+    return Path(name).stem or name
 
 
 def load(path: str | os.PathLike[str], kind: str | None = "drawing") -> Any:

@@ -49,7 +49,7 @@ import numpy as np
 from auszug.errors import FormatError
 from auszug.formats._cad import Arc3, cad_curves, network_and_source
 from auszug.formats._registry import FileFormat, register
-from auszug.formats.svg import PALETTE
+from auszug.formats.palette import PALETTE
 
 __all__ = ["APPID", "DXF_VERSION", "ACI", "layer_name", "exact_layer_name", "dumps"]
 
@@ -57,7 +57,7 @@ __all__ = ["APPID", "DXF_VERSION", "ACI", "layer_name", "exact_layer_name", "dum
 APPID = "AUSZUG"
 #: DXF version written (R2010).
 DXF_VERSION = "R2010"
-#: AutoCAD colour index nearest to each colour of :data:`~auszug.formats.svg.PALETTE` (all distinct).
+#: AutoCAD colour index nearest to each colour of :data:`~auszug.formats.palette.PALETTE` (all distinct).
 ACI: tuple[int, ...] = (142, 32, 122, 241, 30, 151, 245, 114, 187, 43, 223, 123)
 
 

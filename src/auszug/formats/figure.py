@@ -20,7 +20,7 @@ import numpy as np
 from auszug.errors import FormatError
 from auszug.formats._registry import FileFormat, register
 from auszug.formats.network_json import unpack
-from auszug.formats.svg import colour
+from auszug.formats.palette import colour
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes

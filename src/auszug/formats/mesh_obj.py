@@ -25,7 +25,7 @@ import numpy as np
 
 from auszug.errors import FormatError
 from auszug.formats._registry import FileFormat, register
-from auszug.formats.svg import colour
+from auszug.formats.palette import rgb
 
 __all__ = ["as_mesh", "part_colour", "material_name", "dumps", "mtl", "loads"]
 
@@ -58,9 +58,7 @@ def part_colour(part: Any) -> tuple[float, float, float]:
     (0.0, 0.4470588235294118, 0.6980392156862745)
     """
     if part.kind == "member":
-        h = colour(part.basic).lstrip("#")
-        r, g, b = (int(h[i:i + 2], 16) / 255.0 for i in (0, 2, 4))
-        return r, g, b
+        return rgb(part.basic)
     return {"face": FACE_RGB, "base": BASE_RGB}.get(part.kind, SOLID_RGB)
 
 

@@ -39,7 +39,7 @@ import numpy as np
 from auszug.errors import FormatError
 from auszug.formats._cad import Arc3, CadCurve, cad_curves, network_and_source
 from auszug.formats._registry import FileFormat, register
-from auszug.formats.svg import PALETTE
+from auszug.formats.palette import PALETTE
 from auszug.geometry.network import DEFAULT_REL_TOLERANCE
 
 __all__ = ["FILE_VERSION", "layer_name", "dumps"]

@@ -36,25 +36,9 @@ from numpy.typing import NDArray
 
 from auszug.formats._registry import FileFormat, register
 from auszug.formats.network_json import unpack
+from auszug.formats.palette import PALETTE, colour
 
-__all__ = ["PALETTE", "colour", "dumps"]
-
-#: One colour per basic curve, cycled (colour-blind safe: Okabe-Ito, then Tol's muted set).
-PALETTE: tuple[str, ...] = (
-    "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9",
-    "#882255", "#117733", "#332288", "#999933", "#AA4499", "#44AA99",
-)
-
-
-def colour(basic: int) -> str:
-    """The colour of basic curve ``basic`` (hex ``#RRGGBB``).
-
-    Examples
-    --------
-    >>> colour(0), colour(len(PALETTE))
-    ('#0072B2', '#0072B2')
-    """
-    return PALETTE[basic % len(PALETTE)]
+__all__ = ["PALETTE", "colour", "dumps"]   # PALETTE and colour live in formats.palette
 
 
 def _symmetry_text(g: Any) -> str:

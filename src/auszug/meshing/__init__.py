@@ -1,5 +1,7 @@
 """Meshes from curve networks: swept members, minimal-surface faces, printable solids.
 
+``meshing.mesh_network(network, meshing.Look(...))`` is the one pipeline from a network to
+its mesh (members, faces, solid), used by ``auszug mesh`` and the studio;
 ``meshing.solid.solid(...)`` makes a printable solid (the module is imported here).
 
 Pure numpy/scipy kernels (no I/O); the writers for OBJ, STL, PLY and glTF live
@@ -11,11 +13,18 @@ from auszug.meshing.frames import Frames, reference_basis, rmf_angles, sweep_fra
 from auszug.meshing.loops import Loop, NetworkGraph, find_loops, loop_through, network_graph
 from auszug.meshing.mesh import Mesh, Part, concatenate
 from auszug.meshing.minimal import MinimalSurface, flat_area, minimal_surface
+from auszug.meshing.pipeline import Look, MeshResult, faces_of, members_of, mesh_network, profile_of
 from auszug.meshing.profile import Profile, circle, from_dict, from_segments, polygon, rectangle, ribbon, square
 from auszug.meshing.solid import Solid, unite
 from auszug.meshing.sweep import Member, default_size, profile_for, sweep_network, sweep_piece
 
 __all__ = [
+    "Look",
+    "MeshResult",
+    "mesh_network",
+    "profile_of",
+    "faces_of",
+    "members_of",
     "Face",
     "Faces",
     "common_group",

@@ -1,7 +1,10 @@
 """Meshes, loops and exports of the studio: what ``get_mesh``, ``get_loops`` and ``export`` answer.
 
 Pure functions of a network (no networking, no document state); the server
-runs them in a worker thread. Members are sent the way the geometry is: each
+runs them in a worker thread. A request's style, faces, size and segments
+become one :class:`~auszug.meshing.Look` (:func:`look`), and the meshes come
+from the pipeline ``auszug mesh`` uses too (:mod:`auszug.meshing.pipeline`).
+Members are sent the way the geometry is: each
 basic piece swept once (:func:`~auszug.meshing.sweep.sweep_piece`), with the
 4x4 transforms of the replicas :func:`~auszug.meshing.sweep.sweep_network`
 emits for it, so the client instances it. Instancing gives exactly the
@@ -29,7 +32,7 @@ from auszug.errors import AuszugError
 from auszug.microarch.network import Network
 from auszug.studio import protocol as P
 
-__all__ = ["MAX_SEGMENTS", "MIMES", "Payload", "mesh_message", "loops_message", "export_file", "loops_of"]
+__all__ = ["MAX_SEGMENTS", "MIMES", "Payload", "look", "mesh_message", "loops_message", "export_file", "loops_of"]
 
 #: Largest ``segments`` a client may ask for (a sweep grows linearly with it).
 MAX_SEGMENTS = 1000
@@ -98,7 +101,8 @@ def loops_of(net: Network) -> list:
 
 
 def _faces(net: Network, mode: str, picked: Sequence[int]) -> Any:  # Faces or None
-    from auszug.meshing import network_faces
+    """The faces of a request (``none``, ``auto``, ``picked`` loop indices), computed once per network."""
+    from auszug.meshing import Look, faces_of
 
     if mode == "none":
         return None
@@ -109,34 +113,55 @@ def _faces(net: Network, mode: str, picked: Sequence[int]) -> Any:  # Faces or N
     if hit is not None and hit[0] is net:
         return hit[1]
     if mode == "auto":
-        faces = network_faces(net) if net.pieces else None
+        faces = faces_of(net, Look("curves", faces="auto"))
     else:
         loops = loops_of(net)
         bad = [i for i in picked if not 0 <= i < len(loops)]
         if bad:
             raise StudioMeshError(f"no loop {bad[0]}: the drawing has {len(loops)} loops (ask get_loops)")
-        faces = network_faces(net, [loops[i] for i in picked]) if picked else None
+        faces = faces_of(net, Look("curves", faces=tuple(loops[i] for i in picked))) if picked else None
     _FACES.put(key, (net, faces))
     return faces
-
-
-def _profile(net: Network, style: str, size: float | None) -> Any:
-    from auszug.meshing import default_size, profile_for
-
-    if style not in ("tube", "bar", "ribbon"):
-        raise StudioMeshError(f"style must be one of curves, tube, bar, ribbon, got {style!r}")
-    if size is not None and not size > 0:
-        raise StudioMeshError(f"member size must be positive, got {size:g}")
-    s = size if size is not None else default_size(net)
-    if not s > 0:
-        raise StudioMeshError("the drawing has no extent, so members have no default size; give a size")
-    return profile_for(style, s)
 
 
 def _check_segments(segments: int) -> int:
     if not 1 <= segments <= MAX_SEGMENTS:
         raise StudioMeshError(f"segments must lie in 1..{MAX_SEGMENTS}, got {segments}")
     return segments
+
+
+def look(net: Network, *, style: str, faces: str = "none", loops: Sequence[int] = (), size: float | None = None,
+         segments: int | None = None, solid: bool = False) -> Any:  # a meshing.Look
+    """The :class:`~auszug.meshing.Look` of a ``get_mesh`` or ``export`` request, checked.
+
+    Size and segments count only for members (the ``curves`` style ignores
+    them); segments are at most :data:`MAX_SEGMENTS`.
+
+    Raises
+    ------
+    StudioMeshError
+        For what :class:`~auszug.meshing.Look` refuses, too many segments, no
+        default size, or a loop index that ``get_loops`` did not report.
+    """
+    from auszug.errors import GeometryError
+    from auszug.meshing import Look, profile_of
+
+    members = style != "curves"
+    if members and segments is not None:
+        _check_segments(segments)
+    fs: Any = "none"
+    if faces == "auto":
+        fs = "auto"
+    elif faces == "picked":
+        all_loops = loops_of(net)
+        fs = tuple(all_loops[i] for i in loops if 0 <= i < len(all_loops)) or "none"
+    try:
+        lk = Look(style, size=size if members else None, faces=fs, segments=segments if members else None,
+                  solid=solid)
+        profile_of(net, lk)   # no default size for a drawing without extent
+    except GeometryError as e:
+        raise StudioMeshError(str(e)) from None
+    return lk
 
 
 def _transforms(net: Network, basic: int, replicas: Sequence[int]) -> NDArray[np.float64]:
@@ -147,13 +172,9 @@ def _transforms(net: Network, basic: int, replicas: Sequence[int]) -> NDArray[np
 
 def members(net: Network, style: str, size: float | None, segments: int) -> list:
     """Every swept basic piece (:class:`~auszug.meshing.sweep.Member`, not replicated)."""
-    from auszug.meshing.sweep import SWEPT_KINDS, sweep_piece
+    from auszug.meshing import members_of
 
-    if style == "curves":
-        return []
-    prof = _profile(net, style, size)
-    seg = _check_segments(segments)
-    return [sweep_piece(net, pi, prof, seg) for pi, p in enumerate(net.pieces) if p.kind in SWEPT_KINDS]
+    return members_of(net, look(net, style=style, size=size, segments=segments))
 
 
 def _member_name(net: Network, mb: Any) -> str:
@@ -171,12 +192,13 @@ def mesh_message(net: Network, *, style: str, faces: str, loops: Sequence[int], 
         For an unknown style or faces mode, a bad size or segment count, or a
         loop index that ``get_loops`` did not report.
     """
-    if style != "curves":
-        _profile(net, style, size)   # check before any work
+    from auszug.meshing import members_of
+
+    lk = look(net, style=style, size=size, segments=segments)   # check before any work
     fs = _faces(net, faces, loops)
     out = Payload()
     pieces = []
-    for mb in members(net, style, size, segments):
+    for mb in members_of(net, lk):
         pieces.append(P.MeshPiece(
             basic=mb.basic, name=_member_name(net, mb), positions=out.put(mb.vertices),
             indices=out.put(mb.faces, "u4"), transforms=out.put(_transforms(net, mb.basic, mb.replicas))))
@@ -204,12 +226,11 @@ def loops_message(net: Network, *, revision: int = 0, msg_id: int = 0,
 
 
 def _stem(name: str) -> str:
-    stem = PurePosixPath(name).name or "drawing"
-    low = stem.lower()
-    for suf in (".network.json", ".json", ".uc"):
-        if low.endswith(suf) and len(stem) > len(suf):
-            return stem[: -len(suf)]
-    return stem
+    """The drawing's name without the ending of any registered format (``tn-2.uc`` -> ``tn-2``)."""
+    from auszug.formats import stem, suffix_of
+
+    base = PurePosixPath(name).name or "drawing"
+    return stem(base) if suffix_of(base) else base
 
 
 def _parse_colours(colors: Sequence[str]) -> list[tuple[float, float, float]]:
@@ -288,22 +309,12 @@ def export_file(net: Network, name: str, *, format: str, style: str = "bar", fac
 
 def _export_mesh(net: Network, style: str, faces: str, loops: Sequence[int], solid: bool,
                  segments: int | None) -> Any:  # a Mesh
-    from auszug.meshing import concatenate, sweep_network
-    from auszug.meshing.solid import solid as make_solid
+    from auszug.meshing import mesh_network
 
     fs = _faces(net, faces, loops)
-    if style == "curves":
-        if solid:
-            raise StudioMeshError("a solid needs members: pick the style tube, bar or ribbon")
-        if fs is None or not fs.faces:
-            raise StudioMeshError("nothing to export: style curves without faces makes no mesh")
-        return fs.mesh()
-    prof = _profile(net, style, None)
-    if not net.pieces:
+    if style == "curves" and not solid and (fs is None or not fs.faces):
+        raise StudioMeshError("nothing to export: style curves without faces makes no mesh")
+    lk = look(net, style=style, faces=faces, loops=loops, segments=segments or None, solid=solid)
+    if lk.members and not net.pieces:
         raise StudioMeshError("nothing to export: the drawing has no curves")
-    if solid:
-        return make_solid(net, prof, _check_segments(segments or 64), faces=fs).mesh
-    parts = [sweep_network(net, prof, _check_segments(segments or 200))]
-    if fs is not None and fs.faces:
-        parts.append(fs.mesh())
-    return concatenate(parts)
+    return mesh_network(net, lk, faces=fs).mesh

@@ -96,7 +96,7 @@ __all__ = [
 ]
 
 #: Bumped whenever a message changes shape; the client shows it on mismatch.
-PROTOCOL_VERSION = 2
+PROTOCOL_VERSION = 3
 #: Largest client message the server reads (bytes); larger ones get an :class:`Error` reply.
 MAX_MESSAGE_BYTES = 256 * 1024
 
@@ -526,6 +526,12 @@ class CurveInfo:
     (``"fixed"``: a mirror whose axis follows no point); ``axis`` the mirror axis
     direction (null: no mirror); ``apex`` the absolute apex height, ``bottom``
     its layer's bottom; ``prc`` the stored fraction per segment (null: automatic).
+    ``replicas`` are the linear parts of the curve's symmetry group about
+    ``center`` (row-major 2x2 ``[a, b, c, d]``: (x, y) -> (a x + b y, c x + d y)),
+    one per element in the order of ``labels`` (``r0`` = identity, ``r0m``,
+    ``r1``, ...), exactly the network's ``groups[i].matrices()``: replica k of a
+    top-view point p is ``center + M_k (p - center)``. ``color`` is the curve's
+    colour from :data:`auszug.formats.palette.PALETTE` (``#RRGGBB``).
     """
 
     vertices: list[XY]
@@ -543,6 +549,9 @@ class CurveInfo:
     decoration_at: float | None
     post_top: float | None
     name: str
+    replicas: list[list[float]]
+    labels: list[str]
+    color: str
 
 
 @dataclass(frozen=True)

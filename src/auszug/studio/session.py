@@ -41,7 +41,7 @@ __all__ = [
     "WorkspaceError",
     "Workspace",
     "AUTOSAVE_DIR",
-    "DRAWING_SUFFIXES",
+    "drawing_endings",
     "Document",
     "Session",
     "network_of",
@@ -61,14 +61,26 @@ __all__ = [
 UNDO_DEPTH = 500
 #: Where autosaves live, relative to the workspace.
 AUTOSAVE_DIR = ".auszug/autosave"
-#: Drawing files the studio opens, saves and lists.
-DRAWING_SUFFIXES = (".uc", ".json")
 #: Revisions count up over all documents, so a tab that moves to another document never goes back.
 _REVISIONS = itertools.count(1)
 
 
 class WorkspaceError(AuszugError, ValueError):
     """A path that leaves the workspace folder, or a file that cannot be used there."""
+
+
+def _is_drawing(name: str) -> bool:
+    """Whether ``name`` is a drawing file's: the formats registry decides (``x.network.json`` is not)."""
+    from auszug.formats import suffix_of
+
+    return suffix_of(name, "drawing") is not None
+
+
+def drawing_endings() -> str:
+    """The registered drawing endings for messages: ``".uc or .json"``."""
+    from auszug.formats import suffixes
+
+    return " or ".join(suffixes("drawing"))
 
 
 @dataclass(frozen=True)
@@ -134,21 +146,19 @@ class Workspace:
         return self.root.resolve() / AUTOSAVE_DIR / (key + ".json")
 
     def drawings(self, limit: int = 10000) -> list[str]:
-        """Drawing files (.uc, .json) below the root, relative and sorted.
+        """Drawing files below the root (every registered drawing format), relative and sorted.
 
         Hidden folders (``.auszug`` with the autosaves, ``.git``...) and
-        ``node_modules`` are skipped, as are network files (``*.network.json``),
-        tracery styles (``*.tracery.json``) and links that lead outside the workspace.
+        ``node_modules`` are skipped, as are other files the registry knows
+        (network files ``*.network.json``, tracery styles ``*.tracery.json``)
+        and links that lead outside the workspace.
         """
         root = self.root.resolve()
         out: list[str] = []
         for dirpath, dirnames, filenames in os.walk(root):
             dirnames[:] = sorted(d for d in dirnames if not d.startswith(".") and d != "node_modules")
             for fn in filenames:
-                low = fn.lower()
-                if fn.startswith(".") or not low.endswith(DRAWING_SUFFIXES):
-                    continue
-                if low.endswith((".network.json", ".tracery.json")):
+                if fn.startswith(".") or not _is_drawing(fn):
                     continue
                 p = Path(dirpath) / fn
                 try:
@@ -218,9 +228,18 @@ def _xy(p: Any) -> list[float]:
     return [float(p[0]), float(p[1])]
 
 
+@lru_cache(maxsize=1024)
+def _replicas(group: Any) -> tuple[list[list[float]], list[str]]:  # a geometry.symmetry.SymmetryGroup
+    """The group's 2x2 matrices (row-major, as lists) and labels: what the page maps points with."""
+    return [[float(v) for v in m.ravel()] for m in group.matrices()], list(group.labels())
+
+
 @lru_cache(maxsize=4096)
-def _curve_info(c: Any, apex: float, bottom: float) -> dict:  # a BasicCurve
+def _curve_info(c: Any, apex: float, bottom: float, index: int) -> dict:  # a BasicCurve
+    from auszug.formats.palette import colour
+
     sym = c.symmetry
+    replicas, labels = _replicas(sym.group)
     return {
         "vertices": [_xy(v) for v in c.vertices],
         "handles": [[_xy(h) for h in sg.handles] for sg in c.segments],
@@ -237,12 +256,15 @@ def _curve_info(c: Any, apex: float, bottom: float) -> dict:  # a BasicCurve
         "decoration_at": c.decoration_at,
         "post_top": c.post_top,
         "name": c.name,
+        "replicas": replicas,
+        "labels": labels,
+        "color": colour(index),
     }
 
 
 def _curve_dicts(drawing: Drawing) -> list[dict]:
     bottoms = drawing.bottoms()
-    return [_curve_info(c, drawing.apex_height(i, bottoms), bottoms[c.layer]) for i, c in enumerate(drawing.curves)]
+    return [_curve_info(c, drawing.apex_height(i, bottoms), bottoms[c.layer], i) for i, c in enumerate(drawing.curves)]
 
 
 def _curve_info_message(d: dict) -> P.CurveInfo:
@@ -368,8 +390,8 @@ def _piece_data(p: Any, curves: tuple) -> _PieceData:
 
 
 @lru_cache(maxsize=4096)
-def _curve_json(c: Any, apex: float, bottom: float) -> str:
-    return _dumps(_curve_info(c, apex, bottom))
+def _curve_json(c: Any, apex: float, bottom: float, index: int) -> str:
+    return _dumps(_curve_info(c, apex, bottom, index))
 
 
 class _Body:
@@ -401,7 +423,7 @@ class _Body:
             self.bounds = [0.0] * 6
         self.layers = [float(z) for z in drawing.all_bottoms()]
         bottoms = drawing.bottoms()
-        self.curve_keys = [(c, drawing.apex_height(i, bottoms), bottoms[c.layer]) for i, c in enumerate(curves)]
+        self.curve_keys = [(c, drawing.apex_height(i, bottoms), bottoms[c.layer], i) for i, c in enumerate(curves)]
 
     def as_dict(self, *, path: str, revision: int, can_undo: bool, can_redo: bool, dirty: bool,
                 recoverable: str) -> dict:
@@ -499,9 +521,8 @@ def check_file_name(name: str) -> str:
 def _drawing_format(name: str) -> Any:  # a FileFormat
     from auszug.formats import format_for
 
-    low = name.lower()
-    if not low.endswith(DRAWING_SUFFIXES) or low.endswith((".network.json", ".tracery.json")):
-        raise FormatError("not a drawing file; expected a .uc or .json drawing", name)
+    if not _is_drawing(name):
+        raise FormatError(f"not a drawing file; expected a {drawing_endings()} drawing", name)
     return format_for(PurePosixPath(name), "drawing")
 
 
@@ -685,16 +706,16 @@ class Document:
             self.replace_drawing(replace(saved, name=self.drawing.name))
 
     def default_save_path(self) -> str:
-        """Where an unsaved document goes by default: ``<name>.json`` (a .uc/.json ending replaced)."""
-        stem = self.name
-        for suf in DRAWING_SUFFIXES:
-            if stem.lower().endswith(suf) and len(stem) > len(suf):
-                stem = stem[: -len(suf)]
-                break
+        """Where an unsaved document goes by default: ``<name>.json`` (a drawing ending replaced)."""
+        from auszug.formats import suffix_of
+
+        stem, suf = self.name, suffix_of(self.name, "drawing")
+        if suf and len(stem) > len(suf):
+            stem = stem[: -len(suf)]
         return stem + ".json"
 
     def save(self, rel: str = "") -> str:
-        """Write the drawing inside the workspace (.uc or .json by extension); the relative path written.
+        """Write the drawing inside the workspace (format by its drawing ending); the relative path written.
 
         ``rel`` empty: the document's own path, or :meth:`default_save_path` if
         it has none. Afterwards the document is clean, its path is the one
@@ -703,16 +724,15 @@ class Document:
         Raises
         ------
         WorkspaceError
-            Outside the workspace, not a regular file, or not a .uc/.json name.
+            Outside the workspace, not a regular file, or not a drawing file name.
         FormatError
             If the format cannot hold the drawing.
         """
         from auszug.formats import save
 
         target = rel or self.path or self.default_save_path()
-        low = target.lower()
-        if not low.endswith(DRAWING_SUFFIXES) or low.endswith((".network.json", ".tracery.json")):
-            raise WorkspaceError(f"{target!r}: can only save drawings as .uc or .json")
+        if not _is_drawing(target):
+            raise WorkspaceError(f"{target!r}: can only save drawings as {drawing_endings()}")
         p = self.workspace.resolve_for_writing(target)
         with self.autosave_lock:
             with self.lock:

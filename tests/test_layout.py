@@ -101,9 +101,10 @@ def test_the_scan_sees_the_package():
 
 
 FLOW = {
-    "geometry": {"microarch", "tracery", "meshing", "formats", "cli", "studio"},
+    "geometry": {"microarch", "tracery", "meshing", "lifting", "formats", "cli", "studio"},
     "microarch": {"formats", "cli", "studio"},
     "tracery": {"formats", "cli", "studio"},
+    "lifting": {"microarch", "tracery", "meshing", "formats", "cli", "studio"},
     "meshing": {"formats", "cli", "studio"},
     "formats": {"cli", "studio"},
 }

@@ -56,7 +56,7 @@ __all__ = [
 Array = NDArray[np.float64]
 
 #: Kinds of network curves.
-KINDS: tuple[str, ...] = ("ogee", "free_end", "decoration", "post", "pillar", "level", "border")
+KINDS: tuple[str, ...] = ("ogee", "free_end", "decoration", "post", "pillar", "level", "border", "sketch")
 #: Default export tolerance, relative to the network's bounding-box diagonal.
 DEFAULT_REL_TOLERANCE = 1e-6
 #: Smallest accepted tolerance, relative to the bounding-box diagonal (float64 evaluation
@@ -86,8 +86,9 @@ class Piece:
         Index of the basic curve (the symmetry group and layer it belongs to).
     segment : int
         Index of the segment in the basic curve (-1 for posts and pillars).
-    kind : {"ogee", "free_end", "level", "decoration", "post", "pillar", "border"}
-        ("border": a tracery region's border, at constant height.)
+    kind : {"ogee", "free_end", "level", "decoration", "post", "pillar", "border", "sketch"}
+        ("border": a tracery region's border, at constant height; "sketch": a lifted
+        sketch segment, see ``depth``.)
     top : Curve or None
         Top view, oriented from the piece's start (its bottom for an ogee, the
         apex for a free end). ``None`` for vertical posts and pillars.
@@ -111,6 +112,12 @@ class Piece:
     marks : tuple of (str, float)
         Further named feature points on the piece as (name, u), e.g. the true
         3D intersections with other curves.
+    depth : (4,) ndarray or None
+        A lifted sketch segment (kind ``"sketch"``): the z of the four control
+        points of a 3D cubic Bezier whose x, y control points are those of
+        ``top`` (a :class:`~auszug.geometry.CubicBezier`); its height is the
+        Bernstein polynomial of ``depth`` in the top view's parameter t, so the
+        piece is that 3D Bezier exactly.
 
     A decoration piece is the part of its ogee (same ``basic`` and ``segment``)
     below the PRC, listed separately so it can be drawn in its own style.
@@ -129,6 +136,7 @@ class Piece:
     z_const: float = 0.0
     u_end: float = 1.0
     marks: tuple[tuple[str, float], ...] = ()
+    depth: Array | None = None
 
     # -- evaluation -------------------------------------------------------------------------
     def g_of_t(self, t: ArrayLike) -> Array:
@@ -145,6 +153,11 @@ class Piece:
 
     def height_at_t(self, t: ArrayLike) -> Array:
         """Height at top-view parameter(s) t."""
+        if self.depth is not None:
+            t = np.asarray(t, dtype=float)
+            m = 1.0 - t
+            z = self.depth
+            return (m * m * m) * z[0] + (3.0 * m * m * t) * z[1] + (3.0 * m * t * t) * z[2] + (t * t * t) * z[3]
         if self.side is None:
             return np.full(np.shape(t), self.z_const)
         return self.side.height(self.g_of_t(t))
@@ -243,7 +256,7 @@ class Piece:
             return []
         t0, t1 = self.t_span()
         if self.side is None:
-            if not isinstance(top, Arc):
+            if not isinstance(top, Arc) or self.depth is not None:
                 return []
             c = np.asarray(top.center, dtype=float)
             z = float(self.z_const)
@@ -280,7 +293,7 @@ class Piece:
 
     def is_straight(self) -> bool:
         """Whether the piece is a straight 3D segment (post, pillar, level line)."""
-        return self.top is None or (self.side is None and self.top.kind == "line")
+        return self.top is None or (self.side is None and self.depth is None and self.top.kind == "line")
 
     @classmethod
     def from_dict(cls, d: Mapping[str, Any], basic: int = 0, segment: int = 0) -> "Piece":
@@ -306,8 +319,13 @@ class Piece:
         rule = SideCoordinate(str(r["mode"]), float(r.get("a", 1.0)), float(r.get("b", 0.0)),
                               float(r.get("sign", 1.0)))
         z = float(d.get("z", 0.0))
+        depth = None
+        if "depth" in d:
+            depth = np.asarray(d["depth"], dtype=float)
+            if depth.shape != (4,) or top.kind != "bezier" or not np.all(np.isfinite(depth)):
+                raise GeometryError("a lifted sketch piece needs a bezier top view and 4 finite depths")
         p = cls(basic, segment, kind, top, side, rule, np.zeros((2, 3)), z_const=z,
-                u_end=float(d.get("u_end", 1.0)))
+                u_end=float(d.get("u_end", 1.0)), depth=depth)
         return replace(p, points=p.point_t(np.array(p.t_span())))
 
     def to_dict(self) -> dict[str, Any]:
@@ -318,7 +336,9 @@ class Piece:
             return d
         d["top"] = self.top.to_dict()
         d["u_end"] = float(self.u_end)
-        if self.side is None:
+        if self.depth is not None:
+            d["depth"] = np.asarray(self.depth, dtype=float).tolist()
+        elif self.side is None:
             d["z"] = float(self.z_const)
         else:
             d["side"] = self.side.to_dict()
@@ -423,7 +443,7 @@ def sample_by_tolerance(piece: Piece, tolerance: float) -> tuple[Array, list[tup
             if t - kept[-1] > _MERGE and forced[-1] - t > _MERGE:
                 kept.append(float(t))
         forced = np.array(kept + [float(forced[-1])])
-    if piece.top is None or (piece.side is None and piece.top.kind == "line"):
+    if piece.is_straight():
         ts = forced  # straight: its ends and features are exact
     else:
         ts = _refine(piece, forced, tolerance)
@@ -481,7 +501,8 @@ def _refine(piece: Piece, forced: Array, tolerance: float) -> Array:
 
     # first steps from a lower bound of the curvature (h <= sqrt(8 q T / kappa) for a chord
     # error q T): the side arc's own for a lifted curve (the 3D curvature is at least its
-    # geodesic part), the top view's at constant height; bisection does the rest where needed
+    # geodesic part), the top view's at constant height (and, as a first guess only, for a
+    # lifted sketch's 3D Bezier); bisection does the rest where needed
     if side is None:
         probe_t = ta[:, None] + (tb - ta)[:, None] * np.linspace(0.0, 1.0, 9)
         kappa = np.abs(np.asarray(top.curvature(probe_t), dtype=float))

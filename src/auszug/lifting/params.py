@@ -1,0 +1,130 @@
+"""The one home of sketch lifting's weights, thresholds and limits.
+
+The values are the paper's (Xu et al. 2014, sec. 5.2-5.3) where it gives one;
+the others are this implementation's choices, each documented here and in
+docs/lifting.md. All lengths are relative to the sketch's bounding-box
+diagonal: the solver works on the sketch scaled to diagonal 1.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+
+from auszug.errors import GeometryError
+
+__all__ = ["LiftParams", "DEFAULT"]
+
+
+@dataclass(frozen=True)
+class LiftParams:
+    """Weights and thresholds of :func:`auszug.lifting.lift`.
+
+    Attributes
+    ----------
+    w_a, w_v, w_f : float
+        Fidelity weights (Eq. 7): projection accuracy 1, minimal variation 2,
+        foreshortening 0.001.
+    w_a_baseline : float
+        Accuracy weight of the baseline reconstruction (10).
+    sigma : float
+        sigma of omega_d (Eq. 2), relative to the diagonal (1/3, the three-sigma rule).
+    eps : float
+        epsilon of omega_d (0.01).
+    w_c : float
+        Weight of the soft likelihood-weighted cues, and of accepted tangent
+        parallelism, which stays soft (50).
+    w_p_baseline, sigma_p_deg : float
+        Baseline soft parallelism weight w_p = 0.1 exp(-alpha^2 / sigma^2) by
+        the 2D angle alpha, sigma = 15 deg.
+    w_p_propagate : float
+        Parallelism weight while the seed crossing's lift is propagated (5).
+    inner_deg, outer_deg : float
+        Likelihood bounds I_b = 5 deg (L = 1 within) and O_b = 15 deg (L = 0.005
+        there, 0 beyond).
+    outer_value : float
+        L at the outer bound (0.005).
+    rounds : int
+        Most rounds of the progressive resolution of one cue class (the paper:
+        "four iterations typically suffice"; we allow 8, then the remaining
+        cues are inapplicable, the conservative choice).
+    parallel_2d_deg : float
+        Tangent pairs whose 2D angle is below this are parallelism candidates
+        (our choice: twice O_b, since foreshortening changes angles).
+    smooth_joint_deg : float
+        A stroke is G1 at a node where its tangents turn by less than this
+        (our choice: 10 deg).
+    min_crossing_deg : float
+        A crossing of two G1 strokes is a smooth crossing (hard orthogonality)
+        when their 2D tangents are at least this far from parallel (our
+        choice: 10 deg; below, it is a touching, not a crossing).
+    straight_tol : float
+        Control points within this (relative to the diagonal) of their
+        segment's chord make the segment straight (a hard linear constraint).
+    snap : float
+        Annotation markers snap to the nearest crossing within this share of
+        the diagonal (1 %, the issue's value).
+    merge : float
+        Stroke ends and crossings closer than this (relative to the diagonal)
+        are one point.
+    newton_iterations : int
+        Most Newton steps of one solve.
+    newton_tol : float
+        A solve has converged when every constraint residual and every step
+        is below this.
+    kkt_reg : float
+        Regularisation of the KKT system's constraint block (-kkt_reg I), so
+        that redundant constraints keep it non-singular.
+    hessian_reg : float
+        Added to the energy Hessian's diagonal (keeps Newton's matrix non-singular
+        along directions no energy sees).
+    """
+
+    w_a: float = 1.0
+    w_v: float = 2.0
+    w_f: float = 0.001
+    w_a_baseline: float = 10.0
+    sigma: float = 1.0 / 3.0
+    eps: float = 0.01
+    w_c: float = 50.0
+    w_p_baseline: float = 0.1
+    sigma_p_deg: float = 15.0
+    w_p_propagate: float = 5.0
+    inner_deg: float = 5.0
+    outer_deg: float = 15.0
+    outer_value: float = 0.005
+    rounds: int = 8
+    parallel_2d_deg: float = 30.0
+    smooth_joint_deg: float = 10.0
+    min_crossing_deg: float = 10.0
+    straight_tol: float = 1e-6
+    snap: float = 0.01
+    merge: float = 1e-7
+    newton_iterations: int = 60
+    newton_tol: float = 1e-10
+    kkt_reg: float = 1e-11
+    hessian_reg: float = 1e-10
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v >= 0):
+                raise GeometryError(f"lifting parameter {f.name} must be a finite number >= 0, got {v!r}")
+        if not 0 < self.inner_deg < self.outer_deg:
+            raise GeometryError(f"need 0 < inner_deg < outer_deg, got {self.inner_deg}, {self.outer_deg}")
+        if not 0 < self.outer_value < 1:
+            raise GeometryError(f"outer_value must lie in (0, 1), got {self.outer_value}")
+
+    @property
+    def exponent(self) -> float:
+        """B of L(alpha) = min(1, a alpha^b) (Eq. 10): L(I_b) = 1, L(O_b) = outer_value."""
+        return math.log(self.outer_value) / math.log(self.outer_deg / self.inner_deg)
+
+    @property
+    def coefficient(self) -> float:
+        """A of L(alpha) = min(1, a alpha^b) (Eq. 10)."""
+        return float(self.inner_deg ** (-self.exponent))
+
+
+#: The paper's values.
+DEFAULT = LiftParams()

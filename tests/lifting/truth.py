@@ -1,0 +1,130 @@
+"""Ground truth in code: 3D curve networks with known depths, projected orthographically into sketches.
+
+Each network is a set of 3D cubic Bezier chains with knots at the 3D
+intersections (Hermite segments with the exact tangents), so the truth is
+exactly representable and its crossings are exactly what the method assumes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from auszug.lifting import Sketch, Stroke
+
+
+@dataclass(frozen=True)
+class Truth:
+    sketch: Sketch
+    chains3d: tuple[np.ndarray, ...]   # per stroke (m, 4, 3), in view coordinates (z toward the viewer)
+
+    def diagonal(self) -> float:
+        return self.sketch.diagonal()
+
+
+def rotation(tilt_deg: float, turn_deg: float) -> np.ndarray:
+    """View rotation: turn about the vertical (y), then tilt about x (a view from above for tilt > 0)."""
+    a, b = np.radians(turn_deg), np.radians(tilt_deg)
+    ry = np.array([[np.cos(a), 0, np.sin(a)], [0, 1, 0], [-np.sin(a), 0, np.cos(a)]])
+    rx = np.array([[1, 0, 0], [0, np.cos(b), -np.sin(b)], [0, np.sin(b), np.cos(b)]])
+    return rx @ ry
+
+
+def hermite_chain(p: np.ndarray, dp: np.ndarray, dt: float) -> np.ndarray:
+    """Bezier chain (k-1, 4, 3) through knots p (k, 3) with derivatives dp (k, 3) per unit parameter step dt."""
+    c0, c3 = p[:-1], p[1:]
+    c1 = c0 + dp[:-1] * dt / 3
+    c2 = c3 - dp[1:] * dt / 3
+    return np.stack([c0, c1, c2, c3], axis=1)
+
+
+def revolve(n_mer: int = 6, n_par: int = 4, tilt: float = 25.0, turn: float = 15.0, noise: float = 0.0,
+            seed: int = 0) -> Truth:
+    """Meridians and parallels of a vase (surface of revolution about y), front part, seen from above.
+
+    Every curve overshoots its first and last crossing by half a step, so every
+    crossing is a smooth crossing. ``noise``: 2D noise on the sketch's control
+    points, relative to its diagonal.
+    """
+    def radius(h):
+        return 1.0 + 0.35 * np.sin(1.3 * h + 0.4)
+
+    def dradius(h):
+        return 0.35 * 1.3 * np.cos(1.3 * h + 0.4)
+
+    phis = np.radians(np.linspace(-50, 50, n_mer))
+    hs = np.linspace(-1.0, 1.0, n_par)
+    dphi, dh = phis[1] - phis[0], hs[1] - hs[0]
+    R = rotation(tilt, turn)
+
+    def surf(phi, h):
+        r = radius(h)
+        return np.stack([r * np.sin(phi), h * np.ones_like(phi), r * np.cos(phi)], axis=-1)
+
+    chains = []
+    for phi in phis:   # meridians: parameter h
+        h = np.concatenate([[hs[0] - dh / 2], hs, [hs[-1] + dh / 2]])
+        p = surf(np.full_like(h, phi), h)
+        dp = np.stack([dradius(h) * np.sin(phi), np.ones_like(h), dradius(h) * np.cos(phi)], axis=-1)
+        chains.append(hermite_chain(p, dp, dh))
+    for h0 in hs:      # parallels: parameter phi
+        ph = np.concatenate([[phis[0] - dphi / 2], phis, [phis[-1] + dphi / 2]])
+        p = surf(ph, np.full_like(ph, h0))
+        r = radius(h0)
+        dp = np.stack([r * np.cos(ph), np.zeros_like(ph), -r * np.sin(ph)], axis=-1)
+        chains.append(hermite_chain(p, dp, dphi))
+    return _project(chains, R, noise, seed)
+
+
+def _project(chains, R, noise: float, seed: int) -> Truth:
+    view = tuple(c @ R.T for c in chains)
+    sk = Sketch(tuple(Stroke(c[:, :, :2].copy(), f"c{i}") for i, c in enumerate(view)))
+    if noise:
+        rng = np.random.default_rng(seed)
+        d = sk.diagonal()
+        # noise on the distinct control points, shared points moved together
+        strokes = []
+        for s in sk.strokes:
+            c = s.controls.copy()
+            c += rng.normal(0, noise * d, c.shape)
+            c[1:, 0] = c[:-1, 3]   # keep each chain connected
+            strokes.append(Stroke(c, s.id))
+        sk = Sketch(tuple(strokes))
+    return Truth(sk, view)
+
+
+def depth_rmse(truth: Truth, result) -> tuple[float, int]:
+    """RMSE of the lifted depth against the truth at the lifted curves' sample points, relative to the
+    sketch's diagonal, after the best depth offset and sign; and that sign (+1: the lift's own)."""
+    from auszug.geometry import CubicBezier
+
+    net = result.network
+    errs = {}
+    for sign in (1, -1):
+        zl, zt = [], []
+        for piece in net.pieces:
+            ts = np.linspace(0, 1, 9)
+            xyz = piece.point_t(ts)
+            chain = truth.chains3d[piece.basic]
+            # the truth depth at the same sketch point: the nearest point of the truth chain in 2D
+            best = None
+            for seg in chain:
+                b = CubicBezier.from_array(seg[:, :2])
+                for q in xyz:
+                    t = b.project(q[:2])
+                    d = np.linalg.norm(b.point(t) - q[:2])
+                    m = 1 - t
+                    z = m**3 * seg[0, 2] + 3 * m * m * t * seg[1, 2] + 3 * m * t * t * seg[2, 2] + t**3 * seg[3, 2]
+                    best = best or {}
+                    key = tuple(q[:2])
+                    if key not in best or d < best[key][0]:
+                        best[key] = (d, z)
+            for q in xyz:
+                zl.append(sign * q[2])
+                zt.append(best[tuple(q[:2])][1])
+        zl, zt = np.array(zl), np.array(zt)
+        off = np.mean(zt - zl)
+        errs[sign] = float(np.sqrt(np.mean((zl + off - zt) ** 2)))
+    s = min(errs, key=errs.get)
+    return errs[s] / truth.diagonal(), s

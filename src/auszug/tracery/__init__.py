@@ -20,7 +20,7 @@ from auszug.tracery.arch import PointedArch, apex_height, arch_kind, trefoil_arc
 from auszug.tracery.build import build, structure
 from auszug.tracery.mesh import Resolution, window_mesh
 from auszug.tracery.model import Region, Tracery
-from auszug.tracery.profile import Profile
+from auszug.tracery.profile import Moulding
 from auszug.tracery.rosette import foil_radius, rosette
 from auszug.tracery.style import Style, builtin_style, builtin_styles, load_style, parse_style, refine
 from auszug.tracery.window import Prototype, WindowParams, prototype
@@ -42,7 +42,7 @@ __all__ = [
     "window_mesh",
     "build",
     "structure",
-    "Profile",
+    "Moulding",
     "Style",
     "builtin_style",
     "builtin_styles",

@@ -56,7 +56,7 @@ from auszug.geometry.offset import offset_curves
 from auszug.meshing.mesh import Mesh, Part
 from auszug.tracery._checks import ParameterError, integer, number
 from auszug.tracery.model import Region, Tracery
-from auszug.tracery.profile import Profile
+from auszug.tracery.profile import Moulding
 
 __all__ = ["window_mesh", "Resolution", "subdivide_profile", "loop_ring", "zip_rings"]
 
@@ -229,7 +229,7 @@ def subdivide_profile(points: Array, sharp: NDArray[np.bool_], steps: int) -> tu
     return p, s
 
 
-def _levels(profile: Profile, res: Resolution, subdivide: int) -> Array:
+def _levels(profile: Moulding, res: Resolution, subdivide: int) -> Array:
     """The profile as (s, t) levels, consecutive duplicates removed, shape (k, 2)."""
     pts = profile.sample(res.per_arc)
     if subdivide:

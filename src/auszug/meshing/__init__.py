@@ -11,7 +11,17 @@ from auszug.meshing.frames import Frames, reference_basis, rmf_angles, sweep_fra
 from auszug.meshing.loops import Loop, NetworkGraph, find_loops, loop_through, network_graph
 from auszug.meshing.mesh import Mesh, Part, concatenate
 from auszug.meshing.minimal import MinimalSurface, flat_area, minimal_surface
-from auszug.meshing.profile import Profile, circle, from_dict, from_segments, polygon, rectangle, ribbon, square
+from auszug.meshing.profile import (
+    Profile,
+    circle,
+    from_dict,
+    from_segments,
+    polygon,
+    rectangle,
+    ribbon,
+    square,
+    triangulate_polygon,
+)
 from auszug.meshing.solid import Solid, unite
 from auszug.meshing.sweep import Member, default_size, profile_for, sweep_network, sweep_piece
 
@@ -43,6 +53,7 @@ __all__ = [
     "polygon",
     "from_segments",
     "from_dict",
+    "triangulate_polygon",
     "Member",
     "default_size",
     "profile_for",

@@ -37,6 +37,7 @@ __all__ = [
     "polygon",
     "from_segments",
     "from_dict",
+    "triangulate_polygon",
     "STYLES",
 ]
 
@@ -445,31 +446,185 @@ def _first_crossing(p: Array, closed: bool, tol: float) -> tuple[int, int, Array
     return int(i[k0]), int(j[k0]), p1[k0] + s[k0] * d1[k0]
 
 
-def triangulate_polygon(points: ArrayLike) -> NDArray[np.int64]:
-    """Triangles of a simple counter-clockwise polygon, counter-clockwise, shape (m - 2, 3).
+def triangulate_polygon(points: ArrayLike, holes: Sequence[ArrayLike] = ()) -> NDArray[np.int64]:
+    """Triangles of a simple counter-clockwise polygon, optionally with holes, counter-clockwise.
 
-    Uses mapbox-earcut (free, no Shewchuk Triangle); a convex polygon is fanned.
+    The one triangulator of auszug (profile caps, face fills, tracery plates
+    and floors): mapbox-earcut (free, no Shewchuk Triangle); a convex polygon
+    without holes is fanned.
+
+    Parameters
+    ----------
+    points : (m, 2) array_like
+        The outer ring, counter-clockwise, first point not repeated.
+    holes : sequence of (k_i, 2) array_like
+        Rings inside it (any orientation), disjoint from it and each other.
+
+    Returns
+    -------
+    (t, 3) ndarray of int64
+        Indices into ``points`` followed by the holes' points in order;
+        m - 2 triangles without holes, m + sum(k_i) + 2 (#holes - 1) with.
 
     Examples
     --------
     >>> triangulate_polygon([[0, 0], [1, 0], [1, 1], [0, 1]]).tolist()
     [[0, 1, 2], [0, 2, 3]]
+    >>> len(triangulate_polygon([[0, 0], [3, 0], [3, 3], [0, 3]], [[[1, 1], [2, 1], [2, 2], [1, 2]]]))
+    8
     """
     p = np.asarray(points, dtype=float)
     m = len(p)
-    e = np.roll(p, -1, axis=0) - p
-    turn = e[:, 0] * np.roll(e[:, 1], -1) - e[:, 1] * np.roll(e[:, 0], -1)
-    if np.all(turn >= 0):
-        k = np.arange(1, m - 1)
-        return np.stack([np.zeros_like(k), k, k + 1], axis=1).astype(np.int64)
+    if not len(holes):
+        e = np.roll(p, -1, axis=0) - p
+        turn = e[:, 0] * np.roll(e[:, 1], -1) - e[:, 1] * np.roll(e[:, 0], -1)
+        if np.all(turn >= 0):
+            k = np.arange(1, m - 1)
+            return np.stack([np.zeros_like(k), k, k + 1], axis=1).astype(np.int64)
     import mapbox_earcut
 
-    tri = mapbox_earcut.triangulate_float64(np.array(p, dtype=np.float64, order="C", copy=True),
-                                            np.array([m], dtype=np.uint32)).reshape(-1, 3).astype(np.int64)
-    a, b, c = p[tri[:, 0]], p[tri[:, 1]], p[tri[:, 2]]
-    cw = ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])) < 0
-    tri[cw] = tri[cw][:, ::-1]
+    rings = [p] + [np.asarray(h, dtype=float).reshape(-1, 2) for h in holes]
+    allp = np.ascontiguousarray(np.concatenate(rings), dtype=np.float64)
+    ends = np.cumsum([len(r) for r in rings]).astype(np.uint32)
+    starts = np.concatenate([[0], ends]).astype(np.int64)
+    tri = np.empty((0, 3), np.int64)
+    for angle in (0.0, *_TURNS):
+        # earcut drops exactly collinear ring vertices and may bridge holes along a line they
+        # share (two sills on one line); seen turned by an irrational angle, rounding breaks
+        # those exact collinearities, and the triangles index the untouched points
+        q = allp if angle == 0.0 else np.ascontiguousarray(allp @ _rotation(angle).T)
+        tri = mapbox_earcut.triangulate_float64(q, ends).reshape(-1, 3).astype(np.int64)
+        # earcut's triangles all turn one way: make them counter-clockwise together (per triangle,
+        # rounding could flip a sliver and break the fill's manifoldness)
+        a, b, c = q[tri[:, 0]], q[tri[:, 1]], q[tri[:, 2]]
+        cross = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+        if cross.sum() < 0:
+            tri = tri[:, ::-1].copy()
+        tri = _restore_dropped(tri, starts)
+        if _fills_rings(tri, starts):
+            break
+    return _flip_slivers(tri, allp)
+
+
+def _flip_slivers(tri: NDArray[np.int64], p: Array) -> NDArray[np.int64]:
+    """Remove triangles of three collinear points by flipping their longest edge.
+
+    A zero-area triangle (a, b, c) with c inside its edge (a, b) and the
+    triangle (b, a, d) across that edge together are the triangle (b, a, d)
+    with c on an edge: it becomes (b, c, d) and (c, a, d). Earcut leaves such
+    slivers where ring vertices are collinear (a sill line shared by holes).
+    """
+    def cross(t: NDArray[np.int64]) -> Array:
+        a, b, c = p[t[..., 0]], p[t[..., 1]], p[t[..., 2]]
+        return (b[..., 0] - a[..., 0]) * (c[..., 1] - a[..., 1]) - (b[..., 1] - a[..., 1]) * (c[..., 0] - a[..., 0])
+
+    scale = float(np.ptp(p, axis=0).max()) if len(p) else 1.0
+    tol = 1e-14 * scale * scale
+    bad: list[int] = np.flatnonzero(np.abs(cross(tri)) <= tol).tolist()
+    if not bad:
+        return tri
+    tri = tri.copy()
+    edge: dict[tuple[int, int], int] = {}
+    for k, (a, b, c) in enumerate(tri.tolist()):
+        edge[(a, b)] = edge[(b, c)] = edge[(c, a)] = k
+    for _ in range(4 * len(bad)):
+        bad = [k for k in bad if abs(float(cross(tri[k]))) <= tol]
+        if not bad:
+            break
+        k = int(bad[0])
+        t = tri[k].tolist()
+        ln = [float(np.hypot(*(p[t[(i + 1) % 3]] - p[t[i]]))) for i in range(3)]
+        i = int(np.argmax(ln))
+        a, b, c = t[i], t[(i + 1) % 3], t[(i + 2) % 3]
+        j = edge.get((b, a))
+        if j is None:
+            bad = bad[1:]
+            continue
+        d = [v for v in tri[j].tolist() if v not in (a, b)][0]
+        for e in ((a, b), (b, c), (c, a)):
+            edge.pop(e, None)
+        for e in ((b, a), (a, d), (d, b)):
+            edge.pop(e, None)
+        tri[k] = (b, c, d)
+        tri[j] = (c, a, d)
+        for kk in (k, j):
+            x, y, z = tri[kk].tolist()
+            edge[(x, y)] = edge[(y, z)] = edge[(z, x)] = kk
+        bad = list(dict.fromkeys([*bad, k, j]))
     return tri
+
+
+#: Turns (radians) of the retries of :func:`triangulate_polygon`.
+_TURNS = (math.sqrt(2.0) - 1.0, math.pi / 7.0 - 0.1, math.e / 5.0)
+
+
+def _rotation(a: float) -> Array:
+    return np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+
+
+def _fills_rings(tri: NDArray[np.int64], starts: NDArray[np.int64]) -> bool:
+    """Whether the triangles cover the rings exactly: every ring edge once, every other edge twice."""
+    n = int(starts[-1])
+    holes = len(starts) - 2
+    if len(tri) != n - 2 + 2 * holes:
+        return False
+    e = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
+    code, cnt = np.unique(e[:, 0] * n + e[:, 1], return_counts=True)
+    idx = np.arange(n)
+    nxt = idx + 1
+    nxt[starts[1:] - 1] = starts[:-1]
+    ring = np.sort(np.stack([idx, nxt], axis=1), axis=1)
+    ring_code = ring[:, 0] * n + ring[:, 1]
+    once = code[cnt == 1]
+    return bool(np.all(cnt <= 2) and len(once) == n and np.array_equal(np.sort(ring_code), once))
+
+
+def _restore_dropped(tri: NDArray[np.int64], starts: NDArray[np.int64]) -> NDArray[np.int64]:
+    """Put back the ring vertices earcut leaves out (it drops collinear ones).
+
+    A run of dropped vertices between kept ring neighbours ``a`` and ``b``
+    lies on the output edge (a, b); its triangle (a, b, c) is replaced by the
+    fan from ``c`` through the run, so every ring edge is a mesh edge again
+    (no T-junctions where the fill meets a loft or a member).
+    """
+    n = int(starts[-1])
+    used = np.zeros(n, dtype=bool)
+    used[tri.ravel()] = True
+    if used.all() or not len(tri):
+        return tri
+    key = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
+    code = key[:, 0] * n + key[:, 1]
+    order = np.argsort(code)
+    code_s = code[order]
+    owner = np.tile(np.arange(len(tri)), 3)[order]
+    slot = np.repeat(np.arange(3), len(tri))[order]
+    drop = np.zeros(len(tri), dtype=bool)
+    extra: list[NDArray[np.int64]] = []
+    for r in range(len(starts) - 1):
+        ring = np.arange(starts[r], starts[r + 1])
+        kept = used[ring]
+        if kept.all() or not kept.any():
+            continue
+        first = int(np.argmax(kept))
+        ring = np.roll(ring, -first)  # starts at a kept vertex
+        kidx = np.flatnonzero(used[ring])
+        for i, j in zip(kidx, np.append(kidx[1:], len(ring)), strict=True):
+            if j - i < 2:
+                continue
+            a, b = int(ring[i]), int(ring[j % len(ring)])
+            run = ring[i + 1:j]
+            for u, v, chain in ((a, b, run), (b, a, run[::-1])):
+                k = int(np.searchsorted(code_s, u * n + v))
+                if k < len(code_s) and code_s[k] == u * n + v:
+                    t, sl = int(owner[k]), int(slot[k])
+                    c = int(tri[t, (sl + 2) % 3])
+                    path = np.concatenate([[u], chain, [v]])
+                    extra.append(np.stack([path[:-1], path[1:], np.full(len(path) - 1, c)], axis=1))
+                    drop[t] = True
+                    break
+    if not extra:
+        return tri
+    return np.concatenate([tri[~drop], *extra]).astype(np.int64)
 
 
 def _subdivide(p: Array, closed: bool, around: int) -> Array:

@@ -53,7 +53,7 @@ from numpy.typing import NDArray
 from auszug.errors import GeometryError
 from auszug.geometry import TOL, Arc, Curve
 from auszug.geometry.offset import offset_curves
-from auszug.meshing.mesh import Mesh, Part
+from auszug.meshing import Mesh, Part, triangulate_polygon
 from auszug.tracery._checks import ParameterError, integer, number
 from auszug.tracery.model import Region, Tracery
 from auszug.tracery.profile import Moulding
@@ -173,28 +173,6 @@ def zip_rings(ka: Array, kb: Array, period: float) -> IntArray:
     b1 = (ib + 1) % nb + na
     tri = np.where(is_a[:, None], np.stack([a0, a1, b0], 1), np.stack([a0, b1, b0], 1))
     return tri.astype(np.int64)
-
-
-def _earcut(rings: list[Array]) -> IntArray:
-    """Triangulate a polygon with holes (first ring outer, all rings counter-clockwise).
-
-    Uses manifold3d's triangulator, which returns a manifold result matching
-    the ring edges even where holes have collinear edges (ear clipping may
-    bridge across those). Triangles are counter-clockwise and index the
-    concatenated rings.
-    """
-    import manifold3d
-
-    polys = [rings[0]] + [r[::-1] for r in rings[1:]]  # holes clockwise
-    tri = np.asarray(manifold3d.triangulate([np.ascontiguousarray(p, dtype=np.float64) for p in polys]),
-                     dtype=np.int64).reshape(-1, 3)
-    # map indices of the reversed holes back to the rings' own order
-    idx = [np.arange(len(rings[0]))]
-    start = len(rings[0])
-    for r in rings[1:]:
-        idx.append(start + np.arange(len(r))[::-1])
-        start += len(r)
-    return np.concatenate(idx)[tri]
 
 
 # -- profiles ----------------------------------------------------------------------------
@@ -402,7 +380,7 @@ def window_mesh(tracery: Tracery, resolution: Resolution | None = None, subdivid
     corners = np.array([[x0, z0], [x1, z0], [x1, z1], [x0, z1]])
     c_front = front.add(np.column_stack([corners[:, 0], np.full(4, -half_t), corners[:, 1]]))
     c_mid = front.add(np.column_stack([corners[:, 0], np.zeros(4), corners[:, 1]]))
-    tri = _earcut([corners, reveal.rings[0]])
+    tri = triangulate_polygon(corners, [reveal.rings[0]])
     idx = np.concatenate([np.arange(4) + c_front, np.arange(outer_ring_len) + outer_ring_start])
     front.tri(idx[tri])
     for i in range(4):
@@ -473,7 +451,7 @@ def window_mesh(tracery: Tracery, resolution: Resolution | None = None, subdivid
         tri = floor_cache.get(key)
         if tri is None:
             rings2 = [outer[2]] + [lofts_first(kid) for kid in kids]
-            tri = floor_cache[key] = _earcut(rings2)
+            tri = floor_cache[key] = triangulate_polygon(rings2[0], rings2[1:])
         front.tri(gidx[tri])
 
     def lofts_first(r: Region) -> Array:

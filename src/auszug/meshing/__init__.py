@@ -1,5 +1,9 @@
 """Meshes from curve networks: swept members, minimal-surface faces, printable solids.
 
+The sweep model (:mod:`auszug.meshing.sweepmodel`): one :class:`Profile` of lines and arcs,
+moved by :class:`RigidFrames` along a :class:`Path`, is a :class:`Sweep`; members and tracery
+mouldings are values of it, and :func:`triangulate_polygon` is the one triangulator.
+
 ``meshing.solid.solid(...)`` makes a printable solid (the module is imported here).
 
 Pure numpy/scipy kernels (no I/O); the writers for OBJ, STL, PLY and glTF live
@@ -24,6 +28,7 @@ from auszug.meshing.profile import (
 )
 from auszug.meshing.solid import Solid, unite
 from auszug.meshing.sweep import Member, default_size, profile_for, sweep_network, sweep_piece
+from auszug.meshing.sweepmodel import Loft, Path, RigidFrames, Sweep, offset_loft, sweep_grid
 
 __all__ = [
     "Face",
@@ -54,6 +59,12 @@ __all__ = [
     "from_segments",
     "from_dict",
     "triangulate_polygon",
+    "Sweep",
+    "Path",
+    "RigidFrames",
+    "Loft",
+    "offset_loft",
+    "sweep_grid",
     "Member",
     "default_size",
     "profile_for",

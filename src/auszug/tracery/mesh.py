@@ -381,9 +381,7 @@ def _finish(verts: Array, faces: IntArray) -> Mesh:
     """Drop degenerate triangles, orient outwards, wrap as a Mesh."""
     keep = (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])
     faces = faces[keep]
-    from auszug.meshing.mesh import signed_volume
-
-    if signed_volume(verts, faces) < 0:
+    if Mesh._unchecked(verts, faces, ()).volume < 0:
         faces = faces[:, ::-1].copy()
     m = Mesh._unchecked(verts, faces, (Part("window", "solid", -1, "", (0, len(verts)), (0, len(faces))),))
     if TOL.strict and not m.is_manifold:  # invariant check of the test-suite's strict mode

@@ -42,6 +42,7 @@ __all__ = [
 ]
 
 Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
 #: Built-in profile names of :func:`auszug.meshing.profile_for`.
 STYLES = ("tube", "bar", "ribbon")
 
@@ -514,44 +515,46 @@ def _flip_slivers(tri: NDArray[np.int64], p: Array) -> NDArray[np.int64]:
     with c on an edge: it becomes (b, c, d) and (c, a, d). Earcut leaves such
     slivers where ring vertices are collinear (a sill line shared by holes).
     """
-    def cross(t: NDArray[np.int64]) -> Array:
-        a, b, c = p[t[..., 0]], p[t[..., 1]], p[t[..., 2]]
-        return (b[..., 0] - a[..., 0]) * (c[..., 1] - a[..., 1]) - (b[..., 1] - a[..., 1]) * (c[..., 0] - a[..., 0])
-
+    a, b, c = p[tri[:, 0]], p[tri[:, 1]], p[tri[:, 2]]
+    cr = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
     scale = float(np.ptp(p, axis=0).max()) if len(p) else 1.0
     tol = 1e-14 * scale * scale
-    bad: list[int] = np.flatnonzero(np.abs(cross(tri)) <= tol).tolist()
-    if not bad:
+    queue: list[int] = np.flatnonzero(np.abs(cr) <= tol).tolist()
+    if not queue:
         return tri
-    tri = tri.copy()
+    pts = p.tolist()
+
+    def sliver(t: list[int]) -> bool:
+        (ax, ay), (bx, by), (cx, cy) = pts[t[0]], pts[t[1]], pts[t[2]]
+        return abs((bx - ax) * (cy - ay) - (by - ay) * (cx - ax)) <= tol
+
+    tl: list[list[int]] = tri.tolist()
     edge: dict[tuple[int, int], int] = {}
-    for k, (a, b, c) in enumerate(tri.tolist()):
-        edge[(a, b)] = edge[(b, c)] = edge[(c, a)] = k
-    for _ in range(4 * len(bad)):
-        bad = [k for k in bad if abs(float(cross(tri[k]))) <= tol]
-        if not bad:
-            break
-        k = int(bad[0])
-        t = tri[k].tolist()
-        ln = [float(np.hypot(*(p[t[(i + 1) % 3]] - p[t[i]]))) for i in range(3)]
-        i = int(np.argmax(ln))
-        a, b, c = t[i], t[(i + 1) % 3], t[(i + 2) % 3]
-        j = edge.get((b, a))
-        if j is None:
-            bad = bad[1:]
+    for k, (x, y, z) in enumerate(tl):
+        edge[(x, y)] = edge[(y, z)] = edge[(z, x)] = k
+    budget = 8 * len(queue) + 16
+    while queue and budget:
+        budget -= 1
+        k = queue.pop()
+        t = tl[k]
+        if not sliver(t):
             continue
-        d = [v for v in tri[j].tolist() if v not in (a, b)][0]
-        for e in ((a, b), (b, c), (c, a)):
+        ln = [math.dist(pts[t[i]], pts[t[(i + 1) % 3]]) for i in range(3)]
+        i = ln.index(max(ln))
+        va, vb, vc = t[i], t[(i + 1) % 3], t[(i + 2) % 3]
+        j = edge.get((vb, va))
+        if j is None:
+            continue
+        vd = next(v for v in tl[j] if v != va and v != vb)
+        for e in ((va, vb), (vb, vc), (vc, va), (vb, va), (va, vd), (vd, vb)):
             edge.pop(e, None)
-        for e in ((b, a), (a, d), (d, b)):
-            edge.pop(e, None)
-        tri[k] = (b, c, d)
-        tri[j] = (c, a, d)
+        tl[k] = [vb, vc, vd]
+        tl[j] = [vc, va, vd]
         for kk in (k, j):
-            x, y, z = tri[kk].tolist()
+            x, y, z = tl[kk]
             edge[(x, y)] = edge[(y, z)] = edge[(z, x)] = kk
-        bad = list(dict.fromkeys([*bad, k, j]))
-    return tri
+        queue += [k, j]
+    return np.asarray(tl, dtype=np.int64).reshape(-1, 3)
 
 
 #: Turns (radians) of the retries of :func:`triangulate_polygon`.
@@ -592,39 +595,58 @@ def _restore_dropped(tri: NDArray[np.int64], starts: NDArray[np.int64]) -> NDArr
     used[tri.ravel()] = True
     if used.all() or not len(tri):
         return tri
-    key = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
-    code = key[:, 0] * n + key[:, 1]
+    # runs of dropped vertices, per ring: kept ring position i, its next kept one, the gap between
+    ra: list[IntArray] = []
+    rg: list[IntArray] = []
+    rs: list[IntArray] = []
+    rl: list[IntArray] = []
+    for r in range(len(starts) - 1):
+        s0, ln = int(starts[r]), int(starts[r + 1] - starts[r])
+        kpos = np.flatnonzero(used[s0:s0 + ln])
+        if len(kpos) == ln or not len(kpos):
+            continue
+        gap = (np.roll(kpos, -1) - kpos) % ln
+        gap[gap == 0] = ln
+        sel = gap > 1
+        ra.append(kpos[sel])
+        rg.append(gap[sel])
+        rs.append(np.full(int(sel.sum()), s0))
+        rl.append(np.full(int(sel.sum()), ln))
+    if not ra:
+        return tri
+    pos, gap, s0s, lns = (np.concatenate(x) for x in (ra, rg, rs, rl))
+    a = s0s + pos
+    b = s0s + (pos + gap) % lns
+    code = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
+    code = code[:, 0] * n + code[:, 1]
     order = np.argsort(code)
     code_s = code[order]
     owner = np.tile(np.arange(len(tri)), 3)[order]
     slot = np.repeat(np.arange(3), len(tri))[order]
-    drop = np.zeros(len(tri), dtype=bool)
-    extra: list[NDArray[np.int64]] = []
-    for r in range(len(starts) - 1):
-        ring = np.arange(starts[r], starts[r + 1])
-        kept = used[ring]
-        if kept.all() or not kept.any():
-            continue
-        first = int(np.argmax(kept))
-        ring = np.roll(ring, -first)  # starts at a kept vertex
-        kidx = np.flatnonzero(used[ring])
-        for i, j in zip(kidx, np.append(kidx[1:], len(ring)), strict=True):
-            if j - i < 2:
-                continue
-            a, b = int(ring[i]), int(ring[j % len(ring)])
-            run = ring[i + 1:j]
-            for u, v, chain in ((a, b, run), (b, a, run[::-1])):
-                k = int(np.searchsorted(code_s, u * n + v))
-                if k < len(code_s) and code_s[k] == u * n + v:
-                    t, sl = int(owner[k]), int(slot[k])
-                    c = int(tri[t, (sl + 2) % 3])
-                    path = np.concatenate([[u], chain, [v]])
-                    extra.append(np.stack([path[:-1], path[1:], np.full(len(path) - 1, c)], axis=1))
-                    drop[t] = True
-                    break
-    if not extra:
+
+    def find(u: IntArray, v: IntArray) -> IntArray:
+        k = np.minimum(np.searchsorted(code_s, u * n + v), len(code_s) - 1)
+        return np.where(code_s[k] == u * n + v, k, -1)
+
+    kf, kb = find(a, b), find(b, a)
+    fwd = kf >= 0
+    k = np.where(fwd, kf, kb)
+    ok = k >= 0
+    if not ok.any():
         return tri
-    return np.concatenate([tri[~drop], *extra]).astype(np.int64)
+    pos, gap, s0s, lns, k, fwd = pos[ok], gap[ok], s0s[ok], lns[ok], k[ok], fwd[ok]
+    t = owner[k]
+    apex = tri[t, (slot[k] + 2) % 3]
+    # the fan from the apex through the chain a, dropped..., b (reversed where the triangle runs b -> a)
+    run = np.repeat(np.arange(len(gap)), gap)
+    j = np.arange(len(run)) - np.repeat(np.cumsum(gap) - gap, gap)
+    p0 = s0s[run] + (pos[run] + j) % lns[run]
+    p1 = s0s[run] + (pos[run] + j + 1) % lns[run]
+    f = fwd[run]
+    extra = np.stack([np.where(f, p0, p1), np.where(f, p1, p0), apex[run]], axis=1)
+    drop = np.zeros(len(tri), dtype=bool)
+    drop[t] = True
+    return np.concatenate([tri[~drop], extra]).astype(np.int64)
 
 
 def _subdivide(p: Array, closed: bool, around: int) -> Array:

@@ -412,8 +412,11 @@ def sweep_piece(network: Any, pi: int, profile: Profile, segments: int = 200, ca
         en = by_end[1][1] if last and 1 in by_end else None
         w0 = _width0(piece, s, st if st is not None else en)
         fr = sweep_frames(s.points, s.tangents, w0, st, en, period)
-        sw = Sweep(profile, Path(s.points, s.tangents, fr.arclength), RigidFrames.from_frames(s.points, fr))
-        v, f = sw.grid(cap_start=caps, cap_end=caps)
+        # the run as a value of the sweep model; its mesh is the model's kernel on the same frames
+        sw = Sweep(profile, Path._unchecked(s.points, s.tangents, fr.arclength),
+                   RigidFrames.from_frames(s.points, fr, trusted=True))
+        v, f = sweep_grid(s.points, fr.width, fr.depth, profile.points, profile.closed,
+                          profile.cap if profile.closed else None, caps, caps)
         sweeps.append(sw)
         ns = len(s.points)
         verts.append(v)

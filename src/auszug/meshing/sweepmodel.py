@@ -134,6 +134,15 @@ class Path:
         object.__setattr__(self, "tangents", t)
         object.__setattr__(self, "s", s)
 
+    @classmethod
+    def _unchecked(cls, points: Array, tangents: Array, s: Array) -> Path:
+        """A path from arrays already known to be valid (no copies, no checks)."""
+        out = object.__new__(cls)
+        object.__setattr__(out, "points", points)
+        object.__setattr__(out, "tangents", tangents)
+        object.__setattr__(out, "s", s)
+        return out
+
     @property
     def knots(self) -> Array:
         """The parameters ``s`` (never None)."""
@@ -288,6 +297,15 @@ class RigidFrames:
     def __len__(self) -> int:
         return len(self.s)
 
+    @classmethod
+    def _unchecked(cls, s: Array, rotation: Array, origin: Array) -> RigidFrames:
+        """Frames from arrays already known to be valid (no checks)."""
+        out = object.__new__(cls)
+        object.__setattr__(out, "s", s)
+        object.__setattr__(out, "rotation", rotation)
+        object.__setattr__(out, "origin", origin)
+        return out
+
     @property
     def width(self) -> Array:
         """W at the knots (profile x), shape (k, 3)."""
@@ -304,13 +322,18 @@ class RigidFrames:
         return self.rotation[:, :, 2]
 
     @classmethod
-    def from_frames(cls, origins: ArrayLike, frames: Frames, s: ArrayLike | None = None) -> RigidFrames:
+    def from_frames(cls, origins: ArrayLike, frames: Frames, s: ArrayLike | None = None,
+                    trusted: bool = False) -> RigidFrames:
         """The rigid motions of :class:`~auszug.meshing.frames.Frames` at the given origins.
 
-        ``s`` defaults to the frames' arc length.
+        ``s`` defaults to the frames' arc length; ``trusted`` skips the checks
+        (frames from :func:`sweep_frames` are orthonormal by construction).
         """
         r = np.stack([frames.width, frames.depth, frames.tangent], axis=2)
-        return cls(frames.arclength if s is None else np.asarray(s, dtype=float), r, np.asarray(origins, dtype=float))
+        knots = frames.arclength if s is None else np.asarray(s, dtype=float)
+        if trusted:
+            return cls._unchecked(knots, r, np.asarray(origins, dtype=float))
+        return cls(knots, r, np.asarray(origins, dtype=float))
 
     @classmethod
     def rotation_minimising(cls, path: Path, width0: ArrayLike | None = None,

@@ -122,6 +122,17 @@ def test_meshing_never_imports_microarch():
     assert not bad, "auszug.meshing must not import auszug.microarch:\n" + "\n".join(bad)
 
 
+def test_tracery_reads_meshing_through_its_public_api():
+    """Tracery's mouldings are values of meshing's sweep model: it imports names from ``auszug.meshing``
+    (the package, and only names in its ``__all__``), never meshing's modules or internals."""
+    import auszug.meshing
+
+    public = set(auszug.meshing.__all__)
+    bad = [_where(i) for i in imports() if _part(i.importer) == "tracery" and _part(_targets(i)) == "meshing"
+           and not (i.module == "auszug.meshing" and i.name in public)]
+    assert not bad, "auszug.tracery must import meshing's public names from auszug.meshing:\n" + "\n".join(bad)
+
+
 def _private(module: str, name: str | None) -> str | None:
     """The dotted prefix that owns the first private part of ``module.name``, or None if all public.
 

@@ -150,3 +150,26 @@ def test_an_open_profile_where_a_closed_one_is_needed():
     with pytest.raises(GeometryError, match="caps and solids need a closed profile"):
         p.cap  # noqa: B018  (the property raises)
     assert Profile(p.points, False).closed is False
+
+
+def test_the_one_triangulator_fills_holes_on_a_shared_line_with_collinear_points():
+    """Two lights whose sills lie on one line, every edge subdivided: earcut alone drops the collinear
+    vertices and bridges along the line; the result must still use every ring edge once, no slivers."""
+    def ring(x0, x1, y0, y1, k):
+        t = np.arange(k) / k
+        return np.concatenate([np.stack([x0 + (x1 - x0) * t, 0 * t + y0], 1),
+                               np.stack([0 * t + x1, y0 + (y1 - y0) * t], 1),
+                               np.stack([x1 - (x1 - x0) * t, 0 * t + y1], 1),
+                               np.stack([0 * t + x0, y1 - (y1 - y0) * t], 1)])
+    outer = ring(0.0, 10.0, 0.0, 6.0, 5)
+    holes = [ring(1.0, 4.0, 1.0, 5.0, 4), ring(6.0, 9.0, 1.0, 5.0, 4)]
+    t = triangulate_polygon(outer, holes)
+    pts = np.concatenate([outer, *holes])
+    n = len(pts)
+    assert len(t) == n - 2 + 2 * len(holes)
+    a, b, c = pts[t[:, 0]], pts[t[:, 1]], pts[t[:, 2]]
+    cross = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+    assert np.all(cross > 1e-9) and 0.5 * cross.sum() == pytest.approx(60.0 - 24.0, rel=1e-12)
+    e = np.sort(np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]), axis=1)
+    _, counts = np.unique(e, axis=0, return_counts=True)
+    assert (counts == 1).sum() == n and counts.max() == 2   # each ring edge once, inner edges twice

@@ -8,8 +8,9 @@ import pytest
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
+from auszug.meshing.sweepmodel import zip_rings
 from auszug.tracery import ParameterError, build, builtin_style, builtin_styles, refine
-from auszug.tracery.mesh import Resolution, subdivide_profile, window_mesh, zip_rings
+from auszug.tracery.mesh import Resolution, subdivide_profile, window_mesh
 from tests.tracery.cases import euler_genus, n_components, self_intersections
 
 CASES = [(name, None) for name in builtin_styles()] + [

@@ -7,19 +7,20 @@ import math
 import numpy as np
 import pytest
 
-from auszug.tracery import ParameterError, Profile
+from auszug.meshing import Profile
+from auszug.tracery import Moulding, ParameterError
 from auszug.tracery.profile import profile_from_data
 
 Q = math.tan(math.pi / 8)  # the bulge of a quarter circle
 
 
 def test_arcs_from_bulges_are_exact_quarter_circles():
-    p = Profile("round", [[0, 0], [1, 1], [1, 2]], bulge=[Q, 0])
+    p = Moulding("round", [[0, 0], [1, 1], [1, 2]], bulge=[Q, 0])
     pts = p.sample(16)[:17]
     # a counter-clockwise quarter circle from (0, 0) to (1, 1): centre (0, 1)
     assert np.allclose(np.hypot(pts[:, 0], pts[:, 1] - 1), 1.0, atol=1e-12)
     assert p.sharp(16).tolist() == [True] + [False] * 16 + [True]  # tangent to the wall below: smooth
-    hollow = Profile("hollow", [[0, 0], [1, 1], [1, 2]], bulge=[-Q, 0])
+    hollow = Moulding("hollow", [[0, 0], [1, 1], [1, 2]], bulge=[-Q, 0])
     assert hollow.sharp(4)[4]  # the cavetto meets the wall with a kink
     assert (p.depth, p.inset) == (2.0, 1.0)
 
@@ -35,7 +36,7 @@ def test_arcs_from_bulges_are_exact_quarter_circles():
 ])
 def test_invalid_profiles(points, bulge, wall):
     with pytest.raises(ParameterError):
-        Profile("p", points, bulge, wall)
+        Moulding("p", points, bulge, wall)
 
 
 def test_from_data_and_back():
@@ -45,3 +46,11 @@ def test_from_data_and_back():
     assert profile_from_data("y", [[0, 0], [0, 1]]).depth == 1.0
     with pytest.raises(ParameterError):
         profile_from_data("z", {"pts": []})
+
+
+def test_a_moulding_is_the_one_meshing_profile_in_its_tracery_role():
+    m = profile_from_data("round", {"points": [[0, 0], [0.6, 0.6], [0.6, 1.2]], "bulge": [Q, 0]})
+    assert isinstance(m.profile, Profile) and not m.profile.closed and m.profile.name == "round"
+    # the quarter round's exact length: a quarter circle of radius 0.6 plus the 0.6 fillet
+    assert m.profile.length == pytest.approx(0.3 * math.pi + 0.6, rel=1e-14)
+    assert np.array_equal(m.sample(4), m.profile.sample(per_arc=4))

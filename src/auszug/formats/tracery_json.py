@@ -124,7 +124,7 @@ def loads(text: str, name: str = "<string>") -> Any:
     from auszug.geometry import Arc, Curve, Line
     from auszug.geometry.offset import is_closed
     from auszug.tracery.model import GROUPS, ROLES, Region, Tracery
-    from auszug.tracery.profile import Profile
+    from auszug.tracery.profile import Moulding
     from auszug.tracery.window import WindowParams
 
     try:
@@ -168,7 +168,7 @@ def loads(text: str, name: str = "<string>") -> Any:
             raise FormatError(f"{where}: the segments do not form a closed loop", name)
         prof = _need(rd, "profile", dict, where, name)
         try:
-            profile = Profile(str(prof.get("name", "")), prof["points"], prof.get("bulge"), bool(prof.get("wall")))
+            profile = Moulding(str(prof.get("name", "")), prof["points"], prof.get("bulge"), bool(prof.get("wall")))
         except (KeyError, ValueError) as e:
             raise FormatError(f"{where}.profile: {e}", name) from None
         regions.append(Region(

@@ -2,6 +2,10 @@
 
 ``meshing.mesh_network(network, meshing.Look(...))`` is the one pipeline from a network to
 its mesh (members, faces, solid), used by ``auszug mesh`` and the studio;
+The sweep model (:mod:`auszug.meshing.sweepmodel`): one :class:`Profile` of lines and arcs,
+moved by :class:`RigidFrames` along a :class:`Path`, is a :class:`Sweep`; members and tracery
+mouldings are values of it, and :func:`triangulate_polygon` is the one triangulator.
+
 ``meshing.solid.solid(...)`` makes a printable solid (the module is imported here).
 
 Pure numpy/scipy kernels (no I/O); the writers for OBJ, STL, PLY and glTF live
@@ -14,9 +18,20 @@ from auszug.meshing.loops import Loop, NetworkGraph, find_loops, loop_through, n
 from auszug.meshing.mesh import Mesh, Part, concatenate
 from auszug.meshing.minimal import MinimalSurface, flat_area, minimal_surface
 from auszug.meshing.pipeline import Look, MeshResult, faces_of, members_of, mesh_network, profile_of
-from auszug.meshing.profile import Profile, circle, from_dict, from_segments, polygon, rectangle, ribbon, square
+from auszug.meshing.profile import (
+    Profile,
+    circle,
+    from_dict,
+    from_segments,
+    polygon,
+    rectangle,
+    ribbon,
+    square,
+    triangulate_polygon,
+)
 from auszug.meshing.solid import Solid, unite
 from auszug.meshing.sweep import Member, default_size, profile_for, sweep_network, sweep_piece
+from auszug.meshing.sweepmodel import Loft, Path, RigidFrames, Sweep, offset_loft, sweep_grid
 
 __all__ = [
     "Look",
@@ -52,6 +67,13 @@ __all__ = [
     "polygon",
     "from_segments",
     "from_dict",
+    "triangulate_polygon",
+    "Sweep",
+    "Path",
+    "RigidFrames",
+    "Loft",
+    "offset_loft",
+    "sweep_grid",
     "Member",
     "default_size",
     "profile_for",

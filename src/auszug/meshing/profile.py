@@ -37,32 +37,47 @@ __all__ = [
     "polygon",
     "from_segments",
     "from_dict",
+    "triangulate_polygon",
     "STYLES",
 ]
 
 Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
 #: Built-in profile names of :func:`auszug.meshing.profile_for`.
 STYLES = ("tube", "bar", "ribbon")
 
 
 @dataclass(frozen=True, eq=False)
 class Profile:
-    """A cross-section: a polyline in the member's (width x, depth y) plane.
+    """A planar cross-section of lines and circular arcs, exact: vertices plus a bulge per segment.
+
+    The profile plane is the member's (width x, depth y) plane. Segment ``i``
+    runs from vertex ``i`` to vertex ``i + 1`` (for a closed profile the last
+    one back to vertex 0) and is a circular arc of bulge ``tan(sweep / 4)``
+    (positive counter-clockwise, DXF-style), a line for bulge 0. The vertices
+    themselves are the default polyline (:attr:`points`, what sweeps and caps
+    use); :meth:`sample` gives finer polylines on the exact arcs, by a count
+    per arc or a chord tolerance, and :meth:`point` evaluates the outline at
+    normalised arc length.
 
     Parameters
     ----------
     points : (m, 2) array_like
         Vertices (drawing units). A closed profile does not repeat its first
-        point; it is made counter-clockwise.
+        point; it is made counter-clockwise (its exact signed area > 0).
     closed : bool
         Whether the last vertex joins the first.
     name : str
+    bulge : (m,) or (m - 1,) array_like, optional
+        One per segment (m for closed, m - 1 for open profiles); default all
+        0 (a polygon).
 
     Raises
     ------
     GeometryError
-        Non-finite points, too few points, a zero-length edge, zero size or
-        zero area, or crossing edges.
+        Non-finite points or bulges, a wrong number of bulges, too few points,
+        a zero-length edge, zero size or zero area, or crossing edges (of the
+        polyline of :attr:`points`).
 
     Examples
     --------
@@ -71,11 +86,15 @@ class Profile:
     [[-0.05, -0.05], [0.05, -0.05], [0.05, 0.05], [-0.05, 0.05]]
     >>> p.closed, p.quarter_symmetric, round(p.radius, 6)
     (True, True, 0.070711)
+    >>> half = Profile([[1, 0], [-1, 0]], closed=False, bulge=[1.0])   # a half circle, exact
+    >>> np.round(half.point([0.5]), 12).tolist(), round(half.length, 12)
+    ([[0.0, 1.0]], 3.14159265359)
     """
 
     points: Array
     closed: bool = True
     name: str = "profile"
+    bulge: Array | None = None
 
     def __post_init__(self) -> None:
         p = np.asarray(self.points, dtype=float)
@@ -83,13 +102,22 @@ class Profile:
             raise GeometryError(f"profile points must have shape (m, 2), got {p.shape}")
         if not np.all(np.isfinite(p)):
             raise GeometryError("profile points must be finite numbers")
+        b = None if self.bulge is None else np.asarray(self.bulge, dtype=float).reshape(-1)
         if self.closed and len(p) > 1 and np.array_equal(p[0], p[-1]):
             p = p[:-1]
+            if b is not None and len(b) == len(p) + 1:
+                b = b[:-1]
+        nseg = len(p) if self.closed else max(len(p) - 1, 0)
+        if b is None:
+            b = np.zeros(nseg)
+        elif b.shape != (nseg,) or not np.all(np.isfinite(b)):
+            raise GeometryError(f"profile bulge must be {nseg} finite numbers (one per segment), "
+                                f"got {b.tolist()}")
         size = float(np.linalg.norm(p.max(0) - p.min(0))) if len(p) else 0.0
         if not size > TOL.zero:
             raise GeometryError("profile has zero size: all its points coincide")
         need = 3 if self.closed else 2
-        if len(p) < need:
+        if len(p) < need and not (self.closed and len(p) == 2 and np.all(b != 0)):
             kind = "closed" if self.closed else "open"
             raise GeometryError(f"a {kind} profile needs at least {need} points, got {len(p)}")
         e = (np.roll(p, -1, axis=0) - p) if self.closed else np.diff(p, axis=0)
@@ -98,25 +126,52 @@ class Profile:
         if len(bad):
             i = int(bad[0])
             raise GeometryError(f"profile edge {i} from point {i} {p[i].tolist()} has zero length")
-        hit = _first_crossing(p, self.closed, 1e-9 * size)
-        if hit is not None:
-            i, j, x = hit
-            raise GeometryError(
-                f"profile is self-intersecting: edges {i} and {j} meet at {np.round(x, 12).tolist()}")
+        if len(p) >= 3:
+            hit = _first_crossing(p, self.closed, 1e-9 * size)
+            if hit is not None:
+                i, j, x = hit
+                raise GeometryError(
+                    f"profile is self-intersecting: edges {i} and {j} meet at {np.round(x, 12).tolist()}")
         if self.closed:
-            area = _signed_area(p)
+            area = _signed_area(p) + float(np.sum(_segment_areas(p, b)))
             if abs(area) <= 1e-9 * size * size:
                 raise GeometryError("closed profile has zero size: it encloses no area")
             if area < 0:
                 p = p[::-1].copy()
+                b = -np.concatenate([b[-2::-1], b[-1:]])
         p.setflags(write=False)
+        b.setflags(write=False)
         object.__setattr__(self, "points", p)
+        object.__setattr__(self, "bulge", b)
         object.__setattr__(self, "closed", bool(self.closed))
+        object.__setattr__(self, "name", str(self.name))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Profile):
+            return NotImplemented
+        b = self.bulges
+        return (self.closed == other.closed and self.name == other.name
+                and self.points.shape == other.points.shape and bool(np.array_equal(self.points, other.points))
+                and bool(np.array_equal(b, other.bulges)))
+
+    def __hash__(self) -> int:
+        return hash((self.name, self.closed, self.points.tobytes(), self.bulges.tobytes()))
+
+    @property
+    def bulges(self) -> Array:
+        """The bulge of each segment, shape (m,) closed or (m - 1,) open (never None)."""
+        assert self.bulge is not None  # set by __post_init__
+        return self.bulge
 
     @property
     def n(self) -> int:
         """Number of vertices (points around)."""
         return len(self.points)
+
+    @property
+    def has_arcs(self) -> bool:
+        """Whether any segment is an arc."""
+        return bool(np.any(self.bulges != 0.0))
 
     @cached_property
     def radius(self) -> float:
@@ -125,8 +180,15 @@ class Profile:
 
     @cached_property
     def area(self) -> float:
-        """Enclosed area (0 for open profiles)."""
+        """Area enclosed by the polyline :attr:`points` (what a sweep's caps fill; 0 if open)."""
         return _signed_area(self.points) if self.closed else 0.0
+
+    @cached_property
+    def exact_area(self) -> float:
+        """Area enclosed by the exact outline of lines and arcs (0 if open)."""
+        if not self.closed:
+            return 0.0
+        return _signed_area(self.points) + float(np.sum(_segment_areas(self.points, self.bulges)))
 
     @cached_property
     def quarter_symmetric(self) -> bool:
@@ -148,6 +210,148 @@ class Profile:
             raise GeometryError("profile is open; caps and solids need a closed profile")
         return triangulate_polygon(self.points)
 
+    # -- the exact outline ------------------------------------------------------------------
+
+    @cached_property
+    def _segments(self) -> tuple[Array, Array, Array, Array, Array]:
+        """Per segment: start (k, 2), end (k, 2), centre (k, 2; start for lines), radius (0 for lines), sweep."""
+        a = self.points
+        b = np.roll(a, -1, axis=0) if self.closed else a[1:]
+        a = a[: len(b)]
+        sweep = 4.0 * np.arctan(self.bulges)
+        chord = b - a
+        c_len = np.hypot(chord[:, 0], chord[:, 1])
+        arc = sweep != 0.0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = np.where(arc, c_len / (2.0 * np.abs(np.sin(sweep / 2.0))), 0.0)
+            h = np.where(arc, r * np.cos(sweep / 2.0), 0.0)
+            nrm = np.stack([-chord[:, 1], chord[:, 0]], axis=1) / c_len[:, None]
+        ctr = 0.5 * (a + b) + (np.copysign(h, sweep))[:, None] * nrm
+        ctr = np.where(arc[:, None], ctr, a)
+        return a, b, ctr, r, sweep
+
+    @cached_property
+    def segment_lengths(self) -> Array:
+        """Exact length of every segment (arcs: r |sweep|), shape (k,)."""
+        a, b, _, r, sweep = self._segments
+        chord = np.hypot(*(b - a).T)
+        return np.where(sweep != 0.0, r * np.abs(sweep), chord)
+
+    @property
+    def length(self) -> float:
+        """Exact length of the outline."""
+        return float(self.segment_lengths.sum())
+
+    def point(self, u: ArrayLike) -> Array:
+        """Points of the exact outline at normalised arc length ``u`` in [0, 1], shape (..., 2).
+
+        ``u`` = 0 is vertex 0; for a closed profile 1 is vertex 0 again.
+        """
+        uu = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
+        ln = self.segment_lengths
+        acc = np.concatenate([[0.0], np.cumsum(ln)])
+        x = uu * acc[-1]
+        i = np.clip(np.searchsorted(acc, x, side="right") - 1, 0, len(ln) - 1)
+        f = (x - acc[i]) / ln[i]
+        return self._at(i, f)
+
+    def _at(self, i: NDArray[np.int64], f: Array) -> Array:
+        a, b, ctr, r, sweep = self._segments
+        th0 = np.arctan2(a[i, 1] - ctr[i, 1], a[i, 0] - ctr[i, 0])
+        th = th0 + sweep[i] * f
+        on_arc = ctr[i] + r[i, ..., None] * np.stack([np.cos(th), np.sin(th)], axis=-1)
+        on_line = a[i] + f[..., None] * (b[i] - a[i])
+        return np.where((sweep[i] != 0.0)[..., None], on_arc, on_line)
+
+    def sample(self, per_arc: int | None = None, tolerance: float | None = None) -> Array:
+        """The outline as a polyline on the exact arcs, shape (k, 2).
+
+        Every vertex is kept and lines are not split; each arc gets ``per_arc``
+        steps, or as many as its chords need to stay within ``tolerance`` of
+        it (at least one). Neither: the vertices, :attr:`points`. A closed
+        profile's polyline does not repeat its first point; an open one ends
+        at its last vertex.
+
+        Examples
+        --------
+        >>> q = Profile([[0, 0], [1, 1], [1, 2]], closed=False, bulge=[math.tan(math.pi / 8), 0])
+        >>> q.sample(per_arc=2).round(6).tolist()
+        [[0.0, 0.0], [0.707107, 0.292893], [1.0, 1.0], [1.0, 2.0]]
+        """
+        k = self._arc_counts(per_arc, tolerance)
+        if k is None:
+            return self.points
+        seg = np.repeat(np.arange(len(k)), k)
+        f = np.concatenate([np.arange(n) * (1.0 / n) for n in k])
+        out = self._at(seg, f)
+        first = np.concatenate([[0], np.cumsum(k)[:-1]])
+        out[first] = self.points[: len(k)]  # the vertices exactly
+        if not self.closed:
+            out = np.concatenate([out, self.points[-1:]])
+        return out
+
+    def _arc_counts(self, per_arc: int | None, tolerance: float | None) -> NDArray[np.int64] | None:
+        """Steps per segment of :meth:`sample` (None: the vertices alone)."""
+        if per_arc is None and tolerance is None:
+            return None
+        _, _, _, r, sweep = self._segments
+        arc = sweep != 0.0
+        if per_arc is not None:
+            k = np.where(arc, max(int(per_arc), 1), 1).astype(np.int64)
+        else:
+            tol = float(tolerance)  # type: ignore[arg-type]
+            if not (math.isfinite(tol) and tol > 0.0):
+                raise GeometryError(f"profile sampling tolerance must be a positive number, got {tolerance}")
+            with np.errstate(divide="ignore", invalid="ignore"):
+                step = np.where(r > tol, 2.0 * np.arccos(np.clip(1.0 - tol / r, -1.0, 1.0)), np.pi)
+            k = np.where(arc, np.maximum(1, np.ceil(np.abs(sweep) / step - 1e-9)), 1).astype(np.int64)
+        return None if np.all(k == 1) else k
+
+    def sharp(self, per_arc: int | None = None) -> NDArray[np.bool_]:
+        """Which points of :meth:`sample` (``per_arc``) are creases, shape (k,).
+
+        The ends of an open profile are creases, and every vertex where the
+        tangent turns by more than 1 degree; points inside arcs and
+        tangent-continuous vertices are smooth.
+        """
+        a, b, _, _, sweep = self._segments
+        chord = b - a
+        ang = np.arctan2(chord[:, 1], chord[:, 0])
+        t_start = ang - 0.5 * sweep
+        t_end = ang + 0.5 * sweep
+        n = len(self.points)
+        vsharp = np.ones(n, dtype=bool)
+        if self.closed:
+            turn = np.abs((t_start - np.roll(t_end, 1) + np.pi) % (2 * np.pi) - np.pi)
+            vsharp = turn > math.radians(1.0)
+        else:
+            turn = np.abs((t_start[1:] - t_end[:-1] + np.pi) % (2 * np.pi) - np.pi)
+            vsharp[1:-1] = turn > math.radians(1.0)
+        k = per_arc if per_arc is not None and per_arc >= 2 else 1
+        out = []
+        for i in range(len(sweep)):
+            m = k if sweep[i] != 0.0 else 1
+            seg = np.zeros(m, dtype=bool)
+            seg[0] = vsharp[i]
+            out.append(seg)
+        if not self.closed:
+            out.append(vsharp[-1:])
+        return np.concatenate(out)
+
+    def refined(self, per_arc: int | None = None, tolerance: float | None = None) -> "Profile":
+        """The same exact outline with its arcs split at the points of :meth:`sample`.
+
+        The new vertices are the sample points, each sub-arc keeps the arc's
+        circle (bulge ``tan(sweep / 4k)``), so sweeps of the result follow the
+        arcs more closely while the geometry stays exact.
+        """
+        k = self._arc_counts(per_arc, tolerance)
+        if k is None:
+            return self
+        sweep = self._segments[4]
+        bul = np.repeat(np.tan(sweep / (4.0 * k)), k)
+        return Profile(self.sample(per_arc, tolerance), self.closed, self.name, bul)
+
     def require_closed(self, what: str = "a solid") -> None:
         """Raise a clear error unless the profile is closed."""
         if not self.closed:
@@ -155,14 +359,30 @@ class Profile:
                                 "(give \"closed\": true, or a ribbon thickness > 0)")
 
     def scaled(self, factor: float) -> "Profile":
-        """The profile scaled about its centre line."""
+        """The profile scaled about its centre line (arcs stay arcs)."""
         if not (math.isfinite(factor) and factor > 0):
             raise GeometryError(f"profile scale must be a positive number, got {factor}")
-        return Profile(self.points * factor, self.closed, self.name)
+        return Profile(self.points * factor, self.closed, self.name, self.bulges)
+
+    def reversed(self) -> "Profile":
+        """An open profile run the other way (a closed one stays counter-clockwise)."""
+        if self.closed:
+            return self
+        return Profile(self.points[::-1], False, self.name, -self.bulges[::-1])
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: ``{"name", "closed", "points"}`` (readable by :func:`from_dict`)."""
-        return {"name": self.name, "closed": self.closed, "points": self.points.tolist()}
+        """JSON-ready: ``{"name", "closed", "points"}`` plus ``"bulge"`` if it has arcs (see :func:`from_dict`).
+
+        Examples
+        --------
+        >>> c = circle(1.0, 6)
+        >>> from_dict(c.to_dict()) == c
+        True
+        """
+        d: dict[str, Any] = {"name": self.name, "closed": self.closed, "points": self.points.tolist()}
+        if self.has_arcs:
+            d["bulge"] = self.bulges.tolist()
+        return d
 
 
 # -- kernels ----------------------------------------------------------------------------------
@@ -171,6 +391,17 @@ class Profile:
 def _signed_area(p: Array) -> float:
     x, y = p[:, 0], p[:, 1]
     return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+
+
+def _segment_areas(p: Array, bulge: Array) -> Array:
+    """Signed area between each segment's chord and its arc (positive for counter-clockwise bulges)."""
+    q = np.roll(p, -1, axis=0)[: len(bulge)]
+    c = np.hypot(*(q - p[: len(bulge)]).T)
+    sweep = 4.0 * np.arctan(bulge)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = c / (2.0 * np.abs(np.sin(sweep / 2.0)))
+        a = 0.5 * r * r * (np.abs(sweep) - np.sin(np.abs(sweep)))
+    return np.where(sweep != 0.0, np.sign(sweep) * a, 0.0)
 
 
 def _first_crossing(p: Array, closed: bool, tol: float) -> tuple[int, int, Array] | None:
@@ -216,31 +447,206 @@ def _first_crossing(p: Array, closed: bool, tol: float) -> tuple[int, int, Array
     return int(i[k0]), int(j[k0]), p1[k0] + s[k0] * d1[k0]
 
 
-def triangulate_polygon(points: ArrayLike) -> NDArray[np.int64]:
-    """Triangles of a simple counter-clockwise polygon, counter-clockwise, shape (m - 2, 3).
+def triangulate_polygon(points: ArrayLike, holes: Sequence[ArrayLike] = ()) -> NDArray[np.int64]:
+    """Triangles of a simple counter-clockwise polygon, optionally with holes, counter-clockwise.
 
-    Uses mapbox-earcut (free, no Shewchuk Triangle); a convex polygon is fanned.
+    The one triangulator of auszug (profile caps, face fills, tracery plates
+    and floors): mapbox-earcut (free, no Shewchuk Triangle); a convex polygon
+    without holes is fanned.
+
+    Parameters
+    ----------
+    points : (m, 2) array_like
+        The outer ring, counter-clockwise, first point not repeated.
+    holes : sequence of (k_i, 2) array_like
+        Rings inside it (any orientation), disjoint from it and each other.
+
+    Returns
+    -------
+    (t, 3) ndarray of int64
+        Indices into ``points`` followed by the holes' points in order;
+        m - 2 triangles without holes, m + sum(k_i) + 2 (#holes - 1) with.
 
     Examples
     --------
     >>> triangulate_polygon([[0, 0], [1, 0], [1, 1], [0, 1]]).tolist()
     [[0, 1, 2], [0, 2, 3]]
+    >>> len(triangulate_polygon([[0, 0], [3, 0], [3, 3], [0, 3]], [[[1, 1], [2, 1], [2, 2], [1, 2]]]))
+    8
     """
     p = np.asarray(points, dtype=float)
     m = len(p)
-    e = np.roll(p, -1, axis=0) - p
-    turn = e[:, 0] * np.roll(e[:, 1], -1) - e[:, 1] * np.roll(e[:, 0], -1)
-    if np.all(turn >= 0):
-        k = np.arange(1, m - 1)
-        return np.stack([np.zeros_like(k), k, k + 1], axis=1).astype(np.int64)
+    if not len(holes):
+        e = np.roll(p, -1, axis=0) - p
+        turn = e[:, 0] * np.roll(e[:, 1], -1) - e[:, 1] * np.roll(e[:, 0], -1)
+        if np.all(turn >= 0):
+            k = np.arange(1, m - 1)
+            return np.stack([np.zeros_like(k), k, k + 1], axis=1).astype(np.int64)
     import mapbox_earcut
 
-    tri = mapbox_earcut.triangulate_float64(np.array(p, dtype=np.float64, order="C", copy=True),
-                                            np.array([m], dtype=np.uint32)).reshape(-1, 3).astype(np.int64)
+    rings = [p] + [np.asarray(h, dtype=float).reshape(-1, 2) for h in holes]
+    allp = np.ascontiguousarray(np.concatenate(rings), dtype=np.float64)
+    ends = np.cumsum([len(r) for r in rings]).astype(np.uint32)
+    starts = np.concatenate([[0], ends]).astype(np.int64)
+    tri = np.empty((0, 3), np.int64)
+    for angle in (0.0, *_TURNS):
+        # earcut drops exactly collinear ring vertices and may bridge holes along a line they
+        # share (two sills on one line); seen turned by an irrational angle, rounding breaks
+        # those exact collinearities, and the triangles index the untouched points
+        q = allp if angle == 0.0 else np.ascontiguousarray(allp @ _rotation(angle).T)
+        tri = mapbox_earcut.triangulate_float64(q, ends).reshape(-1, 3).astype(np.int64)
+        # earcut's triangles all turn one way: make them counter-clockwise together (per triangle,
+        # rounding could flip a sliver and break the fill's manifoldness)
+        a, b, c = q[tri[:, 0]], q[tri[:, 1]], q[tri[:, 2]]
+        cross = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+        if cross.sum() < 0:
+            tri = tri[:, ::-1].copy()
+        tri = _restore_dropped(tri, starts)
+        if _fills_rings(tri, starts):
+            break
+    return _flip_slivers(tri, allp)
+
+
+def _flip_slivers(tri: NDArray[np.int64], p: Array) -> NDArray[np.int64]:
+    """Remove triangles of three collinear points by flipping their longest edge.
+
+    A zero-area triangle (a, b, c) with c inside its edge (a, b) and the
+    triangle (b, a, d) across that edge together are the triangle (b, a, d)
+    with c on an edge: it becomes (b, c, d) and (c, a, d). Earcut leaves such
+    slivers where ring vertices are collinear (a sill line shared by holes).
+    """
     a, b, c = p[tri[:, 0]], p[tri[:, 1]], p[tri[:, 2]]
-    cw = ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])) < 0
-    tri[cw] = tri[cw][:, ::-1]
-    return tri
+    cr = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+    scale = float(np.ptp(p, axis=0).max()) if len(p) else 1.0
+    tol = 1e-14 * scale * scale
+    queue: list[int] = np.flatnonzero(np.abs(cr) <= tol).tolist()
+    if not queue:
+        return tri
+    pts = p.tolist()
+
+    def sliver(t: list[int]) -> bool:
+        (ax, ay), (bx, by), (cx, cy) = pts[t[0]], pts[t[1]], pts[t[2]]
+        return abs((bx - ax) * (cy - ay) - (by - ay) * (cx - ax)) <= tol
+
+    tl: list[list[int]] = tri.tolist()
+    edge: dict[tuple[int, int], int] = {}
+    for k, (x, y, z) in enumerate(tl):
+        edge[(x, y)] = edge[(y, z)] = edge[(z, x)] = k
+    budget = 8 * len(queue) + 16
+    while queue and budget:
+        budget -= 1
+        k = queue.pop()
+        t = tl[k]
+        if not sliver(t):
+            continue
+        ln = [math.dist(pts[t[i]], pts[t[(i + 1) % 3]]) for i in range(3)]
+        i = ln.index(max(ln))
+        va, vb, vc = t[i], t[(i + 1) % 3], t[(i + 2) % 3]
+        j = edge.get((vb, va))
+        if j is None:
+            continue
+        vd = next(v for v in tl[j] if v != va and v != vb)
+        for e in ((va, vb), (vb, vc), (vc, va), (vb, va), (va, vd), (vd, vb)):
+            edge.pop(e, None)
+        tl[k] = [vb, vc, vd]
+        tl[j] = [vc, va, vd]
+        for kk in (k, j):
+            x, y, z = tl[kk]
+            edge[(x, y)] = edge[(y, z)] = edge[(z, x)] = kk
+        queue += [k, j]
+    return np.asarray(tl, dtype=np.int64).reshape(-1, 3)
+
+
+#: Turns (radians) of the retries of :func:`triangulate_polygon`.
+_TURNS = (math.sqrt(2.0) - 1.0, math.pi / 7.0 - 0.1, math.e / 5.0)
+
+
+def _rotation(a: float) -> Array:
+    return np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+
+
+def _fills_rings(tri: NDArray[np.int64], starts: NDArray[np.int64]) -> bool:
+    """Whether the triangles cover the rings exactly: every ring edge once, every other edge twice."""
+    n = int(starts[-1])
+    holes = len(starts) - 2
+    if len(tri) != n - 2 + 2 * holes:
+        return False
+    e = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
+    code, cnt = np.unique(e[:, 0] * n + e[:, 1], return_counts=True)
+    idx = np.arange(n)
+    nxt = idx + 1
+    nxt[starts[1:] - 1] = starts[:-1]
+    ring = np.sort(np.stack([idx, nxt], axis=1), axis=1)
+    ring_code = ring[:, 0] * n + ring[:, 1]
+    once = code[cnt == 1]
+    return bool(np.all(cnt <= 2) and len(once) == n and np.array_equal(np.sort(ring_code), once))
+
+
+def _restore_dropped(tri: NDArray[np.int64], starts: NDArray[np.int64]) -> NDArray[np.int64]:
+    """Put back the ring vertices earcut leaves out (it drops collinear ones).
+
+    A run of dropped vertices between kept ring neighbours ``a`` and ``b``
+    lies on the output edge (a, b); its triangle (a, b, c) is replaced by the
+    fan from ``c`` through the run, so every ring edge is a mesh edge again
+    (no T-junctions where the fill meets a loft or a member).
+    """
+    n = int(starts[-1])
+    used = np.zeros(n, dtype=bool)
+    used[tri.ravel()] = True
+    if used.all() or not len(tri):
+        return tri
+    # runs of dropped vertices, per ring: kept ring position i, its next kept one, the gap between
+    ra: list[IntArray] = []
+    rg: list[IntArray] = []
+    rs: list[IntArray] = []
+    rl: list[IntArray] = []
+    for r in range(len(starts) - 1):
+        s0, ln = int(starts[r]), int(starts[r + 1] - starts[r])
+        kpos = np.flatnonzero(used[s0:s0 + ln])
+        if len(kpos) == ln or not len(kpos):
+            continue
+        gap = (np.roll(kpos, -1) - kpos) % ln
+        gap[gap == 0] = ln
+        sel = gap > 1
+        ra.append(kpos[sel])
+        rg.append(gap[sel])
+        rs.append(np.full(int(sel.sum()), s0))
+        rl.append(np.full(int(sel.sum()), ln))
+    if not ra:
+        return tri
+    pos, gap, s0s, lns = (np.concatenate(x) for x in (ra, rg, rs, rl))
+    a = s0s + pos
+    b = s0s + (pos + gap) % lns
+    code = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
+    code = code[:, 0] * n + code[:, 1]
+    order = np.argsort(code)
+    code_s = code[order]
+    owner = np.tile(np.arange(len(tri)), 3)[order]
+    slot = np.repeat(np.arange(3), len(tri))[order]
+
+    def find(u: IntArray, v: IntArray) -> IntArray:
+        k = np.minimum(np.searchsorted(code_s, u * n + v), len(code_s) - 1)
+        return np.where(code_s[k] == u * n + v, k, -1)
+
+    kf, kb = find(a, b), find(b, a)
+    fwd = kf >= 0
+    k = np.where(fwd, kf, kb)
+    ok = k >= 0
+    if not ok.any():
+        return tri
+    pos, gap, s0s, lns, k, fwd = pos[ok], gap[ok], s0s[ok], lns[ok], k[ok], fwd[ok]
+    t = owner[k]
+    apex = tri[t, (slot[k] + 2) % 3]
+    # the fan from the apex through the chain a, dropped..., b (reversed where the triangle runs b -> a)
+    run = np.repeat(np.arange(len(gap)), gap)
+    j = np.arange(len(run)) - np.repeat(np.cumsum(gap) - gap, gap)
+    p0 = s0s[run] + (pos[run] + j) % lns[run]
+    p1 = s0s[run] + (pos[run] + j + 1) % lns[run]
+    f = fwd[run]
+    extra = np.stack([np.where(f, p0, p1), np.where(f, p1, p0), apex[run]], axis=1)
+    drop = np.zeros(len(tri), dtype=bool)
+    drop[t] = True
+    return np.concatenate([tri[~drop], extra]).astype(np.int64)
 
 
 def _subdivide(p: Array, closed: bool, around: int) -> Array:
@@ -270,20 +676,20 @@ def _positive(name: str, v: float) -> float:
 
 
 def circle(radius: float, around: int = 40) -> Profile:
-    """A regular ``around``-gon inscribed in the circle (a round tube).
+    """The circle, exact, as ``around`` arcs: its vertices are the inscribed regular ``around``-gon (a round tube).
 
     Examples
     --------
     >>> p = circle(1.0, 8)
-    >>> p.n, p.quarter_symmetric
-    (8, True)
+    >>> p.n, p.quarter_symmetric, round(p.exact_area, 12) == round(math.pi, 12)
+    (8, True, True)
     """
     r = _positive("tube radius", radius)
     n = int(around)
     if n < 3:
         raise GeometryError(f"a round profile needs at least 3 points around, got {around}")
     a = 2.0 * np.pi * np.arange(n) / n
-    return Profile(r * np.stack([np.cos(a), np.sin(a)], axis=1), True, "tube")
+    return Profile(r * np.stack([np.cos(a), np.sin(a)], axis=1), True, "tube", np.full(n, math.tan(math.pi / (2 * n))))
 
 
 def rectangle(width: float, depth: float, around: int = 4, name: str = "rectangle") -> Profile:
@@ -364,7 +770,10 @@ def _xy(v: Any, what: str) -> Array:
 
 def from_segments(start: ArrayLike, segments: Sequence[Mapping[str, Any]], closed: bool = True,
                   around: int = 40, name: str = "profile") -> Profile:
-    """A profile of lines and circular arcs, sampled with about ``around`` points.
+    """A profile of lines and circular arcs, its arcs split into about ``around`` vertices in all.
+
+    The result is exact (each piece of an arc keeps its circle as a bulge);
+    its vertices, the polyline that sweeps use, are spread by length.
 
     Parameters
     ----------
@@ -415,20 +824,23 @@ def from_segments(start: ArrayLike, segments: Sequence[Mapping[str, Any]], close
     lengths = np.array([c.length() for c in curves])
     around = max(int(around), 3)
     pts = []
+    bulge = []
     for c, ln in zip(curves, lengths, strict=True):
         k = max(1, int(round(around * ln / lengths.sum())))
         if isinstance(c, Arc):
             k = max(k, int(math.ceil(abs(c.sweep) / (math.pi / 8))))
         pts.append(c.point(np.arange(k) / k))
+        bulge.append(np.full(k, math.tan(c.sweep / (4 * k)) if isinstance(c, Arc) else 0.0))
     if not closed:
         pts.append(cur[None, :])
-    return Profile(np.concatenate(pts), closed, name)
+    return Profile(np.concatenate(pts), closed, name, np.concatenate(bulge))
 
 
 def from_dict(d: Mapping[str, Any], around: int = 40) -> Profile:
     """A profile from its JSON description.
 
-    Either ``{"points": [[x, y], ...], "closed": true}`` (straight edges) or
+    Either ``{"points": [[x, y], ...], "closed": true}`` (straight edges, or
+    arcs with ``"bulge": [b, ...]``, one per segment, as :meth:`Profile.to_dict` writes) or
     ``{"start": [x, y], "segments": [...], "closed": true}`` (see
     :func:`from_segments`); optional ``"name"`` and ``"scale"`` (multiplies
     all coordinates).
@@ -453,7 +865,13 @@ def from_dict(d: Mapping[str, Any], around: int = 40) -> Profile:
             pts = np.asarray(d["points"], dtype=float)
         except (TypeError, ValueError):
             raise GeometryError("'points' must be a list of [x, y] pairs") from None
-        prof = Profile(pts.reshape(-1, 2) if pts.size % 2 == 0 else pts, closed, name)
+        bulge = d.get("bulge")
+        if bulge is not None:
+            try:
+                bulge = np.asarray(bulge, dtype=float)
+            except (TypeError, ValueError):
+                raise GeometryError("'bulge' must be a list of numbers, one per segment") from None
+        prof = Profile(pts.reshape(-1, 2) if pts.size % 2 == 0 else pts, closed, name, bulge)
     elif "segments" in d:
         if "start" not in d:
             raise GeometryError("a profile with 'segments' needs a 'start' point")

@@ -38,7 +38,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import lru_cache
 from typing import Any, Iterable, Sequence
 
 import numpy as np
@@ -51,6 +50,7 @@ from auszug.meshing._clip import clip_halfspace, compact
 from auszug.meshing.frames import Frames, sweep_frames
 from auszug.meshing.mesh import Mesh, Part
 from auszug.meshing.profile import Profile, circle, ribbon, square
+from auszug.meshing.sweepmodel import Path, RigidFrames, Sweep, sweep_grid
 
 __all__ = [
     "SWEPT_KINDS",
@@ -190,21 +190,6 @@ def sample_piece(piece: Piece, segments: int) -> list[CurveSamples]:
 # -- the sweep kernel ---------------------------------------------------------------------------
 
 
-@lru_cache(maxsize=64)
-def _grid_faces(n: int, m: int, closed: bool) -> IntArray:
-    """Side triangles of an n-ring by m-point sweep (read-only, cached)."""
-    j = np.arange(m if closed else m - 1)
-    j1 = (j + 1) % m
-    i = np.arange(n - 1)[:, None]
-    a = i * m + j
-    b = i * m + j1
-    c = (i + 1) * m + j1
-    d = (i + 1) * m + j
-    f = np.stack([np.stack([a, b, c], -1), np.stack([a, c, d], -1)], axis=2).reshape(-1, 3).astype(np.int64)
-    f.setflags(write=False)
-    return f
-
-
 def sweep_profile(points: Array, frames: Frames, profile: Profile, cap_start: bool = True,
                   cap_end: bool = True) -> tuple[Array, IntArray]:
     """The surface swept by ``profile`` along sampled points with their frames.
@@ -236,19 +221,9 @@ def sweep_profile(points: Array, frames: Frames, profile: Profile, cap_start: bo
     >>> m = Mesh(v, f); m.is_watertight, round(m.volume, 12)
     (True, 1.0)
     """
-    n = len(points)
-    pp = profile.points
-    m = len(pp)
-    v = (points[:, None, :] + pp[None, :, 0, None] * frames.width[:, None, :]
-         + pp[None, :, 1, None] * frames.depth[:, None, :]).reshape(-1, 3)
-    faces = [_grid_faces(n, m, profile.closed)]
-    if profile.closed:
-        cap = profile.cap
-        if cap_start:
-            faces.append(cap[:, ::-1])
-        if cap_end:
-            faces.append(cap + (n - 1) * m)
-    return v, np.concatenate(faces) if len(faces) > 1 else faces[0].copy()
+    cap = profile.cap if profile.closed else None
+    return sweep_grid(np.asarray(points, dtype=float), frames.width, frames.depth, profile.points, profile.closed,
+                      cap, cap_start, cap_end)
 
 
 # -- members ------------------------------------------------------------------------------------
@@ -299,6 +274,11 @@ class Member:
     name : str
         Suffix for part names: ``""`` for a curve's first ogee, else
         ``".<kind><segment>"`` as in network curve ids.
+    closed : bool
+        Whether the profile is closed.
+    sweeps : tuple of Sweep
+        The sweep model of each smooth run (profile, sampled path, frames),
+        before cuts: ``sweeps[k].point(s, v)`` is the exact member surface.
     """
 
     piece: int
@@ -312,6 +292,7 @@ class Member:
     replicas: tuple[int, ...]
     name: str = ""
     closed: bool = field(default=True)
+    sweeps: tuple[Sweep, ...] = ()
 
 
 def _reflection_axis(m: Array) -> Array:
@@ -418,6 +399,7 @@ def sweep_piece(network: Any, pi: int, profile: Profile, segments: int = 200, ca
     verts: list[Array] = []
     faces: list[IntArray] = []
     frames_l: list[Frames] = []
+    sweeps: list[Sweep] = []
     ring: list[IntArray] = []
     fring: list[IntArray] = []
     off = 0
@@ -430,7 +412,12 @@ def sweep_piece(network: Any, pi: int, profile: Profile, segments: int = 200, ca
         en = by_end[1][1] if last and 1 in by_end else None
         w0 = _width0(piece, s, st if st is not None else en)
         fr = sweep_frames(s.points, s.tangents, w0, st, en, period)
-        v, f = sweep_profile(s.points, fr, profile, cap_start=caps, cap_end=caps)
+        # the run as a value of the sweep model; its mesh is the model's kernel on the same frames
+        sw = Sweep(profile, Path._unchecked(s.points, s.tangents, fr.arclength),
+                   RigidFrames.from_frames(s.points, fr, trusted=True))
+        v, f = sweep_grid(s.points, fr.width, fr.depth, profile.points, profile.closed,
+                          profile.cap if profile.closed else None, caps, caps)
+        sweeps.append(sw)
         ns = len(s.points)
         verts.append(v)
         faces.append(f + off)
@@ -477,7 +464,7 @@ def sweep_piece(network: Any, pi: int, profile: Profile, segments: int = 200, ca
         V, F = compact(V, F)
     pts = np.concatenate([s.points for s in runs])
     return Member(pi, piece.basic, piece.kind, V, F, frames_l, runs, tuple(cuts),
-                  _replica_set(network, pi, pts, tol), network.suffix(pi), profile.closed)
+                  _replica_set(network, pi, pts, tol), network.suffix(pi), profile.closed, tuple(sweeps))
 
 
 def sweep_members(network: Any, profile: Profile, segments: int = 200, kinds: Iterable[str] = SWEPT_KINDS,

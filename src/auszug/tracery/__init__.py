@@ -21,7 +21,7 @@ from auszug.tracery.build import build, structure
 from auszug.tracery.mesh import Resolution, window_mesh
 from auszug.tracery.model import Region, Tracery
 from auszug.tracery.network import border_network
-from auszug.tracery.profile import Profile
+from auszug.tracery.profile import Moulding
 from auszug.tracery.rosette import foil_radius, rosette
 from auszug.tracery.style import Style, builtin_style, builtin_styles, load_style, parse_style, refine
 from auszug.tracery.window import Prototype, WindowParams, prototype
@@ -44,7 +44,7 @@ __all__ = [
     "window_mesh",
     "build",
     "structure",
-    "Profile",
+    "Moulding",
     "Style",
     "builtin_style",
     "builtin_styles",

@@ -51,24 +51,20 @@ import numpy as np
 from numpy.typing import NDArray
 
 from auszug.errors import GeometryError
-from auszug.geometry import TOL, Arc, Curve
+from auszug.geometry import TOL, Curve
 from auszug.geometry.offset import offset_curves
-from auszug.meshing.mesh import Mesh, Part
+from auszug.meshing import Loft, Mesh, Part, offset_loft, triangulate_polygon
 from auszug.tracery._checks import ParameterError, integer, number
 from auszug.tracery.model import Region, Tracery
-from auszug.tracery.profile import Profile
+from auszug.tracery.profile import Moulding
 
-__all__ = ["window_mesh", "Resolution", "subdivide_profile", "loop_ring", "zip_rings"]
+__all__ = ["window_mesh", "Resolution", "subdivide_profile"]
 
 #: A recess may reach at most this share of the half slab (the rest stays solid wall).
 SLAB_SHARE = 0.98
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
-
-#: Share of the key interval reserved for round joins at each corner.
-_DELTA = 0.05
-
 
 @dataclass(frozen=True)
 class Resolution:
@@ -92,109 +88,6 @@ class Resolution:
     chord: float = 4e-4
     per_arc: int = 4
     max_edge: float = 0.25
-
-
-# -- rings: offset loops as polygons with keys --------------------------------------------
-
-def loop_ring(curves: tuple[Curve, ...] | list[Curve], source: Any, is_join: Any, n_base: int,
-              max_angle: float, chord: float, max_edge: float = 0.0) -> tuple[Array, Array]:
-    """Sample an offset loop into a polygon whose points carry zip keys.
-
-    Parameters
-    ----------
-    curves : sequence of Line or Arc
-        The closed loop (an offset of a base loop of ``n_base`` curves).
-    source, is_join : (m,) array_like
-        As in :class:`auszug.geometry.offset.OffsetCurves`.
-    n_base : int
-        Number of curves of the base loop.
-    max_angle, chord : float
-        Arc sampling: angular step, or the angle of a chord deviating
-        ``chord``, whichever is larger.
-    max_edge : float
-        Lines are split into pieces at most this long (0: not split).
-
-    Returns
-    -------
-    points : (n, 2) ndarray
-        The polygon, counter-clockwise, first point not repeated.
-    keys : (n,) ndarray
-        Increasing position along the base loop in ``[-d, n_base - d)``: a
-        point on the offset of base curve ``i`` at fraction ``f`` of the piece
-        has key ``i + d + (1 - 2 d) f``; points of a round join before curve
-        ``i`` have keys in ``[i - d, i + d)``.
-    """
-    pts = []
-    keys = []
-    for c, src, join in zip(curves, source, is_join, strict=True):
-        if isinstance(c, Arc):
-            step = max_angle
-            if chord < c.radius:
-                step = max(step, 2.0 * math.acos(1.0 - chord / c.radius))
-            n = max(1, math.ceil(abs(c.sweep) / min(step, math.pi / 3) - 1e-9))
-            f = np.arange(n) / n
-            th = c.theta0 + c.sweep * f
-            pts.append(c.center + c.radius * np.stack([np.cos(th), np.sin(th)], axis=-1))
-        else:
-            n = max(1, math.ceil(c.length() / max_edge - 1e-9)) if max_edge > 0 else 1
-            f = np.arange(n) / n
-            pts.append(c.start + f[:, None] * (c.end - c.start))
-        keys.append(src - _DELTA + 2.0 * _DELTA * f if join else src + _DELTA + (1.0 - 2.0 * _DELTA) * f)
-    p = np.concatenate(pts)
-    k = np.concatenate(keys)
-    k = np.mod(k + _DELTA, n_base) - _DELTA
-    start = int(np.argmin(k))
-    return np.roll(p, -start, axis=0), np.roll(k, -start)
-
-
-def zip_rings(ka: Array, kb: Array, period: float) -> IntArray:
-    """Triangles joining ring A to ring B by their keys (a zipper), shape (na + nb, 3).
-
-    Indices refer to A's points as ``0..na-1`` and B's as ``na..na+nb-1``.
-    Seen with A before B, the triangles turn the same way as the rings.
-
-    Examples
-    --------
-    >>> zip_rings(np.array([0.0, 1.0]), np.array([0.0, 1.0]), 2.0).tolist()
-    [[0, 1, 2], [1, 3, 2], [1, 0, 3], [0, 2, 3]]
-    """
-    na, nb = len(ka), len(kb)
-    nxt_a = np.append(ka[1:], ka[0] + period)
-    nxt_b = np.append(kb[1:], kb[0] + period)
-    # advance the ring whose next key is smaller (A first on ties)
-    allk = np.concatenate([nxt_a, nxt_b])
-    order = np.argsort(allk, kind="stable")
-    is_a = order < na
-    ia = np.concatenate([[0], np.cumsum(is_a)])[:-1]
-    ib = np.concatenate([[0], np.cumsum(~is_a)])[:-1]
-    a0 = ia % na
-    a1 = (ia + 1) % na
-    b0 = ib % nb + na
-    b1 = (ib + 1) % nb + na
-    tri = np.where(is_a[:, None], np.stack([a0, a1, b0], 1), np.stack([a0, b1, b0], 1))
-    return tri.astype(np.int64)
-
-
-def _earcut(rings: list[Array]) -> IntArray:
-    """Triangulate a polygon with holes (first ring outer, all rings counter-clockwise).
-
-    Uses manifold3d's triangulator, which returns a manifold result matching
-    the ring edges even where holes have collinear edges (ear clipping may
-    bridge across those). Triangles are counter-clockwise and index the
-    concatenated rings.
-    """
-    import manifold3d
-
-    polys = [rings[0]] + [r[::-1] for r in rings[1:]]  # holes clockwise
-    tri = np.asarray(manifold3d.triangulate([np.ascontiguousarray(p, dtype=np.float64) for p in polys]),
-                     dtype=np.int64).reshape(-1, 3)
-    # map indices of the reversed holes back to the rings' own order
-    idx = [np.arange(len(rings[0]))]
-    start = len(rings[0])
-    for r in rings[1:]:
-        idx.append(start + np.arange(len(r))[::-1])
-        start += len(r)
-    return np.concatenate(idx)[tri]
 
 
 # -- profiles ----------------------------------------------------------------------------
@@ -229,7 +122,7 @@ def subdivide_profile(points: Array, sharp: NDArray[np.bool_], steps: int) -> tu
     return p, s
 
 
-def _levels(profile: Profile, res: Resolution, subdivide: int) -> Array:
+def _levels(profile: Moulding, res: Resolution, subdivide: int) -> Array:
     """The profile as (s, t) levels, consecutive duplicates removed, shape (k, 2)."""
     pts = profile.sample(res.per_arc)
     if subdivide:
@@ -274,49 +167,27 @@ class _Half:
         self.faces.append(f)
 
 
-@dataclass
-class _Loft:
-    """A region's rings (template coordinates) and its loft triangles, local indices."""
-
-    rings: list[Array]  # each (n_k, 2)
-    ys: list[float]  # depth behind the region's face of each ring (>= 0, drawing units)
-    tris: IntArray  # local indices into the concatenated rings
-
-
 def _loft(region: Region, levels: Array, res: Resolution, chord: float, base: tuple[Curve, ...],
-          max_edge: float) -> _Loft:
-    """Rings at every level of a profile and the zipped bands between them."""
+          max_edge: float) -> Loft:
+    """The region's moulding: its profile (in border widths) swept along its border.
+
+    Meshed through the exact offsets by :func:`auszug.meshing.sweepmodel.offset_loft`.
+    """
     b = region.border
-    n_base = len(base)
-    rings: list[Array] = []
-    keys: list[Array] = []
-    ys: list[float] = []
-    cache: dict[float, tuple[Array, Array]] = {}
-    for s, t in levels:
-        d = float(s) * b
-        if d not in cache:
-            if d == 0.0:
-                src = np.arange(n_base)
-                pts, k = loop_ring(base, src, np.zeros(n_base, bool), n_base, res.max_angle, chord, max_edge)
-            else:
-                try:
-                    off = offset_curves(base, d, closed=True)
-                except GeometryError as e:
-                    raise ParameterError(f"{region.id}: profile {region.profile.name!r}", float(s),
-                                         "an inset that keeps the opening open", str(e)) from None
-                pts, k = loop_ring(off.curves, off.source, off.is_join, n_base, res.max_angle, chord, max_edge)
-            cache[d] = (pts, k)
-        pts, k = cache[d]
-        rings.append(pts)
-        keys.append(k)
-        ys.append(float(t) * b)
-    tris = []
-    start = 0
-    for i in range(len(rings) - 1):
-        na = len(rings[i])
-        tris.append(zip_rings(keys[i], keys[i + 1], float(n_base)) + start)
-        start += na
-    return _Loft(rings, ys, np.concatenate(tris) if tris else np.empty((0, 3), np.int64))
+    try:
+        return offset_loft(base, levels * b, res.max_angle, chord, max_edge)
+    except GeometryError as e:
+        bad = next((float(s) for s in levels[:, 0] if s != 0.0 and not _offsets(base, float(s) * b)), float("nan"))
+        raise ParameterError(f"{region.id}: profile {region.profile.name!r}", bad,
+                             "an inset that keeps the opening open", str(e)) from None
+
+
+def _offsets(base: tuple[Curve, ...], d: float) -> bool:
+    try:
+        offset_curves(base, d, closed=True)
+    except GeometryError:
+        return False
+    return True
 
 
 def _max_inset(base: tuple[Curve, ...], want: float) -> float:
@@ -402,7 +273,7 @@ def window_mesh(tracery: Tracery, resolution: Resolution | None = None, subdivid
     corners = np.array([[x0, z0], [x1, z0], [x1, z1], [x0, z1]])
     c_front = front.add(np.column_stack([corners[:, 0], np.full(4, -half_t), corners[:, 1]]))
     c_mid = front.add(np.column_stack([corners[:, 0], np.zeros(4), corners[:, 1]]))
-    tri = _earcut([corners, reveal.rings[0]])
+    tri = triangulate_polygon(corners, [reveal.rings[0]])
     idx = np.concatenate([np.arange(4) + c_front, np.arange(outer_ring_len) + outer_ring_start])
     front.tri(idx[tri])
     for i in range(4):
@@ -411,10 +282,10 @@ def window_mesh(tracery: Tracery, resolution: Resolution | None = None, subdivid
         front.tri(np.array([[c_front + i, c_mid + j, c_front + j], [c_front + i, c_mid + i, c_mid + j]]))
 
     # -- regions: lofts (cached per template) and the faces/floors holding them
-    lofts: dict[Any, _Loft] = {}
+    lofts: dict[Any, Loft] = {}
     placed: dict[str, tuple[int, int, int]] = {}  # id -> (first ring start, its length, last ring start)
 
-    def loft_of(r: Region) -> _Loft:
+    def loft_of(r: Region) -> Loft:
         key = (r.template, r.role) if r.template >= 0 else r.id
         lf = lofts.get(key)
         if lf is None:
@@ -449,7 +320,7 @@ def window_mesh(tracery: Tracery, resolution: Resolution | None = None, subdivid
         n_tot = sum(len(g) for g in lf.rings)
         v = np.empty((n_tot, 3))
         k = 0
-        for ring, y in zip(lf.rings, lf.ys, strict=True):
+        for ring, y in zip(lf.rings, lf.heights, strict=True):
             n = len(ring)
             v[k:k + n, 0] = ring[:, 0] + ox
             v[k:k + n, 1] = y_face + y
@@ -473,7 +344,7 @@ def window_mesh(tracery: Tracery, resolution: Resolution | None = None, subdivid
         tri = floor_cache.get(key)
         if tri is None:
             rings2 = [outer[2]] + [lofts_first(kid) for kid in kids]
-            tri = floor_cache[key] = _earcut(rings2)
+            tri = floor_cache[key] = triangulate_polygon(rings2[0], rings2[1:])
         front.tri(gidx[tri])
 
     def lofts_first(r: Region) -> Array:
@@ -510,9 +381,7 @@ def _finish(verts: Array, faces: IntArray) -> Mesh:
     """Drop degenerate triangles, orient outwards, wrap as a Mesh."""
     keep = (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])
     faces = faces[keep]
-    from auszug.meshing.mesh import signed_volume
-
-    if signed_volume(verts, faces) < 0:
+    if Mesh._unchecked(verts, faces, ()).volume < 0:
         faces = faces[:, ::-1].copy()
     m = Mesh._unchecked(verts, faces, (Part("window", "solid", -1, "", (0, len(verts)), (0, len(faces))),))
     if TOL.strict and not m.is_manifold:  # invariant check of the test-suite's strict mode

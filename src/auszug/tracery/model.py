@@ -26,7 +26,7 @@ from numpy.typing import NDArray
 
 from auszug.geometry import Arc, Curve
 from auszug.geometry.offset import signed_area
-from auszug.tracery.profile import Profile
+from auszug.tracery.profile import Moulding
 
 if TYPE_CHECKING:  # style and window import this module
     from auszug.tracery.style import Style
@@ -88,7 +88,7 @@ class Region:
         One of :data:`ROLES`.
     border : float
         The region's border width: the unit of its profile.
-    profile : Profile
+    profile : Moulding
         The cross-section cut along the border.
     face : float
         How far the region's face lies behind the face of the tracery plate
@@ -106,7 +106,7 @@ class Region:
     curves: tuple[Curve, ...]
     role: str
     border: float
-    profile: Profile
+    profile: Moulding
     face: float = 0.0
     template: int = -1
     origin: tuple[float, float] = (0.0, 0.0)

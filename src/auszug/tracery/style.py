@@ -84,7 +84,7 @@ from typing import Any, Mapping
 
 from auszug.errors import FormatError
 from auszug.tracery._checks import ParameterError, choice, integer, number
-from auszug.tracery.profile import Profile, profile_from_data
+from auszug.tracery.profile import Moulding, profile_from_data
 from auszug.tracery.rosette import ORIENTATIONS
 from auszug.tracery.window import WindowParams
 
@@ -130,7 +130,7 @@ class Wall:
         Thickness of the tracery plate, centred in the wall (< thickness).
     margin : float
         Wall left round the arch (sides, above the apex, below the sill).
-    profile : Profile
+    profile : Moulding
         The reveal of the arch in the wall, a wall profile in units of the
         frame width (outer + inner) across and of the reveal depth along.
     """
@@ -138,7 +138,7 @@ class Wall:
     thickness: float
     slab: float
     margin: float
-    profile: Profile
+    profile: Moulding
 
 
 @dataclass(frozen=True)
@@ -151,7 +151,7 @@ class ArchGroup:
         ``"window"`` (refined as a prototype window; for sub-arches: by the
         nested style ``window``), ``"plain"`` (a pointed-arch light) or
         ``"trefoil"`` (a pointed trefoil light).
-    profile : Profile
+    profile : Moulding
         The light's profile; for ``"window"`` the recess the nested window
         sits in.
     split, lobe, upper : float
@@ -161,7 +161,7 @@ class ArchGroup:
     """
 
     decoration: str
-    profile: Profile
+    profile: Moulding
     split: float
     lobe: float
     upper: float
@@ -176,24 +176,24 @@ class CircleGroup:
     ----------
     decoration : str
         ``"plain"`` (a round light) or ``"rosette"``.
-    profile : Profile
+    profile : Moulding
         The round light's profile, or the recess round the rosette.
     foils : int
     pointed : bool
     displacement : float
     orientation : str
         See :func:`auszug.tracery.rosette.rosette`.
-    foil_profile : Profile
+    foil_profile : Moulding
         The rosette opening's profile.
     """
 
     decoration: str
-    profile: Profile
+    profile: Moulding
     foils: int
     pointed: bool
     displacement: float
     orientation: str
-    foil_profile: Profile
+    foil_profile: Moulding
 
 
 @dataclass(frozen=True)
@@ -201,7 +201,7 @@ class FilletGroup:
     """Decoration (``"plain"`` light or ``"blind"`` recess) and profile of the fillets."""
 
     decoration: str
-    profile: Profile
+    profile: Moulding
 
 
 @dataclass(frozen=True, eq=False)
@@ -324,7 +324,7 @@ def _library():
 
 
 @lru_cache(maxsize=1)
-def builtin_profiles() -> dict[str, Profile]:
+def builtin_profiles() -> dict[str, Moulding]:
     """The built-in profiles by name (``styles/profiles.toml``)."""
     raw = tomllib.loads((_library() / "profiles.toml").read_text(encoding="utf-8"))
     return {k: profile_from_data(k, v) for k, v in raw.items()}
@@ -460,7 +460,7 @@ def parse_style(text: str, suffix: str = ".toml", source: str = "<style>") -> St
 
 # -- validation --------------------------------------------------------------------------
 
-def _profile(name: str, ref: Any, local: Mapping[str, Any], wall: bool = False) -> Profile:
+def _profile(name: str, ref: Any, local: Mapping[str, Any], wall: bool = False) -> Moulding:
     if isinstance(ref, (list, Mapping)):
         p = profile_from_data(name, ref)
     elif isinstance(ref, str):

@@ -289,4 +289,5 @@ def test_coordinates_beyond_the_limit_are_refused():
     e = _err(text)
     assert e.line == 2 and e.problem == ("'ptPos': -1000001 is beyond the limit of +-1e+06 for coordinates "
                                          "and heights (auszug.limits.LIMITS.coordinate)")
-    assert read_legacy(text.replace("-1000001", "-1e6")).default_apex == 2e6
+    assert read_legacy(text.replace("-1000001", "-4e5").replace("1e6", "4e5")).default_apex == 8e5
+    assert "apex height of the curves" in _err(text.replace("-1000001", "-1e6")).problem

@@ -352,6 +352,10 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
             raise FormatError(f"curve {ci}: {e}", path, cur.line) from None
         for a, b in zip(cur.points[:-1], cur.points[1:], strict=True):
             longest = max(longest, math.hypot(b[0] - a[0], b[1] - a[1]))
+    if longest > LIMITS.coordinate:
+        raise FormatError(f"the longest segment is {longest:g} long, and so would be the apex height of the "
+                          f"curves (legacy files store none): beyond the limit of {LIMITS.coordinate:g} for "
+                          "heights (auszug.limits.LIMITS.coordinate)", path)
     try:
         return Drawing(curves=tuple(basics), name=uc_text.stem(path), default_apex=max(1.0, longest))
     except DrawingError as e:

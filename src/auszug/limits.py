@@ -65,10 +65,12 @@ class Limits:
         for memory; 10 000 is a point every 0.01 % of a curve, far finer than
         a screen or a printer resolves.
     network_points : int
-        Most sampled points of a whole network (network curves times samples),
-        whatever the two factors: 16 M points are 400 MB of float64 xyz, the
-        budget that keeps a build, its intersections and its export under
-        2 GB.
+        Most points of a sampled network (every replica of every curve,
+        whether sampled by tolerance or by ``--samples``). The writers hold a
+        network's text or mesh in memory, about 400 bytes per point: the
+        default export of a fold-1024 mirrored curve (4.2 M points) peaked at
+        1.6 GB. 2 M points keep every export below 1 GB; a coarser
+        ``--tolerance`` or fewer ``--samples`` bring a larger network within it.
     coordinate : float
         Largest magnitude of a coordinate or height (drawing units). Meshes
         are written as float32 (GLB, STL, PLY), whose largest value is 3.4e38
@@ -99,7 +101,7 @@ class Limits:
     segments: int = 8192
     network_curves: int = 65536
     samples: int = 10_000
-    network_points: int = 16_000_000
+    network_points: int = 2_000_000
     coordinate: float = 1e6
     pixels: int = 16384
     file_bytes: int = 64 * 1024 * 1024
@@ -145,8 +147,8 @@ def _mb(n: int) -> str:
     return f"{n / 2**20:.0f} MB" if n >= 2**20 else f"{n} bytes"
 
 
-def check_file_size(path: str | os.PathLike[str]) -> None:
-    """Refuse a file larger than :attr:`Limits.file_bytes` before reading it.
+def check_file_size(path: str | os.PathLike[str], name: str | None = None) -> None:
+    """Refuse a file larger than :attr:`Limits.file_bytes` before reading it (``name`` for messages).
 
     Raises
     ------
@@ -162,7 +164,7 @@ def check_file_size(path: str | os.PathLike[str]) -> None:
         return
     if size > LIMITS.file_bytes:
         raise FormatError(f"file of {_mb(size)} is larger than the limit of {_mb(LIMITS.file_bytes)} "
-                          "(auszug.limits.LIMITS.file_bytes)", os.fspath(path))
+                          "(auszug.limits.LIMITS.file_bytes)", name or os.fspath(path))
 
 
 def check_text_size(text: str | bytes, path: str | None) -> None:

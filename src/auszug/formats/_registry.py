@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from auszug.errors import FormatError
+from auszug.limits import check_file_size
 
 __all__ = ["FileFormat", "register", "formats", "format_for", "load", "save", "atomic_write"]
 
@@ -93,6 +94,7 @@ def load(path: str | os.PathLike[str], kind: str | None = "drawing") -> Any:
     """Read ``path`` with the format its name says."""
     p = Path(path)
     fmt = format_for(p, kind)
+    check_file_size(p)
     try:
         data: Any = p.read_bytes() if fmt.binary else p.read_text(encoding="utf-8")
     except FileNotFoundError:

@@ -36,6 +36,7 @@ import numpy as np
 import orjson
 
 from auszug.errors import AuszugError, FormatError
+from auszug.limits import check_text_size
 from auszug.formats._registry import FileFormat, register
 from auszug.geometry.network import KINDS, CurveNetwork, Piece, as_curve_network
 
@@ -243,6 +244,7 @@ def loads(text: str, name: str = "<string>") -> dict[str, Any]:
         Naming the file, the line (for JSON syntax errors) and the first key
         that does not hold what the format expects.
     """
+    check_text_size(text, name)
     try:
         doc = json.loads(text)
     except json.JSONDecodeError as e:

@@ -83,6 +83,7 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from auszug.errors import FormatError
+from auszug.limits import check_file_size, check_text_size
 from auszug.tracery._checks import ParameterError, choice, integer, number
 from auszug.tracery.profile import Profile, profile_from_data
 from auszug.tracery.rosette import ORIENTATIONS
@@ -366,6 +367,7 @@ def builtin_style(name: str) -> Style:
 
 
 def _parse_text(text: str, source: str, suffix: str) -> dict[str, Any]:
+    check_text_size(text, source)
     try:
         if suffix == ".json":
             data = json.loads(text)
@@ -422,6 +424,7 @@ def _read_ref(ref: str, base: Path | None) -> tuple[dict[str, Any], Path | None]
     """Read a style by path (relative to ``base``) or built-in name."""
     for cand in ([base / ref] if base is not None else []) + [Path(ref)]:
         if cand.suffix.lower() in (".toml", ".json") and cand.is_file():
+            check_file_size(cand)
             return _parse_text(cand.read_text(encoding="utf-8"), str(cand), cand.suffix.lower()), cand.parent
     try:
         return copy.deepcopy(_builtin_data(ref)), None

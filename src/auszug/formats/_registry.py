@@ -8,6 +8,7 @@ folder and renames it, so a failed write never leaves a half-written file.
 
 from __future__ import annotations
 
+import errno
 import os
 import tempfile
 from dataclasses import dataclass
@@ -118,10 +119,25 @@ def save(obj: Any, path: str | os.PathLike[str], kind: str | None = None) -> Pat
 
 
 def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> None:
-    """Write ``data`` to a temporary file beside ``path``, then rename it over ``path``."""
+    """Write ``data`` to a temporary file beside ``path``, then rename it over ``path``.
+
+    Raises
+    ------
+    OSError
+        Whose ``filename`` is ``path`` (not the temporary file).
+    """
     p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
     raw = data.encode("utf-8") if isinstance(data, str) else data
+    try:
+        _replace_with(p, raw)
+    except OSError as e:  # name the file the user asked for, not the temporary one
+        raise type(e)(e.errno, f"cannot write ({e.strerror or e})", str(p)) from None
+
+
+def _replace_with(p: Path, raw: bytes) -> None:
+    p.parent.mkdir(parents=True, exist_ok=True)
+    if p.is_dir():
+        raise IsADirectoryError(errno.EISDIR, "is a folder", str(p))
     fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent)
     try:
         umask = os.umask(0)

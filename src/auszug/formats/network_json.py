@@ -36,9 +36,9 @@ import numpy as np
 import orjson
 
 from auszug.errors import AuszugError, FormatError
-from auszug.limits import check_text_size
 from auszug.formats._registry import FileFormat, register
 from auszug.geometry.network import KINDS, CurveNetwork, Piece, as_curve_network
+from auszug.limits import check_text_size
 
 __all__ = ["NetworkFile", "FORMAT", "VERSION", "VERSIONS", "KINDS", "to_dict", "dumps", "loads", "unpack",
            "exact_piece"]

@@ -37,8 +37,8 @@ from typing import Any
 import numpy as np
 
 from auszug.errors import FormatError
-from auszug.limits import check_text_size
 from auszug.formats._registry import FileFormat, register
+from auszug.limits import check_text_size
 
 __all__ = ["FORMAT", "VERSION", "to_dict", "dumps", "loads", "segment_dict"]
 

@@ -233,10 +233,10 @@ def test_mesh_of_apex_1e90_is_refused(cli, tmp_path):
     assert r.code == 2 and r.err.startswith(f"auszug: {p}:9: 'height'")
 
 
-@pytest.mark.parametrize("opt", ["--thickness", "--size"])
-def test_mesh_refuses_a_negative_size(cli, tmp_path, opt):
+@pytest.mark.parametrize("opt, words", [("--thickness", "expected a number > 0"), ("--size", "positive number")])
+def test_mesh_refuses_a_negative_size(cli, tmp_path, opt, words):
     r = cli("mesh", TN / "tn-2.uc", "--solid", opt, "-1", "-o", tmp_path / "m.stl")
-    assert r.code == 2 and "expected a number > 0" in r.err and not (tmp_path / "m.stl").exists()
+    assert r.code == 2 and words in r.err and not (tmp_path / "m.stl").exists()
 
 
 def test_convert_refuses_to_overwrite_its_input(cli, tmp_path):

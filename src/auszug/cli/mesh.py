@@ -52,7 +52,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     g = parser.add_argument_group("members")
     g.add_argument("--style", default="bar", metavar="tube|bar|ribbon|PROFILE.json",
                    help="cross-section of the members (default bar)")
-    g.add_argument("--size", type=_common.positive, default=None, metavar="S",
+    g.add_argument("--size", type=_common.finite, default=None, metavar="S",
                    help="tube diameter / bar side / ribbon width over 3, drawing units "
                         "(default 1.2%% of the drawing's bounding-box diagonal)")
     g.add_argument("--segments", type=_common.at_least(1), default=None, metavar="N",

@@ -17,6 +17,8 @@ BAD_LINE = 4
 BAD_UC = "numCurves 1\nunitCurve 4 1\nptPos 0 0\nptPos 1 x\nptPos 2 0\n"
 #: Reads fine, fails when built: the apex lies below the bottom (a drawing error).
 LOW_APEX_UC = "numCurves 1\nunitCurve 4 0\nptPos 0 1\nptPos 1 1.5\nptPos 1 2\nheight -1\n"
+#: The line of its apex height, which the apex error names.
+LOW_APEX_LINE = 6
 
 
 @dataclass

@@ -11,7 +11,7 @@ import pytest
 
 from auszug.formats import load
 from auszug.microarch import build
-from tests.cli.conftest import BAD_LINE, TN, files_in
+from tests.cli.conftest import BAD_LINE, LOW_APEX_LINE, TN, files_in
 from tests.conftest import CORPUS
 
 
@@ -88,7 +88,9 @@ def test_a_side_view_that_is_not_one_to_one_is_a_drawing_error(cli, tmp_path):
     src.write_text("numCurves 1\nunitCurve 4 0\nptPos 0 1\nptPos 0.3 1.3\nptPos 1 2\nheight 1\n")
     r = cli("build", src, "-o", tmp_path / "d.obj", "--param", "orthographic", "--theta", "135")
     assert r.code == 2
-    assert r.err.startswith(f"auszug: {src}: curve 0, segment 0: ") and "not one-to-one" in r.err
+    # the file's own point numbers and the line of the segment's first point
+    assert r.err.startswith(f"auszug: {src}:3: curve 0, segment 0 (points 0 to 2, line 3): ") and \
+        "not one-to-one" in r.err
     assert not (tmp_path / "d.obj").exists()
 
 
@@ -104,7 +106,7 @@ def test_bad_drawing_names_file_and_line_and_leaves_no_output(cli, tmp_path, bad
 def test_invalid_drawing_names_the_file_and_the_curve(cli, tmp_path, low_apex_uc):
     r = cli("build", low_apex_uc, "-o", tmp_path / "low.obj")
     assert r.code == 2
-    assert r.err.startswith(f"auszug: {low_apex_uc}: curve 0") and "apex height -1" in r.err
+    assert r.err.startswith(f"auszug: {low_apex_uc}:{LOW_APEX_LINE}: curve 0") and "apex height -1" in r.err
     assert files_in(tmp_path) == ["low.uc"]
 
 
@@ -113,7 +115,7 @@ def test_in_a_folder_a_bad_drawing_fails_alone(cli, tmp_path, bad_uc, low_apex_u
     r = cli("build", tmp_path, "-o", tmp_path / "out")
     assert r.code == 2
     assert files_in(tmp_path / "out") == ["good.network.json"]
-    assert f"auszug: {bad_uc}:{BAD_LINE}:" in r.err and f"auszug: {low_apex_uc}: curve 0" in r.err
+    assert f"auszug: {bad_uc}:{BAD_LINE}:" in r.err and f"auszug: {low_apex_uc}:{LOW_APEX_LINE}: curve 0" in r.err
     assert "wrote 1 of 3 networks" in r.out and "(2 failed)" in r.out
 
 

@@ -145,7 +145,7 @@ def test_the_web_fixture_is_good():
     (GOOD.replace("ptPos -0.7 0", "ptPos -0.7 -inf"), 7, "not a finite number"),
     (GOOD.replace("ptPos -0.7 0", "ptPos -0.7 zero"), 7, "'zero' is not a number"),
     (GOOD.replace("unitCurve 4 1", "unitCurve 0 1"), 2, "got 0"),
-    (GOOD.replace("ptPos -0.7 0", "ptPos 0 -1"), 2, "zero-length segment"),
+    (GOOD.replace("ptPos -0.7 0", "ptPos 0 -1"), 7, "end point (point 2) coincides with point 0"),
     (GOOD.replace("ptPos -0.2 -0.8", "ptPos 0 -1"), 6, "tangent handle (point 1) coincides"),
     (GOOD.replace("reflectionPoint 0 -1", "reflectionPoint 0 0"), 3, "mirror axis of zero length"),
     (GOOD.replace("prc_t 0.5", "prc_t 1"), 10, "strictly between 0 and 1"),

@@ -284,8 +284,10 @@ def test_empty_and_blank_files():
     assert _err("\n\t \n").problem.startswith("empty file")
 
 
-def test_numbers_beyond_1e100_are_refused():
-    text = "unitCurve 2 1 0\nptPos -1e101 0\nptLab 0\nptPos 1e100 0\nptLab 1\n"
+def test_coordinates_beyond_the_limit_are_refused():
+    text = "unitCurve 2 1 0\nptPos -1000001 0\nptLab 0\nptPos 1e6 0\nptLab 1\n"
     e = _err(text)
-    assert e.line == 2 and e.problem == "'ptPos': -1e101 is too large; expected a number within +-1e+100"
-    assert read_legacy(text.replace("-1e101", "-1e100")).default_apex == 2e100
+    assert e.line == 2 and e.problem == ("'ptPos': -1000001 is beyond the limit of +-1e+06 for coordinates "
+                                         "and heights (auszug.limits.LIMITS.coordinate)")
+    assert read_legacy(text.replace("-1000001", "-4e5").replace("1e6", "4e5")).default_apex == 8e5
+    assert "apex height of the curves" in _err(text.replace("-1000001", "-1e6")).problem

@@ -23,10 +23,10 @@ import importlib
 import sys
 from typing import Sequence
 
-__all__ = ["COMMANDS", "make_parser", "main"]
+__all__ = ["COMMANDS", "make_parser", "main", "unexpected"]
 
 #: Subcommands in the order ``auszug --help`` lists them.
-COMMANDS: tuple[str, ...] = ("build", "info", "render", "convert", "demo", "tracery", "mesh", "studio")
+COMMANDS: tuple[str, ...] = ("build", "info", "render", "convert", "demo", "tracery", "mesh", "studio", "examples")
 
 
 def _version() -> str:
@@ -73,9 +73,15 @@ def make_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line with ``argv`` (default: ``sys.argv[1:]``); return the exit code.
 
-    Exit codes: 0 success, 2 bad input or usage (message on stderr), 130 interrupted.
+    Exit codes: 0 success, 2 bad input or usage (message on stderr), 1 an
+    unexpected error inside auszug (one line naming it; ``AUSZUG_DEBUG=1`` shows
+    the traceback), 130 interrupted. Messages are cut to
+    :attr:`auszug.limits.Limits.message` characters.
     """
+    import os
+
     from auszug.errors import AuszugError
+    from auszug.limits import clip
 
     parser = make_parser()
     try:
@@ -83,21 +89,36 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as e:  # --help, --version and usage errors
         return e.code if isinstance(e.code, int) else (0 if e.code is None else 2)
     if not hasattr(args, "_run"):
-        parser.print_usage(sys.stderr)
-        print("auszug: error: a command is required", file=sys.stderr)
+        parser.print_help(sys.stderr)
+        print("\nauszug: error: a command is required", file=sys.stderr)
         return 2
     try:
         return int(args._run(args))
     except AuszugError as e:
-        print(f"auszug: {e}", file=sys.stderr)
+        print(f"auszug: {clip(str(e))}", file=sys.stderr)
         return 2
     except OSError as e:
         where = f"{e.filename}: " if e.filename else ""
-        print(f"auszug: {where}{e.strerror or e}", file=sys.stderr)
+        print(f"auszug: {clip(where + str(e.strerror or e))}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("auszug: interrupted", file=sys.stderr)
         return 130
+    except MemoryError:
+        print("auszug: out of memory (an input beyond what this machine holds; see docs/limits.md)",
+              file=sys.stderr)
+        return 2
+    except Exception as e:  # a bug: one line, not a traceback, unless asked for
+        if os.environ.get("AUSZUG_DEBUG"):
+            raise
+        print(f"auszug: internal error: {clip(unexpected(e))} (AUSZUG_DEBUG=1 shows the traceback)",
+              file=sys.stderr)
+        return 1
+
+
+def unexpected(e: BaseException) -> str:
+    """One line for an exception auszug did not raise on purpose: its type and message."""
+    return f"{type(e).__name__}: {e}" if str(e) else type(e).__name__
 
 
 if __name__ == "__main__":  # pragma: no cover

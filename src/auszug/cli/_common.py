@@ -9,11 +9,12 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import re
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Iterator, Sequence
 
-from auszug.errors import AuszugError, FormatError
+from auszug.errors import AuszugError, DrawingError, FormatError
 
 if TYPE_CHECKING:
     from auszug.formats.network_json import NetworkFile
@@ -84,15 +85,59 @@ def add_network_args(parser: argparse.ArgumentParser, export: bool = False) -> N
                    help="instead of --tolerance: N points per curve piece at equal arc-length steps")
 
 
+def pixels(text: str) -> int:
+    """An argparse type: a picture size in pixels, 50 to :attr:`auszug.limits.Limits.pixels`."""
+    from auszug.limits import LIMITS
+
+    v = at_least(50)(text)
+    if v > LIMITS.pixels:
+        raise argparse.ArgumentTypeError(f"{v} pixels is above the limit of {LIMITS.pixels} "
+                                         "(auszug.limits.LIMITS.pixels)")
+    return v
+
+
+_WHERE = re.compile(r"curve (\d+)(?:, segment (-?\d+))?")
+
+
+def placed(e: DrawingError, drawing: "Drawing", path: str | os.PathLike[str]) -> FormatError:
+    """``e`` (about ``"curve 2, segment 1"``) as a FormatError at the line of the file it came from.
+
+    Segments are named by the file's own point numbers (a web ``.uc`` curve's
+    segment 1 runs from point 2 to point 4) and apex errors point at the line of
+    the curve's height, where the curves were read with a
+    :class:`~auszug.microarch.model.Source`.
+    """
+    where, line = e.where, None
+    m = _WHERE.fullmatch(where or "")
+    if m and int(m[1]) < len(drawing.curves) and (src := drawing.curves[int(m[1])].source) is not None:
+        line = src.line
+        if m[2] is not None and int(m[2]) >= 0:
+            si = int(m[2])
+            if src.segment(si):
+                where = f"{where} ({src.segment(si)})"
+                line = src.point_lines[si]
+        elif "apex" in e.problem and src.height_line is not None:
+            line = src.height_line
+    return FormatError(f"{where}: {e.problem}" if where else e.problem, os.fspath(path), line)
+
+
 @contextmanager
-def about(path: str | os.PathLike[str]) -> Iterator[None]:
-    """Name ``path`` in auszug errors raised inside the block that do not name a file yet."""
+def about(path: str | os.PathLike[str], drawing: "Drawing | None" = None) -> Iterator[None]:
+    """Name ``path`` in auszug errors raised inside the block that do not name a file yet.
+
+    With the ``drawing`` read from ``path``, errors about one of its curves get
+    the line it was read from (:func:`placed`).
+    """
     try:
         yield
     except FormatError as e:
         if e.path is None:
             raise FormatError(e.problem, os.fspath(path), e.line) from None
         raise
+    except DrawingError as e:
+        if drawing is not None:
+            raise placed(e, drawing, path) from None
+        raise FormatError(str(e), os.fspath(path)) from None
     except AuszugError as e:
         raise FormatError(str(e), os.fspath(path)) from None
 
@@ -120,7 +165,7 @@ def build_network(drawing: "Drawing", source: str | os.PathLike[str], args: argp
     from auszug.formats.network_json import NetworkFile
     from auszug.microarch.network import build
 
-    with about(source):
+    with about(source, drawing):
         if getattr(args, "tolerance", None) is not None and args.samples is not None:
             raise FormatError("give --tolerance or --samples, not both")
         net = build(drawing, args.param, math.radians(args.theta), args.samples)
@@ -176,17 +221,28 @@ def find_drawings(inputs: Sequence[str]) -> list[tuple[Path, Path]]:
 def run_jobs(jobs: Sequence[tuple[Path, Path]], verb: str, one: "Callable[[Path, Path], None]") -> list[str]:
     """Run ``one(src, dst)`` for every job, with a progress bar on a terminal.
 
-    Returns the messages of the auszug errors raised (each job fails alone).
+    Returns the messages of the errors raised, of any kind, each naming its
+    file (each job fails alone; KeyboardInterrupt stops the batch).
     """
     import sys
+
+    from auszug.cli import unexpected
+    from auszug.limits import clip
 
     errors: list[str] = []
 
     def guarded(src: Path, dst: Path) -> None:
+        # a failed file of any kind is reported with its name, and the batch goes on
         try:
             one(src, dst)
         except AuszugError as e:
-            errors.append(str(e))
+            errors.append(clip(str(e)))
+        except OSError as e:
+            errors.append(clip(f"{e.filename or src}: {e.strerror or e}"))
+        except MemoryError:
+            errors.append(f"{src}: out of memory")
+        except Exception as e:  # a bug deep inside: name the file, go on with the others
+            errors.append(clip(f"{src}: internal error: {unexpected(e)}"))
 
     if len(jobs) > 1 and sys.stderr.isatty():
         from rich.console import Console

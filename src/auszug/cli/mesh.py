@@ -34,6 +34,7 @@ from pathlib import Path
 from typing import Any
 
 from auszug.cli import _common
+from auszug.limits import check_file_size
 
 HELP = "sweep members along the curves, fill faces, make solids (.glb .obj .stl .ply)"
 MESH_FORMATS = ("glb", "gltf", "obj", "stl", "ply")
@@ -64,7 +65,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     f.add_argument("--face-resolution", type=_common.at_least(12), default=96, metavar="N",
                    help="boundary points per face (default 96)")
     f.add_argument("--solid", action="store_true", help="unite everything into one watertight solid")
-    f.add_argument("--thickness", type=_common.finite, default=None, metavar="T",
+    f.add_argument("--thickness", type=_common.positive, default=None, metavar="T",
                    help="face thickness in the solid (default half the profile)")
     f.add_argument("--base", action="store_true", help="add a base plate to the solid")
     _common.add_network_args(parser)
@@ -94,6 +95,7 @@ def _profile_file(args: argparse.Namespace) -> Any:
     if not path.suffix.lower() == ".json":
         raise FormatError(f"--style must be one of {', '.join(STYLES)} or a profile .json file, "
                           f"got {args.style!r}")
+    check_file_size(path)
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
@@ -115,6 +117,7 @@ def _loops(args: argparse.Namespace, net: Any) -> Any:
     if args.faces == "auto":
         return "auto"
     path = Path(args.faces)
+    check_file_size(path)
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:

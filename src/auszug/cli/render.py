@@ -20,16 +20,24 @@ from auszug.cli import _common
 HELP = "draw a figure of top, side and 3D views (.png, .svg, .pdf)"
 
 
+def _dpi(text: str) -> int:
+    """10 to 2400 dots per inch: beyond, matplotlib draws letters larger than the figure."""
+    v = _common.at_least(10)(text)
+    if v > 2400:
+        raise argparse.ArgumentTypeError(f"expected at most 2400 dots per inch, got {v}")
+    return v
+
+
 def add_args(parser: argparse.ArgumentParser) -> None:
     """Options of ``auszug render``."""
     parser.add_argument("drawing", metavar="DRAWING", help="a drawing file (.uc, .json)")
     parser.add_argument("-o", "--output", metavar="FIG", help="figure file: .png, .svg or .pdf")
     g = parser.add_argument_group("figure")
-    g.add_argument("--width", type=_common.at_least(50), default=1800, metavar="PX",
+    g.add_argument("--width", type=_common.pixels, default=1800, metavar="PX",
                    help="width in pixels (default 1800)")
-    g.add_argument("--height", type=_common.at_least(50), default=620, metavar="PX",
+    g.add_argument("--height", type=_common.pixels, default=620, metavar="PX",
                    help="height in pixels (default 620)")
-    g.add_argument("--dpi", type=_common.at_least(10), default=150,
+    g.add_argument("--dpi", type=_dpi, default=150,
                    help="dots per inch: text and line size relative to the pixels (default 150)")
     g.add_argument("--title", default=None, help="figure title (default: the file name)")
     _common.add_network_args(parser)

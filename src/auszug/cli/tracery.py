@@ -32,6 +32,7 @@ from pathlib import Path
 from typing import Any
 
 from auszug.cli import _common
+from auszug.limits import LIMITS
 
 HELP = "Gothic window tracery: styles, 2D structure (.json/.svg), meshes (.glb/.obj/.stl/.ply), pictures"
 
@@ -64,7 +65,7 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                    help="refine the sub-arches as windows of the same style, N levels deep")
     m.add_argument("--subdivide", type=_common.at_least(0), default=0, metavar="K",
                    help="Catmull-Clark steps on the profiles, creases kept (0-4, default 0)")
-    m.add_argument("--width", type=_common.at_least(50), default=800, metavar="PX",
+    m.add_argument("--width", type=_common.pixels, default=800, metavar="PX",
                    help="picture width in pixels (.png, default 800)")
     m.add_argument("--view", nargs=2, type=_common.finite, default=(-20.0, 10.0), metavar=("AZ", "EL"),
                    help="picture view direction in degrees (default -20 10)")
@@ -189,7 +190,8 @@ def run(args: argparse.Namespace) -> int:
 
                 lo, hi = m.bounds()
                 height = int(args.width * (hi[2] - lo[2]) / max(hi[0] - lo[0], 1e-9) * 1.05)
-                img = shade(m.vertices, m.faces, args.width, max(height, 50), azimuth=args.view[0],
+                img = shade(m.vertices, m.faces, args.width, min(max(height, 50), LIMITS.pixels),
+                            azimuth=args.view[0],
                             elevation=args.view[1])
                 atomic_write(out, png_bytes(img))
     print(f"wrote {out}")

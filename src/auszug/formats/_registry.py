@@ -8,6 +8,7 @@ folder and renames it, so a failed write never leaves a half-written file.
 
 from __future__ import annotations
 
+import errno
 import os
 import tempfile
 from dataclasses import dataclass
@@ -15,6 +16,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from auszug.errors import FormatError
+from auszug.limits import check_file_size
 
 __all__ = ["FileFormat", "register", "formats", "format_for", "suffix_of", "kind_of", "suffixes", "stem",
            "load", "save", "atomic_write"]
@@ -174,6 +176,7 @@ def load(path: str | os.PathLike[str], kind: str | None = "drawing") -> Any:
     """Read ``path`` with the format its name says."""
     p = Path(path)
     fmt = format_for(p, kind)
+    check_file_size(p)
     try:
         data: Any = p.read_bytes() if fmt.binary else p.read_text(encoding="utf-8")
     except FileNotFoundError:
@@ -197,10 +200,25 @@ def save(obj: Any, path: str | os.PathLike[str], kind: str | None = None) -> Pat
 
 
 def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> None:
-    """Write ``data`` to a temporary file beside ``path``, then rename it over ``path``."""
+    """Write ``data`` to a temporary file beside ``path``, then rename it over ``path``.
+
+    Raises
+    ------
+    OSError
+        Whose ``filename`` is ``path`` (not the temporary file).
+    """
     p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
     raw = data.encode("utf-8") if isinstance(data, str) else data
+    try:
+        _replace_with(p, raw)
+    except OSError as e:  # name the file the user asked for, not the temporary one
+        raise type(e)(e.errno, f"cannot write ({e.strerror or e})", str(p)) from None
+
+
+def _replace_with(p: Path, raw: bytes) -> None:
+    p.parent.mkdir(parents=True, exist_ok=True)
+    if p.is_dir():
+        raise IsADirectoryError(errno.EISDIR, "is a folder", str(p))
     fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent)
     try:
         umask = os.umask(0)

@@ -21,6 +21,7 @@ from auszug.errors import FormatError
 from auszug.formats._registry import FileFormat, register
 from auszug.formats.network_json import unpack
 from auszug.formats.palette import colour
+from auszug.limits import LIMITS
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -183,6 +184,9 @@ def render(network: Any, fmt: str = "png", *, width: int = 1800, height: int = 6
     fmt = _fmt(fmt)
     if width < 50 or height < 50:
         raise FormatError(f"figure size must be at least 50 x 50 pixels, got {width} x {height}")
+    if max(width, height) > LIMITS.pixels:
+        raise FormatError(f"figure size {width} x {height} is above the limit of {LIMITS.pixels} pixels "
+                          "a side (auszug.limits.LIMITS.pixels)")
     net, source = unpack(network)
     fig = _figure(width, height, dpi)
     lo, hi = net.bounds() if net.pieces else (np.zeros(3), np.ones(3))

@@ -31,16 +31,18 @@ a new version number.
 
 from __future__ import annotations
 
+import bisect
 import json
 import json.decoder
 import json.scanner
 import math
+import re
 from typing import Any, Literal, cast
 
 from auszug.errors import DrawingError, FormatError
 from auszug.formats._registry import FileFormat, register
-from auszug.formats.uc import MAX_NUMBER
-from auszug.microarch.model import MARKS, BasicCurve, Drawing, Segment, Symmetry
+from auszug.limits import LIMITS, check_text_size, shown
+from auszug.microarch.model import MARKS, BasicCurve, Drawing, Segment, Source, Symmetry
 
 __all__ = ["FORMAT_ID", "VERSION", "from_dict", "read_native", "to_dict", "write_native"]
 
@@ -214,6 +216,7 @@ class _Reader:
     def __init__(self, path: str, text: str | None):
         self.path = path
         self.text = text
+        self._newlines: list[int] | None = None  # offsets of the text's line ends, found when needed
 
     def line(self, node: Any, key: Any = None) -> int | None:
         if self.text is None:
@@ -221,7 +224,11 @@ class _Reader:
         pos = getattr(node, "child_pos", {}).get(key) if key is not None else None
         if pos is None:
             pos = getattr(node, "pos", None)
-        return None if pos is None else self.text.count("\n", 0, pos) + 1
+        if pos is None:
+            return None
+        if self._newlines is None:
+            self._newlines = [m.start() for m in re.finditer("\n", self.text)]
+        return bisect.bisect_left(self._newlines, pos) + 1
 
     def fail(self, where: str, problem: str, node: Any, key: Any = None) -> FormatError:
         return FormatError(f"{where}: {problem}" if where else problem, self.path, self.line(node, key))
@@ -245,7 +252,7 @@ class _Reader:
             raise self.fail(where, f"expected an array, got {_what(v)}", parent, key)
         return v
 
-    def num(self, v: Any, where: str, parent: Any, key: Any) -> float:
+    def num(self, v: Any, where: str, parent: Any, key: Any, bound: float | None = LIMITS.coordinate) -> float:
         if isinstance(v, bool) or not isinstance(v, (int, float)):
             raise self.fail(where, f"expected a number, got {_what(v)}", parent, key)
         try:
@@ -254,18 +261,31 @@ class _Reader:
             f = math.inf
         if not math.isfinite(f):
             raise self.fail(where, f"expected a finite number, got {_what(f)}", parent, key)
-        if abs(f) > MAX_NUMBER:
-            raise self.fail(where, f"{_what(v)} is too large; expected a number within "
-                            f"+-{MAX_NUMBER:g}", parent, key)
+        if bound is not None and abs(f) > bound:
+            raise self.fail(where, f"{_what(v)} is beyond the limit of +-{bound:g} for coordinates and "
+                            "heights (auszug.limits.LIMITS.coordinate)", parent, key)
         return f
+
+    def count(self, n: int, what: str, limit: str, where: str, parent: Any, key: Any) -> None:
+        """Refuse ``n`` items above the limit ``limit`` (a field of :class:`~auszug.limits.Limits`)."""
+        top = getattr(LIMITS, limit)
+        if n > top:
+            raise self.fail(where, f"{n} {what} is above the limit of {top} (auszug.limits.LIMITS.{limit})",
+                            parent, key)
 
     def opt_num(self, v: Any, where: str, parent: Any, key: Any) -> float | None:
         return None if v is None else self.num(v, where, parent, key)
 
-    def integer(self, v: Any, where: str, parent: Any, key: Any, minimum: int) -> int:
-        f = self.num(v, where, parent, key)
+    def integer(self, v: Any, where: str, parent: Any, key: Any, minimum: int, maximum: str = "") -> int:
+        """A whole number >= ``minimum`` and, with ``maximum`` (``"fold"``, ``"layers"``), within that limit."""
+        f = self.num(v, where, parent, key, None)
         if f != int(f) or f < minimum:
             raise self.fail(where, f"expected a whole number >= {minimum}, got {_what(v)}", parent, key)
+        if maximum:
+            top = getattr(LIMITS, maximum) - (1 if maximum == "layers" else 0)
+            if f > top:
+                raise self.fail(where, f"{_what(v)} is above the limit of {top} "
+                                f"(auszug.limits.LIMITS.{maximum})", parent, key)
         return int(f)
 
     def boolean(self, v: Any, where: str, parent: Any, key: Any) -> bool:
@@ -307,19 +327,22 @@ class _Reader:
         self.obj(doc, "", _TOP_KEYS, ("format", "version", "curves"), doc, None)
         name = self.field(doc, "name", "", "string", stem)
         lb = self.field(doc, "layer_bottoms", "", "arr", [])
+        self.count(len(lb), "layer bottoms", "layers", "layer_bottoms", doc, "layer_bottoms")
         bottoms = tuple(self.num(z, f"layer_bottoms[{i}]", lb, i) for i, z in enumerate(lb))
         apex = self.field(doc, "default_apex", "", "opt_num", None)
         cs = self.arr(doc["curves"], "curves", doc, "curves")
+        self.count(len(cs), "curves", "curves", "curves", doc, "curves")
         curves = tuple(self.curve(c, f"curves[{i}]", cs, i) for i, c in enumerate(cs))
         try:
             return Drawing(curves=curves, layer_bottoms=bottoms, name=name, default_apex=apex)
-        except DrawingError as e:  # pragma: no cover - all fields are checked above
-            raise self.fail("", str(e), doc) from None
+        except DrawingError as e:  # the drawing's totals (segments, network curves)
+            raise self.fail("curves", str(e), doc, "curves") from None
 
     def curve(self, c: Any, where: str, parent: Any, key: Any) -> BasicCurve:
         c = self.obj(c, where, _CURVE_KEYS, ("vertices", "segments", "marks"), parent, key)
         w = f"{where}.vertices"
         vs = self.arr(c["vertices"], w, c, "vertices")
+        self.count(len(vs) - 1, "segments", "segments", w, c, "vertices")
         verts = tuple(self.point(v, f"{w}[{i}]", vs, i) for i, v in enumerate(vs))
         if len(verts) < 2:
             raise self.fail(w, f"a curve needs at least 2 vertices, got {len(verts)}", c, "vertices")
@@ -363,13 +386,16 @@ class _Reader:
         try:
             return BasicCurve(
                 vertices=verts, segments=segs, marks=marks, symmetry=sym,
-                layer=self.field(c, "layer", where, "integer", 0, 0),
+                layer=self.field(c, "layer", where, "integer", 0, 0, "layers"),
                 height=self.field(c, "height", where, "opt_num", None),
                 prc=prc,
                 decoration=self.field(c, "decoration", where, "boolean", False),
                 decoration_at=deco_at,
                 post_top=self.field(c, "post_top", where, "opt_num", None),
                 name=self.field(c, "name", where, "string", ""),
+                source=Source(self.line(parent, key), self.line(c, "height") if "height" in c else None,
+                              tuple(range(len(verts))), tuple(self.line(vs, i) or 0 for i in range(len(verts)))
+                              if self.text is not None else ()),
             )
         except DrawingError as e:
             raise self.fail(where, str(e), c) from None
@@ -389,7 +415,7 @@ class _Reader:
 
     def symmetry(self, s: Any, where: str, parent: Any, key: Any) -> Symmetry:
         s = self.obj(s, where, _SYM_KEYS, (), parent, key)
-        fold = self.field(s, "fold", where, "integer", 1, 1)
+        fold = self.field(s, "fold", where, "integer", 1, 1, "fold")
         mirror = self.field(s, "mirror", where, "boolean", False)
         axis = self.field(s, "axis", where, "point", (0.0, 1.0))
         center = self.field(s, "center", where, "point", (0.0, 0.0))
@@ -415,7 +441,7 @@ def _what(v: Any) -> str:
     if isinstance(v, (int, float)):
         return repr(v)
     if isinstance(v, str):
-        return repr(v if len(v) <= 40 else v[:37] + "...")
+        return shown(v)
     if isinstance(v, list):
         return f"an array of {len(v)}"
     return "an object"
@@ -464,6 +490,7 @@ def read_native(text: str | bytes, path: str = "<string>") -> Drawing:
     ...
     auszug.errors.FormatError: d.json:1: version: unsupported version 2; this auszug reads version 1
     """
+    check_text_size(text, path)
     if isinstance(text, bytes):
         try:
             text = text.decode("utf-8")

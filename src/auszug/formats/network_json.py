@@ -38,6 +38,7 @@ import orjson
 from auszug.errors import AuszugError, FormatError
 from auszug.formats._registry import FileFormat, register
 from auszug.geometry.network import KINDS, CurveNetwork, Piece, as_curve_network
+from auszug.limits import check_text_size
 
 __all__ = ["NetworkFile", "FORMAT", "VERSION", "VERSIONS", "KINDS", "to_dict", "dumps", "loads", "unpack",
            "exact_piece"]
@@ -243,6 +244,7 @@ def loads(text: str, name: str = "<string>") -> dict[str, Any]:
         Naming the file, the line (for JSON syntax errors) and the first key
         that does not hold what the format expects.
     """
+    check_text_size(text, name)
     try:
         doc = json.loads(text)
     except json.JSONDecodeError as e:

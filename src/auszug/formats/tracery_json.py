@@ -38,6 +38,7 @@ import numpy as np
 
 from auszug.errors import FormatError
 from auszug.formats._registry import FileFormat, register
+from auszug.limits import check_text_size
 
 __all__ = ["FORMAT", "VERSION", "to_dict", "dumps", "loads", "segment_dict"]
 
@@ -127,6 +128,7 @@ def loads(text: str, name: str = "<string>") -> Any:
     from auszug.tracery.profile import Moulding
     from auszug.tracery.window import WindowParams
 
+    check_text_size(text, name)
     try:
         doc = json.loads(text)
     except json.JSONDecodeError as e:

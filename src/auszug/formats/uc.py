@@ -16,7 +16,8 @@ from auszug.formats import uc_text
 from auszug.formats._registry import FileFormat, register
 from auszug.formats.uc_legacy import read_legacy
 from auszug.formats.uc_text import MAX_NUMBER
-from auszug.microarch.model import BasicCurve, Drawing, Segment, Symmetry
+from auszug.limits import LIMITS
+from auszug.microarch.model import BasicCurve, Drawing, Segment, Source, Symmetry
 
 __all__ = ["MAX_NUMBER", "read_uc", "read_web", "write_web"]
 
@@ -24,6 +25,10 @@ _WEB_KEYS = {
     "numCurves", "unitCurve", "reflectionPoint", "ref_symmetry_type", "ptPos", "level",
     "height", "prc_t", "decoration_t", "decoration_height", "vertical_line_top", "layer_bottom",
 }
+#: Keys whose numbers are not coordinates or heights: their own checks bound them.
+_COUNTS_AND_FRACTIONS = {"level", "prc_t", "decoration_t"}
+
+
 def read_uc(text: str, path: str = "<string>") -> Drawing:
     """Read any dialect of ``.uc`` text into a :class:`Drawing`.
 
@@ -39,14 +44,15 @@ def read_uc(text: str, path: str = "<string>") -> Drawing:
     FormatError
         Naming the file, the line and the problem.
     """
-    lines = uc_text.lines(text)
-    if not lines:
-        raise FormatError("empty file: expected 'numCurves N' then curves", path)
-    for _no, toks in lines:
+    empty = True
+    for _no, toks in uc_text.iter_lines(text, path):
+        empty = False
         if toks[0] == "unitCurve":
             if len(toks) - 1 == 3:
                 return read_legacy(text, path)
             break
+    if empty:
+        raise FormatError("empty file: expected 'numCurves N' then curves", path)
     return read_web(text, path)
 
 
@@ -69,26 +75,28 @@ def _web_segment(a: tuple, t: tuple, b: tuple) -> Segment:
 
 def read_web(text: str, path: str = "<string>") -> Drawing:
     """Read the web dialect (see FORMATS.md)."""
-    lines = uc_text.lines(text)
     declared: int | None = None
     curves: list[dict[str, Any]] = []  # one record of the lines of each curve
     bottoms: list[float] = []
-    for no, toks in lines:
+    for no, toks in uc_text.iter_lines(text, path):
         key, args = toks[0], toks[1:]
         if key not in _WEB_KEYS:
             raise FormatError(f"unknown keyword {key!r}", path, no)
         if key == "numCurves":
-            declared = uc_text.integer(uc_text.numbers(args, 1, key, path, no)[0], key, path, no, 0)
+            declared = uc_text.integer(uc_text.numbers(args, 1, key, path, no, None)[0], key, path, no, 0,
+                                       "curves")
             continue
         if key == "unitCurve":
             if len(args) != 2:
                 raise FormatError(
                     f"'unitCurve' needs 2 numbers (rotation fold, has reflection), got {len(args)}",
                     path, no)
-            fold, refl = uc_text.numbers(args, 2, key, path, no)
+            fold, refl = uc_text.numbers(args, 2, key, path, no, None)
+            if len(curves) == LIMITS.curves:
+                raise FormatError(f"more than {LIMITS.curves} curves (auszug.limits.LIMITS.curves)", path, no)
             cur: dict[str, Any] = {
                 "line": no,
-                "fold": uc_text.integer(fold, "unitCurve fold", path, no, 1),
+                "fold": uc_text.integer(fold, "unitCurve fold", path, no, 1, "fold"),
                 "mirror": bool(uc_text.integer(refl, "unitCurve has_reflection", path, no, 0)),
                 "points": [],
             }
@@ -97,7 +105,9 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
             curves.append(cur)
             continue
         if key == "layer_bottom":
-            bottoms.append(uc_text.numbers(args, 1, key, path, no)[0])
+            z = uc_text.numbers(args, 1, key, path, no)[0]
+            if len(bottoms) < LIMITS.layers:  # the web demo writes hundreds; those of used layers count
+                bottoms.append(z)
             continue
         if not curves:
             raise FormatError(f"{key!r} before the first 'unitCurve'", path, no)
@@ -105,6 +115,9 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
             raise FormatError(f"{key!r} after the 'layer_bottom' lines", path, no)
         cur = curves[-1]
         if key == "ptPos":
+            if len(cur["points"]) == 5:
+                raise FormatError(f"curve {len(curves) - 1} has a 6th 'ptPos' point; expected 3 (A, T, B) "
+                                  "or 5 (A, T, B, T2, C)", path, no)
             cur["points"].append((tuple(uc_text.numbers(args, 2, key, path, no)), no))
         elif key == "reflectionPoint":
             cur["axis"] = tuple(uc_text.numbers(args, 2, key, path, no))
@@ -120,7 +133,8 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
         else:
             if key in cur:
                 raise FormatError(f"{key!r} given twice for one curve", path, no)
-            cur[key] = (uc_text.numbers(args, 1, key, path, no)[0], no)
+            bound = None if key in _COUNTS_AND_FRACTIONS else LIMITS.coordinate
+            cur[key] = (uc_text.numbers(args, 1, key, path, no, bound)[0], no)
     if not curves:
         raise FormatError("no 'unitCurve' found: not a drawing", path)
     if declared is not None and declared != len(curves):
@@ -137,7 +151,7 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
         level = 0
         if "level" in cur:
             v, no = cur["level"]
-            level = uc_text.integer(v, "level", path, no, 0)
+            level = uc_text.integer(v, "level", path, no, 0, "layers", 1)
         prc = None
         if "prc_t" in cur:
             v, no = cur["prc_t"]
@@ -162,6 +176,10 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
             raise FormatError("mirror axis of zero length: 'reflectionPoint' is the origin",
                               path, cur.get("axis_line", cur["line"]))
         p = [xy for xy, _ in pts]
+        for a, b in ((0, 1), (0, 2)) + (((2, 3), (2, 4)) if len(p) == 5 else ()):
+            if math.hypot(p[b][0] - p[a][0], p[b][1] - p[a][1]) <= 1e-12:
+                what = "tangent handle" if b in (1, 3) else "end point"
+                raise FormatError(f"{where}: {what} (point {b}) coincides with point {a}", path, pts[b][1])
         verts = [p[0], p[2]] + ([p[4]] if len(p) == 5 else [])
         segs = [_web_segment(p[0], p[1], p[2])] + ([_web_segment(p[2], p[3], p[4])] if len(p) == 5 else [])
         marks = ["ground", "apex"] + (["free"] if len(p) == 5 else [])
@@ -173,15 +191,16 @@ def read_web(text: str, path: str = "<string>") -> Drawing:
                 layer=level, height=cur["height"][0] if "height" in cur else None,
                 prc=(prc,) + ((None,) if len(p) == 5 else ()), decoration=deco,
                 decoration_at=deco_at, post_top=post,
+                source=Source(cur["line"], cur["height"][1] if "height" in cur else None,
+                              tuple(range(0, len(p), 2)), tuple(pts[k][1] for k in range(0, len(p), 2))),
             ))
         except DrawingError as e:
             raise FormatError(f"{where}: {e}", path, cur["line"]) from None
-        for a, b in ((0, 1), (0, 2)) + (((2, 3), (2, 4)) if len(p) == 5 else ()):
-            if p[a] == p[b]:
-                what = "tangent handle" if b in (1, 3) else "end point"
-                raise FormatError(f"{where}: {what} (point {b}) coincides with point {a}", path, pts[b][1])
     n_layers = max(c.layer for c in basics) + 1
-    return Drawing(curves=tuple(basics), layer_bottoms=tuple(bottoms[:n_layers]), name=uc_text.stem(path))
+    try:
+        return Drawing(curves=tuple(basics), layer_bottoms=tuple(bottoms[:n_layers]), name=uc_text.stem(path))
+    except DrawingError as e:
+        raise FormatError(str(e), path) from None
 
 
 def _fmt(v: float) -> str:

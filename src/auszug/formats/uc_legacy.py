@@ -93,7 +93,8 @@ import math
 
 from auszug.errors import DrawingError, FormatError
 from auszug.formats import uc_text
-from auszug.microarch.model import AxisRule, BasicCurve, Drawing, Segment, Symmetry
+from auszug.limits import LIMITS
+from auszug.microarch.model import AxisRule, BasicCurve, Drawing, Segment, Source, Symmetry
 
 __all__ = ["LABEL_MARKS", "read_legacy"]
 
@@ -225,13 +226,13 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
     >>> d.default_apex
     1.0
     """
-    lines = uc_text.lines(text)
-    if not lines:
-        raise FormatError("empty file: expected 'numCurves N' then curves", path)
+    empty = True
     declared: tuple[int, int] | None = None
     curves: list[_Curve] = []
     dialect: tuple[str, int] | None = None  # ("ptTan" | "ptTangent", first line)
-    for no, toks in lines:
+    n_points = 0  # ptPos lines of the whole drawing
+    for no, toks in uc_text.iter_lines(text, path):
+        empty = False
         key, args = toks[0], toks[1:]
         if key not in _KEYS:
             raise FormatError(
@@ -240,22 +241,25 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
         if key == "numCurves":
             if declared is not None or curves:
                 raise FormatError("'numCurves' must come once, before the first 'unitCurve'", path, no)
-            declared = (uc_text.integer(uc_text.numbers(args, 1, key, path, no)[0], key, path, no, 0), no)
+            declared = (uc_text.integer(uc_text.numbers(args, 1, key, path, no, None)[0], key, path, no, 0,
+                                        "curves"), no)
             continue
         if key == "unitCurve":
             if len(args) != 3:
                 raise FormatError(
                     f"'unitCurve' needs 3 numbers (points, rotation fold, has reflection) in the "
                     f"legacy dialect, got {len(args)}", path, no)
-            n, fold, refl = uc_text.numbers(args, 3, key, path, no)
-            n_points = uc_text.integer(n, "unitCurve points", path, no, 0)
-            if n_points < 2:
-                raise FormatError(f"'unitCurve' declares {n_points} point(s); a curve needs at least 2",
+            n, fold, refl = uc_text.numbers(args, 3, key, path, no, None)
+            declared_points = uc_text.integer(n, "unitCurve points", path, no, 0, "segments", -1)
+            if declared_points < 2:
+                raise FormatError(f"'unitCurve' declares {declared_points} point(s); a curve needs at least 2",
                                   path, no)
-            fold_i = uc_text.integer(fold, "unitCurve rotation fold", path, no, 1)
+            if len(curves) == LIMITS.curves:
+                raise FormatError(f"more than {LIMITS.curves} curves (auszug.limits.LIMITS.curves)", path, no)
+            fold_i = uc_text.integer(fold, "unitCurve rotation fold", path, no, 1, "fold")
             if refl not in (0.0, 1.0):
                 raise FormatError(f"'unitCurve' reflection flag must be 0 or 1, got {refl:g}", path, no)
-            curves.append(_Curve(no, n_points, fold_i, refl == 1.0))
+            curves.append(_Curve(no, declared_points, fold_i, refl == 1.0))
             continue
         if not curves:
             raise FormatError(f"{key!r} before the first 'unitCurve'", path, no)
@@ -266,6 +270,10 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
             x, y = uc_text.numbers(args, 2, key, path, no)
             cur.axis, cur.axis_line = (x, y), no
         elif key == "ptPos":
+            n_points += 1
+            if n_points > LIMITS.segments + len(curves):
+                raise FormatError(f"more than {LIMITS.segments} segments in the drawing "
+                                  "(auszug.limits.LIMITS.segments)", path, no)
             _add_point(cur, ci, uc_text.numbers(args, 2, key, path, no), path, no)
         elif key in ("ptTan", "ptTangent"):
             if dialect is None:
@@ -294,7 +302,7 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
                 cur.gaps[-1].append(((xy[0], xy[1]), no))
                 cur.n_controls += 1
         else:  # ptLab
-            v = uc_text.numbers(args, 1, key, path, no)[0]
+            v = uc_text.numbers(args, 1, key, path, no, None)[0]
             lab = uc_text.integer(v, key, path, no, 0)
             if lab not in LABEL_MARKS:
                 raise FormatError(f"'ptLab' must be 0 (ground), 1 (apex) or 2 (free end), got {lab}",
@@ -303,6 +311,8 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
                 raise FormatError(f"curve {ci} declares {cur.n_points} points but this is 'ptLab' "
                                   f"number {cur.n_points + 1}", path, no)
             cur.labels.append((lab, no))
+    if empty:
+        raise FormatError("empty file: expected 'numCurves N' then curves", path)
     if not curves:
         raise FormatError("no 'unitCurve' found: not a drawing", path)
     if declared is not None and declared[0] != len(curves):
@@ -336,9 +346,17 @@ def read_legacy(text: str, path: str = "<string>") -> Drawing:
                 segments=tuple(_segments(cur)),
                 marks=tuple(LABEL_MARKS[lab] for lab, _ in cur.labels),
                 symmetry=_symmetry(cur),
+                source=Source(cur.line, None, tuple(range(len(cur.points))), tuple(cur.point_lines)),
             ))
         except DrawingError as e:
             raise FormatError(f"curve {ci}: {e}", path, cur.line) from None
         for a, b in zip(cur.points[:-1], cur.points[1:], strict=True):
             longest = max(longest, math.hypot(b[0] - a[0], b[1] - a[1]))
-    return Drawing(curves=tuple(basics), name=uc_text.stem(path), default_apex=max(1.0, longest))
+    if longest > LIMITS.coordinate:
+        raise FormatError(f"the longest segment is {longest:g} long, and so would be the apex height of the "
+                          f"curves (legacy files store none): beyond the limit of {LIMITS.coordinate:g} for "
+                          "heights (auszug.limits.LIMITS.coordinate)", path)
+    try:
+        return Drawing(curves=tuple(basics), name=uc_text.stem(path), default_apex=max(1.0, longest))
+    except DrawingError as e:
+        raise FormatError(str(e), path) from None

@@ -7,27 +7,33 @@ whitespace-separated tokens; a line is a key and its numbers.
 
 from __future__ import annotations
 
+import io
 import math
 import re
+from typing import Iterator
 
 from auszug.errors import FormatError
+from auszug.limits import LIMITS, check_text_size, shown
 
-__all__ = ["MAX_NUMBER", "numbers", "integer", "lines", "stem"]
+__all__ = ["MAX_NUMBER", "numbers", "integer", "lines", "iter_lines", "stem"]
 
 _TOKEN = re.compile(r"\S+")
 
-# Largest magnitude a number in a drawing file may have: squared distances of
-# larger coordinates overflow in the geometry kernel (NaN or OverflowError).
-MAX_NUMBER = 1e100
+#: Largest magnitude of a coordinate or height in a drawing file (:attr:`auszug.limits.Limits.coordinate`).
+MAX_NUMBER = LIMITS.coordinate
 
 
-def numbers(tokens: list[str], n: int | None, key: str, path: str, line: int) -> list[float]:
-    """The tokens of line ``line`` as finite numbers within +-MAX_NUMBER (exactly ``n`` of them unless None).
+def numbers(tokens: list[str], n: int | None, key: str, path: str, line: int,
+            bound: float | None = LIMITS.coordinate) -> list[float]:
+    """The tokens of line ``line`` as finite numbers (exactly ``n`` of them unless None).
+
+    ``bound``: the largest magnitude allowed (default the coordinate limit);
+    None for counts and fractions, which their own checks bound.
 
     Raises
     ------
     FormatError
-        Naming ``key``, the file and the line.
+        Naming ``key``, the file, the line, the value and the limit.
     """
     if n is not None and len(tokens) != n:
         raise FormatError(f"'{key}' needs {n} number(s), got {len(tokens)}", path, line)
@@ -36,20 +42,35 @@ def numbers(tokens: list[str], n: int | None, key: str, path: str, line: int) ->
         try:
             v = float(tok)
         except ValueError:
-            raise FormatError(f"'{key}': {tok!r} is not a number", path, line) from None
+            raise FormatError(f"'{key}': {shown(tok)} is not a number", path, line) from None
         if not math.isfinite(v):
-            raise FormatError(f"'{key}': {tok} is not a finite number", path, line)
-        if abs(v) > MAX_NUMBER:
-            raise FormatError(f"'{key}': {tok} is too large; expected a number within "
-                              f"+-{MAX_NUMBER:g}", path, line)
+            raise FormatError(f"'{key}': {_bare(tok)} is not a finite number", path, line)
+        if bound is not None and abs(v) > bound:
+            raise FormatError(f"'{key}': {_bare(tok)} is beyond the limit of +-{bound:g} for coordinates "
+                              "and heights (auszug.limits.LIMITS.coordinate)", path, line)
         out.append(v)
     return out
 
 
-def integer(v: float, key: str, path: str, line: int, minimum: int) -> int:
-    """The number ``v`` as a whole number >= ``minimum``, else a :class:`FormatError`."""
+def _bare(tok: str) -> str:
+    """A number's token as written, shortened if long."""
+    return tok if len(tok) <= LIMITS.quoted else shown(tok)
+
+
+def integer(v: float, key: str, path: str, line: int, minimum: int, limit: str | None = None,
+            offset: int = 0) -> int:
+    """The number ``v`` as a whole number >= ``minimum``, else a :class:`FormatError`.
+
+    ``limit`` names a field of :class:`auszug.limits.Limits` that ``v + offset``
+    may not exceed (``"fold"``; ``"layers"`` with offset 1 for a layer index).
+    """
     if v != int(v) or v < minimum:
         raise FormatError(f"'{key}' must be a whole number >= {minimum}, got {v:g}", path, line)
+    if limit is not None:
+        top = getattr(LIMITS, limit) - offset
+        if v > top:
+            raise FormatError(f"'{key}' {v:g} is above the limit of {top} (auszug.limits.LIMITS.{limit})",
+                              path, line)
     return int(v)
 
 
@@ -61,12 +82,25 @@ def lines(text: str) -> list[tuple[int, list[str]]]:
     >>> lines("numCurves 1\n\n  ptPos 0 1\n")
     [(1, ['numCurves', '1']), (3, ['ptPos', '0', '1'])]
     """
-    out = []
-    for no, raw in enumerate(text.splitlines(), 1):
+    return list(iter_lines(text))
+
+
+def iter_lines(text: str, path: str | None = None) -> Iterator[tuple[int, list[str]]]:
+    r""":func:`lines`, one at a time: a large file never exists as a list of its tokens.
+
+    With ``path``, refuses text longer than :attr:`auszug.limits.Limits.file_bytes`.
+
+    Examples
+    --------
+    >>> next(iter_lines("\n ptPos 0 1\n"))
+    (2, ['ptPos', '0', '1'])
+    """
+    if path is not None:
+        check_text_size(text, path)
+    for no, raw in enumerate(io.StringIO(text, newline=None), 1):
         toks = _TOKEN.findall(raw)
         if toks:
-            out.append((no, toks))
-    return out
+            yield no, toks
 
 
 def stem(path: str) -> str:

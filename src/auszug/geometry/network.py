@@ -38,6 +38,7 @@ from auszug.geometry.arc import Arc
 from auszug.geometry.curve import Curve
 from auszug.geometry.heights import SideCoordinate, SideView
 from auszug.geometry.symmetry import SymmetryGroup
+from auszug.limits import LIMITS, check_count
 
 __all__ = [
     "KINDS",
@@ -781,6 +782,8 @@ class CurveNetwork:
             n = int(samples)
             if n < 2:
                 raise GeometryError(f"need at least 2 samples per curve, got {samples}")
+            check_count(f"sampled points ({n} per curve, times the network's curves):",
+                        n * sum(self.groups[p.basic].order for p in self.pieces), "network_points")
             for p in self.pieces:
                 pts = p.points[[0, -1]] if p.top is None else p.sample_uniform(n)
                 pts.setflags(write=False)
@@ -793,8 +796,15 @@ class CurveNetwork:
             raise GeometryError(
                 f"tolerance {tolerance:g} is below {MIN_TOLERANCE:g} of the network's size "
                 f"({max(diag, self.size):g}): float64 evaluation cannot honour it")
+        total = 0
         for p in self.pieces:
             ts, fv = sample_by_tolerance(p, tolerance)
+            total += len(ts) * self.groups[p.basic].order
+            if total > LIMITS.network_points:
+                raise GeometryError(
+                    f"tolerance {tolerance:g} gives more than {LIMITS.network_points} points on the "
+                    f"network's {sum(self.groups[q.basic].order for q in self.pieces)} curves (the limit "
+                    "auszug.limits.LIMITS.network_points); give a larger tolerance")
             pts = p.point_t(ts)
             pts.setflags(write=False)
             pieces.append(replace(p, points=pts))

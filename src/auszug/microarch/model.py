@@ -33,6 +33,7 @@ from numpy.typing import ArrayLike, NDArray
 from auszug.errors import DrawingError, GeometryError
 from auszug.geometry import TOL, Curve, Line, arc_from_tangent
 from auszug.geometry.symmetry import SymmetryGroup
+from auszug.limits import LIMITS, check_count, check_number, shown
 
 __all__ = [
     "Mark",
@@ -41,6 +42,7 @@ __all__ = [
     "Symmetry",
     "BasicCurve",
     "Drawing",
+    "Source",
 ]
 
 Mark = Literal["ground", "apex", "free"]
@@ -74,8 +76,10 @@ class Segment:
         if len(self.handles) != need:
             raise DrawingError(f"a {self.kind} segment needs {need} handle(s), got {len(self.handles)}")
         hs = tuple((float(h[0]), float(h[1])) for h in self.handles)
-        if not all(math.isfinite(c) for h in hs for c in h):
-            raise DrawingError("segment handles must be finite numbers")
+        if not all(math.isfinite(c) and abs(c) <= LIMITS.coordinate for h in hs for c in h):
+            for h in hs:
+                for c in h:
+                    check_number("segment handle coordinate", c)
         object.__setattr__(self, "handles", hs)
 
     def curve(self, p0: ArrayLike, p1: ArrayLike) -> Curve:
@@ -146,13 +150,20 @@ class Symmetry:
     axis_rule: AxisRule = "fixed"
 
     def __post_init__(self) -> None:
-        if isinstance(self.fold, bool) or int(self.fold) != self.fold or self.fold < 1:
-            raise DrawingError(f"rotation fold must be an integer >= 1, got {self.fold!r}")
+        try:
+            whole = not isinstance(self.fold, bool) and int(self.fold) == self.fold
+        except (TypeError, ValueError, OverflowError):
+            whole = False
+        if not whole or self.fold < 1:
+            raise DrawingError(f"rotation fold must be an integer >= 1, got {shown(self.fold)}")
+        check_count("rotation fold", int(self.fold), "fold")
         object.__setattr__(self, "fold", int(self.fold))
         ax = (float(self.axis[0]), float(self.axis[1]))
         ce = (float(self.center[0]), float(self.center[1]))
         if not all(math.isfinite(v) for v in ax + ce):
             raise DrawingError("symmetry axis and centre must be finite")
+        for v in ax + ce:
+            check_number("symmetry axis or centre coordinate", v)
         if self.mirror and math.hypot(*ax) <= 1e-12:
             raise DrawingError("mirror axis has zero length (reflection point at the centre)")
         if self.axis_rule not in ("first point", "last point", "y axis", "fixed"):
@@ -188,6 +199,40 @@ class Symmetry:
 
 
 @dataclass(frozen=True)
+class Source:
+    """Where a basic curve was read from, so that messages name what the user wrote.
+
+    Not part of the drawing's value: curves compare and hash without it.
+
+    Attributes
+    ----------
+    line : int or None
+        The line where the curve starts in its file.
+    height_line : int or None
+        The line of its apex height, if the file stores one.
+    points : tuple of int
+        The file's own number of each vertex (a web ``.uc`` curve A, T, B, T2,
+        C has its vertices at points 0, 2, 4).
+    point_lines : tuple of int
+        The line of each vertex.
+    """
+
+    line: int | None = None
+    height_line: int | None = None
+    points: tuple[int, ...] = ()
+    point_lines: tuple[int, ...] = ()
+
+    def segment(self, i: int) -> str:
+        """``"points 2 to 4, line 7"``: segment ``i`` in the file's terms ("" if unknown)."""
+        if i + 1 >= len(self.points):
+            return ""
+        text = f"points {self.points[i]} to {self.points[i + 1]}"
+        if i < len(self.point_lines):
+            text += f", line {self.point_lines[i]}"
+        return text
+
+
+@dataclass(frozen=True)
 class BasicCurve:
     """One basic curve of a drawing (paper sec. 4.2) with its heights.
 
@@ -217,6 +262,8 @@ class BasicCurve:
         Absolute height of a vertical post rising from the apex.
     name : str
         Optional label.
+    source : Source or None
+        Where a reader found the curve (not part of its value).
     """
 
     vertices: tuple[tuple[float, float], ...]
@@ -230,13 +277,17 @@ class BasicCurve:
     decoration_at: float | None = None
     post_top: float | None = None
     name: str = ""
+    source: Source | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         vs = tuple((float(v[0]), float(v[1])) for v in self.vertices)
         if len(vs) < 2:
             raise DrawingError(f"a basic curve needs at least 2 points, got {len(vs)}")
-        if not all(math.isfinite(c) for v in vs for c in v):
-            raise DrawingError("curve points must be finite numbers")
+        if not all(math.isfinite(c) and abs(c) <= LIMITS.coordinate for v in vs for c in v):
+            for i, v in enumerate(vs):
+                for c in v:
+                    check_number(f"point {i}: coordinate", c)
+        check_count("segments in one curve:", len(vs) - 1, "segments")
         object.__setattr__(self, "vertices", vs)
         segs = tuple(self.segments)
         if len(segs) != len(vs) - 1:
@@ -257,15 +308,20 @@ class BasicCurve:
         object.__setattr__(self, "prc", tuple(None if f is None else float(f) for f in prc))
         if self.decoration_at is not None and not 0.0 < float(self.decoration_at) < 1.0:
             raise DrawingError(f"decoration point must lie strictly inside the curve, got {self.decoration_at}")
-        if isinstance(self.layer, bool) or int(self.layer) != self.layer or self.layer < 0:
-            raise DrawingError(f"layer must be an integer >= 0, got {self.layer!r}")
+        try:
+            whole = not isinstance(self.layer, bool) and int(self.layer) == self.layer
+        except (TypeError, ValueError, OverflowError):
+            whole = False
+        if not whole or self.layer < 0:
+            raise DrawingError(f"layer must be an integer >= 0, got {shown(self.layer)}")
+        if self.layer >= LIMITS.layers:
+            raise DrawingError(f"layer {shown(self.layer)} is above the limit of {LIMITS.layers - 1} "
+                               f"({LIMITS.layers} layers, auszug.limits.LIMITS.layers)")
         object.__setattr__(self, "layer", int(self.layer))
         for nm in ("height", "post_top"):
             v = getattr(self, nm)
             if v is not None:
-                if not math.isfinite(float(v)):
-                    raise DrawingError(f"{nm} must be finite, got {v}")
-                object.__setattr__(self, nm, float(v))
+                object.__setattr__(self, nm, check_number("apex height" if nm == "height" else "post top", v))
         for i in range(len(vs) - 1):
             if math.hypot(vs[i + 1][0] - vs[i][0], vs[i + 1][1] - vs[i][1]) <= 1e-12:
                 raise DrawingError(f"points {i} and {i + 1} coincide: zero-length segment")
@@ -327,11 +383,20 @@ class Drawing:
     default_apex: float | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "curves", tuple(self.curves))
+        cs = tuple(self.curves)
+        object.__setattr__(self, "curves", cs)
+        check_count("basic curves:", len(cs), "curves")
+        check_count("segments in the drawing:", sum(len(c.segments) for c in cs), "segments")
+        check_count("network curves (segments times symmetry order):",
+                    sum(len(c.segments) * c.symmetry.order for c in cs), "network_curves")
         lb = tuple(float(z) for z in self.layer_bottoms)
-        if not all(math.isfinite(z) for z in lb):
-            raise DrawingError("layer bottoms must be finite numbers")
+        if not all(math.isfinite(z) and abs(z) <= LIMITS.coordinate for z in lb):
+            for i, z in enumerate(lb):
+                check_number(f"bottom of layer {i}", z)
+        check_count("layer bottoms:", len(lb), "layers")
         object.__setattr__(self, "layer_bottoms", lb)
+        if self.default_apex is not None:
+            object.__setattr__(self, "default_apex", check_number("default apex height", self.default_apex))
 
     @property
     def n_layers(self) -> int:

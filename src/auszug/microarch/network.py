@@ -23,6 +23,7 @@ from auszug.errors import DrawingError
 from auszug.geometry import TOL, Curve
 from auszug.geometry.heights import SideCoordinate, orthographic_rule
 from auszug.geometry.network import CurveNetwork, NetworkCurve, Piece
+from auszug.limits import check_count
 from auszug.microarch import sideview as sv
 from auszug.microarch.model import BasicCurve, Drawing
 
@@ -267,6 +268,9 @@ def build(
     n = int(samples or TOL.samples)
     if n < 2:
         raise DrawingError(f"need at least 2 samples per piece, got {n}")
+    check_count("samples per curve piece:", n, "samples")
+    check_count(f"sampled points ({n} per curve piece, times the drawing's network curves):",
+                n * sum(len(c.segments) * c.symmetry.order for c in drawing.curves), "network_points")
     bottoms = drawing.bottoms()
     apex = tuple(drawing.apex_height(i, bottoms) for i in range(len(drawing.curves)))
     pieces: list[Piece] = []

@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, ClassVar, Literal, Union, get_args, get_origin, get_type_hints
 
 from auszug.errors import AuszugError
+from auszug.limits import shown
 from auszug.microarch import edit
 from auszug.microarch.model import Drawing
 
@@ -714,34 +715,34 @@ def _convert(value: Any, tp: Any, where: str) -> Any:
     origin = get_origin(tp)
     if tp is bool:
         if not isinstance(value, bool):
-            raise ProtocolError(f"{where}: expected true or false, got {value!r}")
+            raise ProtocolError(f"{where}: expected true or false, got {shown(value)}")
         return value
     if tp is int:
         if isinstance(value, bool) or not isinstance(value, int):
-            raise ProtocolError(f"{where}: expected an integer, got {value!r}")
+            raise ProtocolError(f"{where}: expected an integer, got {shown(value)}")
         return value
     if tp is float:
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-            raise ProtocolError(f"{where}: expected a finite number, got {value!r}")
+            raise ProtocolError(f"{where}: expected a finite number, got {shown(value)}")
         return float(value)
     if tp is str:
         if not isinstance(value, str):
-            raise ProtocolError(f"{where}: expected a string, got {value!r}")
+            raise ProtocolError(f"{where}: expected a string, got {shown(value)}")
         return value
     if origin is Literal:
         if value not in get_args(tp):
             opts = ", ".join(repr(a) for a in get_args(tp))
-            raise ProtocolError(f"{where}: expected one of {opts}, got {value!r}")
+            raise ProtocolError(f"{where}: expected one of {opts}, got {shown(value)}")
         return value
     if origin is tuple:
         args = get_args(tp)
         if not isinstance(value, list) or len(value) != len(args):
-            raise ProtocolError(f"{where}: expected a list of {len(args)} values, got {value!r}")
+            raise ProtocolError(f"{where}: expected a list of {len(args)} values, got {shown(value)}")
         return tuple(_convert(v, a, f"{where}[{i}]") for i, (v, a) in enumerate(zip(value, args, strict=True)))
     if origin is list:
         (arg,) = get_args(tp)
         if not isinstance(value, list):
-            raise ProtocolError(f"{where}: expected a list, got {value!r}")
+            raise ProtocolError(f"{where}: expected a list, got {shown(value)}")
         return [_convert(v, arg, f"{where}[{i}]") for i, v in enumerate(value)]
     raise ProtocolError(f"{where}: unsupported field type {tp!r}")  # pragma: no cover
 
@@ -764,7 +765,7 @@ def decode(text: str | bytes) -> Any:
     kind = obj.get("type")
     cls = _BY_TYPE.get(kind) if isinstance(kind, str) else None
     if cls is None:
-        raise ProtocolError(f"unknown message type {kind!r}; expected one of {', '.join(sorted(_BY_TYPE))}")
+        raise ProtocolError(f"unknown message type {shown(kind)}; expected one of {', '.join(sorted(_BY_TYPE))}")
     hints, fields = _schema(cls)
     unknown = sorted(set(obj) - fields.keys())
     if unknown:

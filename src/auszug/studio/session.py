@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 
 from auszug._cache import LruCache
 from auszug.errors import AuszugError, DrawingError, FormatError
+from auszug.limits import check_file_size
 from auszug.microarch.model import Drawing
 from auszug.microarch.network import Network, build
 from auszug.microarch.prc import intersections
@@ -620,6 +621,7 @@ class Document:
         rec = ""
         try:
             if p.is_file():
+                check_file_size(p)
                 saved = read_drawing(p.name, p.read_text(encoding="utf-8"))
                 if not _same_drawing(saved, self.drawing):
                     rec = _autosave_time(p)
@@ -701,6 +703,7 @@ class Document:
         p = self.autosave_file()
         if not p.is_file():
             raise WorkspaceError(f"{self.label}: no autosave to recover")
+        check_file_size(p)
         saved = read_drawing(p.name, p.read_text(encoding="utf-8"))
         with self.lock:
             self.replace_drawing(replace(saved, name=self.drawing.name))
@@ -819,6 +822,7 @@ def open_document(workspace: Workspace, rel: str) -> Document:
     if not p.is_file():
         raise WorkspaceError(f"no such file in the workspace: {rel!r}")
     fmt = _drawing_format(rel_clean)
+    check_file_size(p, rel_clean)
     try:
         text = p.read_text(encoding="utf-8")
     except UnicodeDecodeError as e:

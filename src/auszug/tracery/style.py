@@ -83,6 +83,7 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from auszug.errors import FormatError
+from auszug.limits import LIMITS, check_file_size, check_text_size
 from auszug.tracery._checks import ParameterError, choice, integer, number
 from auszug.tracery.profile import Moulding, profile_from_data
 from auszug.tracery.rosette import ORIENTATIONS
@@ -366,6 +367,7 @@ def builtin_style(name: str) -> Style:
 
 
 def _parse_text(text: str, source: str, suffix: str) -> dict[str, Any]:
+    check_text_size(text, source)
     try:
         if suffix == ".json":
             data = json.loads(text)
@@ -377,6 +379,9 @@ def _parse_text(text: str, source: str, suffix: str) -> dict[str, Any]:
         raise FormatError(f"not valid JSON: {e.msg}", source, e.lineno) from None
     if not isinstance(data, dict):
         raise FormatError("a style must be a table (a JSON object)", source)
+    if not data:
+        raise FormatError("empty style: it sets no key; write extends = \"fig20a\" (or another built-in "
+                          "style, see auszug tracery --list) for that style's window", source)
     return data
 
 
@@ -422,6 +427,7 @@ def _read_ref(ref: str, base: Path | None) -> tuple[dict[str, Any], Path | None]
     """Read a style by path (relative to ``base``) or built-in name."""
     for cand in ([base / ref] if base is not None else []) + [Path(ref)]:
         if cand.suffix.lower() in (".toml", ".json") and cand.is_file():
+            check_file_size(cand)
             return _parse_text(cand.read_text(encoding="utf-8"), str(cand), cand.suffix.lower()), cand.parent
     try:
         return copy.deepcopy(_builtin_data(ref)), None
@@ -506,11 +512,11 @@ def style_from_data(data: Mapping[str, Any], _depth: int = 0) -> Style:
         raise ParameterError("profiles", local, "a table of profiles")
     params = WindowParams.from_mapping(_table(data, "params"))
     w = _table(data, "wall")
-    thick = number("wall.thickness", w["thickness"], 0.0, lo_open=True)
+    thick = number("wall.thickness", w["thickness"], 0.0, LIMITS.coordinate, lo_open=True)
     wall = Wall(
         thick,
         number("wall.slab", w["slab"], 0.0, thick, lo_open=True, hi_open=True),
-        number("wall.margin", w["margin"], 0.0, lo_open=True),
+        number("wall.margin", w["margin"], 0.0, LIMITS.coordinate, lo_open=True),
         _profile("wall.profile", w["profile"], local, wall=True),
     )
     groups = {}
@@ -537,7 +543,7 @@ def style_from_data(data: Mapping[str, Any], _depth: int = 0) -> Style:
     circle = CircleGroup(
         choice("circle.decoration", c["decoration"], CIRCLE_DECORATIONS),
         _profile("circle.profile", c["profile"], local),
-        integer("circle.foils", c["foils"], 2),
+        integer("circle.foils", c["foils"], 2, LIMITS.fold),
         c["pointed"],
         number("circle.displacement", c["displacement"], 1.0, 3.0, lo_open=True),
         choice("circle.orientation", c["orientation"], ORIENTATIONS),

@@ -48,6 +48,7 @@ from numpy.typing import NDArray
 from auszug.errors import GeometryError
 from auszug.geometry import Arc, Curve, Line
 from auszug.geometry.offset import offset_curves
+from auszug.limits import LIMITS
 from auszug.tracery._checks import ParameterError, number
 from auszug.tracery.arch import PointedArch, arc_between
 
@@ -94,6 +95,11 @@ class WindowParams:
     y: float = 0.0
 
     def __post_init__(self) -> None:
+        big = LIMITS.coordinate
+        why = "the coordinate limit, auszug.limits.LIMITS.coordinate"
+        for name in ("span", "height", "drop", "outer", "inner", "x", "y"):  # each blamed by its own name
+            number(name, getattr(self, name), -big, big, why=why)
+        number("excess", self.excess, hi=big, why=why)
         number("span", self.span, 0.0, lo_open=True)
         number("height", self.height, 0.0, lo_open=True)
         number("excess", self.excess, 0.5, why="excess 0.5 is the round arch; below it the arcs do not meet")
@@ -114,7 +120,7 @@ class WindowParams:
         if unknown:
             raise ParameterError(unknown[0], values[unknown[0]],
                                  "a known window parameter: " + ", ".join(sorted(known)))
-        return cls(**{k: float(v) for k, v in values.items()})
+        return cls(**{k: number(k, v) for k, v in values.items()})
 
     def scaled(self, factor: float) -> WindowParams:
         """All lengths multiplied by ``factor`` about the origin (excess unchanged)."""

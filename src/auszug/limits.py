@@ -1,0 +1,232 @@
+"""The one home for size limits: what auszug accepts, everywhere, and why.
+
+Every reader (``.uc``, native JSON, network JSON, tracery JSON, style TOML),
+the drawing model's constructors (so the Python API and the studio's edits),
+and the command line check their input against the single instance
+:data:`LIMITS`. A value beyond a limit is refused with an
+:class:`~auszug.errors.AuszugError` naming the file, the line, the value and
+the limit; nothing is allowed to run for minutes, fill the memory, or write
+infinities. The limits are far above anything in the published corpus (fold
+15, 7 curves, 5 layers, coordinates within 15) and chosen so that the
+largest accepted input of any command stays below 2 GB of memory
+(``tests/test_limits.py`` runs them under that limit). ``docs/limits.md``
+tabulates them.
+
+Examples
+--------
+>>> from auszug.limits import LIMITS, shown
+>>> LIMITS.fold
+1024
+>>> shown("x" * 200)  # doctest: +ELLIPSIS
+"'xxxxxxxx...xxx' (200 characters)"
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, fields
+from typing import Any
+
+__all__ = ["Limits", "LIMITS", "shown", "clip", "check_file_size", "check_text_size", "check_number",
+           "check_count", "table"]
+
+
+@dataclass(frozen=True)
+class Limits:
+    """The documented limits (see the module notes and ``docs/limits.md``).
+
+    Attributes
+    ----------
+    fold : int
+        Largest rotation fold n of a basic curve's symmetry C_n. A drawing is
+        built and intersected replica by replica, so the work grows with n
+        (and with n squared for the top-view intersections); fold 1e5 took
+        over a minute and fold 1e9 all 24 GB of a machine. The corpus uses at
+        most 15; 1024 is finer than any carved object and builds in seconds.
+    layers : int
+        Most layers in a drawing (largest ``level`` + 1). The layer bottoms
+        are a list with one entry per layer: ``level 1e99`` hung ``info``
+        while it grew. The corpus has 5.
+    curves : int
+        Most basic curves in a drawing. Algorithm 1 and the intersections
+        compare every pair of curves; the corpus has at most 7.
+    segments : int
+        Most top-view segments, summed over the drawing's basic curves (and
+        most points of one legacy curve): each is a side view to fit and a
+        piece to sample.
+    network_curves : int
+        Most curves of the network (segments times the order of their
+        symmetry group, mirror included). This bounds the memory of a build
+        whatever the mix of fold and segments: 65 536 curves of 65 samples
+        are 100 MB of points.
+    samples : int
+        Most samples per curve piece (``--samples``). 100 000 000 was killed
+        for memory; 10 000 is a point every 0.01 % of a curve, far finer than
+        a screen or a printer resolves.
+    network_points : int
+        Most points of a sampled network (every replica of every curve,
+        whether sampled by tolerance or by ``--samples``). The writers hold a
+        network's text or mesh in memory, about 400 bytes per point: the
+        default export of a fold-1024 mirrored curve (4.2 M points) peaked at
+        1.6 GB. 2 M points keep every export below 1 GB; a coarser
+        ``--tolerance`` or fewer ``--samples`` bring a larger network within it.
+    coordinate : float
+        Largest magnitude of a coordinate or height (drawing units). Meshes
+        are written as float32 (GLB, STL, PLY), whose largest value is 3.4e38
+        and whose resolution is 6e-8 relative: a drawing scaled to 1e90 wrote
+        a GLB of infinities. Within 1e6 the geometry kernel's squared
+        distances stay exact to well below its tolerances, float32 meshes
+        keep 0.06 units of resolution at the very edge, and a drawing in
+        millimetres can still span a kilometre.
+    pixels : int
+        Largest width or height of a rendered picture, in pixels. A 16 384 px
+        square RGBA image is 1 GB in matplotlib; ``render --width 100000``
+        was a MemoryError traceback.
+    file_bytes : int
+        Largest input file, checked before it is read. A 200 MB file cost
+        7.7 GB of memory and 68 s; the largest corpus file is 3 KB, and 64 MB
+        is a million curves of text.
+    quoted : int
+        Characters of a user's value quoted in an error message; longer values
+        are shown shortened, with their length. A 200 MB token made an 839 MB
+        message.
+    message : int
+        Characters of an error message at most (the rest is cut).
+    """
+
+    fold: int = 1024
+    layers: int = 64
+    curves: int = 1024
+    segments: int = 8192
+    network_curves: int = 65536
+    samples: int = 10_000
+    network_points: int = 2_000_000
+    coordinate: float = 1e6
+    pixels: int = 16384
+    file_bytes: int = 64 * 1024 * 1024
+    quoted: int = 80
+    message: int = 2000
+
+
+#: The limits in force.
+LIMITS = Limits()
+
+
+def shown(value: Any, width: int | None = None) -> str:
+    """``repr(value)`` for a message, at most ``width`` characters (default :attr:`Limits.quoted`).
+
+    Examples
+    --------
+    >>> shown(1e308)
+    '1e+308'
+    >>> shown("ab")
+    "'ab'"
+    """
+    w = LIMITS.quoted if width is None else width
+    if isinstance(value, str) and len(value) > w:
+        return repr(value[: w - 8] + "..." + value[-3:]) + f" ({len(value)} characters)"
+    if isinstance(value, (bytes, list, tuple, dict)) and len(value) > w:
+        return f"a {type(value).__name__} of {len(value)} items"
+    if isinstance(value, float):
+        text = f"{value:.6g}"
+    elif isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**15:
+        text = f"{float(value):.6g}"
+    else:
+        text = repr(value)
+    return text if len(text) <= w else text[: w - 3] + "..."
+
+
+def clip(message: str) -> str:
+    """``message`` cut to :attr:`Limits.message` characters."""
+    n = LIMITS.message
+    return message if len(message) <= n else message[: n - 30] + f"... ({len(message)} characters)"
+
+
+def _mb(n: int) -> str:
+    return f"{n / 2**20:.0f} MB" if n >= 2**20 else f"{n} bytes"
+
+
+def check_file_size(path: str | os.PathLike[str], name: str | None = None) -> None:
+    """Refuse a file larger than :attr:`Limits.file_bytes` before reading it (``name`` for messages).
+
+    Raises
+    ------
+    FormatError
+        Naming the file, its size and the limit. A missing file passes (the
+        read that follows reports it).
+    """
+    from auszug.errors import FormatError
+
+    try:
+        size = os.stat(path).st_size
+    except OSError:
+        return
+    if size > LIMITS.file_bytes:
+        raise FormatError(f"file of {_mb(size)} is larger than the limit of {_mb(LIMITS.file_bytes)} "
+                          "(auszug.limits.LIMITS.file_bytes)", name or os.fspath(path))
+
+
+def check_text_size(text: str | bytes, path: str | None) -> None:
+    """Refuse text longer than :attr:`Limits.file_bytes` (readers given text, not a path)."""
+    from auszug.errors import FormatError
+
+    if len(text) > LIMITS.file_bytes:
+        raise FormatError(f"text of {_mb(len(text))} is larger than the limit of {_mb(LIMITS.file_bytes)} "
+                          "(auszug.limits.LIMITS.file_bytes)", path)
+
+
+def check_number(what: str, value: float, limit: float | None = None) -> float:
+    """``value`` if finite and within +-``limit`` (default :attr:`Limits.coordinate`).
+
+    Raises
+    ------
+    DrawingError
+        Naming ``what``, the value and the limit.
+
+    Examples
+    --------
+    >>> check_number("height", 2.5)
+    2.5
+    >>> check_number("height", 1e90)
+    Traceback (most recent call last):
+    ...
+    auszug.errors.DrawingError: height 1e+90 is beyond the limit of +-1e+06 (auszug.limits.LIMITS.coordinate)
+    """
+    from auszug.errors import DrawingError
+
+    lim = LIMITS.coordinate if limit is None else limit
+    v = float(value)
+    if not math.isfinite(v):
+        raise DrawingError(f"{what} must be a finite number, got {shown(v)}")
+    if abs(v) > lim:
+        raise DrawingError(f"{what} {shown(v)} is beyond the limit of +-{lim:g} (auszug.limits.LIMITS.coordinate)")
+    return v
+
+
+def check_count(what: str, n: int, name: str) -> None:
+    """Refuse a count ``n`` above the limit ``name`` (a field of :class:`Limits`).
+
+    Raises
+    ------
+    DrawingError
+        ``"{what} {n} is above the limit of {limit} (auszug.limits.LIMITS.{name})"``.
+    """
+    from auszug.errors import DrawingError
+
+    lim = getattr(LIMITS, name)
+    if n > lim:
+        raise DrawingError(f"{what} {shown(n)} is above the limit of {lim} (auszug.limits.LIMITS.{name})")
+
+
+def table() -> list[tuple[str, Any, str]]:
+    """(name, value, first line of its reason) of every limit, for docs and ``--help``."""
+    doc = Limits.__doc__ or ""
+    out = []
+    for f in fields(Limits):
+        reason = ""
+        marker = f"    {f.name} :"
+        if marker in doc:
+            reason = doc.split(marker, 1)[1].split("\n", 2)[1].strip()
+        out.append((f.name, getattr(LIMITS, f.name), reason))
+    return out

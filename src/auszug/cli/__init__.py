@@ -26,7 +26,7 @@ from typing import Sequence
 __all__ = ["COMMANDS", "make_parser", "main"]
 
 #: Subcommands in the order ``auszug --help`` lists them.
-COMMANDS: tuple[str, ...] = ("build", "info", "render", "convert", "demo", "tracery", "mesh", "studio")
+COMMANDS: tuple[str, ...] = ("build", "info", "render", "convert", "demo", "tracery", "mesh", "lift", "studio")
 
 
 def _version() -> str:

@@ -4,7 +4,7 @@ Read with svgelements (MIT). Every shape (``path``, ``line``, ``polyline``,
 ``polygon``, ``rect``, ``circle``, ``ellipse``) is a stroke, one per subpath;
 its segments of any kind become cubic Beziers (lines with handles at thirds,
 quadratics degree-elevated, elliptical arcs by svgelements' cubic
-approximation, at most 90 deg per piece). Every ``transform`` and the root's
+approximation, six cubics for half a circle). Every ``transform`` and the root's
 ``viewBox`` are applied (coordinates are CSS px of the page, which are the
 user units when there is no viewBox), and y is flipped to point up:
 ``y = -y_svg``.

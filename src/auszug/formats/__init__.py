@@ -18,6 +18,8 @@ from auszug.formats import ply as _ply  # noqa: F401  (registers .ply meshes)
 from auszug.formats import gltf as _gltf  # noqa: F401  (registers .glb/.gltf meshes)
 from auszug.formats import dxf as _dxf  # noqa: F401  (registers .dxf: polylines, exact arcs and lines)
 from auszug.formats import rhino as _rhino  # noqa: F401  (registers .3dm: exact arcs and lines, else polylines)
+from auszug.formats import sketch_svg as _sketch_svg  # noqa: F401  (reads .svg sketches, kind "sketch")
+from auszug.formats import sketch_json as _sketch_json  # noqa: F401  (registers .sketch.json sketches)
 # isort: on
 from auszug.formats._registry import (
     FileFormat,

@@ -10,7 +10,16 @@ docs/lifting.md.
 """
 
 from auszug.lifting.params import DEFAULT, LiftParams
-from auszug.lifting.reconstruct import CLASSES, DEFAULT_CLASSES, CueResult, LiftResult, Stage, lift, lift_graph
+from auszug.lifting.reconstruct import (
+    CLASSES,
+    DEFAULT_CLASSES,
+    CueResult,
+    LiftResult,
+    Stage,
+    layer_graphs,
+    lift,
+    lift_graph,
+)
 from auszug.lifting.sketch import Crossing, Marker, Sketch, SketchGraph, Stroke, sketch_graph
 
 __all__ = [
@@ -19,6 +28,7 @@ __all__ = [
     "CueResult",
     "LiftResult",
     "Stage",
+    "layer_graphs",
     "lift",
     "lift_graph",
     "DEFAULT",

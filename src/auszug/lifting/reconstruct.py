@@ -25,7 +25,7 @@ from auszug.lifting.sketch import Sketch, SketchGraph, sketch_graph
 from auszug.lifting.solver import Poly2, SolveResult, solve
 from auszug.lifting.terms import fidelity, structure
 
-__all__ = ["CueResult", "Stage", "LiftResult", "lift", "lift_graph", "CLASSES", "DEFAULT_CLASSES"]
+__all__ = ["CueResult", "Stage", "LiftResult", "lift", "lift_graph", "layer_graphs", "CLASSES", "DEFAULT_CLASSES"]
 
 Array = NDArray[np.float64]
 
@@ -455,16 +455,57 @@ def lift(sketch: Sketch, params: LiftParams = DEFAULT, progress: Progress | None
     >>> r.converged, [c.kind for c in r.cues][:1], round(r.cues[0].angle, 6)
     (True, ['smooth-orthogonal'], 0.0)
     """
-    if not sketch.strokes:
-        raise GeometryError("the sketch has no strokes")
-    nlayers = max(s.layer for s in sketch.strokes) + 1
-    used_markers: set[int] = set()
+    layers = layer_graphs(sketch, params)
     results: list[CueResult] = []
     stages: list[Stage] = []
     pts: list[Array] = []
     graphs: list[SketchGraph] = []
     flips: list[bool] = []
     ok = True
+    for layer, g in layers:
+        X, cues_, st, conv, flip = lift_graph(g, params, layer, progress, classes)
+        results += cues_
+        stages += st
+        ok &= conv
+        Xs = X.copy()
+        Xs[:, :2] = X[:, :2] * g.scale + g.offset
+        Xs[:, 2] = X[:, 2] * g.scale
+        pts.append(Xs)
+        graphs.append(g)
+        flips.append(flip)
+    _stack(graphs, pts)
+    net = _network(sketch, graphs, pts, results)
+    return LiftResult(net, tuple(results), tuple(stages), bool(ok), tuple(flips), tuple(pts), tuple(graphs))
+
+
+def layer_graphs(sketch: Sketch, params: LiftParams = DEFAULT) -> tuple[tuple[int, SketchGraph], ...]:
+    """The curve graph of every layer of ``sketch`` that has strokes, with its layer index, back to front.
+
+    This is the whole validation :func:`lift` does before it solves, so a
+    reader can refuse a sketch that cannot be lifted without solving it.
+
+    Raises
+    ------
+    GeometryError
+        For no strokes, non-finite, zero-length or duplicate strokes (naming
+        the stroke), a layer without intersections, a layer whose strokes fall
+        into parts not joined by any intersection (naming them), or a marker
+        that snaps to no crossing of any layer (naming it).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from auszug.lifting import Sketch, Stroke, layer_graphs
+    >>> h = Stroke(np.array([[[-1, 0], [-0.4, 0.25], [0.4, 0.25], [1, 0]]], float), "h")
+    >>> v = Stroke(np.array([[[0.3, -1], [0.1, -0.3], [-0.1, 0.3], [-0.3, 1]]], float), "v")
+    >>> [(layer, len(g.crossings)) for layer, g in layer_graphs(Sketch((h, v)))]
+    [(0, 1)]
+    """
+    if not sketch.strokes:
+        raise GeometryError("the sketch has no strokes")
+    nlayers = max(s.layer for s in sketch.strokes) + 1
+    used_markers: set[int] = set()
+    out: list[tuple[int, SketchGraph]] = []
     for layer in range(nlayers):
         strokes = tuple(s for s in sketch.strokes if s.layer == layer)
         if not strokes:
@@ -478,24 +519,13 @@ def lift(sketch: Sketch, params: LiftParams = DEFAULT, progress: Progress | None
             lone = [strokes[i].id or f"stroke #{i}" for i in np.nonzero(comp != main)[0]]
             raise GeometryError(f"{', '.join(lone[:3])}{' ...' if len(lone) > 3 else ''}: not joined to the rest "
                                 f"of layer {layer} by any intersection; put independent parts in their own layers")
-        X, cues_, st, conv, flip = lift_graph(g, params, layer, progress, classes)
-        results += cues_
-        stages += st
-        ok &= conv
-        Xs = X.copy()
-        Xs[:, :2] = X[:, :2] * g.scale + g.offset
-        Xs[:, 2] = X[:, 2] * g.scale
-        pts.append(Xs)
-        graphs.append(g)
-        flips.append(flip)
+        out.append((layer, g))
     missing = [m for i, m in enumerate(sketch.markers) if i not in used_markers]
     if missing:
         m = missing[0]
         raise GeometryError(f"{m.kind} marker {m.id or '(no id)'} at {np.asarray(m.point).tolist()}: no "
                             f"crossing within {params.snap:.0%} of the sketch's diagonal in any layer")
-    _stack(graphs, pts)
-    net = _network(sketch, graphs, pts, results)
-    return LiftResult(net, tuple(results), tuple(stages), bool(ok), tuple(flips), tuple(pts), tuple(graphs))
+    return tuple(out)
 
 
 def _graph_with_markers(sub: Sketch, params: LiftParams) -> tuple[SketchGraph, set[int]]:

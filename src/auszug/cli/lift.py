@@ -1,0 +1,127 @@
+"""Lift a 2D design sketch to the 3D curve network it depicts (True2Form, Xu et al. 2014).
+
+SKETCH is an SVG as Inkscape or Illustrator write it (paths of any kind,
+layers as independent parts; occlusion and flip marker circles and a symmetry
+path as annotations, see docs/formats.md) or a .sketch.json. The ending of
+OUT picks the network format: .network.json, .obj, .svg, .dxf, .3dm. x and y
+are the sketch's own (y up), z is the lifted depth toward the viewer. Without
+-o the network goes to <stem>.network.json in the current folder.
+
+One progress line per solve goes to stderr. The output is written
+atomically: a sketch that cannot be lifted leaves no file (exit code 2).
+
+examples:
+  auszug lift vase.svg -o vase.network.json
+  auszug lift vase.svg -o vase.obj --report --render vase.png
+  auszug lift vase.svg --cues none        # the baseline: hard orthogonality at smooth crossings only
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from auszug.cli import _common
+
+if TYPE_CHECKING:
+    from auszug.lifting import LiftResult
+
+HELP = "lift a 2D design sketch (.svg, .sketch.json) to a 3D curve network"
+
+
+def add_args(parser: argparse.ArgumentParser) -> None:
+    """Options of ``auszug lift``."""
+    from auszug.lifting import CLASSES, DEFAULT_CLASSES
+
+    parser.add_argument("sketch", metavar="SKETCH", help="a sketch: .svg or .sketch.json")
+    parser.add_argument("-o", "--output", metavar="OUT",
+                        help="network file: .network.json, .obj, .svg, .dxf, .3dm (default <stem>.network.json)")
+    parser.add_argument("--report", action="store_true",
+                        help="print the cues applied and their final angles (and how many were rejected)")
+    parser.add_argument("--render", metavar="FIG",
+                        help="also draw a figure (.png, .svg, .pdf): the sketch with the regularities found, "
+                             "and the lifted network from above and in 3D")
+    parser.add_argument("--cues", default=",".join(DEFAULT_CLASSES), metavar="LIST",
+                        help=f"cue classes to resolve, comma-separated from {', '.join(CLASSES)}, or 'none' "
+                             f"(default {','.join(DEFAULT_CLASSES)})")
+    parser.add_argument("--quiet", action="store_true", help="no progress lines")
+
+
+def _classes(text: str) -> tuple[str, ...]:
+    from auszug.errors import FormatError
+    from auszug.lifting import CLASSES
+
+    if text.strip().lower() == "none":
+        return ()
+    got = [c.strip() for c in text.split(",") if c.strip()]
+    bad = [c for c in got if c not in CLASSES]
+    if bad:
+        raise FormatError(f"--cues: unknown cue class {bad[0]!r}; expected some of {', '.join(CLASSES)} or 'none'")
+    return tuple(c for c in CLASSES if c in got)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Read, lift, write; return 0."""
+    import time
+
+    from auszug.formats import format_for, load, save, stem
+    from auszug.formats.network_json import NetworkFile
+    from auszug.lifting import lift
+
+    src = Path(args.sketch)
+    classes = _classes(args.cues)
+    format_for(src, "sketch")
+    out = Path(args.output) if args.output else Path(stem(src, "sketch") + ".network.json")
+    format_for(out, "network", want="write")
+    if args.render:
+        fig_fmt = format_for(args.render, "figure", want="write")
+        fig_ext = max((s for s in fig_fmt.suffixes if args.render.lower().endswith(s)), key=len)
+
+    def say(line: str) -> None:
+        if not args.quiet:
+            print(f"lift: {line}", file=sys.stderr, flush=True)
+
+    t0 = time.perf_counter()
+    with _common.about(src):
+        sketch = load(src, kind="sketch")
+    say(f"read {len(sketch.strokes)} strokes, {len(sketch.markers)} markers, "
+        f"{max(s.layer for s in sketch.strokes) + 1} layer(s) in {time.perf_counter() - t0:.2f} s")
+    with _common.about(src):
+        result = lift(sketch, progress=say, classes=classes)
+    if not result.converged:
+        say("warning: not every solve converged; the hard cues may be violated (see --report)")
+    with _common.about(out):
+        save(NetworkFile(result.network, src.name), out, kind="network")
+    if args.render:
+        from auszug.formats import atomic_write
+        from auszug.formats.lift_figure import render_lift
+
+        with _common.about(args.render):
+            atomic_write(args.render, render_lift(sketch, result, fig_ext))
+    if args.report:
+        _report(result, classes)
+    say(f"done in {time.perf_counter() - t0:.2f} s")
+    print(f"wrote {out}" + (f" and {args.render}" if args.render else ""))
+    return 0
+
+
+def _report(result: "LiftResult", classes: tuple[str, ...]) -> None:
+    """The applied cues, one a line, with their final angles; then the rejected counts."""
+    from collections import Counter
+
+    cues = result.cues
+    applied = [c for c in cues if c.applied]
+    print(f"cues applied: {len(applied)} of {len(cues)} candidates; converged: {result.converged}")
+    width = max((len(c.where) for c in applied), default=0)
+    for c in applied:
+        print(f"  {c.kind:<18} {c.where:<{width}}  {c.angle:8.3f} deg" + (f"  (layer {c.layer})" if c.layer else ""))
+    rejected = Counter(c.kind for c in cues if not c.applied and c.kind in classes)
+    skipped = Counter(c.kind for c in cues if not c.applied and c.kind not in classes)
+    if rejected:
+        print("rejected: " + ", ".join(f"{n} {k}" for k, n in sorted(rejected.items())))
+    if skipped:
+        print("not tried (--cues): " + ", ".join(f"{n} {k}" for k, n in sorted(skipped.items())))
+    worst = max((c.angle for c in applied), default=0.0)
+    print(f"largest angle of an applied cue: {worst:.3f} deg")

@@ -1,0 +1,241 @@
+"""Sketch SVG (``.svg`` of kind ``"sketch"``): a design sketch as Inkscape and Illustrator write it.
+
+Read with svgelements (MIT). Every shape (``path``, ``line``, ``polyline``,
+``polygon``, ``rect``, ``circle``, ``ellipse``) is a stroke, one per subpath;
+its segments of any kind become cubic Beziers (lines with handles at thirds,
+quadratics degree-elevated, elliptical arcs by svgelements' cubic
+approximation, six cubics for half a circle). Every ``transform`` and the root's
+``viewBox`` are applied (coordinates are CSS px of the page, which are the
+user units when there is no viewBox), and y is flipped to point up:
+``y = -y_svg``.
+
+Layers (``<g inkscape:groupmode="layer">``, the innermost one counts) are
+independent parts, back to front in document order (shapes outside every
+layer form one more part, placed by where its first shape comes). Annotations,
+in any layer:
+
+- ``<circle class="occlusion">``: the 2D crossing under its centre is not a
+  3D intersection;
+- ``<circle class="flip">``: flip the convexity of the intersection under it;
+- ``<path class="symmetry">``: the global symmetry curve (at most one).
+
+Each marker snaps to the nearest crossing within 1 % of the sketch's diagonal.
+The reader validates the sketch as :func:`auszug.lifting.lift` will, so a
+sketch that cannot be lifted is refused here: empty or non-SVG text, NaN or
+infinity in a shape's coordinates, zero-length or duplicate strokes, no
+crossing, parts of a layer not joined by any crossing, a marker off every
+crossing all give a :class:`~auszug.errors.FormatError` naming the element
+(its ``id``, else ``<tag> #index`` in document order) and the problem.
+See docs/formats.md.
+"""
+
+from __future__ import annotations
+
+import io
+import re
+import xml.etree.ElementTree as ET
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from auszug.errors import FormatError, GeometryError
+from auszug.formats._registry import FileFormat, register
+from auszug.lifting import Marker, Sketch, Stroke, layer_graphs
+
+__all__ = ["read_sketch_svg", "MARKER_CLASSES", "SYMMETRY_CLASS"]
+
+Array = NDArray[np.float64]
+
+#: ``class`` names of the marker circles and the kind of marker each makes.
+MARKER_CLASSES = ("occlusion", "flip")
+#: ``class`` name of the global symmetry path.
+SYMMETRY_CLASS = "symmetry"
+
+_INKSCAPE = "{http://www.inkscape.org/namespaces/inkscape}"
+_GEOMETRY_ATTRS = ("d", "points", "x", "y", "x1", "y1", "x2", "y2", "cx", "cy", "r", "rx", "ry", "width", "height",
+                   "transform")
+_NONFINITE = re.compile(r"(?i)(?<![a-z])(nan|inf)")
+
+
+def _fail(problem: str, name: str, line: int | None = None) -> FormatError:
+    return FormatError(problem, name, line)
+
+
+def _check_xml(text: str, name: str) -> None:
+    """Refuse empty, non-XML and non-SVG text with the XML parser's line."""
+    if not text.strip():
+        raise _fail("empty file; expected an SVG document", name)
+    try:
+        root = ET.fromstring(text)
+    except ET.ParseError as e:
+        raise _fail(f"not an SVG file: {e}", name, e.position[0] if e.position else None) from None
+    tag = root.tag.rsplit("}", 1)[-1]
+    if tag != "svg":
+        raise _fail(f"not an SVG file: the root element is <{tag}>, expected <svg>", name)
+
+
+def _cubic(seg: Any) -> list[Array]:
+    """A path segment as cubic Bezier control arrays (4, 2), in SVG coordinates."""
+    import svgelements as se
+
+    def xy(p: Any) -> Array:
+        return np.array([float(p.x), float(p.y)])
+
+    if isinstance(seg, (se.Line, se.Close)):
+        a, b = xy(seg.start), xy(seg.end)
+        return [np.array([a, a + (b - a) / 3, a + 2 * (b - a) / 3, b])]
+    if isinstance(seg, se.QuadraticBezier):
+        a, c, b = xy(seg.start), xy(seg.control), xy(seg.end)
+        return [np.array([a, a + 2 * (c - a) / 3, b + 2 * (c - b) / 3, b])]
+    if isinstance(seg, se.CubicBezier):
+        return [np.array([xy(seg.start), xy(seg.control1), xy(seg.control2), xy(seg.end)])]
+    if isinstance(seg, se.Arc):
+        return [_cubic(c)[0] for c in seg.as_cubic_curves()]
+    return []
+
+
+def _subpaths(path: Any) -> list[Array]:
+    """The subpaths of an svgelements Path as (m, 4, 2) cubic chains.
+
+    Zero-length pieces are dropped; a subpath of nothing but zero-length
+    pieces gives an empty (0, 4, 2) chain, a bare move none.
+    """
+    import svgelements as se
+
+    out: list[list[Array]] = []
+    drawn: list[bool] = []
+    for seg in path:
+        if isinstance(seg, se.Move):
+            out.append([])
+            drawn.append(False)
+            continue
+        if not out:
+            out.append([])
+            drawn.append(False)
+        for c in _cubic(seg):
+            drawn[-1] = True
+            if np.ptp(c, axis=0).max() > 0 or not np.all(np.isfinite(c)):
+                out[-1].append(c)
+    return [np.array(s).reshape(-1, 4, 2) for s, d in zip(out, drawn, strict=True) if d]
+
+
+def _own(e: Any) -> dict[str, str]:
+    attrs = e.values.get("attributes", {})
+    return attrs if isinstance(attrs, dict) else {}
+
+
+def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
+    """Read a sketch from SVG text (see the module docstring).
+
+    Raises
+    ------
+    FormatError
+        Naming the element and the problem (see the module docstring).
+
+    Examples
+    --------
+    >>> svg = '''<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">
+    ...   <path id="h" d="M 0 50 C 30 40 70 40 100 50"/>
+    ...   <path id="v" d="M 45 0 Q 50 50 55 100"/>
+    ... </svg>'''
+    >>> s = read_sketch_svg(svg)
+    >>> [(st.id, st.controls.shape) for st in s.strokes], s.strokes[0].controls[0, 0].tolist()
+    ([('h', (1, 4, 2)), ('v', (1, 4, 2))], [0.0, -50.0])
+    """
+    import svgelements as se
+
+    if isinstance(text, bytes):
+        try:
+            text = text.decode("utf-8")
+        except UnicodeDecodeError as e:
+            raise _fail(f"not a text file ({e.reason} at byte {e.start})", name) from None
+    _check_xml(text, name)
+    try:
+        doc = se.SVG.parse(io.StringIO(text), reify=True)
+    except Exception as e:  # svgelements raises plain exceptions on odd input
+        raise _fail(f"not a readable SVG file: {e}", name) from None
+
+    strokes: list[tuple[Any, Stroke]] = []     # (layer key, stroke)
+    markers: list[Marker] = []
+    symmetry: list[Stroke] = []
+    layer_names: dict[Any, str] = {}
+    counter = [0]
+
+    def label(e: Any, tag: str, index: int) -> str:
+        return str(_own(e).get("id") or f"<{tag}> #{index}")
+
+    def visit(group: Any, layer: Any) -> None:
+        for e in group:
+            own = _own(e)
+            tag = str(own.get("tag") or type(e).__name__.lower())
+            if isinstance(e, se.Group):
+                here = layer
+                if own.get(f"{_INKSCAPE}groupmode") == "layer":
+                    here = id(e)
+                    layer_names[here] = str(own.get(f"{_INKSCAPE}label") or own.get("id") or
+                                            f"layer {len(layer_names) + 1}")
+                visit(e, here)
+                continue
+            if not isinstance(e, se.Shape):
+                continue
+            counter[0] += 1
+            where = label(e, tag, counter[0])
+            for attr in _GEOMETRY_ATTRS:
+                if _NONFINITE.search(str(own.get(attr, ""))):
+                    raise _fail(f"{where}: NaN or infinity in its {attr!r} attribute", name)
+            classes = str(own.get("class", "")).split()
+            kinds = [k for k in MARKER_CLASSES if k in classes]
+            if kinds:
+                if len(kinds) > 1:
+                    raise _fail(f"{where}: a marker is one of {', '.join(MARKER_CLASSES)}, not both", name)
+                if not isinstance(e, (se.Circle, se.Ellipse)):
+                    raise _fail(f"{where}: a {kinds[0]} marker must be a <circle>", name)
+                box = e.bbox()
+                if box is None:
+                    raise _fail(f"{where}: a marker circle without extent", name)
+                c = np.array([(box[0] + box[2]) / 2, -(box[1] + box[3]) / 2], dtype=float)
+                if not np.all(np.isfinite(c)):
+                    raise _fail(f"{where}: the marker's centre is not finite", name)
+                markers.append(Marker(kinds[0], c, where))
+                continue
+            path = e if isinstance(e, se.Path) else se.Path(e)
+            subs = _subpaths(path)
+            if not subs:
+                raise _fail(f"{where}: an empty shape (no segments); expected a drawn stroke", name)
+            for k, c in enumerate(subs):
+                sid = where if len(subs) == 1 else f"{where} subpath {k + 1}"
+                if not len(c) or not np.all(np.isfinite(c)):
+                    raise _fail(f"{sid}: {'zero-length stroke' if not len(c) else 'coordinates are not finite'}",
+                                name)
+                c = c.copy()
+                c[..., 1] *= -1.0
+                if SYMMETRY_CLASS in classes:
+                    symmetry.append(Stroke(c, sid))
+                else:
+                    strokes.append((layer, Stroke(c, sid)))
+
+    visit(doc, None)
+    if not strokes:
+        raise _fail("no strokes: the SVG has no path or shape to lift (besides markers)", name)
+    if len(symmetry) > 1:
+        raise _fail(f"{symmetry[1].id}: a second symmetry path; a sketch has at most one", name)
+    order = list(dict.fromkeys(k for k, _ in strokes))   # layers back to front, in document order
+    index = {k: i for i, k in enumerate(order)}
+    names = tuple(layer_names.get(k, "(no layer)") for k in order)
+    out = tuple(Stroke(s.controls, s.id, index[k]) for k, s in strokes)
+    sketch = Sketch(out, tuple(markers), symmetry[0] if symmetry else None, Path(name).stem, names)
+    check(sketch, name)
+    return sketch
+
+
+def check(sketch: Sketch, name: str) -> None:
+    """Refuse a sketch :func:`auszug.lifting.lift` cannot lift, as a FormatError naming the file."""
+    try:
+        layer_graphs(sketch)
+    except GeometryError as e:
+        raise FormatError(str(e), name) from None
+
+
+register(FileFormat("sketch_svg", (".svg",), "sketch", reader=read_sketch_svg))

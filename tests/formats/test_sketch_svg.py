@@ -1,0 +1,140 @@
+"""Sketch SVG and sketch JSON: segment kinds, transforms, viewBox, layers, annotations, bad input, round trip."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from auszug import examples
+from auszug.errors import FormatError
+from auszug.formats import kind_of, load, save
+from auszug.formats.sketch_json import dumps, loads
+from auszug.formats.sketch_svg import read_sketch_svg
+from auszug.geometry import CubicBezier
+
+NS = 'xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape"'
+CROSS = '<path id="h" d="M 0 50 C 30 40 70 40 100 50"/><path id="v" d="M 45 0 C 50 30 50 70 55 100"/>'
+EXAMPLES = ["arches", "ogee-roof", "vase"]
+
+
+def svg(body: str, head: str = 'viewBox="0 0 100 100"') -> str:
+    return f'<?xml version="1.0"?>\n<svg {NS} {head}>\n{body}\n</svg>\n'
+
+
+def test_every_segment_kind_becomes_cubics_on_the_same_curve():
+    d = "M 0 0 L 30 0 Q 45 15 60 0 A 10 10 0 0 1 80 0 C 85 10 95 10 100 0"
+    s = read_sketch_svg(svg(f'<path id="k" d="{d}"/><path id="c" d="M 50 -20 L 50 20"/>',
+                            'viewBox="0 -30 120 60"'))
+    k = s.strokes[0].controls
+    assert k.shape == (9, 4, 2)       # line, quadratic, arc (a half circle: svgelements makes 6 cubics), cubic
+    # the line's handles at thirds, the quadratic degree-elevated (its midpoint is the quadratic's), y flipped
+    assert np.allclose(k[0], [[0, -30], [10, -30], [20, -30], [30, -30]])   # the viewBox's shift
+    assert np.allclose(CubicBezier.from_array(k[1]).point(0.5), [45, -37.5])
+    # the arc: a half circle of radius 10 about (70, 0), above the chord in SVG (below after the flip)
+    for seg in k[2:8]:
+        p = CubicBezier.from_array(seg).point(np.linspace(0, 1, 9))
+        assert np.allclose(np.linalg.norm(p - [70, -30], axis=1), 10, atol=0.01)
+        assert np.all(p[:, 1] >= -30 - 1e-9)
+    assert np.allclose(k[8], [[80, -30], [85, -40], [95, -40], [100, -30]])
+    assert np.array_equal(k[1:, 0], k[:-1, 3])      # one connected chain
+
+
+def test_transforms_and_the_viewbox_are_applied():
+    plain = read_sketch_svg(svg(CROSS))
+    body = f'<g transform="translate(10 20) rotate(90)"><g transform="scale(2)">{CROSS}</g></g>'
+    moved = read_sketch_svg(svg(body, 'width="400" height="400" viewBox="0 0 200 200"'))
+    for a, b in zip(plain.strokes, moved.strokes, strict=True):
+        x, y = a.controls[..., 0], -a.controls[..., 1]                # back to SVG's y down
+        want = np.stack([10 - 2 * y, 20 + 2 * x], -1) * 2             # the groups, then the viewBox's x 2
+        assert np.allclose(b.controls * [1, -1], want)
+
+
+def test_layers_back_to_front_and_markers_in_any_layer():
+    far = CROSS.replace('id="h"', 'id="h2"').replace('id="v"', 'id="v2"')
+    body = (f'<g inkscape:groupmode="layer" inkscape:label="front" id="L2">'
+            f'<g transform="translate(300 0)">{far}</g></g>'
+            f'<g inkscape:groupmode="layer" inkscape:label="marks"><circle class="flip" id="f" cx="349.5" cy="42.5"'
+            f' r="3"/></g>'
+            f'<g inkscape:groupmode="layer" id="L3">{CROSS}</g>'
+            '<path class="symmetry" id="axis" d="M 50 0 L 50 100"/>')
+    s = read_sketch_svg(svg(body, 'viewBox="0 0 400 100"'))
+    assert s.layers == ("front", "L3")              # document order; the marker-only layer is no part
+    assert [(t.id, t.layer) for t in s.strokes] == [("h2", 0), ("v2", 0), ("h", 1), ("v", 1)]
+    assert [(m.kind, m.id) for m in s.markers] == [("flip", "f")] and np.allclose(s.markers[0].point, [349.5, -42.5])
+    assert s.symmetry is not None and s.symmetry.id == "axis"
+
+
+def test_an_occlusion_marker_makes_a_crossing_no_intersection():
+    three = CROSS + '<path id="w" d="M 80 0 C 78 30 78 70 80 100"/><path id="b" d="M 40 80 C 60 78 80 78 100 80"/>'
+    from auszug.lifting import layer_graphs
+
+    (_, g), = layer_graphs(read_sketch_svg(svg(three)))
+    marked = three + '<circle class="occlusion" id="o" cx="78.5" cy="44.8" r="2"/>'
+    (_, g2), = layer_graphs(read_sketch_svg(svg(marked)))
+    assert (len(g.crossings), len(g2.crossings), len(g2.occluded)) == (4, 3, 1)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("", "empty file"),
+    ("hello, no svg here", "not an SVG file"),
+    ("<html><body/></html>", "root element is <html>"),
+    (svg('<path id="p" d="M 0 0 L nan 3"/>' + CROSS), "p: NaN or infinity"),
+    (svg('<path d="M 0 0 L 1 inf"/>' + CROSS), r"<path> #1: NaN or infinity"),
+    (svg(CROSS + '<path id="z" d="M 5 5 L 5 5"/>'), "z: zero-length stroke"),
+    (svg(CROSS + '<path id="dup" d="M 0 50 C 30 40 70 40 100 50"/>'), "dup: duplicate of h"),
+    (svg('<path id="a" d="M 0 0 L 10 0"/><path id="b" d="M 0 10 L 10 10"/>'), "no intersection"),
+    (svg(CROSS + '<circle class="occlusion" id="lost" cx="90" cy="90" r="2"/>'), "occlusion marker lost"),
+    (svg(CROSS + '<rect class="flip" id="sq" x="40" y="40" width="4" height="4"/>'), "sq: a flip marker must be"),
+    (svg('<circle class="flip" cx="1" cy="1" r="1"/>'), "no strokes"),
+    (svg(CROSS + '<path class="symmetry" id="s1" d="M 0 0 L 1 1"/><path class="symmetry" id="s2" d="M 0 0 L 2 1"/>'),
+     "s2: a second symmetry path"),
+])
+def test_bad_input_names_the_element_and_the_problem(text, message):
+    with pytest.raises(FormatError, match=message) as e:
+        read_sketch_svg(text, "bad.svg")
+    assert str(e.value).startswith("bad.svg")
+
+
+def test_the_svg_ending_stays_a_network_writer_and_reads_as_a_sketch(tmp_path):
+    assert kind_of("x.svg") == "network" and kind_of("x.sketch.json") == "sketch"
+    p = tmp_path / "cross.svg"
+    p.write_text(svg(CROSS))
+    s = load(p, kind="sketch")
+    assert s.name == "cross" and [t.id for t in s.strokes] == ["h", "v"]
+
+
+@pytest.mark.parametrize("name", EXAMPLES)
+def test_sketch_json_round_trip_is_lossless(tmp_path, name):
+    s = load(examples.path(f"sketches/{name}.svg"), kind="sketch")
+    save(s, tmp_path / f"{name}.sketch.json")
+    back = load(tmp_path / f"{name}.sketch.json", kind="sketch")
+    assert (back.name, back.layers) == (s.name, s.layers)
+    assert [(a.id, a.layer) for a in back.strokes] == [(a.id, a.layer) for a in s.strokes]
+    assert all(np.array_equal(a.controls, b.controls) for a, b in zip(back.strokes, s.strokes, strict=True))
+    assert [(m.kind, m.id, m.point.tolist()) for m in back.markers] == \
+        [(m.kind, m.id, np.asarray(m.point).tolist()) for m in s.markers]
+    assert dumps(back) == dumps(s)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("", "empty file"),
+    ("{", "not JSON"),
+    ('{"format": "auszug.network"}', "not a sketch JSON"),
+    ('{"format": "auszug.sketch", "version": 1, "strokes": [{"id": "a", "controls": [[1, 2]]}]}', "a: controls"),
+    ('{"format": "auszug.sketch", "version": 1, "strokes": [], "markers": [{"kind": "x"}]}', "marker #0: kind"),
+    ('{"format": "auszug.sketch", "version": 1, "strokes": []}', "no strokes"),
+])
+def test_bad_sketch_json(text, message):
+    with pytest.raises(FormatError, match=message):
+        loads(text, "bad.sketch.json")
+
+
+def test_the_example_in_docs_formats_reads():
+    doc = (Path(__file__).resolve().parents[2] / "docs" / "formats.md").read_text()
+    block = re.search(r"## Sketch SVG.*?```xml\n(.*?)```", doc, re.S)
+    assert block, "docs/formats.md has a Sketch SVG section with an xml example"
+    s = read_sketch_svg(block.group(1), "example.svg")
+    assert {m.kind for m in s.markers} == {"occlusion", "flip"} and s.symmetry is not None

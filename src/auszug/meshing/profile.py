@@ -504,7 +504,31 @@ def triangulate_polygon(points: ArrayLike, holes: Sequence[ArrayLike] = ()) -> N
         tri = _restore_dropped(tri, starts)
         if _fills_rings(tri, starts):
             break
+    else:
+        # no turned view gave earcut a fill that uses every ring edge once: manifold3d's
+        # triangulator (exact on collinear ring edges) does
+        return _manifold_fill(rings, starts)
     return _flip_slivers(tri, allp)
+
+
+def _manifold_fill(rings: list[Array], starts: NDArray[np.int64]) -> NDArray[np.int64]:
+    """Triangles of the rings by manifold3d (outer ring counter-clockwise, holes clockwise).
+
+    Indices refer to the rings' own vertex order, concatenated; triangles are counter-clockwise.
+    """
+    import manifold3d
+
+    polys, idx = [], []
+    for k, r in enumerate(rings):
+        x, y = r[:, 0], r[:, 1]
+        ccw = float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y)) > 0.0
+        order = np.arange(len(r))
+        if ccw != (k == 0):
+            order = order[::-1]
+        polys.append(np.ascontiguousarray(r[order], dtype=np.float64))
+        idx.append(starts[k] + order)
+    tri = np.asarray(manifold3d.triangulate(polys), dtype=np.int64).reshape(-1, 3)
+    return np.concatenate(idx)[tri]
 
 
 def _flip_slivers(tri: NDArray[np.int64], p: Array) -> NDArray[np.int64]:
@@ -524,9 +548,12 @@ def _flip_slivers(tri: NDArray[np.int64], p: Array) -> NDArray[np.int64]:
         return tri
     pts = p.tolist()
 
-    def sliver(t: list[int]) -> bool:
+    def area2(t: list[int]) -> float:
         (ax, ay), (bx, by), (cx, cy) = pts[t[0]], pts[t[1]], pts[t[2]]
-        return abs((bx - ax) * (cy - ay) - (by - ay) * (cx - ax)) <= tol
+        return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
+
+    def sliver(t: list[int]) -> bool:
+        return abs(area2(t)) <= tol
 
     tl: list[list[int]] = tri.tolist()
     edge: dict[tuple[int, int], int] = {}

@@ -101,10 +101,11 @@ def test_the_scan_sees_the_package():
 
 
 FLOW = {
-    "geometry": {"microarch", "tracery", "meshing", "formats", "cli", "studio"},
+    "geometry": {"microarch", "tracery", "meshing", "sweeps", "formats", "cli", "studio"},
     "microarch": {"formats", "cli", "studio"},
     "tracery": {"formats", "cli", "studio"},
-    "meshing": {"formats", "cli", "studio"},
+    "meshing": {"sweeps", "formats", "cli", "studio"},
+    "sweeps": {"microarch", "tracery", "formats", "cli", "studio"},
     "formats": {"cli", "studio"},
 }
 

@@ -16,6 +16,7 @@ by :mod:`auszug.formats`).
 """
 
 from auszug.sweeps.cut import Cuts, cut
+from auszug.sweeps.kinematic import KinematicAxis, axis_angle, kinematic_axis, motion_of
 from auszug.sweeps.mesh import SweepMesh, normalise, vertex_normals
 from auszug.sweeps.movability import Movability, movability, velocities, velocity_state
 from auszug.sweeps.params import DEFAULT, SweepParams
@@ -25,6 +26,10 @@ from auszug.sweeps.search import PlaneSearch, good_planes, search_planes
 __all__ = [
     "Cuts",
     "cut",
+    "KinematicAxis",
+    "axis_angle",
+    "kinematic_axis",
+    "motion_of",
     "SweepMesh",
     "normalise",
     "vertex_normals",

@@ -148,7 +148,7 @@ def _velocity_fit(x, nrm, w):  # pragma: no cover - compiled
         for c in range(r):
             a[r, c] = a[c, r]
     vals, vecs = np.linalg.eigh(a)
-    return vals, vecs[:, 0].copy()
+    return vals, vecs[:, 0].copy(), a
 
 
 @njit(cache=True)
@@ -168,8 +168,9 @@ def _movability_values(x, nrm, c, f, v0):  # pragma: no cover - compiled
 
 @njit(cache=True, parallel=True)
 def weight_iteration(x, nrm, curve_start, beta, gamma, iterations, v0):  # pragma: no cover - compiled
-    """Alg. 1 steps 1-3 on every curve: velocity states (C, 6), eigenvalues (C, 6), weights, f."""
+    """Alg. 1 steps 1-3 on every curve: velocity states (C, 6), eigenvalues (C, 6), weights, f, A (C, 6, 6)."""
     n_curves = len(curve_start) - 1
+    mats = np.zeros((n_curves, 6, 6))
     cs = np.zeros((n_curves, 6))
     ev = np.zeros((n_curves, 6))
     w = np.ones(len(x))
@@ -180,14 +181,15 @@ def weight_iteration(x, nrm, curve_start, beta, gamma, iterations, v0):  # pragm
         ws, fs = w[a:b], f[a:b]
         vals, c = np.zeros(6), np.zeros(6)
         for _ in range(iterations):
-            vals, c = _velocity_fit(xs, ns, ws)
+            vals, c, am = _velocity_fit(xs, ns, ws)
+            mats[k] = am
             _movability_values(xs, ns, c, fs, v0)
             for i in range(b - a):
                 ws[i] = 1.0 / (1.0 + beta * fs[i] ** gamma)
         # the final state: the eigenvector of the last fit, weights and f from it
         cs[k] = c
         ev[k] = vals
-    return cs, ev, w, f
+    return cs, ev, w, f, mats
 
 
 @njit(cache=True)

@@ -52,6 +52,8 @@ class Movability:
         Per curve, the unit velocity state ``(c, c_bar)`` of its last fit (sign arbitrary).
     eigenvalues : (c, 6) float array
         Per curve, the eigenvalues of ``A`` in the last fit, ascending (``[:, 0] = min F``).
+    matrices : (c, 6, 6) float array
+        Per curve, the matrix ``A`` of its last fit (the weights of that fit).
     weights : (N,) float array
         Per cut point, its final weight.
     f : (N,) float array
@@ -71,6 +73,7 @@ class Movability:
 
     velocity: Array
     eigenvalues: Array
+    matrices: Array
     weights: Array
     f: Array
     run_curve: IntArray
@@ -151,10 +154,10 @@ def movability(cuts: Cuts, params: SweepParams = DEFAULT) -> Movability:
     >>> m.n_runs, bool(m.run_energy[0] < 1e-20), np.round(np.abs(m.velocity[0]), 6).tolist()
     (1, True, [0.0, 0.0, 0.0, 1.0, 0.0, 0.0])
     """
-    cs, ev, w, f = _kernels.weight_iteration(cuts.points, cuts.normals, cuts.curve_start, float(params.beta),
+    cs, ev, w, f, mats = _kernels.weight_iteration(cuts.points, cuts.normals, cuts.curve_start, float(params.beta),
                                              float(params.gamma), int(params.iterations),
                                              float(params.speed_floor))
     rc, r0, r1, rl, re, rs = _kernels.movable_runs(
         cuts.points, cuts.normals, w, f, cs, cuts.curve_start, cuts.curve_closed, float(params.weight_threshold),
         float(params.l_min), float(params.gap), float(params.max_sliding), float(params.min_spread))
-    return Movability(cs, ev, w, f, rc, r0, r1, rl, re, rs)
+    return Movability(cs, ev, mats, w, f, rc, r0, r1, rl, re, rs)

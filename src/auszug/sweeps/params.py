@@ -88,6 +88,18 @@ class SweepParams:
         A cut's velocity state is well determined (one motion, not a family) when its second
         smallest eigenvalue is at least this many times the smallest. Cuts below it (straight
         lines, circles on cylinders) do not vote for a kinematic axis.
+    kinematic_trim : float
+        Cuts whose residual under the kinematic consensus exceeds this many times the median are
+        left out of it.
+    kinematic_share : float
+        A cut glides under the consensus if at least this share of its points has weight above
+        the threshold.
+    translation_ratio : float
+        A consensus is a translation if its rotational part changes the velocity over the
+        normalised mesh (radius 0.5) by at most this share of ``|c_bar|``: ``0.5 |c| <= r |c_bar|``
+        (a rotation about an axis 10 diameters away is a translation at 0.05).
+    pitch_tolerance : float
+        A screw with ``|pitch|`` at most this (bounding-box diameters per radian) is a rotation.
     """
 
     beta: float = 400.0
@@ -113,6 +125,10 @@ class SweepParams:
     match_angle: float = 25.0
     omega: tuple[float, float] = (0.6, 1.0)
     kinematic_gap: float = 10.0
+    kinematic_trim: float = 10.0
+    kinematic_share: float = 0.95
+    translation_ratio: float = 0.05
+    pitch_tolerance: float = 1e-3
 
     def __post_init__(self) -> None:
         checks = [

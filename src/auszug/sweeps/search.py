@@ -109,6 +109,7 @@ def _concat_mov(parts: list[Movability], cuts: list[Cuts]) -> Movability:
     return Movability(
         np.vstack([m.velocity for m in parts]),
         np.vstack([m.eigenvalues for m in parts]),
+        np.concatenate([m.matrices for m in parts]),
         np.concatenate([m.weights for m in parts]),
         np.concatenate([m.f for m in parts]),
         np.concatenate([m.run_curve + b for m, b in zip(parts, curve_base, strict=False)]).astype(np.int64),

@@ -17,6 +17,16 @@ by :mod:`auszug.formats`).
 
 from auszug.sweeps.cut import Cuts, cut
 from auszug.sweeps.kinematic import KinematicAxis, axis_angle, kinematic_axis, motion_of
+from auszug.sweeps.matching import (
+    CurvaturePlots,
+    Family,
+    Matches,
+    curvature_plots,
+    families,
+    match_cuts,
+    resample,
+    signed_curvature,
+)
 from auszug.sweeps.mesh import SweepMesh, normalise, vertex_normals
 from auszug.sweeps.movability import Movability, movability, velocities, velocity_state
 from auszug.sweeps.params import DEFAULT, SweepParams
@@ -30,6 +40,14 @@ __all__ = [
     "axis_angle",
     "kinematic_axis",
     "motion_of",
+    "CurvaturePlots",
+    "Family",
+    "Matches",
+    "curvature_plots",
+    "families",
+    "match_cuts",
+    "resample",
+    "signed_curvature",
     "SweepMesh",
     "normalise",
     "vertex_normals",

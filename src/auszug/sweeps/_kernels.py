@@ -366,3 +366,102 @@ def movable_runs(x, nrm, w, f, cs, curve_start, closed, thresh, l_min, gap, max_
         for r in range(offs[k], offs[k + 1]):
             curve[r] = k
     return curve, i0, i1, length, energy, slide
+
+
+# -------------------------------------------------------------------------------------- matching
+
+
+@njit(cache=True)
+def _longest_nonpositive(d, n, q, lmin, rmax):  # pragma: no cover - compiled
+    """Longest window ``[i, j)`` of ``d[:n]`` with ``sum <= 0``: (start, length), O(n).
+
+    With prefix sums ``P``, a window ``[i, j)`` qualifies iff ``P[j] <= P[i]``; this is the widest
+    ramp of ``Q = -P`` (``Q[i] <= Q[j]``), found with prefix minima and suffix maxima of ``Q``.
+    """
+    q[0] = 0.0
+    for k in range(n):
+        q[k + 1] = q[k] - d[k]
+    lmin[0] = q[0]
+    for k in range(1, n + 1):
+        lmin[k] = min(lmin[k - 1], q[k])
+    rmax[n] = q[n]
+    for k in range(n - 1, -1, -1):
+        rmax[k] = max(rmax[k + 1], q[k])
+    i = 0
+    j = 0
+    best, start = 0, 0
+    while i <= n and j <= n:
+        if lmin[i] <= rmax[j] + 1e-12 * (1.0 + abs(rmax[j])):
+            if j - i > best:
+                best, start = j - i, i
+            j += 1
+        else:
+            i += 1
+    return start, best
+
+
+@njit(cache=True, parallel=True)
+def match_pairs(kappa, offs, pairs, eps, kfloor, min_len):  # pragma: no cover - compiled
+    """Sec. 2.1 on every pair: the longest diagonal window below the threshold, over 4 variants.
+
+    Variant bits: 1 = the second curve's curvature negated (flip), 2 = its direction reversed.
+    Returns per pair: length (samples; 0 if none reaches ``min_len``), variant, start in the first
+    curve, start in the second curve's variant, mean |kappa - kappa'| and the reference energy.
+    """
+    n_pairs = len(pairs)
+    out_len = np.zeros(n_pairs, np.int64)
+    out_var = np.zeros(n_pairs, np.int64)
+    out_sa = np.zeros(n_pairs, np.int64)
+    out_sb = np.zeros(n_pairs, np.int64)
+    out_e = np.zeros(n_pairs)
+    out_ref = np.zeros(n_pairs)
+    m_max = 0
+    for r in range(len(offs) - 1):
+        m_max = max(m_max, offs[r + 1] - offs[r])
+    for p in prange(n_pairs):
+        a, b = pairs[p, 0], pairs[p, 1]
+        ka = kappa[offs[a]:offs[a + 1]]
+        kb = kappa[offs[b]:offs[b + 1]]
+        ma, mb = len(ka), len(kb)
+        d1 = np.empty(m_max)
+        d2 = np.empty(m_max)
+        q = np.empty(m_max + 1)
+        lo = np.empty(m_max + 1)
+        hi = np.empty(m_max + 1)
+        best_len, best_e = 0, np.inf
+        for var in range(4):
+            sgn = -1.0 if var & 1 else 1.0
+            rev = (var & 2) != 0
+            for o in range(-(ma - min_len), mb - min_len + 1):
+                i0 = max(0, -o)
+                i1 = min(ma, mb - o)
+                n = i1 - i0
+                if n < min_len or n < best_len:
+                    continue
+                for t in range(n):
+                    i = i0 + t
+                    j = i + o
+                    kbj = sgn * (kb[mb - 1 - j] if rev else kb[j])
+                    diff = abs(ka[i] - kbj)
+                    d1[t] = diff - eps * 0.5 * (abs(ka[i]) + abs(kbj))
+                    d2[t] = diff - eps * kfloor
+                for cond in range(2):
+                    s, length = _longest_nonpositive(d1 if cond == 0 else d2, n, q, lo, hi)
+                    if length < min_len or length < best_len:
+                        continue
+                    e = 0.0
+                    ref = 0.0
+                    for t in range(s, s + length):
+                        i = i0 + t
+                        j = i + o
+                        kbj = sgn * (kb[mb - 1 - j] if rev else kb[j])
+                        e += abs(ka[i] - kbj)
+                        ref += 0.5 * (abs(ka[i]) + abs(kbj))
+                    e /= length
+                    ref /= length
+                    if length > best_len or e < best_e:
+                        best_len, best_e = length, e
+                        out_len[p], out_var[p] = length, var
+                        out_sa[p], out_sb[p] = i0 + s, i0 + s + o
+                        out_e[p], out_ref[p] = e, ref
+    return out_len, out_var, out_sa, out_sb, out_e, out_ref

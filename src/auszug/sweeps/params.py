@@ -79,6 +79,9 @@ class SweepParams:
     curvature_window : float
         Arc length over which the discrete curvature is averaged (turning angle over that length):
         our stand-in for the robust integral-invariant curvature of [PWHY09], on the noisy cuts.
+    family_keep : float
+        A family's common part keeps at least this share of its seed's longest match: members
+        whose match would trim it shorter stay out (our choice; the paper trims "to equal length").
     match_angle : float
         Pairs of cuts whose planes meet at more than this (degrees) are not matched (sec. 2.2,
         "mostly 25").
@@ -121,7 +124,8 @@ class SweepParams:
     eps_match: float = 0.1
     kappa_floor: float = 1.0
     match_spacing: float = 0.005
-    curvature_window: float = 0.03
+    curvature_window: float = 0.05
+    family_keep: float = 0.8
     match_angle: float = 25.0
     omega: tuple[float, float] = (0.6, 1.0)
     kinematic_gap: float = 10.0
@@ -150,6 +154,7 @@ class SweepParams:
             ("kappa_floor", self.kappa_floor >= 0, ">= 0"),
             ("match_spacing", 0 < self.match_spacing <= self.l_min / 4, "in (0, l_min / 4]"),
             ("curvature_window", self.curvature_window >= 2 * self.match_spacing, ">= 2 match_spacing"),
+            ("family_keep", 0 < self.family_keep <= 1, "in (0, 1]"),
             ("match_angle", 0 < self.match_angle <= 90, "in (0, 90]"),
             ("kinematic_gap", self.kinematic_gap >= 1, ">= 1"),
         ]

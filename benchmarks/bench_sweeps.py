@@ -118,7 +118,8 @@ def main(argv=None):
         t, _ = best_of(lambda m2=m2: movability(cut(m2, n0, d0), params), args.reps)
         print(f"| {m2.n_vertices} | {len(d0)} | {t:.3f} | {t / (m2.n_vertices * len(d0)) * 1e9:.1f} |")
     for k in (2, 4):
-        nk, dk = np.repeat(n0, k, axis=0), np.repeat(d0, k) + np.tile(np.linspace(0, spacing, k, endpoint=False), len(d0))
+        shifts = np.tile(np.linspace(0, spacing, k, endpoint=False), len(d0))
+        nk, dk = np.repeat(n0, k, axis=0), np.repeat(d0, k) + shifts
         t, _ = best_of(lambda nk=nk, dk=dk: movability(cut(mesh, nk, dk), params), args.reps)
         print(f"| {mesh.n_vertices} | {len(dk)} | {t:.3f} | {t / (mesh.n_vertices * len(dk)) * 1e9:.1f} |")
 

@@ -10,7 +10,15 @@ from scipy.spatial.transform import Rotation
 
 from auszug.sweeps import cut, movability, normalise
 from auszug.sweeps.fixtures import gothic_base_profile, moulding_along_cubic
-from auszug.sweeps.matching import CurvaturePlots, curvature_plots, families, match_cuts, resample, signed_curvature
+from auszug.sweeps.matching import (
+    CurvaturePlots,
+    curvature_plots,
+    families,
+    match_cuts,
+    order_ribs,
+    resample,
+    signed_curvature,
+)
 from auszug.sweeps.params import DEFAULT
 
 
@@ -138,3 +146,21 @@ def test_profile_cuts_of_a_general_sweep_match_whole(sigma):
     for j in range(1, len(biggest.members)):
         kj = plots.curvature(int(biggest.members[j]))[biggest.indices(j)] * (-1 if biggest.flipped[j] else 1)
         assert np.abs(ks - kj).mean() <= 0.2 * max(np.abs(ks).mean(), DEFAULT.kappa_floor)
+
+
+@pytest.mark.parametrize("sigma", [0.0, 5e-4])
+def test_ribs_of_a_general_sweep_come_out_in_path_order(sigma):
+    fx, plots = _profile_plots(sigma)
+    # the family's members come in order of overlap with the seed, not along the path
+    m = match_cuts(plots)
+    fam = max(families(m), key=lambda f: len(f.members))
+    ribs = order_ribs(fam, plots)
+    seq = plots.run[ribs.plots]  # run k is the cut of true plane k (one run per plane, in order)
+    assert len(seq) >= 0.8 * len(fam.members)
+    steps = np.diff(seq)
+    assert np.all(steps > 0) or np.all(steps < 0)  # monotone along the path
+    # successive ribs alternate: the previous and the next lie on opposite sides of each rib's plane
+    cen = np.array([plots.samples(int(p)).mean(0) for p in ribs.plots])
+    nrm = plots.normal[ribs.plots]
+    for i in range(1, len(cen) - 1):
+        assert (nrm[i] @ (cen[i - 1] - cen[i])) * (nrm[i] @ (cen[i + 1] - cen[i])) < 0

@@ -34,8 +34,8 @@ from auszug.sweeps.cut import Cuts
 from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
 
-__all__ = ["CurvaturePlots", "Matches", "Family", "resample", "signed_curvature", "curvature_plots", "match_cuts",
-           "families"]
+__all__ = ["CurvaturePlots", "Matches", "Family", "Ribs", "resample", "signed_curvature", "curvature_plots",
+           "match_cuts", "families", "order_energy", "order_ribs"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -331,3 +331,110 @@ def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, .
         out.append(Family(int(seed), np.r_[seed, other[ks]].astype(np.int64), np.r_[lo, st].astype(np.int64),
                           np.r_[False, rev[ks]], np.r_[False, flip[ks]], hi - lo))
     return tuple(out)
+
+
+@dataclass(frozen=True)
+class Ribs:
+    """A family's members ordered like successive positions of a moving profile (sec. 2.2).
+
+    Attributes
+    ----------
+    family : Family
+    order : (k,) int array
+        Positions in ``family.members``, in rib order (the seed somewhere inside).
+    energy : (k - 1,) float array
+        ``E_order`` of each successive pair.
+    """
+
+    family: Family
+    order: IntArray
+    energy: Array
+
+    @property
+    def plots(self) -> IntArray:
+        """Plot indices of the ribs, in order."""
+        return self.family.members[self.order]
+
+
+def order_energy(parts: Array, omega: tuple[float, float]) -> Array:
+    """``E_order`` ``(k, k)`` between equal-length parts ``(k, n, 3)`` (sample ``i`` matching sample ``i``).
+
+    ``-d_min / delta + omega_1 mean(t_i . t'_i) + omega_2 d_min / d_haus``, with ``d_min`` the
+    smallest and ``d_haus`` the (two-sided) Hausdorff distance between the parts' samples and
+    ``delta`` the diameter of the family (the diagonal of its samples' bounding box). The diagonal
+    is -inf.
+
+    Examples
+    --------
+    >>> x = np.linspace(0, 1, 11)
+    >>> parts = np.stack([np.column_stack([x, 0 * x, 0 * x + z]) for z in (0.0, 0.1, 0.5)])
+    >>> e = order_energy(parts, (0.6, 1.0))
+    >>> int(np.argmax(e[0])), round(float(e[0, 1]), 6)
+    (1, 1.510557)
+    """
+    k, n, _ = parts.shape
+    delta = float(np.linalg.norm(np.ptp(parts.reshape(-1, 3), axis=0)))
+    tan = np.diff(parts, axis=1)
+    tan /= np.maximum(np.linalg.norm(tan, axis=2, keepdims=True), 1e-300)
+    out = np.full((k, k), -np.inf)
+    for a in range(k):  # one row per part (not per pair): (k, n, n) distances at a time
+        d = np.linalg.norm(parts[a][None, :, None, :] - parts[:, None, :, :], axis=3)
+        d_min = d.min(axis=(1, 2))
+        d_haus = np.maximum(d.min(axis=2).max(axis=1), d.min(axis=1).max(axis=1))
+        par = np.einsum("ij,kij->k", tan[a], tan) / (n - 1)
+        row = -d_min / delta + omega[0] * par + omega[1] * d_min / np.maximum(d_haus, 1e-300)
+        row[a] = -np.inf
+        out[a] = row
+    return out
+
+
+def order_ribs(family: Family, plots: CurvaturePlots, params: SweepParams = DEFAULT) -> Ribs:
+    """Greedy rib ordering by ``E_order`` (sec. 2.2), from the seed both ways.
+
+    From ``b_0`` (the seed) take the unused part of largest ``E_order(b_i, .)`` as ``b_{i+1}``,
+    provided ``b_{i-1}`` and ``b_{i+1}`` lie on opposite sides of ``b_i``'s plane (their centroids);
+    then the same from ``b_0`` backwards (``b_{-1}`` opposite ``b_1``). Parts that never qualify are
+    left out.
+
+    Examples
+    --------
+    Cuts of an extrusion by parallel planes, given shuffled, come out in order:
+
+    >>> from auszug.sweeps import cut, movability, normalise
+    >>> from auszug.sweeps.fixtures import extruded
+    >>> fx = extruded(n_profile=60, n_path=60)
+    >>> xs = np.array([0.05, -0.2, 0.3, -0.05, 0.15, -0.3])
+    >>> c = cut(normalise(fx.vertices, fx.faces), np.tile([1.0, 0, 0], (6, 1)), xs)
+    >>> pl = curvature_plots(c, movability(c))
+    >>> ribs = order_ribs(families(match_cuts(pl))[0], pl)
+    >>> xs[pl.run[ribs.plots]].tolist() in ([-0.3, -0.2, -0.05, 0.05, 0.15, 0.3], [0.3, 0.15, 0.05, -0.05, -0.2, -0.3])
+    True
+    """
+    k = len(family.members)
+    parts = np.stack([plots.samples(int(family.members[j]))[family.indices(j)] for j in range(k)])
+    e = order_energy(parts, params.omega)
+    centre = parts.mean(axis=1)
+    normal = plots.normal[family.members]
+
+    def side(i: int, j: int) -> float:
+        return float(normal[i] @ (centre[j] - centre[i]))
+
+    used = np.zeros(k, bool)
+    used[0] = True
+    chains: list[list[int]] = [[0], [0]]
+    for direction in (0, 1):
+        chain = chains[direction]
+        while True:
+            cur = chain[-1]
+            prev = chain[-2] if len(chain) > 1 else (chains[0][1] if direction == 1 and len(chains[0]) > 1 else -1)
+            cand = np.flatnonzero(~used)
+            if prev >= 0:
+                cand = cand[np.array([side(cur, prev) * side(cur, int(j)) < 0 for j in cand], bool)]
+            if len(cand) == 0:
+                break
+            nxt = int(cand[np.argmax(e[cur, cand])])
+            chain.append(nxt)
+            used[nxt] = True
+    order = np.array(chains[1][::-1] + chains[0][1:], np.int64)
+    energy = e[order[:-1], order[1:]]
+    return Ribs(family, order, energy)

@@ -1,8 +1,13 @@
-"""Compiled kernels of sweep detection (numba, cached on disk, parallel over planes or curves).
+"""Compiled kernels of sweep detection (numba, cached on disk).
 
 Private: the public functions in :mod:`auszug.sweeps.cut`, :mod:`auszug.sweeps.movability` and
 :mod:`auszug.sweeps.matching` validate their input and call these. Every kernel is one pass over
-all planes (or curves, or curve pairs) in a ``prange``; no Python loop runs per plane.
+all planes (or curves, or curve pairs); no Python loop runs per plane, curve or pair.
+
+The cutter runs in parallel over planes (``prange``). The curve and pair kernels are serial:
+numba's parallel lowering doubled their first-call compilation (45 s against 21 s for all
+kernels on the 2-core development machine, a cost every fresh checkout pays once) for at most a
+2x gain on two shared cores, and they are the cheaper part of the run.
 """
 
 from __future__ import annotations
@@ -104,8 +109,6 @@ def cut_fill(v, vn, edges, edge_faces, face_edges, pn, pd, start):  # pragma: no
                     f = edge_faces[e, 0]
                     if f == prev or f < 0:
                         f = edge_faces[e, 1]
-                    if phase == 1 and prev == -1:
-                        f = edge_faces[e, 0]
                     if f < 0 or f == prev:
                         break
                     g = _other_edge(face_edges, f, e, crossed)
@@ -166,7 +169,7 @@ def _movability_values(x, nrm, c, f, v0):  # pragma: no cover - compiled
             f[i] = dot * dot / s
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True)
 def weight_iteration(x, nrm, curve_start, beta, gamma, iterations, v0):  # pragma: no cover - compiled
     """Alg. 1 steps 1-3 on every curve: velocity states (C, 6), eigenvalues (C, 6), weights, f, A (C, 6, 6)."""
     n_curves = len(curve_start) - 1
@@ -175,7 +178,7 @@ def weight_iteration(x, nrm, curve_start, beta, gamma, iterations, v0):  # pragm
     ev = np.zeros((n_curves, 6))
     w = np.ones(len(x))
     f = np.zeros(len(x))
-    for k in prange(n_curves):
+    for k in range(n_curves):
         a, b = curve_start[k], curve_start[k + 1]
         xs, ns = x[a:b], nrm[a:b]
         ws, fs = w[a:b], f[a:b]
@@ -253,8 +256,8 @@ def _bridge(x, good, closed, gap):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def _sliding(x, w, c, i, j, closed):  # pragma: no cover - compiled
-    """Share of the squared velocity along the curve's tangent at vertex ``j`` (neighbours i, k)."""
+def _sliding(x, w, c, j, closed):  # pragma: no cover - compiled
+    """Weighted squared velocity along the curve's tangent at vertex ``j``, and weighted squared speed."""
     n = len(x)
     a = (j - 1) % n if closed else max(j - 1, 0)
     b = (j + 1) % n if closed else min(j + 1, n - 1)
@@ -306,7 +309,7 @@ def _runs_of_curve(x, nrm, w, f, c, closed, thresh, l_min, gap, max_slide, min_s
             if not good[jj]:
                 break
             e += (1.0 - w[jj]) ** 2 * f[jj]
-            sn, sd = _sliding(x, w, c, 0, jj, closed)
+            sn, sd = _sliding(x, w, c, jj, closed)
             sl_num += sn
             sl_den += sd
             for r in range(3):
@@ -332,7 +335,7 @@ def _runs_of_curve(x, nrm, w, f, c, closed, thresh, l_min, gap, max_slide, min_s
     return count
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True)
 def movable_runs(x, nrm, w, f, cs, curve_start, closed, thresh, l_min, gap, max_slide,
                  min_spread):  # pragma: no cover - compiled
     """Alg. 1 step 4: runs of weight above ``thresh`` at least ``l_min`` long, with gliding energy.
@@ -345,7 +348,7 @@ def movable_runs(x, nrm, w, f, cs, curve_start, closed, thresh, l_min, gap, max_
     dummy_i = np.zeros(1, np.int64)
     dummy_f = np.zeros(1)
     counts = np.zeros(n_curves, np.int64)
-    for k in prange(n_curves):
+    for k in range(n_curves):
         a, b = curve_start[k], curve_start[k + 1]
         counts[k] = _runs_of_curve(x[a:b], nrm[a:b], w[a:b], f[a:b], cs[k], closed[k], thresh, l_min, gap,
                                    max_slide, min_spread,
@@ -359,7 +362,7 @@ def movable_runs(x, nrm, w, f, cs, curve_start, closed, thresh, l_min, gap, max_
     energy = np.zeros(total)
     slide = np.zeros(total)
     curve = np.zeros(total, np.int64)
-    for k in prange(n_curves):
+    for k in range(n_curves):
         a, b = curve_start[k], curve_start[k + 1]
         _runs_of_curve(x[a:b], nrm[a:b], w[a:b], f[a:b], cs[k], closed[k], thresh, l_min, gap, max_slide,
                        min_spread, i0, i1, length, energy, slide, offs[k], True)
@@ -400,7 +403,7 @@ def _longest_nonpositive(d, n, q, lmin, rmax):  # pragma: no cover - compiled
     return start, best
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True)
 def match_pairs(kappa, offs, pairs, eps, kfloor, min_len):  # pragma: no cover - compiled
     """Sec. 2.1 on every pair: the longest diagonal window below the threshold, over 4 variants.
 
@@ -418,7 +421,7 @@ def match_pairs(kappa, offs, pairs, eps, kfloor, min_len):  # pragma: no cover -
     m_max = 0
     for r in range(len(offs) - 1):
         m_max = max(m_max, offs[r + 1] - offs[r])
-    for p in prange(n_pairs):
+    for p in range(n_pairs):
         a, b = pairs[p, 0], pairs[p, 1]
         ka = kappa[offs[a]:offs[a + 1]]
         kb = kappa[offs[b]:offs[b + 1]]

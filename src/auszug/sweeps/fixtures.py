@@ -22,6 +22,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from auszug.sweeps.mesh import vertex_normals
+
 __all__ = [
     "Fixture",
     "gothic_base_profile",
@@ -151,14 +153,6 @@ def grid_faces(n_rows: int, n_cols: int) -> IntArray:
     return np.vstack([t1, t2]).astype(np.int64)
 
 
-def _vertex_normals(v: Array, f: IntArray) -> Array:
-    fn = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
-    vn = np.zeros_like(v)
-    for k in range(3):
-        np.add.at(vn, f[:, k], fn)
-    return vn / np.maximum(np.linalg.norm(vn, axis=1, keepdims=True), 1e-300)
-
-
 def _finish(name: str, kind: str, v: Array, f: IntArray, sigma: float, seed: int,
             axis: Array | None, point: Array | None, planes: Array, plen: float) -> Fixture:
     lo, hi = v.min(0), v.max(0)
@@ -171,7 +165,7 @@ def _finish(name: str, kind: str, v: Array, f: IntArray, sigma: float, seed: int
         planes = np.column_stack([n, (planes[:, 3] - n @ centre) / diam])
     if sigma > 0:
         rng = np.random.default_rng(seed)
-        v = v + rng.normal(0.0, sigma, len(v))[:, None] * _vertex_normals(v, f)
+        v = v + rng.normal(0.0, sigma, len(v))[:, None] * vertex_normals(v, f)
     return Fixture(name, kind, v, f, axis, point, planes, plen / diam)
 
 

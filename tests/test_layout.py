@@ -101,11 +101,12 @@ def test_the_scan_sees_the_package():
 
 
 FLOW = {
-    "geometry": {"microarch", "tracery", "meshing", "lifting", "formats", "cli", "studio"},
+    "geometry": {"microarch", "tracery", "meshing", "lifting", "sweeps", "formats", "cli", "studio"},
     "microarch": {"formats", "cli", "studio"},
     "tracery": {"formats", "cli", "studio"},
-    "lifting": {"microarch", "tracery", "meshing", "formats", "cli", "studio"},
-    "meshing": {"formats", "cli", "studio"},
+    "lifting": {"microarch", "tracery", "meshing", "sweeps", "formats", "cli", "studio"},
+    "meshing": {"sweeps", "formats", "cli", "studio"},
+    "sweeps": {"microarch", "tracery", "lifting", "formats", "cli", "studio"},
     "formats": {"cli", "studio"},
 }
 

@@ -1,0 +1,128 @@
+"""Sweep detection speed (issue 11, sec. 4) beside the paper's Fig. 15. Prints a table; not a test.
+
+The paper's row for Fig. 12 (3.33 GHz desktop): 32k vertices, 1452 initial planes, g = 1 %,
+3 refinement rounds: 286 s to cut and weigh (T_ini), 234 s to match (T_match). The goal is 20x
+faster on this machine: 14.3 s and 11.7 s.
+
+1. Cut and weigh: the whole plane search (initial planes, then the refinement rounds, every cut
+   through Alg. 1) on the general-sweep fixture at ~32k vertices, initial planes ~1452 (the offset
+   spacing is chosen to give that count), g = 1 %, 3 rounds.
+2. Match: curvature plots of the good runs, all pairs within 25 degrees matched, families; and the
+   same for the 167 lowest-energy runs (the paper's N_match), for a like-for-like time.
+3. Scaling of cut + weigh in vertices x planes (fixed planes, 4 mesh sizes; fixed mesh, 3 plane
+   counts): time per (vertex x plane) should stay flat.
+
+Times are the minimum of ``--reps`` in-process runs after a warm-up run (numba compiles, or
+loads its on-disk cache, on the first call).
+
+Usage: python benchmarks/bench_sweeps.py [--reps N] [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import time
+
+import numpy as np
+
+from auszug.sweeps import (
+    DEFAULT,
+    curvature_plots,
+    cut,
+    families,
+    initial_planes,
+    match_cuts,
+    movability,
+    normalise,
+    search_planes,
+)
+from auszug.sweeps.fixtures import moulding_along_cubic
+
+
+def best_of(fn, reps):
+    fn()
+    ts = []
+    out = None
+    for _ in range(reps):
+        t0 = time.perf_counter()
+        out = fn()
+        ts.append(time.perf_counter() - t0)
+    return min(ts), out
+
+
+def spacing_for(vertices, frequency, target):
+    lo, hi = 0.005, 0.5
+    for _ in range(40):
+        mid = (lo * hi) ** 0.5
+        n = len(initial_planes(vertices, frequency, mid)[1])
+        lo, hi = (mid, hi) if n > target else (lo, mid)
+    return hi
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--reps", type=int, default=3)
+    ap.add_argument("--quick", action="store_true", help="8k vertices instead of 32k")
+    args = ap.parse_args(argv)
+    n_prof, n_path = (64, 128) if args.quick else (128, 256)
+    fx = moulding_along_cubic(n_profile=n_prof, n_path=n_path, sigma=5e-4)
+    mesh = normalise(fx.vertices, fx.faces)
+    spacing = spacing_for(mesh.vertices, DEFAULT.sphere_frequency, 1452)
+    params = DEFAULT.with_(offset_spacing=spacing, percentile=1.0, refinements=3)
+    n_ini = len(initial_planes(mesh.vertices, params.sphere_frequency, spacing)[1])
+    print(f"machine: {platform.machine()}, {os.cpu_count()} cores (shared), load {os.getloadavg()[0]:.1f}; "
+          f"numba threads {os.environ.get('NUMBA_NUM_THREADS', 'default')}")
+    print(f"mesh: general sweep (cubic path, 120 deg twist, sigma 5e-4), {mesh.n_vertices} vertices, "
+          f"{len(mesh.faces)} faces")
+
+    t_ini, search = best_of(lambda: search_planes(mesh, params), args.reps)
+    good = search.good_runs
+
+    def match():
+        plots = curvature_plots(search.cuts, search.movability, good, params)
+        m = match_cuts(plots, params)
+        return plots, m, families(m, params)
+
+    t_match, (plots, m, fams) = best_of(match, args.reps)
+    # the paper matched 167 curves: the same number of our lowest-energy runs, for a like-for-like time
+    top = np.argsort(search.movability.run_energy, kind="stable")[:167]
+
+    def match_top():
+        pl = curvature_plots(search.cuts, search.movability, top, params)
+        mm = match_cuts(pl, params)
+        return pl, mm, families(mm, params)
+
+    t_top, (plots2, m2, fams2) = best_of(match_top, args.reps)
+    print()
+    print("| stage | paper (Fig. 15, Fig. 12 row) | auszug | speed-up | goal |")
+    print("|---|---|---|---|---|")
+    print(f"| cut and weigh (T_ini): {n_ini} initial planes, g = 1 %, 3 rounds, {search.n_planes} planes cut "
+          f"in all, {search.cuts.n_curves} curves | 286 s (1452 initial) | {t_ini:.2f} s | {286 / t_ini:.0f}x | 20x |")
+    print(f"| match (T_match): {plots.n_runs} good runs, {m.tested} pairs within 25 deg, {m.n_matches} matched, "
+          f"{len(fams)} families | 234 s (N_match 167, 536 families) | {t_match:.2f} s | {234 / t_match:.0f}x | 20x |")
+    print(f"| match, the paper's N_match: the {plots2.n_runs} lowest-energy runs, {m2.tested} pairs within 25 deg, "
+          f"{m2.n_matches} matched, {len(fams2)} families | 234 s | {t_top:.2f} s | {234 / t_top:.0f}x | 20x |")
+    print(f"rounds: {search.rounds}")
+
+    print()
+    print("scaling of cut + weigh (one pass, no refinement):")
+    print("| vertices | planes | seconds | ns per vertex x plane |")
+    print("|---|---|---|---|")
+    sizes = [(32, 64), (64, 128), (128, 256)] + ([] if args.quick else [(256, 512)])
+    n0, d0 = initial_planes(mesh.vertices, params.sphere_frequency, spacing)
+    for a, b in sizes:
+        f2 = moulding_along_cubic(n_profile=a, n_path=b, sigma=5e-4)
+        m2 = normalise(f2.vertices, f2.faces)
+        t, _ = best_of(lambda m2=m2: movability(cut(m2, n0, d0), params), args.reps)
+        print(f"| {m2.n_vertices} | {len(d0)} | {t:.3f} | {t / (m2.n_vertices * len(d0)) * 1e9:.1f} |")
+    for k in (2, 4):
+        shifts = np.tile(np.linspace(0, spacing, k, endpoint=False), len(d0))
+        nk, dk = np.repeat(n0, k, axis=0), np.repeat(d0, k) + shifts
+        t, _ = best_of(lambda nk=nk, dk=dk: movability(cut(mesh, nk, dk), params), args.reps)
+        print(f"| {mesh.n_vertices} | {len(dk)} | {t:.3f} | {t / (mesh.n_vertices * len(dk)) * 1e9:.1f} |")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,74 @@
+"""Sweep analysis: which parts of a mesh a planar profile sweeps (Barton, Pottmann, Wallner 2014).
+
+The detection stages, each callable alone, each returning a frozen dataclass:
+
+1. :func:`normalise` the mesh ``(V, F)`` (bounding-box diameter 1) and :func:`cut` it by many
+   planes at once (compiled, parallel over planes);
+2. :func:`movability` of every cut curve (Eq. 3-5, Alg. 1) and :func:`search_planes`, the coarse
+   plane sampling with adaptive refinement (sec. 1.3);
+3. :func:`kinematic_axis`: surfaces of revolution, extrusions and helical surfaces, where every cut
+   moves, scored by the axis or direction their velocity states agree on;
+4. :func:`match_cuts` (sec. 2.1, curvature plots) and :func:`families` of near-congruent cuts
+   (sec. 2.2, angle pruning).
+
+Parameters live in one :class:`SweepParams`. Pure numpy/scipy/numba; no file I/O (meshes are read
+by :mod:`auszug.formats`).
+"""
+
+from auszug.sweeps.cut import Cuts, cut
+from auszug.sweeps.kinematic import KinematicAxis, axis_angle, kinematic_axis, motion_of
+from auszug.sweeps.matching import (
+    CurvaturePlots,
+    Family,
+    Matches,
+    Ribs,
+    curvature_plots,
+    families,
+    match_cuts,
+    order_energy,
+    order_ribs,
+    resample,
+    signed_curvature,
+)
+from auszug.sweeps.mesh import SweepMesh, normalise, vertex_normals
+from auszug.sweeps.movability import Movability, movability, velocities, velocity_state
+from auszug.sweeps.params import DEFAULT, SweepParams
+from auszug.sweeps.planes import geodesic_sphere, hemisphere, initial_planes, plane_recall, refine_box
+from auszug.sweeps.search import PlaneSearch, good_planes, search_planes
+
+__all__ = [
+    "Cuts",
+    "cut",
+    "KinematicAxis",
+    "axis_angle",
+    "kinematic_axis",
+    "motion_of",
+    "CurvaturePlots",
+    "Family",
+    "Matches",
+    "Ribs",
+    "curvature_plots",
+    "families",
+    "match_cuts",
+    "order_energy",
+    "order_ribs",
+    "resample",
+    "signed_curvature",
+    "SweepMesh",
+    "normalise",
+    "vertex_normals",
+    "Movability",
+    "movability",
+    "velocities",
+    "velocity_state",
+    "DEFAULT",
+    "SweepParams",
+    "geodesic_sphere",
+    "hemisphere",
+    "initial_planes",
+    "plane_recall",
+    "refine_box",
+    "PlaneSearch",
+    "good_planes",
+    "search_planes",
+]

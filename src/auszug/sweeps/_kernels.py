@@ -1,0 +1,470 @@
+"""Compiled kernels of sweep detection (numba, cached on disk).
+
+Private: the public functions in :mod:`auszug.sweeps.cut`, :mod:`auszug.sweeps.movability` and
+:mod:`auszug.sweeps.matching` validate their input and call these. Every kernel is one pass over
+all planes (or curves, or curve pairs); no Python loop runs per plane, curve or pair.
+
+The cutter runs in parallel over planes (``prange``). The curve and pair kernels are serial:
+numba's parallel lowering doubled their first-call compilation (45 s against 21 s for all
+kernels on the 2-core development machine, a cost every fresh checkout pays once) for at most a
+2x gain on two shared cores, and they are the cheaper part of the run.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+# --------------------------------------------------------------------------------------- cutting
+
+
+@njit(cache=True, parallel=True)
+def cut_count(v, edges, pn, pd):  # pragma: no cover - compiled
+    """Crossed edges per plane (an upper bound of its cut points)."""
+    n_planes = len(pd)
+    out = np.zeros(n_planes, np.int64)
+    for p in prange(n_planes):
+        nx, ny, nz, d = pn[p, 0], pn[p, 1], pn[p, 2], pd[p]
+        side = np.empty(len(v), np.bool_)
+        for i in range(len(v)):
+            side[i] = v[i, 0] * nx + v[i, 1] * ny + v[i, 2] * nz - d >= 0.0
+        c = 0
+        for e in range(len(edges)):
+            if side[edges[e, 0]] != side[edges[e, 1]]:
+                c += 1
+        out[p] = c
+    return out
+
+
+@njit(cache=True)
+def _other_edge(face_edges, f, e, crossed):  # pragma: no cover - compiled
+    for k in range(3):
+        g = face_edges[f, k]
+        if g != e and crossed[g]:
+            return g
+    return -1
+
+
+@njit(cache=True)
+def _emit(v, vn, edges, dist, e, pts, nrm, eid, pos, begin):  # pragma: no cover - compiled
+    a, b = edges[e, 0], edges[e, 1]
+    t = dist[a] / (dist[a] - dist[b])
+    x0 = v[a, 0] + t * (v[b, 0] - v[a, 0])
+    x1 = v[a, 1] + t * (v[b, 1] - v[a, 1])
+    x2 = v[a, 2] + t * (v[b, 2] - v[a, 2])
+    if pos > begin:
+        dx, dy, dz = x0 - pts[pos - 1, 0], x1 - pts[pos - 1, 1], x2 - pts[pos - 1, 2]
+        if dx * dx + dy * dy + dz * dz < 1e-28:  # a vertex on the plane: same point again
+            return pos
+    pts[pos, 0], pts[pos, 1], pts[pos, 2] = x0, x1, x2
+    m0 = vn[a, 0] + t * (vn[b, 0] - vn[a, 0])
+    m1 = vn[a, 1] + t * (vn[b, 1] - vn[a, 1])
+    m2 = vn[a, 2] + t * (vn[b, 2] - vn[a, 2])
+    s = np.sqrt(m0 * m0 + m1 * m1 + m2 * m2)
+    if s > 0:
+        m0, m1, m2 = m0 / s, m1 / s, m2 / s
+    nrm[pos, 0], nrm[pos, 1], nrm[pos, 2] = m0, m1, m2
+    eid[pos] = e
+    return pos + 1
+
+
+@njit(cache=True, parallel=True)
+def cut_fill(v, vn, edges, edge_faces, face_edges, pn, pd, start):  # pragma: no cover - compiled
+    """Cut every plane and link its crossing points into polylines, written at ``start[p]``.
+
+    Returns points, normals, edge ids (-1 in unused slots), a curve-start flag and a closed flag
+    per written point (set at a curve's first point), and the number written per plane.
+    """
+    n_planes = len(pd)
+    total = start[n_planes]
+    pts = np.zeros((total, 3))
+    nrm = np.zeros((total, 3))
+    eid = np.full(total, -1, np.int64)
+    first = np.zeros(total, np.bool_)
+    closed = np.zeros(total, np.bool_)
+    written = np.zeros(n_planes, np.int64)
+    for p in prange(n_planes):
+        nx, ny, nz, d = pn[p, 0], pn[p, 1], pn[p, 2], pd[p]
+        dist = np.empty(len(v))
+        for i in range(len(v)):
+            dist[i] = v[i, 0] * nx + v[i, 1] * ny + v[i, 2] * nz - d
+        crossed = np.zeros(len(edges), np.bool_)
+        for e in range(len(edges)):
+            crossed[e] = (dist[edges[e, 0]] >= 0.0) != (dist[edges[e, 1]] >= 0.0)
+        seen = np.zeros(len(edges), np.bool_)
+        pos = start[p]
+        # open chains start at crossed boundary edges, then what is left are closed loops
+        for phase in range(2):
+            for e0 in range(len(edges)):
+                if not crossed[e0] or seen[e0]:
+                    continue
+                if phase == 0 and edge_faces[e0, 1] >= 0:
+                    continue
+                begin = pos
+                e, prev = e0, -1
+                is_closed = False
+                while True:
+                    seen[e] = True
+                    pos = _emit(v, vn, edges, dist, e, pts, nrm, eid, pos, begin)
+                    f = edge_faces[e, 0]
+                    if f == prev or f < 0:
+                        f = edge_faces[e, 1]
+                    if f < 0 or f == prev:
+                        break
+                    g = _other_edge(face_edges, f, e, crossed)
+                    if g < 0:
+                        break
+                    if seen[g]:
+                        is_closed = g == e0
+                        break
+                    prev, e = f, g
+                if pos - begin >= 2:
+                    first[begin] = True
+                    closed[begin] = is_closed
+                else:
+                    pos = begin  # a single point: no curve
+                    eid[begin] = -1
+        written[p] = pos - start[p]
+        for k in range(pos, start[p + 1]):
+            eid[k] = -1
+    return pts, nrm, eid, first, closed, written
+
+
+# ------------------------------------------------------------------------------------ movability
+
+
+@njit(cache=True)
+def _velocity_fit(x, nrm, w):  # pragma: no cover - compiled
+    a = np.zeros((6, 6))
+    row = np.empty(6)
+    for i in range(len(x)):
+        n0, n1, n2 = nrm[i, 0], nrm[i, 1], nrm[i, 2]
+        row[0] = x[i, 1] * n2 - x[i, 2] * n1
+        row[1] = x[i, 2] * n0 - x[i, 0] * n2
+        row[2] = x[i, 0] * n1 - x[i, 1] * n0
+        row[3], row[4], row[5] = n0, n1, n2
+        for r in range(6):
+            wr = w[i] * row[r]
+            for c in range(r, 6):
+                a[r, c] += wr * row[c]
+    for r in range(6):
+        for c in range(r):
+            a[r, c] = a[c, r]
+    vals, vecs = np.linalg.eigh(a)
+    return vals, vecs[:, 0].copy(), a
+
+
+@njit(cache=True)
+def _movability_values(x, nrm, c, f, v0):  # pragma: no cover - compiled
+    v02 = v0 * v0
+    for i in range(len(x)):
+        vx = c[3] + c[1] * x[i, 2] - c[2] * x[i, 1]
+        vy = c[4] + c[2] * x[i, 0] - c[0] * x[i, 2]
+        vz = c[5] + c[0] * x[i, 1] - c[1] * x[i, 0]
+        s = vx * vx + vy * vy + vz * vz + v02
+        if s < 1e-24:
+            f[i] = 0.0  # the point does not move (it is on the rotation axis)
+        else:
+            dot = nrm[i, 0] * vx + nrm[i, 1] * vy + nrm[i, 2] * vz
+            f[i] = dot * dot / s
+
+
+@njit(cache=True)
+def weight_iteration(x, nrm, curve_start, beta, gamma, iterations, v0):  # pragma: no cover - compiled
+    """Alg. 1 steps 1-3 on every curve: velocity states (C, 6), eigenvalues (C, 6), weights, f, A (C, 6, 6)."""
+    n_curves = len(curve_start) - 1
+    mats = np.zeros((n_curves, 6, 6))
+    cs = np.zeros((n_curves, 6))
+    ev = np.zeros((n_curves, 6))
+    w = np.ones(len(x))
+    f = np.zeros(len(x))
+    for k in range(n_curves):
+        a, b = curve_start[k], curve_start[k + 1]
+        xs, ns = x[a:b], nrm[a:b]
+        ws, fs = w[a:b], f[a:b]
+        vals, c = np.zeros(6), np.zeros(6)
+        for _ in range(iterations):
+            vals, c, am = _velocity_fit(xs, ns, ws)
+            mats[k] = am
+            _movability_values(xs, ns, c, fs, v0)
+            for i in range(b - a):
+                ws[i] = 1.0 / (1.0 + beta * fs[i] ** gamma)
+        # the final state: the eigenvector of the last fit, weights and f from it
+        cs[k] = c
+        ev[k] = vals
+    return cs, ev, w, f, mats
+
+
+@njit(cache=True)
+def _dist(x, i, j):  # pragma: no cover - compiled
+    return np.sqrt((x[j, 0] - x[i, 0]) ** 2 + (x[j, 1] - x[i, 1]) ** 2 + (x[j, 2] - x[i, 2]) ** 2)
+
+
+@njit(cache=True)
+def _bridge(x, good, closed, gap):  # pragma: no cover - compiled
+    """Absorb stretches of bad vertices spanning at most ``gap`` of arc length between good ones."""
+    n = len(good)
+    out = good.copy()
+    any_good = False
+    for i in range(n):
+        if good[i]:
+            any_good = True
+            break
+    if not any_good or gap <= 0.0:
+        return out
+    i = 0
+    while i < n:
+        if good[i]:
+            i += 1
+            continue
+        j = i
+        while j < n and not good[j]:
+            j += 1
+        # bad stretch [i, j): bridge if it has good neighbours on both sides and is short
+        if closed or (i > 0 and j < n):
+            a = (i - 1) % n
+            span = 0.0
+            k = a
+            while k != j % n:
+                k2 = (k + 1) % n
+                span += _dist(x, k, k2)
+                k = k2
+            if span <= gap:
+                for m in range(i, j):
+                    out[m] = True
+        i = j
+    if closed and not good[0] and not good[n - 1]:
+        # the stretch wrapping over the start was seen as two pieces: redo it as one
+        i0 = n - 1
+        while i0 > 0 and not good[i0 - 1]:
+            i0 -= 1
+        j0 = 0
+        while j0 < n and not good[j0]:
+            j0 += 1
+        span = 0.0
+        k = (i0 - 1) % n
+        while k != j0 % n:
+            k2 = (k + 1) % n
+            span += _dist(x, k, k2)
+            k = k2
+        ok = span <= gap
+        for m in range(i0, n):
+            out[m] = ok
+        for m in range(0, j0):
+            out[m] = ok
+    return out
+
+
+@njit(cache=True)
+def _sliding(x, w, c, j, closed):  # pragma: no cover - compiled
+    """Weighted squared velocity along the curve's tangent at vertex ``j``, and weighted squared speed."""
+    n = len(x)
+    a = (j - 1) % n if closed else max(j - 1, 0)
+    b = (j + 1) % n if closed else min(j + 1, n - 1)
+    tx, ty, tz = x[b, 0] - x[a, 0], x[b, 1] - x[a, 1], x[b, 2] - x[a, 2]
+    tl = np.sqrt(tx * tx + ty * ty + tz * tz)
+    vx = c[3] + c[1] * x[j, 2] - c[2] * x[j, 1]
+    vy = c[4] + c[2] * x[j, 0] - c[0] * x[j, 2]
+    vz = c[5] + c[0] * x[j, 1] - c[1] * x[j, 0]
+    vv = vx * vx + vy * vy + vz * vz
+    if tl == 0.0 or vv < 1e-24:
+        return 0.0, 0.0
+    d = (tx * vx + ty * vy + tz * vz) / tl
+    return w[j] * d * d, w[j] * vv
+
+
+@njit(cache=True)
+def _runs_of_curve(x, nrm, w, f, c, closed, thresh, l_min, gap, max_slide, min_spread, out_i0, out_i1, out_len,
+                   out_e, out_s, k0, write):  # pragma: no cover - compiled
+    n = len(w)
+    if n == 0:
+        return 0
+    good = _bridge(x, w > thresh, closed, gap)
+    count = 0
+    all_good = True
+    for i in range(n):
+        if not good[i]:
+            all_good = False
+            break
+    s0 = 0
+    if closed and not all_good:
+        for i in range(n):
+            if not good[i]:
+                s0 = (i + 1) % n
+                break
+    i = 0
+    while i < n:
+        idx = (s0 + i) % n if closed else i
+        if not good[idx]:
+            i += 1
+            continue
+        j = i
+        length = 0.0
+        e = 0.0
+        sl_num = 0.0
+        sl_den = 0.0
+        cov = np.zeros((3, 3))
+        while j < n:
+            jj = (s0 + j) % n if closed else j
+            if not good[jj]:
+                break
+            e += (1.0 - w[jj]) ** 2 * f[jj]
+            sn, sd = _sliding(x, w, c, jj, closed)
+            sl_num += sn
+            sl_den += sd
+            for r in range(3):
+                for q in range(3):
+                    cov[r, q] += nrm[jj, r] * nrm[jj, q]
+            if j > i:
+                pj = (s0 + j - 1) % n if closed else j - 1
+                length += _dist(x, pj, jj)
+            j += 1
+        if closed and all_good:
+            length += _dist(x, n - 1, 0)
+        slide = sl_num / sl_den if sl_den > 0 else 0.0
+        spread = np.linalg.eigvalsh(cov / (j - i))[1] if length >= l_min else 0.0
+        if length >= l_min and slide <= max_slide and spread >= min_spread:
+            if write:
+                out_i0[k0 + count] = (s0 + i) % n if closed else i
+                out_i1[k0 + count] = (s0 + j - 1) % n if closed else j - 1
+                out_len[k0 + count] = length
+                out_e[k0 + count] = e / (j - i)
+                out_s[k0 + count] = slide
+            count += 1
+        i = j
+    return count
+
+
+@njit(cache=True)
+def movable_runs(x, nrm, w, f, cs, curve_start, closed, thresh, l_min, gap, max_slide,
+                 min_spread):  # pragma: no cover - compiled
+    """Alg. 1 step 4: runs of weight above ``thresh`` at least ``l_min`` long, with gliding energy.
+
+    Gaps of at most ``gap`` arc length are bridged; runs whose velocity is more than
+    ``max_slide`` (share of squared speed) along the curve itself are dropped, and so are runs
+    whose normals hardly turn (second eigenvalue of their mean ``n n^T`` below ``min_spread``).
+    """
+    n_curves = len(curve_start) - 1
+    dummy_i = np.zeros(1, np.int64)
+    dummy_f = np.zeros(1)
+    counts = np.zeros(n_curves, np.int64)
+    for k in range(n_curves):
+        a, b = curve_start[k], curve_start[k + 1]
+        counts[k] = _runs_of_curve(x[a:b], nrm[a:b], w[a:b], f[a:b], cs[k], closed[k], thresh, l_min, gap,
+                                   max_slide, min_spread,
+                                   dummy_i, dummy_i, dummy_f, dummy_f, dummy_f, 0, False)
+    offs = np.zeros(n_curves + 1, np.int64)
+    offs[1:] = np.cumsum(counts)
+    total = offs[n_curves]
+    i0 = np.zeros(total, np.int64)
+    i1 = np.zeros(total, np.int64)
+    length = np.zeros(total)
+    energy = np.zeros(total)
+    slide = np.zeros(total)
+    curve = np.zeros(total, np.int64)
+    for k in range(n_curves):
+        a, b = curve_start[k], curve_start[k + 1]
+        _runs_of_curve(x[a:b], nrm[a:b], w[a:b], f[a:b], cs[k], closed[k], thresh, l_min, gap, max_slide,
+                       min_spread, i0, i1, length, energy, slide, offs[k], True)
+        for r in range(offs[k], offs[k + 1]):
+            curve[r] = k
+    return curve, i0, i1, length, energy, slide
+
+
+# -------------------------------------------------------------------------------------- matching
+
+
+@njit(cache=True)
+def _longest_nonpositive(d, n, q, lmin, rmax):  # pragma: no cover - compiled
+    """Longest window ``[i, j)`` of ``d[:n]`` with ``sum <= 0``: (start, length), O(n).
+
+    With prefix sums ``P``, a window ``[i, j)`` qualifies iff ``P[j] <= P[i]``; this is the widest
+    ramp of ``Q = -P`` (``Q[i] <= Q[j]``), found with prefix minima and suffix maxima of ``Q``.
+    """
+    q[0] = 0.0
+    for k in range(n):
+        q[k + 1] = q[k] - d[k]
+    lmin[0] = q[0]
+    for k in range(1, n + 1):
+        lmin[k] = min(lmin[k - 1], q[k])
+    rmax[n] = q[n]
+    for k in range(n - 1, -1, -1):
+        rmax[k] = max(rmax[k + 1], q[k])
+    i = 0
+    j = 0
+    best, start = 0, 0
+    while i <= n and j <= n:
+        if lmin[i] <= rmax[j] + 1e-12 * (1.0 + abs(rmax[j])):
+            if j - i > best:
+                best, start = j - i, i
+            j += 1
+        else:
+            i += 1
+    return start, best
+
+
+@njit(cache=True)
+def match_pairs(kappa, offs, pairs, eps, kfloor, min_len):  # pragma: no cover - compiled
+    """Sec. 2.1 on every pair: the longest diagonal window below the threshold, over 4 variants.
+
+    Variant bits: 1 = the second curve's curvature negated (flip), 2 = its direction reversed.
+    Returns per pair: length (samples; 0 if none reaches ``min_len``), variant, start in the first
+    curve, start in the second curve's variant, mean |kappa - kappa'| and the reference energy.
+    """
+    n_pairs = len(pairs)
+    out_len = np.zeros(n_pairs, np.int64)
+    out_var = np.zeros(n_pairs, np.int64)
+    out_sa = np.zeros(n_pairs, np.int64)
+    out_sb = np.zeros(n_pairs, np.int64)
+    out_e = np.zeros(n_pairs)
+    out_ref = np.zeros(n_pairs)
+    m_max = 0
+    for r in range(len(offs) - 1):
+        m_max = max(m_max, offs[r + 1] - offs[r])
+    for p in range(n_pairs):
+        a, b = pairs[p, 0], pairs[p, 1]
+        ka = kappa[offs[a]:offs[a + 1]]
+        kb = kappa[offs[b]:offs[b + 1]]
+        ma, mb = len(ka), len(kb)
+        d1 = np.empty(m_max)
+        d2 = np.empty(m_max)
+        q = np.empty(m_max + 1)
+        lo = np.empty(m_max + 1)
+        hi = np.empty(m_max + 1)
+        best_len, best_e = 0, np.inf
+        for var in range(4):
+            sgn = -1.0 if var & 1 else 1.0
+            rev = (var & 2) != 0
+            for o in range(-(ma - min_len), mb - min_len + 1):
+                i0 = max(0, -o)
+                i1 = min(ma, mb - o)
+                n = i1 - i0
+                if n < min_len or n < best_len:
+                    continue
+                for t in range(n):
+                    i = i0 + t
+                    j = i + o
+                    kbj = sgn * (kb[mb - 1 - j] if rev else kb[j])
+                    diff = abs(ka[i] - kbj)
+                    d1[t] = diff - eps * 0.5 * (abs(ka[i]) + abs(kbj))
+                    d2[t] = diff - eps * kfloor
+                for cond in range(2):
+                    s, length = _longest_nonpositive(d1 if cond == 0 else d2, n, q, lo, hi)
+                    if length < min_len or length < best_len:
+                        continue
+                    e = 0.0
+                    ref = 0.0
+                    for t in range(s, s + length):
+                        i = i0 + t
+                        j = i + o
+                        kbj = sgn * (kb[mb - 1 - j] if rev else kb[j])
+                        e += abs(ka[i] - kbj)
+                        ref += 0.5 * (abs(ka[i]) + abs(kbj))
+                    e /= length
+                    ref /= length
+                    if length > best_len or e < best_e:
+                        best_len, best_e = length, e
+                        out_len[p], out_var[p] = length, var
+                        out_sa[p], out_sb[p] = i0 + s, i0 + s + o
+                        out_e[p], out_ref[p] = e, ref
+    return out_len, out_var, out_sa, out_sb, out_e, out_ref

@@ -1,0 +1,267 @@
+"""Meshes with known sweep structure, generated in code (seeded), for tests and benchmarks.
+
+Every fixture is normalised (centred on its bounding-box centre, bounding-box diameter 1) and
+carries its truth in those coordinates: the axis of a surface of revolution, the direction of an
+extrusion, the profile planes of a moulding swept along a curved path. Noise is a displacement of
+every vertex along its normal, Gaussian with deviation ``sigma`` (bounding-box diameter 1).
+
+Examples
+--------
+>>> fx = revolved(n_profile=40, n_path=60)
+>>> fx.vertices.shape, round(float(np.ptp(fx.vertices, axis=0) @ np.ptp(fx.vertices, axis=0)), 12)
+((2400, 3), 1.0)
+>>> fx.kind, np.round(fx.axis_direction, 6).tolist()
+('rotation', [0.0, 0.0, 1.0])
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from auszug.sweeps.mesh import vertex_normals
+
+__all__ = [
+    "Fixture",
+    "gothic_base_profile",
+    "extruded",
+    "revolved",
+    "moulding_along_ellipse",
+    "moulding_along_cubic",
+    "bumps",
+    "grid_faces",
+]
+
+Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+# A Gothic base moulding, bottom to top, in (r, z): plinth face, plinth top, lower torus, fillet,
+# scotia (hollow), fillet, upper torus, shaft. Each segment is ("line", end) or ("arc", end, bulge)
+# with bulge = tan(swept angle / 4), positive counter-clockwise (turning left, so bulging to the right).
+_BASE: tuple[tuple[float, float], tuple[tuple[Any, ...], ...]] = (
+    (0.30, 0.00),
+    (("line", (0.30, 0.05)),
+     ("line", (0.24, 0.05)),
+     ("arc", (0.24, 0.13), 1.0),        # lower torus: a half circle bulging outwards
+     ("line", (0.22, 0.13)),
+     ("arc", (0.20, 0.19), -0.6),       # scotia: a hollow bulging inwards
+     ("line", (0.20, 0.22)),
+     ("arc", (0.20, 0.27), 1.0),        # upper torus
+     ("line", (0.17, 0.27)),
+     ("line", (0.17, 0.34))),
+)
+
+
+@dataclass(frozen=True)
+class Fixture:
+    """A normalised test mesh and what is known about it.
+
+    Attributes
+    ----------
+    name : str
+    kind : str
+        ``"translation"`` (extrusion), ``"rotation"`` (surface of revolution), ``"moulding"``
+        (a profile swept along a curved planar path, not kinematic) or ``"none"`` (no sweep).
+    vertices : (n, 3) float array
+        Bounding-box diameter 1, centred.
+    faces : (m, 3) int array
+    axis_direction : (3,) float array or None
+        Rotation axis or translation direction (unit); None where there is none.
+    axis_point : (3,) float array or None
+        A point of the rotation axis.
+    planes : (k, 4) float array
+        True profile planes ``(n, d)`` with ``n . x = d`` (moulding fixtures), else empty.
+    profile_length : float
+        Arc length of the profile (normalised units).
+    """
+
+    name: str
+    kind: str
+    vertices: Array
+    faces: IntArray
+    axis_direction: Array | None
+    axis_point: Array | None
+    planes: Array
+    profile_length: float
+
+
+def gothic_base_profile(n: int = 100) -> tuple[Array, Array]:
+    """Points ``(n, 2)`` in (r, z) of the base moulding, evenly spaced by arc length per segment.
+
+    Corners are vertices. Also returns the arc-length parameter of each point.
+
+    Examples
+    --------
+    >>> p, s = gothic_base_profile(60)
+    >>> p.shape, bool(np.all(np.diff(s) > 0))
+    ((60, 2), True)
+    """
+    start, segs = _BASE
+    pieces: list[tuple[str, Array, Array, float]] = []
+    cur = np.asarray(start, float)
+    for seg in segs:
+        end = np.asarray(seg[1], float)
+        bulge = float(seg[2]) if seg[0] == "arc" else 0.0
+        pieces.append((seg[0], cur, end, bulge))
+        cur = end
+    lengths = np.array([_seg_length(a, b, g) for _, a, b, g in pieces])
+    total = lengths.sum()
+    counts = np.maximum(2, np.round(lengths / total * (n - 1)).astype(int))
+    counts[np.argmax(counts)] += (n - 1) - counts.sum()
+    pts = [pieces[0][1][None]]
+    for (_, a, b, g), k in zip(pieces, counts, strict=True):
+        u = np.linspace(0.0, 1.0, k + 1)[1:]
+        pts.append(_seg_points(a, b, g, u))
+    p = np.vstack(pts)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))])
+    return p, s
+
+
+def _seg_length(a: Array, b: Array, bulge: float) -> float:
+    chord = float(np.linalg.norm(b - a))
+    if bulge == 0.0:
+        return chord
+    theta = 4 * np.arctan(abs(bulge))
+    return chord / (2 * np.sin(theta / 2)) * theta
+
+
+def _seg_points(a: Array, b: Array, bulge: float, u: Array) -> Array:
+    if bulge == 0.0:
+        return a + u[:, None] * (b - a)
+    theta = 4 * np.arctan(bulge)  # signed swept angle, positive counter-clockwise
+    chord = b - a
+    c = np.linalg.norm(chord)
+    r = c / (2 * np.sin(abs(theta) / 2))
+    left = np.array([-chord[1], chord[0]]) / c
+    centre = (a + b) / 2 + left * (c / 2) / np.tan(theta / 2)
+    a0 = np.arctan2(a[1] - centre[1], a[0] - centre[0])
+    ang = a0 + theta * u
+    return centre + r * np.stack([np.cos(ang), np.sin(ang)], axis=1)
+
+
+def grid_faces(n_rows: int, n_cols: int) -> IntArray:
+    """Triangles of an ``n_rows x n_cols`` vertex grid (row-major), two per quad, alternating diagonals."""
+    i, j = np.meshgrid(np.arange(n_rows - 1), np.arange(n_cols - 1), indexing="ij")
+    a = (i * n_cols + j).ravel()
+    b, c, d = a + 1, a + n_cols, a + n_cols + 1
+    alt = ((i + j) % 2 == 0).ravel()
+    t1 = np.where(alt[:, None], np.stack([a, b, d], 1), np.stack([a, b, c], 1))
+    t2 = np.where(alt[:, None], np.stack([a, d, c], 1), np.stack([b, d, c], 1))
+    return np.vstack([t1, t2]).astype(np.int64)
+
+
+def _finish(name: str, kind: str, v: Array, f: IntArray, sigma: float, seed: int,
+            axis: Array | None, point: Array | None, planes: Array, plen: float) -> Fixture:
+    lo, hi = v.min(0), v.max(0)
+    centre, diam = (lo + hi) / 2, float(np.linalg.norm(hi - lo))
+    v = (v - centre) / diam
+    if point is not None:
+        point = (point - centre) / diam
+    if len(planes):
+        n = planes[:, :3]
+        planes = np.column_stack([n, (planes[:, 3] - n @ centre) / diam])
+    if sigma > 0:
+        rng = np.random.default_rng(seed)
+        v = v + rng.normal(0.0, sigma, len(v))[:, None] * vertex_normals(v, f)
+    return Fixture(name, kind, v, f, axis, point, planes, plen / diam)
+
+
+def extruded(n_profile: int = 60, n_path: int = 120, length: float = 0.8, sigma: float = 0.0,
+             seed: int = 0) -> Fixture:
+    """The base moulding extruded along the x axis (a translational sweep)."""
+    p, s = gothic_base_profile(n_profile)
+    x = np.linspace(0.0, length, n_path)
+    v = np.column_stack([np.repeat(x, n_profile), np.tile(p[:, 0], n_path), np.tile(p[:, 1], n_path)])
+    f = grid_faces(n_path, n_profile)
+    return _finish("extruded", "translation", v, f, sigma, seed, np.array([1.0, 0, 0]), None,
+                   np.empty((0, 4)), float(s[-1]))
+
+
+def revolved(n_profile: int = 60, n_path: int = 120, degrees: float = 300.0, sigma: float = 0.0,
+             seed: int = 0) -> Fixture:
+    """The base moulding revolved about the z axis by ``degrees`` (a surface of revolution)."""
+    p, s = gothic_base_profile(n_profile)
+    th = np.radians(np.linspace(0.0, degrees, n_path))
+    r, z = np.tile(p[:, 0], n_path), np.tile(p[:, 1], n_path)
+    t = np.repeat(th, n_profile)
+    v = np.column_stack([r * np.cos(t), r * np.sin(t), z])
+    f = grid_faces(n_path, n_profile)
+    return _finish("revolved", "rotation", v, f, sigma, seed, np.array([0, 0, 1.0]), np.zeros(3),
+                   np.empty((0, 4)), float(s[-1]))
+
+
+def moulding_along_ellipse(n_profile: int = 60, n_path: int = 160, a: float = 0.6, b: float = 0.4,
+                           n_planes: int = 60, sigma: float = 0.0, seed: int = 0) -> Fixture:
+    """The base moulding swept along a half ellipse (an elliptical arch), profile in the normal planes.
+
+    The profile's r runs along the ellipse's outward normal from the path (r - 0.15 >= 0), z
+    vertically, so the profile's plane at parameter t is the normal plane of the path there: a
+    moulding (profile) surface, not kinematic. ``planes`` samples those true profile planes over
+    the middle 90 % of the path (the ends' planes meet only the mesh's boundary).
+    """
+    p, s = gothic_base_profile(n_profile)
+    t = np.linspace(0.0, np.pi, n_path)
+    path = np.column_stack([a * np.cos(t), b * np.sin(t), np.zeros_like(t)])
+    tan = np.column_stack([-a * np.sin(t), b * np.cos(t), np.zeros_like(t)])
+    tan /= np.linalg.norm(tan, axis=1, keepdims=True)
+    out = np.column_stack([tan[:, 1], -tan[:, 0], np.zeros_like(t)])  # outward normal (ccw path)
+    off = p[:, 0] - 0.15
+    v = (path[:, None, :] + off[None, :, None] * out[:, None, :]
+         + p[None, :, 1, None] * np.array([0, 0, 1.0])[None, None, :]).reshape(-1, 3)
+    f = grid_faces(n_path, n_profile)
+    tq = np.linspace(0.05 * np.pi, 0.95 * np.pi, n_planes)
+    pq = np.column_stack([a * np.cos(tq), b * np.sin(tq), np.zeros_like(tq)])
+    nq = np.column_stack([-a * np.sin(tq), b * np.cos(tq), np.zeros_like(tq)])
+    nq /= np.linalg.norm(nq, axis=1, keepdims=True)
+    planes = np.column_stack([nq, np.einsum("ij,ij->i", nq, pq)])
+    return _finish("moulding", "moulding", v, f, sigma, seed, None, None, planes, float(s[-1]))
+
+
+def moulding_along_cubic(n_profile: int = 60, n_path: int = 160, twist: float = 120.0, n_planes: int = 60,
+                         scale: float = 2.0, sigma: float = 0.0, seed: int = 0) -> Fixture:
+    """The base moulding swept along a non-planar cubic Bezier with ``twist`` degrees of twist.
+
+    The profile (centred on the path, scaled by ``scale``) lies in the path's normal planes, carried by
+    rotation-minimising frames turned linearly by up to ``twist`` degrees: a general sweep whose
+    straight segments sweep twisted ruled surfaces, not cylinders or planes, so no part of it is
+    kinematic. ``planes`` samples the true profile planes over the middle 90 % of the path.
+    """
+    from auszug.meshing.frames import sweep_frames
+
+    p, s = gothic_base_profile(n_profile)
+    prof = scale * (p - np.array([0.235, 0.17]))
+    ctrl = np.array([[0.0, 0.0, 0.0], [0.7, 0.9, 0.5], [1.4, -0.6, 0.9], [2.1, 0.3, 0.2]])
+
+    def bez(t: Array) -> tuple[Array, Array]:
+        b = np.stack([(1 - t) ** 3, 3 * t * (1 - t) ** 2, 3 * t**2 * (1 - t), t**3], 1)
+        db = np.stack([-3 * (1 - t) ** 2, 3 * (1 - t) ** 2 - 6 * t * (1 - t), 6 * t * (1 - t) - 3 * t**2, 3 * t**2], 1)
+        tan = db @ ctrl
+        return b @ ctrl, tan / np.linalg.norm(tan, axis=1, keepdims=True)
+
+    t = np.linspace(0.0, 1.0, n_path)
+    path, tan = bez(t)
+    fr = sweep_frames(path, tan, [0.0, 0.0, 1.0])
+    ang = np.radians(twist) * fr.arclength / fr.arclength[-1]
+    wdt = np.cos(ang)[:, None] * fr.width + np.sin(ang)[:, None] * fr.depth
+    dep = -np.sin(ang)[:, None] * fr.width + np.cos(ang)[:, None] * fr.depth
+    v = (path[:, None, :] + prof[None, :, 0, None] * wdt[:, None, :] + prof[None, :, 1, None] * dep[:, None, :])
+    f = grid_faces(n_path, n_profile)
+    pq, nq = bez(np.linspace(0.05, 0.95, n_planes))
+    planes = np.column_stack([nq, np.einsum("ij,ij->i", nq, pq)])
+    return _finish("cubic", "moulding", v.reshape(-1, 3), f, sigma, seed, None, None, planes, scale * float(s[-1]))
+
+
+def bumps(n: int = 90, n_bumps: int = 40, sigma: float = 0.0, seed: int = 0) -> Fixture:
+    """A height field of random Gaussian bumps over the unit square: no sweep."""
+    rng = np.random.default_rng(seed + 1000)
+    u = np.linspace(0.0, 1.0, n)
+    x, y = np.meshgrid(u, u, indexing="ij")
+    z = np.zeros_like(x)
+    for cx, cy, h, w in zip(rng.uniform(0, 1, n_bumps), rng.uniform(0, 1, n_bumps),
+                            rng.uniform(-0.08, 0.08, n_bumps), rng.uniform(0.06, 0.14, n_bumps), strict=True):
+        z += h * np.exp(-((x - cx) ** 2 + (y - cy) ** 2) / (2 * w * w))
+    v = np.column_stack([x.ravel(), y.ravel(), z.ravel()])
+    return _finish("bumps", "none", v, grid_faces(n, n), sigma, seed, None, None, np.empty((0, 4)), 0.0)

@@ -1,0 +1,440 @@
+"""Partial congruence of planar cuts by their curvature plots (paper sec. 2.1) and families (sec. 2.2).
+
+Two planar curves are congruent iff their signed curvatures as functions of arc length agree up
+to the sign (the plane's two sides) and the direction of travel. Every movable run is resampled
+at one arc-length spacing ``h`` and its signed curvature taken in its plane; a partial match of
+runs ``a`` and ``b`` is a window on a diagonal of the ``n_a x n_b`` correspondence matrix, in one
+of the 4 variants (b as is, negated, reversed, both), at least ``l_min / h`` samples long, with
+
+    mean |kappa_a - kappa_b'| <= eps_match * max(E_kappa,0, kappa_floor)        (Eq. 6)
+
+where ``E_kappa,0`` is the mean of ``(|kappa_a| + |kappa_b'|) / 2`` over the window (the energy
+against zero curvature, made symmetric). The floor lets straight pieces (``kappa = 0``, every
+Gothic fillet and face) match: without it their threshold would be 0 and noise alone would
+forbid a match.
+
+The paper solves this "by dynamic programming" with a cost matrix ``C[j, j'] = min E`` over the
+matches of the prefixes. A mean is not decomposable that way (a prefix's best mean says nothing
+about the best mean of its extension: the printed recursion has no optimal substructure), so we
+solve the stated problem directly: on each diagonal, the condition is ``sum (d_t - tau_t) <= 0``
+over the window, and the longest such window is the widest ramp of the prefix sums, found in
+O(n) with prefix minima and suffix maxima. All diagonals of all 4 variants of all pairs run in
+one compiled parallel loop: O(n_a n_b) per pair.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from auszug.sweeps import _kernels
+from auszug.sweeps.cut import Cuts
+from auszug.sweeps.movability import Movability
+from auszug.sweeps.params import DEFAULT, SweepParams
+
+__all__ = ["CurvaturePlots", "Matches", "Family", "Ribs", "resample", "signed_curvature", "curvature_plots",
+           "match_cuts", "families", "order_energy", "order_ribs"]
+
+Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+BoolArray = NDArray[np.bool_]
+
+
+@dataclass(frozen=True)
+class CurvaturePlots:
+    """Movable runs resampled at one spacing, with their signed curvature.
+
+    Attributes
+    ----------
+    points : (N, 3) float array
+        Every run's samples, run after run, ``spacing`` apart along the run.
+    kappa : (N,) float array
+        Signed curvature at each sample, in the run's plane (sign by the plane's normal).
+    start : (r + 1,) int array
+        Run ``k`` is ``points[start[k]:start[k + 1]]``.
+    run : (r,) int array
+        The movable run (index into :class:`~auszug.sweeps.movability.Movability`) of each plot.
+    normal : (r, 3) float array
+        The unit normal of each run's plane.
+    spacing : float
+    """
+
+    points: Array
+    kappa: Array
+    start: IntArray
+    run: IntArray
+    normal: Array
+    spacing: float
+
+    @property
+    def n_runs(self) -> int:
+        """Number of curvature plots."""
+        return len(self.run)
+
+    def samples(self, k: int) -> Array:
+        """Samples ``(n, 3)`` of plot ``k``."""
+        return self.points[self.start[k] : self.start[k + 1]]
+
+    def curvature(self, k: int) -> Array:
+        """Curvature ``(n,)`` of plot ``k``."""
+        return self.kappa[self.start[k] : self.start[k + 1]]
+
+
+@dataclass(frozen=True)
+class Matches:
+    """The partial matches found between pairs of curvature plots.
+
+    Attributes
+    ----------
+    plots : CurvaturePlots
+    pairs : (p, 2) int array
+        Plot indices ``(a, b)``, ``a < b``, of the matched pairs.
+    length : (p,) int array
+        Window length in samples (times ``plots.spacing``: arc length).
+    flipped, reversed : (p,) bool arrays
+        The variant: b's curvature negated; b traversed backwards.
+    start_a : (p,) int array
+        First sample of the window on a.
+    start_b : (p,) int array
+        The sample of b matching ``start_a`` (then b runs forwards, or backwards if reversed).
+    energy : (p,) float array
+        ``E_kappa,kappa'``, the mean ``|kappa - kappa'|`` over the window.
+    reference : (p,) float array
+        ``E_kappa,0`` over the window (before the floor).
+    tested : int
+        Pairs compared (after angle pruning).
+    """
+
+    plots: CurvaturePlots
+    pairs: IntArray
+    length: IntArray
+    flipped: BoolArray
+    reversed: BoolArray
+    start_a: IntArray
+    start_b: IntArray
+    energy: Array
+    reference: Array
+    tested: int
+
+    @property
+    def n_matches(self) -> int:
+        """Number of matched pairs."""
+        return len(self.pairs)
+
+    def correspondence(self, k: int) -> tuple[IntArray, IntArray]:
+        """Sample indices ``(i_a, i_b)`` of match ``k``, position by position."""
+        t = np.arange(self.length[k])
+        ia = self.start_a[k] + t
+        ib = self.start_b[k] - t if self.reversed[k] else self.start_b[k] + t
+        return ia, ib
+
+
+@dataclass(frozen=True)
+class Family:
+    """Near-congruent parts of several runs (sec. 2.2), trimmed to one length.
+
+    Attributes
+    ----------
+    seed : int
+        The plot the family was grown from.
+    members : (k,) int array
+        Plot indices, the seed first.
+    start : (k,) int array
+        Each member's sample matching the seed's first sample of the common part.
+    reversed : (k,) bool array
+        The member runs backwards against the seed.
+    flipped : (k,) bool array
+        The member's curvature is the seed's negated (its plane's normal points the other way).
+    length : int
+        Samples in the common part.
+    """
+
+    seed: int
+    members: IntArray
+    start: IntArray
+    reversed: BoolArray
+    flipped: BoolArray
+    length: int
+
+    def indices(self, j: int) -> IntArray:
+        """Sample indices of member ``j`` (in its plot), in the seed's order."""
+        t = np.arange(self.length)
+        return self.start[j] - t if self.reversed[j] else self.start[j] + t
+
+
+def resample(polyline: ArrayLike, spacing: float, closed: bool = False) -> Array:
+    """Points ``spacing`` apart along a polyline (``floor(length / spacing) + 1`` of them, from its start).
+
+    Examples
+    --------
+    >>> resample([[0, 0, 0], [1, 0, 0], [1, 1, 0]], 0.5).tolist()
+    [[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 0.5, 0.0], [1.0, 1.0, 0.0]]
+    """
+    p = np.asarray(polyline, float)
+    if closed:
+        p = np.vstack([p, p[:1]])
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))])
+    u = np.arange(int(np.floor(s[-1] / spacing + 1e-9)) + 1) * spacing
+    return np.column_stack([np.interp(u, s, p[:, k]) for k in range(3)])
+
+
+def signed_curvature(points: ArrayLike, normal: ArrayLike, window: int) -> Array:
+    """Signed curvature ``(n,)`` of evenly spaced planar points: turning angle over ``+-window`` samples.
+
+    The angle between the chords to the samples ``window`` before and after, over the mean chord
+    length; one-sided (shorter) near the ends. Positive where the curve turns counter-clockwise
+    seen from the side ``normal`` points to.
+
+    Examples
+    --------
+    >>> t = np.linspace(0, 1, 101)
+    >>> arc = np.column_stack([np.cos(t), np.sin(t), 0 * t]) * 0.2
+    >>> k = signed_curvature(arc, [0, 0, 1], 5)
+    >>> bool(np.allclose(k[5:-5], 5.0, rtol=1e-3)), bool(np.allclose(signed_curvature(arc, [0, 0, -1], 5), -k))
+    (True, True)
+    """
+    p = np.asarray(points, float)
+    n = len(p)
+    if n < 3:
+        return np.zeros(n)
+    idx = np.arange(n)
+    lo = np.maximum(idx - window, 0)
+    hi = np.minimum(idx + window, n - 1)
+    e1 = p[idx] - p[lo]
+    e2 = p[hi] - p[idx]
+    cr = np.cross(e1, e2) @ np.asarray(normal, float)
+    ang = np.arctan2(cr, np.einsum("ij,ij->i", e1, e2))
+    lens = 0.5 * (np.linalg.norm(e1, axis=1) + np.linalg.norm(e2, axis=1))
+    both = (lo < idx) & (idx < hi)
+    return np.where(both & (lens > 0), ang / np.where(lens > 0, lens, 1.0), 0.0)
+
+
+def curvature_plots(cuts: Cuts, mov: Movability, runs: ArrayLike | None = None,
+                    params: SweepParams = DEFAULT) -> CurvaturePlots:
+    """Resample the movable ``runs`` (default: all) at ``params.match_spacing``, with curvatures.
+
+    Examples
+    --------
+    >>> from auszug.sweeps import cut, movability, normalise
+    >>> from auszug.sweeps.fixtures import extruded
+    >>> fx = extruded(n_profile=40, n_path=20)
+    >>> c = cut(normalise(fx.vertices, fx.faces), [[1.0, 0, 0]], [0.0])
+    >>> p = curvature_plots(c, movability(c))
+    >>> p.n_runs, len(p.samples(0)) == int(fx.profile_length / 0.005) + 1
+    (1, True)
+    """
+    h = params.match_spacing
+    window = max(1, int(round(params.curvature_window / (2 * h))))
+    sel = np.arange(mov.n_runs) if runs is None else np.asarray(runs, np.int64)
+    pts, kap, counts = [], [], []
+    normals = cuts.plane_normals[cuts.curve_plane[mov.run_curve[sel]]] if len(sel) else np.zeros((0, 3))
+    for r, nrm in zip(sel, normals, strict=True):  # one resampling per run (not per pair)
+        q = resample(cuts.points[mov.run_indices(cuts, int(r))], h)
+        pts.append(q)
+        kap.append(signed_curvature(q, nrm, window))
+        counts.append(len(q))
+    start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+    points = np.vstack(pts) if pts else np.zeros((0, 3))
+    kappa = np.concatenate(kap) if kap else np.zeros(0)
+    return CurvaturePlots(points, kappa, start, sel.astype(np.int64), normals, h)
+
+
+def match_cuts(plots: CurvaturePlots, params: SweepParams = DEFAULT) -> Matches:
+    """Match every pair of plots whose planes meet at most ``params.match_angle`` (sec. 2.1-2.2).
+
+    Examples
+    --------
+    Two cuts of an extrusion by planes 10 degrees apart are the same profile (sheared a little):
+
+    >>> from auszug.sweeps import cut, movability, normalise
+    >>> from auszug.sweeps.fixtures import extruded
+    >>> fx = extruded(n_profile=80, n_path=40)
+    >>> c = cut(normalise(fx.vertices, fx.faces), [[1.0, 0, 0], [1.0, 0, 0]], [-0.1, 0.2])
+    >>> m = match_cuts(curvature_plots(c, movability(c)))
+    >>> m.n_matches, int(m.length[0]) == len(m.plots.samples(0)), float(m.energy[0]) < 1e-9
+    (1, True, True)
+    """
+    r = plots.n_runs
+    ia, ib = np.triu_indices(r, 1)
+    cosang = np.abs(np.einsum("ij,ij->i", plots.normal[ia], plots.normal[ib])) if r > 1 else np.zeros(0)
+    keep = cosang >= np.cos(np.radians(params.match_angle)) - 1e-12
+    pairs = np.ascontiguousarray(np.column_stack([ia[keep], ib[keep]]).astype(np.int64))
+    min_len = max(2, int(np.ceil(params.l_min / plots.spacing - 1e-9)))
+    ln, var, sa, sb, e, ref = _kernels.match_pairs(plots.kappa, plots.start, pairs, float(params.eps_match),
+                                                   float(params.kappa_floor), min_len)
+    ok = ln > 0
+    rev = (var & 2) != 0
+    mb = np.diff(plots.start)[pairs[:, 1]] if len(pairs) else np.zeros(0, np.int64)
+    start_b = np.where(rev, mb - 1 - sb, sb)  # in b's own indices
+    return Matches(plots, pairs[ok], ln[ok], (var & 1)[ok] != 0, rev[ok], sa[ok], start_b[ok], e[ok], ref[ok],
+                   len(pairs))
+
+
+def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, ...]:
+    """Families of near-congruent parts (sec. 2.2): one grown from every plot that has matches.
+
+    The seed's longest match fixes a window on the seed; every other plot matching the seed on a
+    window overlapping it joins, longest overlap first, while the common part stays at least
+    ``l_min`` long and at least ``family_keep`` of that first window (so that one partial match
+    does not cut everybody's part short); the part is trimmed to what all members share. Families with the same member
+    set are kept once. Members are paired with the seed only (within ``match_angle`` of it; the
+    angle pruning of sec. 2.2), not with each other.
+
+    Examples
+    --------
+    >>> from auszug.sweeps import cut, movability, normalise
+    >>> from auszug.sweeps.fixtures import extruded
+    >>> fx = extruded(n_profile=80, n_path=40)
+    >>> c = cut(normalise(fx.vertices, fx.faces), [[1.0, 0, 0]] * 3, [-0.1, 0.0, 0.2])
+    >>> fam = families(match_cuts(curvature_plots(c, movability(c))))
+    >>> len(fam), fam[0].members.tolist()
+    (1, [0, 1, 2])
+    """
+    min_len = max(2, int(np.ceil(params.l_min / matches.plots.spacing - 1e-9)))
+    out: list[Family] = []
+    seen: set[tuple[int, ...]] = set()
+    pa, pb = matches.pairs[:, 0], matches.pairs[:, 1]
+    for seed in np.unique(matches.pairs):  # one family per seed (not per pair)
+        mine = np.flatnonzero((pa == seed) | (pb == seed))
+        # express every match of the seed as (other, window on seed, other's start, reversed, flipped)
+        as_a = pa[mine] == seed
+        other = np.where(as_a, pb[mine], pa[mine])
+        ln = matches.length[mine]
+        rev = matches.reversed[mine]
+        flip = matches.flipped[mine]
+        s_seed = np.where(as_a, matches.start_a[mine], np.where(rev, matches.start_b[mine] - ln + 1,
+                                                                 matches.start_b[mine]))
+        s_other = np.where(as_a, matches.start_b[mine], np.where(rev, matches.start_a[mine] + ln - 1,
+                                                                  matches.start_a[mine]))
+        first = int(np.argmax(ln))
+        lo, hi = int(s_seed[first]), int(s_seed[first] + ln[first])
+        shortest = max(min_len, int(np.ceil(params.family_keep * ln[first])))
+        overlap = np.minimum(hi, s_seed + ln) - np.maximum(lo, s_seed)
+        order = np.argsort(-overlap, kind="stable")
+        members = []
+        for k in order:
+            nlo, nhi = max(lo, int(s_seed[k])), min(hi, int(s_seed[k] + ln[k]))
+            if nhi - nlo < shortest:
+                continue
+            lo, hi = nlo, nhi
+            members.append(k)
+        key = tuple(sorted([int(seed)] + [int(other[k]) for k in members]))
+        if key in seen:
+            continue
+        seen.add(key)
+        ks = np.array(members, np.int64)
+        # each member's sample matching the seed's sample `lo`
+        off = lo - s_seed[ks]
+        st = np.where(rev[ks], s_other[ks] - off, s_other[ks] + off)
+        out.append(Family(int(seed), np.r_[seed, other[ks]].astype(np.int64), np.r_[lo, st].astype(np.int64),
+                          np.r_[False, rev[ks]], np.r_[False, flip[ks]], hi - lo))
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class Ribs:
+    """A family's members ordered like successive positions of a moving profile (sec. 2.2).
+
+    Attributes
+    ----------
+    family : Family
+    order : (k,) int array
+        Positions in ``family.members``, in rib order (the seed somewhere inside).
+    energy : (k - 1,) float array
+        ``E_order`` of each successive pair.
+    """
+
+    family: Family
+    order: IntArray
+    energy: Array
+
+    @property
+    def plots(self) -> IntArray:
+        """Plot indices of the ribs, in order."""
+        return self.family.members[self.order]
+
+
+def order_energy(parts: Array, omega: tuple[float, float]) -> Array:
+    """``E_order`` ``(k, k)`` between equal-length parts ``(k, n, 3)`` (sample ``i`` matching sample ``i``).
+
+    ``-d_min / delta + omega_1 mean(t_i . t'_i) + omega_2 d_min / d_haus``, with ``d_min`` the
+    smallest and ``d_haus`` the (two-sided) Hausdorff distance between the parts' samples and
+    ``delta`` the diameter of the family (the diagonal of its samples' bounding box). The diagonal
+    is -inf.
+
+    Examples
+    --------
+    >>> x = np.linspace(0, 1, 11)
+    >>> parts = np.stack([np.column_stack([x, 0 * x, 0 * x + z]) for z in (0.0, 0.1, 0.5)])
+    >>> e = order_energy(parts, (0.6, 1.0))
+    >>> int(np.argmax(e[0])), round(float(e[0, 1]), 6)
+    (1, 1.510557)
+    """
+    k, n, _ = parts.shape
+    delta = float(np.linalg.norm(np.ptp(parts.reshape(-1, 3), axis=0)))
+    tan = np.diff(parts, axis=1)
+    tan /= np.maximum(np.linalg.norm(tan, axis=2, keepdims=True), 1e-300)
+    out = np.full((k, k), -np.inf)
+    for a in range(k):  # one row per part (not per pair): (k, n, n) distances at a time
+        d = np.linalg.norm(parts[a][None, :, None, :] - parts[:, None, :, :], axis=3)
+        d_min = d.min(axis=(1, 2))
+        d_haus = np.maximum(d.min(axis=2).max(axis=1), d.min(axis=1).max(axis=1))
+        par = np.einsum("ij,kij->k", tan[a], tan) / (n - 1)
+        row = -d_min / delta + omega[0] * par + omega[1] * d_min / np.maximum(d_haus, 1e-300)
+        row[a] = -np.inf
+        out[a] = row
+    return out
+
+
+def order_ribs(family: Family, plots: CurvaturePlots, params: SweepParams = DEFAULT) -> Ribs:
+    """Greedy rib ordering by ``E_order`` (sec. 2.2), from the seed both ways.
+
+    From ``b_0`` (the seed) take the unused part of largest ``E_order(b_i, .)`` as ``b_{i+1}``,
+    provided ``b_{i-1}`` and ``b_{i+1}`` lie on opposite sides of ``b_i``'s plane (their centroids);
+    then the same from ``b_0`` backwards (``b_{-1}`` opposite ``b_1``). Parts that never qualify are
+    left out.
+
+    Examples
+    --------
+    Cuts of an extrusion by parallel planes, given shuffled, come out in order:
+
+    >>> from auszug.sweeps import cut, movability, normalise
+    >>> from auszug.sweeps.fixtures import extruded
+    >>> fx = extruded(n_profile=60, n_path=60)
+    >>> xs = np.array([0.05, -0.2, 0.3, -0.05, 0.15, -0.3])
+    >>> c = cut(normalise(fx.vertices, fx.faces), np.tile([1.0, 0, 0], (6, 1)), xs)
+    >>> pl = curvature_plots(c, movability(c))
+    >>> ribs = order_ribs(families(match_cuts(pl))[0], pl)
+    >>> xs[pl.run[ribs.plots]].tolist() in ([-0.3, -0.2, -0.05, 0.05, 0.15, 0.3], [0.3, 0.15, 0.05, -0.05, -0.2, -0.3])
+    True
+    """
+    k = len(family.members)
+    parts = np.stack([plots.samples(int(family.members[j]))[family.indices(j)] for j in range(k)])
+    e = order_energy(parts, params.omega)
+    centre = parts.mean(axis=1)
+    normal = plots.normal[family.members]
+
+    def side(i: int, j: int) -> float:
+        return float(normal[i] @ (centre[j] - centre[i]))
+
+    used = np.zeros(k, bool)
+    used[0] = True
+    chains: list[list[int]] = [[0], [0]]
+    for direction in (0, 1):
+        chain = chains[direction]
+        while True:
+            cur = chain[-1]
+            prev = chain[-2] if len(chain) > 1 else (chains[0][1] if direction == 1 and len(chains[0]) > 1 else -1)
+            cand = np.flatnonzero(~used)
+            if prev >= 0:
+                cand = cand[np.array([side(cur, prev) * side(cur, int(j)) < 0 for j in cand], bool)]
+            if len(cand) == 0:
+                break
+            nxt = int(cand[np.argmax(e[cur, cand])])
+            chain.append(nxt)
+            used[nxt] = True
+    order = np.array(chains[1][::-1] + chains[0][1:], np.int64)
+    energy = e[order[:-1], order[1:]]
+    return Ribs(family, order, energy)

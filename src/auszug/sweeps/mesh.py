@@ -1,0 +1,141 @@
+"""The input of sweep detection: a triangle mesh, normalised, with its edges and vertex normals.
+
+Normalisation (paper sec. 1.1): centre on the bounding-box centre and scale to bounding-box
+diameter 1, so that the side condition ``||C|| = 1`` of a velocity state weighs rotation against
+translation the same way on every mesh, and every length threshold is a fraction of the diameter.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from auszug.errors import GeometryError
+
+__all__ = ["SweepMesh", "normalise", "vertex_normals"]
+
+Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+
+@dataclass(frozen=True)
+class SweepMesh:
+    """A normalised triangle mesh with the topology the plane cutter walks.
+
+    Attributes
+    ----------
+    vertices : (n, 3) float array
+        ``(input - centre) / scale``: bounding box centred at 0, diameter 1.
+    faces : (m, 3) int array
+    normals : (n, 3) float array
+        Unit vertex normals (area-weighted face normals; zero where a vertex has only zero-area faces).
+    edges : (k, 2) int array
+        Unique undirected edges, ``edges[:, 0] < edges[:, 1]``.
+    edge_faces : (k, 2) int array
+        The one or two faces of each edge (-1 where a boundary edge has one).
+    face_edges : (m, 3) int array
+        Each face's edges (opposite vertex 2, 0, 1: the edges (0,1), (1,2), (2,0)).
+    centre : (3,) float array
+        Bounding-box centre of the input.
+    scale : float
+        Bounding-box diameter of the input.
+    """
+
+    vertices: Array
+    faces: IntArray
+    normals: Array
+    edges: IntArray
+    edge_faces: IntArray
+    face_edges: IntArray
+    centre: Array
+    scale: float
+
+    @property
+    def n_vertices(self) -> int:
+        """Number of vertices."""
+        return len(self.vertices)
+
+    def to_input(self, points: ArrayLike) -> Array:
+        """Points ``(..., 3)`` from normalised back to input coordinates."""
+        return np.asarray(points, float) * self.scale + self.centre
+
+    def plane_to_input(self, normal: ArrayLike, offset: ArrayLike) -> tuple[Array, Array]:
+        """Planes ``n . x = d`` from normalised to input coordinates (same unit normals)."""
+        n = np.asarray(normal, float)
+        return n, np.asarray(offset, float) * self.scale + n @ self.centre
+
+
+def vertex_normals(vertices: ArrayLike, faces: ArrayLike) -> Array:
+    """Unit area-weighted vertex normals ``(n, 3)``; zero rows where the faces around have no area.
+
+    Examples
+    --------
+    >>> vertex_normals([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]]).tolist()
+    [[0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]
+    """
+    v = np.asarray(vertices, float)
+    f = np.asarray(faces, np.int64)
+    fn = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    vn = np.zeros_like(v)
+    for k in range(3):
+        np.add.at(vn, f[:, k], fn)
+    norm = np.linalg.norm(vn, axis=1, keepdims=True)
+    return np.divide(vn, norm, out=np.zeros_like(vn), where=norm > 0)
+
+
+def normalise(vertices: ArrayLike, faces: ArrayLike) -> SweepMesh:
+    """Normalise a mesh ``(V, F)`` and build its edge topology.
+
+    Raises :class:`~auszug.errors.GeometryError` on an empty mesh, non-finite coordinates, face
+    indices out of range, a zero-size bounding box, or an edge shared by more than two faces
+    (the cutter links cut segments through faces and needs a 2-manifold, boundaries allowed).
+
+    Examples
+    --------
+    >>> m = normalise([[0, 0, 0], [2, 0, 0], [0, 2, 0]], [[0, 1, 2]])
+    >>> np.round(m.vertices, 4).tolist(), round(m.scale, 12)
+    ([[-0.3536, -0.3536, 0.0], [0.3536, -0.3536, 0.0], [-0.3536, 0.3536, 0.0]], 2.828427124746)
+    >>> m.edges.tolist(), m.edge_faces.tolist()
+    ([[0, 1], [0, 2], [1, 2]], [[0, -1], [0, -1], [0, -1]])
+    """
+    v = np.asarray(vertices, dtype=float)
+    f = np.asarray(faces)
+    if v.ndim != 2 or v.shape[1] != 3 or len(v) == 0:
+        raise GeometryError(f"mesh vertices: expected a non-empty (n, 3) array, got shape {v.shape}")
+    if f.ndim != 2 or f.shape[1] != 3 or len(f) == 0:
+        raise GeometryError(f"mesh faces: expected a non-empty (m, 3) array of triangles, got shape {f.shape}")
+    if not np.issubdtype(f.dtype, np.integer):
+        raise GeometryError(f"mesh faces: expected integer vertex indices, got {f.dtype}")
+    f = f.astype(np.int64)
+    if f.min() < 0 or f.max() >= len(v):
+        raise GeometryError(f"mesh faces: vertex indices must be in 0..{len(v) - 1}, got {f.min()}..{f.max()}")
+    if not np.isfinite(v).all():
+        bad = int(np.flatnonzero(~np.isfinite(v).all(axis=1))[0])
+        raise GeometryError(f"mesh vertex {bad} has a non-finite coordinate: expected finite numbers")
+    used = np.zeros(len(v), bool)
+    used[f.ravel()] = True
+    lo, hi = v[used].min(0), v[used].max(0)
+    scale = float(np.linalg.norm(hi - lo))
+    if not scale > 0:
+        raise GeometryError("mesh has a zero-size bounding box: expected faces that span some space")
+    centre = (lo + hi) / 2
+    vn = (v - centre) / scale
+    und = np.sort(np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1).reshape(-1, 2), axis=1)
+    edges, inv, counts = np.unique(und, axis=0, return_inverse=True, return_counts=True)
+    inv = inv.reshape(-1)
+    if counts.max() > 2:
+        e = int(np.argmax(counts))
+        raise GeometryError(
+            f"mesh edge {edges[e].tolist()} is shared by {counts[e]} faces: expected a 2-manifold "
+            "(at most two faces per edge)")
+    face_of = np.repeat(np.arange(len(f)), 3)
+    order = np.argsort(inv, kind="stable")
+    first = np.searchsorted(inv[order], np.arange(len(edges)))
+    ef = np.full((len(edges), 2), -1, np.int64)
+    ef[:, 0] = face_of[order[first]]
+    two = counts == 2
+    ef[two, 1] = face_of[order[first[two] + 1]]
+    return SweepMesh(vn, f, vertex_normals(vn, f), edges.astype(np.int64), ef, inv.reshape(-1, 3).astype(np.int64),
+                     centre, scale)

@@ -1,0 +1,185 @@
+"""The parameters of sweep detection (Barton, Pottmann, Wallner 2014), in one documented value.
+
+Lengths are relative to the bounding-box diameter of the mesh: :func:`auszug.sweeps.normalise`
+scales every mesh to diameter 1 first, so that ``||C|| = 1`` of a velocity state and every length
+below mean the same on every input.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields, replace
+from typing import Any
+
+from auszug.errors import GeometryError
+
+__all__ = ["SweepParams", "DEFAULT"]
+
+
+@dataclass(frozen=True)
+class SweepParams:
+    """Every knob of the detection stages; defaults are the paper's where it gives one.
+
+    Attributes
+    ----------
+    beta : float
+        Alg. 1 weight update ``w = 1 / (1 + beta f^gamma)`` (paper: 400).
+    gamma : float
+        Exponent of the weight update (paper: 2).
+    iterations : int
+        Weight iterations (paper: "mostly 3").
+    weight_threshold : float
+        A vertex belongs to a movable run if its weight is above this (paper: epsilon = 2/3).
+    speed_floor : float
+        Eq. 5 as used: ``f = (n . v)^2 / (|v|^2 + speed_floor^2)`` (0: as printed). A floor keeps
+        ``f`` from being noise where a vertex barely moves (near the rotation axis).
+    gap : float
+        Stretches of weight below the threshold spanning at most this arc length, between two
+        stretches above it, are bridged (our choice: noise must not split a profile).
+    max_sliding : float
+        Runs whose velocity has more than this share of its squared length along the curve's
+        own tangent are dropped (our choice: a curve sliding along itself is no evidence).
+    min_spread : float
+        Runs whose normals hardly turn, second eigenvalue of their mean ``n n^T`` below this, are
+        dropped (our choice: in a nearly flat strip everything glides). 0.03: normals turning by
+        less than about +-17 degrees.
+    sphere_frequency : int
+        Frequency of the icosahedral geodesic sphere whose vertices give the plane normals (the
+        paper takes "one of Buckminster Fuller's geodesic spheres" and names none). Frequency nu
+        has ``10 nu^2 + 2`` vertices; antipodes give the same planes, so ``5 nu^2 + 1`` normals,
+        about ``63.4 / nu`` degrees apart. Default 4: 81 normals, 16 degrees apart.
+    offset_spacing : float
+        Spacing of the plane offsets along each normal, over the interval where the plane meets
+        the mesh (paper: "regularly sampled", no spacing). Default 0.055: 81 normals x about 18
+        offsets is about the paper's 1452 initial planes of Fig. 12 on a unit-diameter mesh.
+    percentile : float
+        The share g (percent) of cuts kept as good after each round, lowest gliding energy first
+        (paper: g in {1, 3, 5}).
+    refinements : int
+        Rounds of adaptive refinement (paper: 1-3).
+    refine_steps : int
+        Per round, each good plane spawns a ``refine_steps^3`` grid of planes (normal tilted about
+        two axes, offset shifted) centred on it, itself excluded. Odd; default 3 (26 new planes).
+    refine_angle : float
+        Half-width (degrees) of the first round's box in normal angle; halved every round.
+        Default: half the sphere's spacing, ``31.7 / sphere_frequency``.
+    refine_offset : float
+        Half-width of the first round's box in offset; halved every round. Default: half the
+        offset spacing.
+    l_min : float
+        Shortest movable run and shortest match, as arc length (paper: 20 % of the diameter).
+    eps_match : float
+        Matching threshold of Eq. 6: a window matches if mean ``|kappa - kappa'|`` is at most
+        ``eps_match`` times the reference energy ``E_kappa,0`` (Fig. 15: 0.01 or 0.1).
+    kappa_floor : float
+        Floor of ``E_kappa,0`` so that straight pieces (``kappa = 0``) can match: the reference is
+        ``max(E_kappa,0, kappa_floor)``. Default 1 (the curvature of a circle of the diameter's
+        radius).
+    match_spacing : float
+        The one arc-length spacing at which curvature plots are compared.
+    curvature_window : float
+        Arc length over which the discrete curvature is averaged (turning angle over that length):
+        our stand-in for the robust integral-invariant curvature of [PWHY09], on the noisy cuts.
+    family_keep : float
+        A family's common part keeps at least this share of its seed's longest match: members
+        whose match would trim it shorter stay out (our choice; the paper trims "to equal length").
+    match_angle : float
+        Pairs of cuts whose planes meet at more than this (degrees) are not matched (sec. 2.2,
+        "mostly 25").
+    omega : tuple of float
+        Weights (omega_1, omega_2) of E_order (sec. 2.2, (0.6, 1)).
+    kinematic_gap : float
+        A cut's velocity state is well determined (one motion, not a family) when its second
+        smallest eigenvalue is at least this many times the smallest. Cuts below it (straight
+        lines, circles on cylinders) do not vote for a kinematic axis.
+    kinematic_trim : float
+        Cuts whose residual under the kinematic consensus exceeds this many times the median are
+        left out of it.
+    kinematic_share : float
+        A cut glides under the consensus if at least this share of its points has weight above
+        the threshold.
+    translation_ratio : float
+        A consensus is a translation if its rotational part changes the velocity over the
+        normalised mesh (radius 0.5) by at most this share of ``|c_bar|``: ``0.5 |c| <= r |c_bar|``
+        (a rotation about an axis 10 diameters away is a translation at 0.05).
+    pitch_tolerance : float
+        A screw with ``|pitch|`` at most this (bounding-box diameters per radian) is a rotation.
+    """
+
+    beta: float = 400.0
+    gamma: float = 2.0
+    iterations: int = 3
+    weight_threshold: float = 2.0 / 3.0
+    speed_floor: float = 0.05
+    gap: float = 0.01
+    max_sliding: float = 0.5
+    min_spread: float = 0.03
+    sphere_frequency: int = 4
+    offset_spacing: float = 0.055
+    percentile: float = 5.0
+    refinements: int = 3
+    refine_steps: int = 3
+    refine_angle: float | None = None
+    refine_offset: float | None = None
+    l_min: float = 0.2
+    eps_match: float = 0.1
+    kappa_floor: float = 1.0
+    match_spacing: float = 0.005
+    curvature_window: float = 0.05
+    family_keep: float = 0.8
+    match_angle: float = 25.0
+    omega: tuple[float, float] = (0.6, 1.0)
+    kinematic_gap: float = 10.0
+    kinematic_trim: float = 10.0
+    kinematic_share: float = 0.95
+    translation_ratio: float = 0.05
+    pitch_tolerance: float = 1e-3
+
+    def __post_init__(self) -> None:
+        checks = [
+            ("beta", self.beta > 0, "> 0"),
+            ("gamma", self.gamma > 0, "> 0"),
+            ("iterations", self.iterations >= 1, ">= 1"),
+            ("weight_threshold", 0 < self.weight_threshold < 1, "in (0, 1)"),
+            ("speed_floor", self.speed_floor >= 0, ">= 0"),
+            ("gap", self.gap >= 0, ">= 0"),
+            ("max_sliding", 0 < self.max_sliding <= 1, "in (0, 1]"),
+            ("min_spread", 0 <= self.min_spread < 0.5, "in [0, 0.5)"),
+            ("sphere_frequency", 1 <= self.sphere_frequency <= 64, "in 1..64"),
+            ("offset_spacing", 0 < self.offset_spacing <= 1, "in (0, 1]"),
+            ("percentile", 0 < self.percentile <= 100, "in (0, 100]"),
+            ("refinements", 0 <= self.refinements <= 8, "in 0..8"),
+            ("refine_steps", self.refine_steps >= 3 and self.refine_steps % 2 == 1, "odd and >= 3"),
+            ("l_min", 0 < self.l_min <= 10, "in (0, 10]"),
+            ("eps_match", self.eps_match > 0, "> 0"),
+            ("kappa_floor", self.kappa_floor >= 0, ">= 0"),
+            ("match_spacing", 0 < self.match_spacing <= self.l_min / 4, "in (0, l_min / 4]"),
+            ("curvature_window", self.curvature_window >= 2 * self.match_spacing, ">= 2 match_spacing"),
+            ("family_keep", 0 < self.family_keep <= 1, "in (0, 1]"),
+            ("match_angle", 0 < self.match_angle <= 90, "in (0, 90]"),
+            ("kinematic_gap", self.kinematic_gap >= 1, ">= 1"),
+        ]
+        for name, ok, want in checks:
+            if not ok:
+                raise GeometryError(f"sweep parameter {name} = {getattr(self, name)!r}: expected {want}")
+
+    @property
+    def angle0(self) -> float:
+        """First round's half-width of the refinement box in normal angle (degrees)."""
+        return self.refine_angle if self.refine_angle is not None else 31.7 / self.sphere_frequency
+
+    @property
+    def offset0(self) -> float:
+        """First round's half-width of the refinement box in offset."""
+        return self.refine_offset if self.refine_offset is not None else self.offset_spacing / 2
+
+    def with_(self, **changes: Any) -> "SweepParams":
+        """A copy with some fields changed (validated again)."""
+        known = {f.name for f in fields(self)}
+        bad = sorted(set(changes) - known)
+        if bad:
+            raise GeometryError(f"unknown sweep parameter(s) {', '.join(bad)}; known: {', '.join(sorted(known))}")
+        return replace(self, **changes)
+
+
+#: The defaults.
+DEFAULT = SweepParams()

@@ -6,6 +6,7 @@ Everything a test reads is in the repository (or the installed package): a fresh
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 from importlib.resources import files
 from pathlib import Path
 
@@ -54,3 +55,26 @@ def _strict_mode():
     """Run every test with the internal invariant checks switched on."""
     with tolerances(strict=True):
         yield
+
+
+@dataclass
+class Result:
+    code: int
+    out: str
+    err: str
+
+
+@pytest.fixture
+def cli(capsys):
+    """``cli(*args)`` runs ``main(args)`` in-process and returns code, stdout, stderr."""
+
+    def run(*args: str | Path) -> Result:
+        from auszug.cli import main
+
+        code = main([str(a) for a in args])
+        cap = capsys.readouterr()
+        return Result(code, cap.out, cap.err)
+
+    return run
+
+

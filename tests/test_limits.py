@@ -22,24 +22,13 @@ from auszug.formats import load
 from auszug.formats.uc import read_uc
 from auszug.limits import LIMITS, Limits, clip, shown
 from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry
-from tests.cli.conftest import TN, Result
+from tests.cli.conftest import TN
 
 ROOT = Path(__file__).resolve().parents[1]
 TN2 = (TN / "tn-2.uc").read_text()
 TN2_FOLD_LINE = 2  # "unitCurve 4 1"
 
 
-@pytest.fixture
-def cli(capsys):
-    """``cli(*args)`` runs ``main(args)`` in-process (as in tests/cli)."""
-    from auszug.cli import main
-
-    def run(*args: str | Path) -> Result:
-        code = main([str(a) for a in args])
-        cap = capsys.readouterr()
-        return Result(code, cap.out, cap.err)
-
-    return run
 
 
 def _with(text: str, old: str, new: str) -> str:

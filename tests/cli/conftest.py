@@ -3,12 +3,10 @@
 from __future__ import annotations
 
 import struct
-from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 
-from auszug.cli import main
 from tests.conftest import CORPUS
 
 TN = CORPUS / "teaching-sheet"
@@ -20,24 +18,7 @@ LOW_APEX_UC = "numCurves 1\nunitCurve 4 0\nptPos 0 1\nptPos 1 1.5\nptPos 1 2\nhe
 #: The line of its apex height, which the apex error names.
 LOW_APEX_LINE = 6
 
-
-@dataclass
-class Result:
-    code: int
-    out: str
-    err: str
-
-
-@pytest.fixture
-def cli(capsys):
-    """``cli(*args)`` runs ``main(args)`` in-process and returns code, stdout, stderr."""
-
-    def run(*args: str | Path) -> Result:
-        code = main([str(a) for a in args])
-        cap = capsys.readouterr()
-        return Result(code, cap.out, cap.err)
-
-    return run
+#: (the in-process ``cli`` fixture is in tests/conftest.py, shared with tests/test_limits.py)
 
 
 @pytest.fixture

@@ -50,3 +50,20 @@ def test_bad_sketches_exit_2_and_write_nothing(cli, tmp_path):
     assert cli("lift", examples.path("sketches/arches.svg"), "-o", tmp_path / "x.txt").code == 2
     assert cli("lift", examples.path("sketches/arches.svg"), "--cues", "wobbly").code == 2
     assert files_in(tmp_path) == ["bad.svg", "empty.svg"]
+
+
+def test_the_help_names_the_lifting_packages_cue_classes():
+    from auszug import lifting
+    from auszug.cli import lift as cli_lift
+
+    assert cli_lift.CUE_CLASSES == lifting.CLASSES and cli_lift.DEFAULT_CUES == lifting.DEFAULT_CLASSES
+
+
+def test_other_commands_do_not_import_the_lifting_package():
+    import subprocess
+    import sys
+
+    code = ("import sys; from auszug.cli import make_parser; make_parser(); import auszug.formats; "
+            "print(any(m.startswith('auszug.lifting') for m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.stdout.strip() == "False", out.stderr

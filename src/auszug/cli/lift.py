@@ -29,12 +29,18 @@ if TYPE_CHECKING:
     from auszug.lifting import LiftResult
 
 HELP = "lift a 2D design sketch (.svg, .sketch.json) to a 3D curve network"
+#: ``lifting.CLASSES`` and ``lifting.DEFAULT_CLASSES``, for the help text (a test keeps them equal).
+CUE_CLASSES = ("parallel", "orthogonal", "symmetry", "planar")
+DEFAULT_CUES = ("parallel", "orthogonal", "planar")
 
 
 def add_args(parser: argparse.ArgumentParser) -> None:
-    """Options of ``auszug lift``."""
-    from auszug.lifting import CLASSES, DEFAULT_CLASSES
+    """Options of ``auszug lift``.
 
+    Building the parser does not import the lifting package (every command builds it): the cue
+    classes below are named as text, and tests/cli/test_lift.py checks them against
+    ``lifting.CLASSES`` and ``lifting.DEFAULT_CLASSES``.
+    """
     parser.add_argument("sketch", metavar="SKETCH", help="a sketch: .svg or .sketch.json")
     parser.add_argument("-o", "--output", metavar="OUT",
                         help="network file: .network.json, .obj, .svg, .dxf, .3dm (default <stem>.network.json)")
@@ -43,16 +49,20 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--render", metavar="FIG",
                         help="also draw a figure (.png, .svg, .pdf): the sketch with the regularities found, "
                              "and the lifted network from above and in 3D")
-    parser.add_argument("--cues", default=",".join(DEFAULT_CLASSES), metavar="LIST",
-                        help=f"cue classes to resolve, comma-separated from {', '.join(CLASSES)}, or 'none' "
-                             f"(default {','.join(DEFAULT_CLASSES)})")
+    parser.add_argument("--cues", default=None, metavar="LIST",
+                        help=f"cue classes to resolve, comma-separated from {', '.join(CUE_CLASSES)}, or 'none' "
+                             f"(default {','.join(DEFAULT_CUES)})")
     parser.add_argument("--quiet", action="store_true", help="no progress lines")
 
 
-def _classes(text: str) -> tuple[str, ...]:
+def _classes(text: str | None) -> tuple[str, ...]:
     from auszug.errors import FormatError
     from auszug.lifting import CLASSES
 
+    if text is None:
+        from auszug.lifting import DEFAULT_CLASSES
+
+        return DEFAULT_CLASSES
     if text.strip().lower() == "none":
         return ()
     got = [c.strip() for c in text.split(",") if c.strip()]

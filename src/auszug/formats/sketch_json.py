@@ -20,14 +20,16 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from auszug.errors import FormatError
 from auszug.formats._registry import FileFormat, register
 from auszug.formats.sketch_svg import MARKER_CLASSES, check
-from auszug.lifting import Marker, Sketch, Stroke
+
+if TYPE_CHECKING:
+    from auszug.lifting import Sketch, Stroke
 
 __all__ = ["FORMAT", "VERSION", "to_dict", "from_dict", "dumps", "loads"]
 
@@ -58,6 +60,7 @@ def dumps(sketch: Sketch) -> str:
     Examples
     --------
     >>> import numpy as np
+    >>> from auszug.lifting import Sketch, Stroke
     >>> h = Stroke(np.array([[[-1, 0], [-0.4, 0.25], [0.4, 0.25], [1, 0]]], float), "h")
     >>> v = Stroke(np.array([[[0.3, -1], [0.1, -0.3], [-0.1, 0.3], [-0.3, 1]]], float), "v")
     >>> back = loads(dumps(Sketch((h, v), name="cross")))
@@ -82,6 +85,13 @@ def _controls(v: Any, where: str, name: str) -> np.ndarray:
 
 def from_dict(d: Any, name: str = "<string>") -> Sketch:
     """The sketch of a sketch JSON document (validated)."""
+    # lazy: reading a sketch, not registering the format, needs lifting (and scipy.spatial)
+    from auszug.lifting import (
+        Marker,
+        Sketch,
+        Stroke,
+    )
+
     if not isinstance(d, dict) or d.get("format") != FORMAT:
         raise FormatError(f"not a sketch JSON file: expected an object with \"format\": \"{FORMAT}\"", name)
     if d.get("version") != VERSION:
@@ -134,12 +144,20 @@ def loads(text: str, name: str = "<string>") -> Sketch:
 
 
 def _write(obj: Any, name: str) -> str:
+    from auszug.lifting import (
+        Sketch,  # lazy: reading a sketch, not registering the format, needs lifting (and scipy.spatial)
+    )
+
     if not isinstance(obj, Sketch):
         raise FormatError(f"sketch JSON holds a Sketch, got {type(obj).__name__}", name)
     return dumps(obj)
 
 
 def _read(text: str, name: str) -> Sketch:
+    from auszug.lifting import (
+        Sketch,  # lazy: reading a sketch, not registering the format, needs lifting (and scipy.spatial)
+    )
+
     s = loads(text, name)
     return s if s.name else Sketch(s.strokes, s.markers, s.symmetry, Path(name).name.split(".")[0], s.layers)
 

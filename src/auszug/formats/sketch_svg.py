@@ -35,14 +35,16 @@ import io
 import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from auszug.errors import FormatError, GeometryError
 from auszug.formats._registry import FileFormat, register
-from auszug.lifting import Marker, Sketch, Stroke, layer_graphs
+
+if TYPE_CHECKING:
+    from auszug.lifting import Sketch
 
 __all__ = ["read_sketch_svg", "MARKER_CLASSES", "SYMMETRY_CLASS"]
 
@@ -146,6 +148,13 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
     """
     import svgelements as se
 
+    # lazy: reading a sketch, not registering the format, needs lifting (and scipy.spatial)
+    from auszug.lifting import (
+        Marker,
+        Sketch,
+        Stroke,
+    )
+
     if isinstance(text, bytes):
         try:
             text = text.decode("utf-8")
@@ -232,6 +241,10 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
 
 def check(sketch: Sketch, name: str) -> None:
     """Refuse a sketch :func:`auszug.lifting.lift` cannot lift, as a FormatError naming the file."""
+    from auszug.lifting import (
+        layer_graphs,  # lazy: reading a sketch, not registering the format, needs lifting (and scipy.spatial)
+    )
+
     try:
         layer_graphs(sketch)
     except GeometryError as e:

@@ -478,7 +478,7 @@ def _refine(piece: Piece, forced: Array, tolerance: float) -> Array:
     if side is not None:
         gm = piece.g_of_t(0.5 * (ta + tb))
         i = np.clip(np.searchsorted(side.breaks, gm, side="right") - 1, 0, len(side.radii) - 1)
-        cg, cz, r = side.centers[i, 0], side.centers[i, 1], side.radii[i]
+        cg, r = side.centers[i, 0], side.radii[i]
         up, vert = side.upper[i], side.vertical[i]
 
         def phi(t: Array) -> Array:
@@ -492,7 +492,6 @@ def _refine(piece: Piece, forced: Array, tolerance: float) -> Array:
         if top.kind in ("line", "arc"):   # step in the angle where t(g) is cheap (no arc-length inverse)
             sa, sb = pa_, pb_
             arc[:] = True
-        del cz
 
     def s_to_t(sv: Array, k: NDArray[np.intp]) -> Array:
         if not arc.any():
@@ -525,7 +524,6 @@ def _refine(piece: Piece, forced: Array, tolerance: float) -> Array:
     lo = sa[k] + (sb - sa)[k] * frac
     hi = sa[k] + (sb - sa)[k] * ((j + 1) / count[k])
     done_lo: list[Array] = []
-    done_k: list[Array] = []
     lim = _SAFETY * tolerance
     t_lo = s_to_t(lo, k)
     t_hi = s_to_t(hi, k)
@@ -553,7 +551,6 @@ def _refine(piece: Piece, forced: Array, tolerance: float) -> Array:
                 f"tolerance {tolerance:g} needs more than {MAX_TOLERANCE_POINTS} points on one "
                 f"{piece.kind} curve; use a larger tolerance")
     done_lo.append(t_lo)
-    del done_k
     return np.unique(np.concatenate(done_lo + [forced]))
 
 

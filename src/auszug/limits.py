@@ -79,6 +79,12 @@ class Limits:
         distances stay exact to well below its tolerances, float32 meshes
         keep 0.06 units of resolution at the very edge, and a drawing in
         millimetres can still span a kilometre.
+    mesh_triangles : int
+        Most triangles, and most vertices, of a mesh read from a file (STL,
+        PLY, glTF, OBJ), checked on the counts a header declares before any
+        array is made: a PLY header can claim 1e11 vertices in a file of a
+        few bytes. A binary STL of :attr:`file_bytes` holds 1.3 M triangles;
+        2 M triangles are under 200 MB as arrays.
     pixels : int
         Largest width or height of a rendered picture, in pixels. A 16 384 px
         square RGBA image is 1 GB in matplotlib; ``render --width 100000``
@@ -103,6 +109,7 @@ class Limits:
     samples: int = 10_000
     network_points: int = 2_000_000
     coordinate: float = 1e6
+    mesh_triangles: int = 2_000_000
     pixels: int = 16384
     file_bytes: int = 64 * 1024 * 1024
     quoted: int = 80

@@ -28,11 +28,13 @@ from __future__ import annotations
 
 import argparse
 import io
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
 from auszug.cli import _common
-from auszug.limits import LIMITS
+from auszug.limits import LIMITS, shown
 
 HELP = "Gothic window tracery: styles, 2D structure (.json/.svg), meshes (.glb/.obj/.stl/.ply), pictures"
 
@@ -74,28 +76,62 @@ def add_args(parser: argparse.ArgumentParser) -> None:
 
 
 def _style(args: argparse.Namespace) -> Any:
-    from auszug.tracery.style import builtin_style, load_style, parse_overrides, refine
+    from auszug.tracery.style import builtin_style, load_style, refine
 
     if args.style is None:
         from auszug.errors import DrawingError
 
         raise DrawingError("a STYLE is required (a built-in name, a style file, or 'prototype'); see --list")
+    over = _overrides(args)
+    if args.style == "prototype":
+        st = _overridden(builtin_style("fig20a"), {"name": "prototype", **over})
+    else:
+        with _about_style(args):
+            st = load_style(args.style)
+            if over:
+                st = _overridden(st, over)
+    if args.depth is not None:
+        st = refine(st, args.depth)
+    return st
+
+
+def _overrides(args: argparse.Namespace) -> dict[str, Any]:
+    """The ``--set`` values and window parameter options, as style keys."""
+    from auszug.tracery.style import parse_overrides
+
     over = parse_overrides(args.set)
     for name in PARAMS:
         v = getattr(args, name)
         if v is not None:
             over[f"params.{name}"] = v
-    if args.style == "prototype":
-        st = builtin_style("fig20a")
-        st = st.with_overrides({"name": "prototype", **over})
-    else:
-        with _common.about(args.style) if Path(args.style).suffix in (".toml", ".json") else _nullctx():
-            st = load_style(args.style)
-            if over:
-                st = st.with_overrides(over)
-    if args.depth is not None:
-        st = refine(st, args.depth)
-    return st
+    return over
+
+
+def _overridden(st: Any, over: dict[str, Any]) -> Any:
+    """``st.with_overrides(over)``, errors blamed as :func:`_blame_sets` says."""
+    with _blame_sets(over):
+        return st.with_overrides(over)
+
+
+@contextmanager
+def _blame_sets(over: dict[str, Any]) -> Iterator[None]:
+    """An error about a key the user did not set (a misfit it caused) also names the overrides."""
+    from auszug.errors import DrawingError
+    from auszug.tracery import ParameterError
+
+    try:
+        yield
+    except ParameterError as e:
+        given = {k.split(".")[-1] for k in over if k != "name"}
+        if not given or e.name.split(".")[-1] in given:
+            raise
+        sets = ", ".join(f"{k}={shown(v)}" for k, v in over.items() if k != "name")
+        raise DrawingError(f"{e} (with {sets})") from None
+
+
+def _about_style(args: argparse.Namespace) -> Any:
+    """Name the style file in errors of the block (nothing for a built-in style)."""
+    return _common.about(args.style) if Path(args.style).suffix in (".toml", ".json") else _nullctx()
 
 
 class _nullctx:
@@ -153,7 +189,8 @@ def run(args: argparse.Namespace) -> int:
     from auszug.tracery.build import build
 
     st = _style(args)
-    t = build(st)
+    with _about_style(args), _blame_sets(_overrides(args)):
+        t = build(st)
     if not args.output:
         groups: dict[str, int] = {}
         for r in t.regions:
@@ -176,7 +213,9 @@ def run(args: argparse.Namespace) -> int:
         else:
             from auszug.tracery.mesh import window_mesh
 
-            m = window_mesh(t, subdivide=args.subdivide)
+            # a mesh that cannot be made is the style's fault, not the output's
+            with _about_style(args), _blame_sets(_overrides(args)):
+                m = window_mesh(t, subdivide=args.subdivide)
             if kind == "mesh":
                 from auszug.formats import save
 

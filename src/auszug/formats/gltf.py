@@ -22,8 +22,10 @@ from typing import Any
 import numpy as np
 
 from auszug.errors import FormatError
+from auszug.formats._meshcheck import check_count, checked_mesh, parse_errors
 from auszug.formats._registry import FileFormat, register
 from auszug.formats.mesh_obj import as_mesh, part_colour
+from auszug.limits import shown
 
 __all__ = ["to_gltf", "pack_glb", "dumps_glb", "dumps_gltf", "loads"]
 
@@ -144,40 +146,88 @@ def dumps_gltf(obj: Any, name: str = "") -> str:
     return json.dumps(doc, indent=1)
 
 
-def _read(doc: dict, binary: bytes, name: str) -> Any:
-    from auszug.meshing.mesh import Mesh, Part
+_COMPONENT = {5126: "<f4", 5125: "<u4", 5123: "<u2", 5121: "u1"}
+_WIDTH = {"SCALAR": 1, "VEC3": 3}
 
-    views = doc.get("bufferViews", [])
-    accs = doc.get("accessors", [])
 
-    def arr(i: int) -> np.ndarray:
-        a = accs[i]
-        v = views[a["bufferView"]]
-        dt = {5126: "<f4", 5125: "<u4", 5123: "<u2", 5121: "u1"}[a["componentType"]]
-        width = {"SCALAR": 1, "VEC3": 3}[a["type"]]
-        start = v.get("byteOffset", 0) + a.get("byteOffset", 0)
-        out = np.frombuffer(binary, dtype=dt, count=a["count"] * width, offset=start)
+def _list(doc: dict, key: str, name: str) -> list:
+    v = doc.get(key, [])
+    if not isinstance(v, list):
+        raise FormatError(f"glTF {key!r} must be a list, got {shown(v)}", name)
+    return v
+
+
+def _item(seq: list, i: Any, what: str, name: str) -> dict:
+    if isinstance(i, bool) or not isinstance(i, int) or not 0 <= i < len(seq) or not isinstance(seq[i], dict):
+        raise FormatError(f"glTF {what} {shown(i)} does not exist (the file has {len(seq)})", name)
+    return seq[i]
+
+
+def _whole(d: dict, key: str, what: str, name: str, default: int | None = None) -> int:
+    v = d.get(key, default)
+    if isinstance(v, bool) or not isinstance(v, int) or v < 0:
+        raise FormatError(f"glTF {what} {key!r} must be a whole number >= 0, got {shown(v)}", name)
+    return v
+
+
+def _read(doc: Any, binary: bytes, name: str) -> Any:
+    from auszug.meshing.mesh import Part
+
+    if not isinstance(doc, dict):
+        raise FormatError(f"a glTF document is a JSON object, got {type(doc).__name__}", name)
+    views = _list(doc, "bufferViews", name)
+    accs = _list(doc, "accessors", name)
+    meshes = _list(doc, "meshes", name)
+
+    def arr(i: Any, width: int, kinds: str) -> np.ndarray:
+        a = _item(accs, i, "accessor", name)
+        v = _item(views, _whole(a, "bufferView", f"accessor {i}", name), "bufferView", name)
+        ct, kind = a.get("componentType"), a.get("type")
+        dt = _COMPONENT.get(ct) if isinstance(ct, int) else None
+        if dt is None or np.dtype(dt).kind not in kinds or not isinstance(kind, str) or _WIDTH.get(kind) != width:
+            raise FormatError(f"glTF accessor {i} has componentType {shown(a.get('componentType'))} and type "
+                              f"{shown(a.get('type'))}; expected {'VEC3 float' if width == 3 else 'SCALAR unsigned'}",
+                              name)
+        count = check_count(f"glTF accessor {i} count", _whole(a, "count", f"accessor {i}", name), name)
+        start = _whole(v, "byteOffset", "bufferView", name, 0) + _whole(a, "byteOffset", f"accessor {i}", name, 0)
+        if start + count * width * np.dtype(dt).itemsize > len(binary):
+            raise FormatError(f"glTF accessor {i} reaches past the end of its buffer", name)
+        out = np.frombuffer(binary, dtype=dt, count=count * width, offset=start)
         return out.reshape(-1, width) if width > 1 else out
 
     vs, fs, parts = [], [], []
     nv = nf = 0
-    try:
-        for node in doc.get("nodes", []):
-            if "mesh" not in node:
-                continue
-            for prim in doc["meshes"][node["mesh"]]["primitives"]:
-                p = arr(prim["attributes"]["POSITION"]).astype(float)
-                f = arr(prim["indices"]).astype(np.int64).reshape(-1, 3)
-                vs.append(p)
-                fs.append(f + nv)
-                parts.append(Part(node.get("name", ""), "member", -1, "", (nv, nv + len(p)), (nf, nf + len(f))))
-                nv += len(p)
-                nf += len(f)
-    except (KeyError, IndexError, ValueError) as e:
-        raise FormatError(f"malformed glTF: {e}", name) from None
+    for node in _list(doc, "nodes", name):
+        if not isinstance(node, dict):
+            raise FormatError(f"a glTF node is a JSON object, got {shown(node)}", name)
+        if "mesh" not in node:
+            continue
+        prims = _item(meshes, node["mesh"], "mesh", name).get("primitives")
+        if not isinstance(prims, list):
+            raise FormatError(f"glTF mesh {node['mesh']} needs a list of primitives", name)
+        for prim in prims:
+            attrs = prim.get("attributes") if isinstance(prim, dict) else None
+            if not isinstance(attrs, dict) or "POSITION" not in attrs or "indices" not in prim:
+                raise FormatError(f"glTF mesh {node['mesh']} has a primitive without POSITION or indices", name)
+            p = arr(attrs["POSITION"], 3, "f").astype(float)
+            idx = arr(prim["indices"], 1, "u")
+            if len(idx) % 3:
+                raise FormatError(f"glTF accessor {prim['indices']} holds {len(idx)} indices, not whole triangles",
+                                  name)
+            f = idx.astype(np.int64).reshape(-1, 3)
+            if len(f) and f.max() >= len(p):
+                raise FormatError(f"glTF accessor {prim['indices']} refers to vertex {int(f.max())}; its "
+                                  f"primitive has {len(p)}", name)
+            vs.append(p)
+            fs.append(f + nv)
+            parts.append(Part(str(node.get("name", "")), "member", -1, "", (nv, nv + len(p)), (nf, nf + len(f))))
+            nv += len(p)
+            nf += len(f)
+            check_count("vertex count", nv, name)
+            check_count("triangle count", nf, name)
     if not vs:
-        return Mesh(np.empty((0, 3)), np.empty((0, 3), dtype=np.int64))
-    return Mesh(np.concatenate(vs), np.concatenate(fs), tuple(parts))
+        return checked_mesh(np.empty((0, 3)), np.empty((0, 3), dtype=np.int64), name)
+    return checked_mesh(np.concatenate(vs), np.concatenate(fs), name, tuple(parts))
 
 
 def loads(data: bytes | str, name: str = "<bytes>") -> Any:
@@ -186,7 +236,9 @@ def loads(data: bytes | str, name: str = "<bytes>") -> Any:
     Raises
     ------
     FormatError
-        For a bad header or chunk, or a buffer that is not embedded.
+        For a bad header or chunk, a buffer that is not embedded, a document
+        that does not describe triangle meshes, or a mesh that fails the
+        shared checks (:mod:`auszug.formats._meshcheck`).
     """
     raw = data.encode() if isinstance(data, str) else bytes(data)
     if raw[:4] == b"glTF":
@@ -198,7 +250,8 @@ def loads(data: bytes | str, name: str = "<bytes>") -> Any:
         jl, jt = struct.unpack("<I4s", raw[12:20])
         if jt != b"JSON":
             raise FormatError("the first GLB chunk is not JSON", name)
-        doc = json.loads(raw[20:20 + jl])
+        with parse_errors(name, "malformed GLB JSON chunk"):
+            doc = json.loads(raw[20:20 + jl])
         rest = raw[20 + jl:]
         binary = b""
         if len(rest) >= 8:
@@ -207,16 +260,15 @@ def loads(data: bytes | str, name: str = "<bytes>") -> Any:
                 raise FormatError("the second GLB chunk is not BIN", name)
             binary = rest[8:8 + bl]
         return _read(doc, binary, name)
-    try:
+    with parse_errors(name, "not glTF JSON"):
         doc = json.loads(raw.decode("utf-8"))
-    except (UnicodeDecodeError, json.JSONDecodeError) as e:
-        raise FormatError(f"not glTF JSON: {e}", name) from None
     binary = b""
-    for buf in doc.get("buffers", []):
-        uri = buf.get("uri", "")
-        if not uri.startswith("data:"):
+    for buf in _list(doc, "buffers", name) if isinstance(doc, dict) else []:
+        uri = buf.get("uri", "") if isinstance(buf, dict) else None
+        if not isinstance(uri, str) or not uri.startswith("data:") or "," not in uri:
             raise FormatError("only embedded (data URI) glTF buffers can be read", name)
-        binary = base64.b64decode(uri.split(",", 1)[1])
+        with parse_errors(name, "malformed glTF data URI"):
+            binary = base64.b64decode(uri.split(",", 1)[1], validate=True)
     return _read(doc, binary, name)
 
 

@@ -17,6 +17,7 @@ two share the ``.obj`` ending, so pass ``kind="mesh"`` to
 from __future__ import annotations
 
 import io
+import math
 import re
 from pathlib import PurePath
 from typing import Any
@@ -24,8 +25,10 @@ from typing import Any
 import numpy as np
 
 from auszug.errors import FormatError
+from auszug.formats._meshcheck import checked_mesh
 from auszug.formats._registry import FileFormat, register
 from auszug.formats.palette import rgb
+from auszug.limits import LIMITS
 
 __all__ = ["as_mesh", "part_colour", "material_name", "dumps", "mtl", "loads"]
 
@@ -121,9 +124,10 @@ def loads(text: str, name: str = "<string>") -> Any:
     Raises
     ------
     FormatError
-        For malformed ``v``/``f`` lines or indices out of range.
+        For malformed ``v``/``f`` lines, indices out of range, or a mesh that
+        fails the shared checks (:mod:`auszug.formats._meshcheck`).
     """
-    from auszug.meshing.mesh import Mesh, Part
+    from auszug.meshing.mesh import Part
 
     verts: list[list[float]] = []
     faces: list[list[int]] = []
@@ -140,6 +144,10 @@ def loads(text: str, name: str = "<string>") -> Any:
                 raise FormatError("'v' needs 3 numbers", name, no) from None
             if len(verts[-1]) != 3:
                 raise FormatError("'v' needs 3 numbers", name, no)
+            if not all(math.isfinite(x) and abs(x) <= LIMITS.coordinate for x in verts[-1]):
+                raise FormatError(f"'v' coordinates must be finite and within +-{LIMITS.coordinate:g} "
+                                  f"(auszug.limits.LIMITS.coordinate), got {' '.join(toks[1:4])[:LIMITS.quoted]}",
+                                  name, no)
         elif key == "f":
             try:
                 idx = [int(t.split("/")[0]) for t in toks[1:]]
@@ -163,7 +171,7 @@ def loads(text: str, name: str = "<string>") -> Any:
         if e > s:
             lo, hi = int(f[s:e].min()), int(f[s:e].max()) + 1
             parts.append(Part(g, "member", -1, "", (lo, hi), (s, e)))
-    return Mesh(v, f, tuple(parts))
+    return checked_mesh(v, f, name, tuple(parts))
 
 
 def _write(obj: Any, name: str) -> str:

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from auszug.errors import FormatError
+from auszug.formats._meshcheck import check_count, check_points, checked_mesh
 from auszug.formats._registry import FileFormat, register
 from auszug.formats.mesh_obj import as_mesh
 
@@ -50,9 +51,10 @@ def loads(data: bytes | str, name: str = "<bytes>") -> Any:
     Raises
     ------
     FormatError
-        For a truncated file or a count that does not match its size.
+        For a truncated file, a count that does not match its size, or a
+        mesh that fails the shared checks (:mod:`auszug.formats._meshcheck`).
     """
-    from auszug.meshing.mesh import Mesh, weld
+    from auszug.meshing.mesh import weld
 
     raw = data.encode() if isinstance(data, str) else bytes(data)
     if len(raw) < 84:
@@ -64,28 +66,34 @@ def loads(data: bytes | str, name: str = "<bytes>") -> Any:
         if raw.lstrip().startswith(b"solid"):
             return _ascii(raw.decode("utf-8", "replace"), name)
         raise FormatError(f"binary STL says {n} triangles but has {(len(raw) - 84) / 50:g}", name)
+    check_count("triangle count", n, name)
     rec = np.frombuffer(raw, dtype=_TRI, count=n, offset=84)
     v = rec["v"].astype(float).reshape(-1, 3)
+    check_points(v, name)  # finite, within the limit, before welding
     vv, ff = weld(v, np.arange(3 * n).reshape(-1, 3))
-    return Mesh(vv, ff)
+    return checked_mesh(vv, ff, name)
 
 
 def _ascii(text: str, name: str) -> Any:
-    from auszug.meshing.mesh import Mesh, weld
+    from auszug.meshing.mesh import weld
 
     pts = []
     for no, ln in enumerate(text.splitlines(), 1):
         t = ln.split()
         if t and t[0] == "vertex":
             try:
+                if len(t) != 4:
+                    raise ValueError
                 pts.append([float(x) for x in t[1:4]])
             except ValueError:
                 raise FormatError("'vertex' needs 3 numbers", name, no) from None
     if len(pts) % 3:
         raise FormatError(f"{len(pts)} vertices do not make whole triangles", name)
+    check_count("triangle count", len(pts) // 3, name)
     v = np.asarray(pts, dtype=float).reshape(-1, 3)
+    check_points(v, name)
     vv, ff = weld(v, np.arange(len(v)).reshape(-1, 3))
-    return Mesh(vv, ff)
+    return checked_mesh(vv, ff, name)
 
 
 def _write(obj: Any, name: str) -> bytes:

@@ -27,6 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
 from auszug.geometry import TOL, Arc, Line, arc_through
+from auszug.limits import LIMITS, shown
 
 __all__ = [
     "Profile",
@@ -102,6 +103,11 @@ class Profile:
             raise GeometryError(f"profile points must have shape (m, 2), got {p.shape}")
         if not np.all(np.isfinite(p)):
             raise GeometryError("profile points must be finite numbers")
+        far = np.nonzero((np.abs(p) > LIMITS.coordinate).any(axis=1))[0]
+        if len(far):
+            i = int(far[0])
+            raise GeometryError(f"profile point {i} {shown(p[i].tolist())} is beyond the limit of "
+                                f"+-{LIMITS.coordinate:g} (auszug.limits.LIMITS.coordinate)")
         b = None if self.bulge is None else np.asarray(self.bulge, dtype=float).reshape(-1)
         if self.closed and len(p) > 1 and np.array_equal(p[0], p[-1]):
             p = p[:-1]
@@ -126,6 +132,14 @@ class Profile:
         if len(bad):
             i = int(bad[0])
             raise GeometryError(f"profile edge {i} from point {i} {p[i].tolist()} has zero length")
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            diameter = np.where(b != 0.0, ln * (1.0 + b * b) / (2.0 * np.abs(b)), 0.0)  # of each arc's circle
+        big = np.nonzero(~(diameter <= LIMITS.coordinate))[0]
+        if len(big):
+            i = int(big[0])
+            raise GeometryError(f"profile segment {i}: bulge {shown(float(b[i]))} makes a circle of diameter "
+                                f"{shown(float(diameter[i]))}, beyond the limit of +-{LIMITS.coordinate:g} "
+                                "(auszug.limits.LIMITS.coordinate)")
         if len(p) >= 3:
             hit = _first_crossing(p, self.closed, 1e-9 * size)
             if hit is not None:
@@ -423,7 +437,7 @@ def _first_crossing(p: Array, closed: bool, tol: float) -> tuple[int, int, Array
     p2, d2 = a[j], b[j] - a[j]
     den = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
     w = p2 - p1
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # den ~ 0: s, t huge, no crossing
         s = (w[:, 0] * d2[:, 1] - w[:, 1] * d2[:, 0]) / den
         t = (w[:, 0] * d1[:, 1] - w[:, 1] * d1[:, 0]) / den
     l1 = np.linalg.norm(d1, axis=1)
@@ -760,14 +774,19 @@ def _arc_curve(p0: Array, seg: Mapping[str, Any], i: int) -> Arc | Line:
     if "through" in seg:
         return arc_through(p0, _xy(seg["through"], f"segment {i} 'through'"), p1)
     if "bulge" in seg:
-        b = float(seg["bulge"])
-        if not math.isfinite(b):
-            raise GeometryError(f"segment {i}: bulge must be finite")
+        b = seg["bulge"]
+        if isinstance(b, bool) or not isinstance(b, (int, float)) or not math.isfinite(b):
+            raise GeometryError(f"segment {i}: bulge must be a finite number, got {shown(b)}")
+        b = float(b)
         if b == 0.0:
             return Line(p0, p1)
         c = p1 - p0
         ln = float(np.hypot(*c))
-        mid = (p0 + p1) / 2.0 + np.array([c[1], -c[0]]) / max(ln, 1e-300) * (b * ln / 2.0)
+        with np.errstate(over="ignore", invalid="ignore"):
+            mid = (p0 + p1) / 2.0 + np.array([c[1], -c[0]]) / max(ln, 1e-300) * (b * ln / 2.0)
+        if not (np.isfinite(mid).all() and np.abs(mid).max() <= LIMITS.coordinate):
+            raise GeometryError(f"segment {i}: bulge {shown(b)} puts the arc's middle beyond the limit of "
+                                f"+-{LIMITS.coordinate:g} (auszug.limits.LIMITS.coordinate)")
         return arc_through(p0, mid, p1)
     if "center" in seg:
         c = _xy(seg["center"], f"segment {i} centre")
@@ -789,9 +808,12 @@ def _xy(v: Any, what: str) -> Array:
     try:
         a = np.asarray(v, dtype=float)
     except (TypeError, ValueError):
-        raise GeometryError(f"{what} must be a pair of numbers, got {v!r}") from None
+        raise GeometryError(f"{what} must be a pair of numbers, got {shown(v)}") from None
     if a.shape != (2,) or not np.all(np.isfinite(a)):
-        raise GeometryError(f"{what} must be a pair of finite numbers, got {v!r}")
+        raise GeometryError(f"{what} must be a pair of finite numbers, got {shown(v)}")
+    if np.abs(a).max() > LIMITS.coordinate:
+        raise GeometryError(f"{what} {shown(a.tolist())} is beyond the limit of +-{LIMITS.coordinate:g} "
+                            "(auszug.limits.LIMITS.coordinate)")
     return a
 
 

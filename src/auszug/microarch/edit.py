@@ -45,6 +45,17 @@ def _check_curve(d: Drawing, i: int) -> BasicCurve:
     return d.curves[i]
 
 
+def _check_ogee(d: Drawing, curve: int, segment: int) -> BasicCurve:
+    """The curve, if ``segment`` is one of its ogee segments (a DrawingError otherwise)."""
+    c = _check_curve(d, curve)
+    n = len(c.marks) - 1
+    if not 0 <= segment < n:
+        raise DrawingError(f"no segment {segment} of curve {curve}: it has {n} segments (0..{n - 1})")
+    if c.segment_kind(segment) != "ogee":
+        raise DrawingError(f"segment {segment} of curve {curve} is not an ogee")
+    return c
+
+
 def _axis_follow(c: BasicCurve, verts: tuple) -> Symmetry:
     s = c.symmetry
     if not s.mirror:
@@ -109,9 +120,7 @@ def set_apex_height(d: Drawing, curve: int, height: float) -> Drawing:
 
 def set_prc(d: Drawing, curve: int, fraction: float | None, segment: int = 0) -> Drawing:
     """Set the PRC of an ogee segment by its location (top-view arc-length fraction); ``None`` = automatic."""
-    c = _check_curve(d, curve)
-    if c.segment_kind(segment) != "ogee":
-        raise DrawingError(f"segment {segment} of curve {curve} is not an ogee")
+    c = _check_ogee(d, curve, segment)
     prc = list(c.prc)
     prc[segment] = None if fraction is None else float(fraction)
     return d.with_curve(curve, c.with_(prc=tuple(prc)))
@@ -125,6 +134,7 @@ def set_prc_height(d: Drawing, curve: int, z: float, segment: int = 0) -> Drawin
     """
     from auszug.microarch.network import build
 
+    _check_ogee(d, curve, segment)
     net = build(d)
     piece = next(p for p in net.pieces if p.basic == curve and p.segment == segment and p.kind == "ogee")
     assert piece.top is not None and piece.prc_fraction is not None  # an ogee piece has both
@@ -141,6 +151,7 @@ def set_prc_at(d: Drawing, curve: int, point: tuple[float, float], segment: int 
     """Make the top-view point nearest to ``point`` on the ogee (e.g. a clicked intersection) its PRC."""
     from auszug.microarch.prc import oriented_segments
 
+    _check_ogee(d, curve, segment)
     top = next(t for ci, si, t in oriented_segments(d) if ci == curve and si == segment)
     t = top.project(np.asarray(point, dtype=float))
     return set_prc(d, curve, float(top.u_at_t(t)), segment)

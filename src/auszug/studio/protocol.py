@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, ClassVar, Literal, Union, get_args, get_origin, get_type_hints
 
 from auszug.errors import AuszugError
-from auszug.limits import shown
+from auszug.limits import LIMITS, shown
 from auszug.microarch import edit
 from auszug.microarch.model import Drawing
 
@@ -758,8 +758,8 @@ def decode(text: str | bytes) -> Any:
     """
     try:
         obj = json.loads(text)
-    except (ValueError, UnicodeDecodeError) as e:
-        raise ProtocolError(f"not valid JSON ({e})") from None
+    except (ValueError, UnicodeDecodeError, RecursionError) as e:  # RecursionError: nested too deep
+        raise ProtocolError(f"not valid JSON ({str(e)[:LIMITS.quoted]})") from None
     if not isinstance(obj, dict):
         raise ProtocolError("a message must be a JSON object with a 'type'")
     kind = obj.get("type")

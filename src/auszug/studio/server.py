@@ -121,7 +121,7 @@ def _raw_id(data: str | bytes) -> int:
     """The ``id`` of a message that did not decode, if it has an integer one (else 0)."""
     try:
         v = json.loads(data).get("id", 0)
-    except (ValueError, AttributeError, UnicodeDecodeError):
+    except (ValueError, AttributeError, UnicodeDecodeError, RecursionError):  # as P.decode refused it
         return 0
     return v if isinstance(v, int) and not isinstance(v, bool) else 0
 

@@ -385,8 +385,12 @@ def _parse_text(text: str, source: str, suffix: str) -> dict[str, Any]:
     return data
 
 
-def _resolve_ref(ref: Any, base: Path | None, stack: tuple[str, ...]) -> dict[str, Any]:
-    """The fully merged data of a style reference: a name, a path or an inline table."""
+def _resolve_ref(ref: Any, base: Path | None, stack: tuple[str, ...], what: str = "style") -> dict[str, Any]:
+    """The fully merged data of a style reference: a name, a path or an inline table.
+
+    ``what`` is the key that holds the reference (``"style"``, ``"extends"``,
+    ``"sub-arch.window"``), named when it is none of these.
+    """
     if isinstance(ref, Mapping):
         data, here, key = dict(ref), base, None
     elif isinstance(ref, str):
@@ -396,7 +400,7 @@ def _resolve_ref(ref: Any, base: Path | None, stack: tuple[str, ...]) -> dict[st
                                  " -> ".join((*stack, key)))
         data, here = _read_ref(ref, base)
     else:
-        raise ParameterError("style", ref, "a style name, a file path or a table")
+        raise ParameterError(what, ref, "a style name, a file path or a table")
     if len(stack) > 4 * MAX_NESTING:
         raise ParameterError("window", ref, f"styles nested at most {MAX_NESTING} deep")
     unknown = set(data) - _TOP
@@ -405,7 +409,7 @@ def _resolve_ref(ref: Any, base: Path | None, stack: tuple[str, ...]) -> dict[st
                              "a style key among " + ", ".join(sorted(_TOP)))
     parent = data.get("extends")
     st = (*stack, key) if key else stack
-    merged = _resolve_ref(parent, here, st) if parent is not None else copy.deepcopy(DEFAULTS)
+    merged = _resolve_ref(parent, here, st, "extends") if parent is not None else copy.deepcopy(DEFAULTS)
     own = {k: v for k, v in data.items() if k != "extends"}
     if "name" not in own:
         own["name"] = key if key and "/" not in key and not key.endswith((".toml", ".json")) else (
@@ -414,11 +418,13 @@ def _resolve_ref(ref: Any, base: Path | None, stack: tuple[str, ...]) -> dict[st
         own["description"] = merged.get("description", "")
     out = _merge(merged, own)
     sub = out.get("sub-arch", {})
+    if not isinstance(sub, Mapping):
+        raise ParameterError("sub-arch", sub, "a table")
     win = sub.get("window")
     if win is not None:
         # nested styles: inline, fully merged, so that the data is self-contained
         sub = dict(sub)
-        sub["window"] = _resolve_ref(win, here, st)
+        sub["window"] = _resolve_ref(win, here, st, "sub-arch.window")
         out["sub-arch"] = sub
     return out
 
@@ -528,7 +534,8 @@ def style_from_data(data: Mapping[str, Any], _depth: int = 0) -> Style:
             if g.get("window") is None:
                 raise ParameterError("sub-arch.window", None, "the nested window's style (a name, path or table)")
             ref = g["window"]
-            nested = style_from_data(_resolve_ref(ref, None, ()) if not isinstance(ref, Mapping) else ref,
+            nested = style_from_data(_resolve_ref(ref, None, (), "sub-arch.window") if not isinstance(ref, Mapping)
+                                     else ref,
                                      _depth + 1)
         groups[key] = ArchGroup(
             deco, _profile(f"{key}.profile", g["profile"], local),

@@ -107,6 +107,8 @@ class WindowParams:
                why="the two sub-arches must keep a positive width")
         number("inner", self.inner, 0.0, 0.125 * (self.span - 2.0 * self.outer), lo_open=True, hi_open=True,
                why="a sub-arch is (span - 2 outer) / 2 wide and needs room inside its borders")
+        number("inner", self.inner, 1e-6 * self.span,
+               why="a border narrower than a millionth of the span is below the geometry's resolution")
         number("drop", self.drop, 0.0, self.height - self.outer - 2.0 * self.inner, hi_open=True,
                why="the sub-arches must spring above their sills")
         number("x", self.x)
@@ -314,8 +316,8 @@ def prototype(params: WindowParams | None = None, arch: PointedArch | None = Non
                                  "a value for which the window fits (there is none with the other parameters)",
                                  e.why) from None
         assert hi is not None
-        if name == "inner" and lo < 1e-6 * p.span:
-            valid = f"a number in (0, {hi:.6g}]"
+        if name == "inner":  # its lower limit is WindowParams' own, 1e-6 span
+            valid = f"a number in [{max(lo, 1e-6 * p.span):.6g}, {hi:.6g}]"
         else:
             valid = f"a number in [{0.0 if lo < 1e-6 * p.span else lo:.6g}, {hi:.6g}]"
         raise ParameterError(name, getattr(p, name), valid, e.why) from None
@@ -338,12 +340,13 @@ def _bounds(p: WindowParams, name: str) -> tuple[float, float]:
         return 0.0, p.height - p.outer - 2.0 * p.inner
     if name == "outer":
         return 0.0, 0.25 * p.span
-    return 0.0, 0.125 * (p.span - 2.0 * p.outer)  # inner
+    return 1e-6 * p.span, 0.125 * (p.span - 2.0 * p.outer)  # inner (its own lower limit, see WindowParams)
 
 
-def _fits(p: WindowParams, arch: PointedArch | None) -> bool:
+def _fits(p: WindowParams, name: str, value: float, arch: PointedArch | None) -> bool:
+    """Whether ``p`` with ``name = value`` gives a window (the parameters' own checks included)."""
     try:
-        _construct(p, arch)
+        _construct(replace(p, **{name: value}), arch)
     except (_Misfit, ParameterError, GeometryError):
         return False
     return True
@@ -354,7 +357,7 @@ def _valid_interval(p: WindowParams, name: str, arch: PointedArch | None,
     """The interval of ``name`` values (others fixed) that give a valid window, nearest the given value."""
     lo, hi = _bounds(p, name)
     vs = np.linspace(lo, hi, samples + 2)[1:-1]
-    ok = [_fits(replace(p, **{name: float(v)}), arch) for v in vs]
+    ok = [_fits(p, name, float(v), arch) for v in vs]
     if not any(ok):
         return None, None
     here = float(getattr(p, name))
@@ -370,7 +373,7 @@ def _valid_interval(p: WindowParams, name: str, arch: PointedArch | None,
     def edge(good: float, bad: float) -> float:
         for _ in range(30):
             mid = 0.5 * (good + bad)
-            if _fits(replace(p, **{name: mid}), arch):
+            if _fits(p, name, mid, arch):
                 good = mid
             else:
                 bad = mid

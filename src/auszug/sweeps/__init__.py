@@ -42,7 +42,7 @@ from auszug.sweeps.motion import Motion, screw_motion, se3_exp, se3_log
 from auszug.sweeps.movability import Movability, movability, velocities, velocity_state
 from auszug.sweeps.params import DEFAULT, SweepParams
 from auszug.sweeps.patches import Fit, SweepPatch, fit_patch, kinematic_patches, polyline_hausdorff
-from auszug.sweeps.planes import geodesic_sphere, hemisphere, initial_planes, plane_recall, refine_box
+from auszug.sweeps.planes import geodesic_sphere, hemisphere, initial_planes, plane_recall, refine_box, spacing_for
 from auszug.sweeps.search import PlaneSearch, good_planes, search_planes
 
 __all__ = [
@@ -97,6 +97,7 @@ __all__ = [
     "initial_planes",
     "plane_recall",
     "refine_box",
+    "spacing_for",
     "PlaneSearch",
     "good_planes",
     "search_planes",

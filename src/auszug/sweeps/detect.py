@@ -25,13 +25,15 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import NDArray
 
+from auszug.errors import GeometryError
+from auszug.limits import LIMITS
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import kinematic_axis
 from auszug.sweeps.mesh import SweepMesh, normalise
 from auszug.sweeps.movability import movability
 from auszug.sweeps.params import DEFAULT, SweepParams
 from auszug.sweeps.patches import SweepPatch, face_areas, kinematic_patches
-from auszug.sweeps.planes import initial_planes
+from auszug.sweeps.planes import initial_planes, spacing_for
 from auszug.sweeps.stage import Stage
 
 __all__ = ["Stage", "SweepReport", "detect", "sweep_length", "STAGES"]
@@ -130,8 +132,9 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
     Raises
     ------
     auszug.errors.GeometryError
-        The mesh is empty, has non-finite coordinates, bad indices, no extent, or an edge with
-        more than two faces (see :func:`~auszug.sweeps.normalise`).
+        The mesh has more than :attr:`auszug.limits.Limits.sweep_faces` triangles, is empty, has
+        non-finite coordinates, bad indices, a face repeating a vertex, no extent, or an edge
+        with more than two faces (see :func:`~auszug.sweeps.normalise`).
 
     Examples
     --------
@@ -151,6 +154,10 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
     stages: list[Stage] = []
     t = step("normalise")
     v, f = _as_vf(mesh)
+    n_faces = len(f) if hasattr(f, "__len__") else 0
+    if n_faces > LIMITS.sweep_faces:
+        raise GeometryError(f"mesh has {n_faces} triangles: more than the limit of {LIMITS.sweep_faces} for sweep "
+                            "analysis (auszug.limits.LIMITS.sweep_faces); decimate it first")
     m = normalise(v, f)
     areas = face_areas(m.vertices, m.faces)
     stages.append(Stage("normalise", time.perf_counter() - t,
@@ -160,11 +167,15 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
                          "bbox_diameter": m.scale}))
 
     t = step("cut")
+    if params.initial_plane_count is not None:
+        params = params.with_(offset_spacing=spacing_for(m.vertices, params.sphere_frequency,
+                                                         params.initial_plane_count))
     normals, offsets = initial_planes(m.vertices, params.sphere_frequency, params.offset_spacing)
     cuts = cut(m, normals, offsets)
     mov = movability(cuts, params)
     stages.append(Stage("cut", time.perf_counter() - t,
-                        f"{cuts.n_planes} initial planes, {cuts.n_curves} curves, {mov.n_runs} movable runs",
+                        f"{cuts.n_planes} initial planes (offsets {params.offset_spacing:.4g} apart), "
+                        f"{cuts.n_curves} curves, {mov.n_runs} movable runs",
                         {"planes": cuts.n_planes, "curves": cuts.n_curves, "runs": mov.n_runs}))
 
     t = step("kinematic")

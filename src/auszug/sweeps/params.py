@@ -51,6 +51,9 @@ class SweepParams:
         Spacing of the plane offsets along each normal, over the interval where the plane meets
         the mesh (paper: "regularly sampled", no spacing). Default 0.055: 81 normals x about 18
         offsets is about the paper's 1452 initial planes of Fig. 12 on a unit-diameter mesh.
+    initial_plane_count : int or None
+        If given, :func:`~auszug.sweeps.detect` picks the offset spacing that gives about this
+        many initial planes (``auszug sweeps --planes``), overriding ``offset_spacing``.
     percentile : float
         The share g (percent) of cuts kept as good after each round, lowest gliding energy first
         (paper: g in {1, 3, 5}).
@@ -148,6 +151,7 @@ class SweepParams:
     min_spread: float = 0.03
     sphere_frequency: int = 4
     offset_spacing: float = 0.055
+    initial_plane_count: int | None = None
     percentile: float = 5.0
     refinements: int = 3
     refine_steps: int = 3
@@ -191,6 +195,8 @@ class SweepParams:
             ("min_spread", 0 <= self.min_spread < 0.5, "in [0, 0.5)"),
             ("sphere_frequency", 1 <= self.sphere_frequency <= 64, "in 1..64"),
             ("offset_spacing", 0 < self.offset_spacing <= 1, "in (0, 1]"),
+            ("initial_plane_count", self.initial_plane_count is None or 10 <= self.initial_plane_count <= 100_000,
+             "None or in 10..100000"),
             ("percentile", 0 < self.percentile <= 100, "in (0, 100]"),
             ("refinements", 0 <= self.refinements <= 8, "in 0..8"),
             ("refine_steps", self.refine_steps >= 3 and self.refine_steps % 2 == 1, "odd and >= 3"),

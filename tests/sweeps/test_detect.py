@@ -38,8 +38,7 @@ def test_random_bumps_are_no_sweep(eps, most):
     if most == 0.0:
         assert r.patches == ()
     assert r.stage("kinematic").numbers["kinematic"] == 0
-    assert [s.name for s in r.stages] == ["normalise", "cut", "kinematic", "search", "match", "families", "motion",
-                                          "fit"]
+    assert [s.name for s in r.stages] == ["normalise", "cut", "kinematic", "match", "families", "motion", "fit"]
 
 
 def test_patches_are_in_the_input_coordinates():

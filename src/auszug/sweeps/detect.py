@@ -7,9 +7,11 @@ Stages (each also callable alone, see :mod:`auszug.sweeps`):
 3. ``kinematic``: the consensus motion of all cuts; if at least ``kinematic_min_agreement`` of
    them glide under it, the mesh is a surface of revolution, an extrusion or a helical surface and
    its patches come from :func:`~auszug.sweeps.patches.kinematic_patches`;
-4. otherwise ``search`` (adaptive plane refinement), ``match`` (curvature plots, Eq. 6),
-   ``families`` and ``ribs`` (sec. 2.2), and ``motion`` (sec. 2.3: velocities by Eq. 7, Hermite
-   interpolation, projection to rigid motions, profile improvement, fit check);
+4. otherwise ``match`` (curvature plots of every movable run of the initial cuts, Eq. 6),
+   ``families`` (sec. 2.2, most support first) with their ribs ordered, and ``motion`` (sec. 2.3:
+   velocities by Eq. 7, Hermite interpolation, projection to rigid motions, profile improvement,
+   fit check). The paper's adaptive plane refinement (:func:`~auszug.sweeps.search_planes`) is
+   not run: its good planes, ranked by gliding energy, miss the profile planes (docs/sweeps.md);
 5. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
    ``min_patch_area`` of the mesh are dropped; the rest are converted to the input's coordinates.
 
@@ -42,7 +44,7 @@ Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
 #: The stages in the order :func:`detect` runs them (the general ones only on non-kinematic meshes).
-STAGES = ("normalise", "cut", "kinematic", "search", "match", "families", "motion", "fit")
+STAGES = ("normalise", "cut", "kinematic", "match", "families", "motion", "fit")
 
 Progress = Callable[[str, int, int], None]
 
@@ -200,7 +202,7 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
     if not kinematic:
         from auszug.sweeps.general import general_stages
 
-        more, general = general_stages(m, params, step)
+        more, general = general_stages(m, cuts, mov, params, step)
         raw.extend(more)
         stages.extend(general)
 

@@ -46,14 +46,14 @@ from typing import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from auszug.sweeps.cut import cut
+from auszug.sweeps.cut import Cuts, cut
 from auszug.sweeps.matching import CurvaturePlots, Ribs, curvature_plots, families, match_cuts, order_ribs
 from auszug.sweeps.mesh import SweepMesh
 from auszug.sweeps.motion import Motion, se3_log
+from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
 from auszug.sweeps.patches import SweepPatch, face_areas, fit_patch
 from auszug.sweeps.planes import plane_recall
-from auszug.sweeps.search import search_planes
 from auszug.sweeps.stage import Stage
 
 __all__ = ["kabsch", "rib_velocity", "rib_velocities", "hermite_motion", "rib_parts", "general_patch",
@@ -317,35 +317,36 @@ def motion_planes(profile: Array, motion: Motion, per_knot: int = 8) -> tuple[Ar
     return n, np.einsum("qi,qi->q", n, o)
 
 
-def general_stages(mesh: SweepMesh, params: SweepParams, step: Callable[[str], float],
+def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams, step: Callable[[str], float],
                    true_planes: ArrayLike | None = None) -> tuple[list[SweepPatch], list[Stage]]:
-    """The stages search, match, families and motion on a non-kinematic mesh; patches and summaries."""
+    """The stages match, families and motion on a non-kinematic mesh; patches and summaries.
+
+    ``cuts`` and ``mov`` are the initial planes' cuts and their movability. Every movable run of
+    them is matched (the longest ``max_match_runs``): ranking planes by gliding energy and
+    refining around the best (:func:`~auszug.sweeps.search_planes`) misses the profile planes
+    (docs/sweeps.md), while the families of the initial cuts with most support (members times
+    the length of their common part) lie near them. With ``true_planes`` the motion stage also
+    reports the plane recall of the fitted motions' profile planes.
+    """
     stages: list[Stage] = []
-    t = step("search")
-    search = search_planes(mesh, params)
-    stages.append(Stage("search", time.perf_counter() - t,
-                        f"{sum(search.rounds)} planes cut in {len(search.rounds)} round(s) "
-                        f"({', '.join(map(str, search.rounds))}); {len(search.good)} good planes, "
-                        f"{len(search.good_runs)} good runs",
-                        {"planes": sum(search.rounds), "rounds": len(search.rounds), "good_planes": len(search.good),
-                         "good_runs": len(search.good_runs)}))
     t = step("match")
-    runs = search.good_runs
+    runs = np.arange(mov.n_runs, dtype=np.int64)
     if len(runs) > params.max_match_runs:
-        runs = runs[np.argsort(search.movability.run_energy[runs], kind="stable")[:params.max_match_runs]]
-    plots = curvature_plots(search.cuts, search.movability, runs, params)
+        runs = np.sort(np.argsort(-mov.run_length, kind="stable")[:params.max_match_runs])
+    plots = curvature_plots(cuts, mov, runs, params)
     matches = match_cuts(plots, params)
     stages.append(Stage("match", time.perf_counter() - t,
                         f"{len(runs)} runs, {matches.tested} pairs within {params.match_angle:g} deg, "
                         f"{matches.n_matches} matched",
-                        {"pairs": matches.tested, "matches": matches.n_matches}))
+                        {"runs": len(runs), "pairs": matches.tested, "matches": matches.n_matches}))
     t = step("families")
-    fams = sorted(families(matches, params), key=lambda f: (-len(f.members), -f.length))
+    # support of a family: its members times the length of their common part
+    fams = sorted(families(matches, params), key=lambda f: (-len(f.members) * f.length, -f.length))
     big = [f for f in fams if len(f.members) >= 3][:params.max_families]
     ribs = [order_ribs(f, plots, params) for f in big]
     ribs = [r for r in ribs if len(r.order) >= 3]
     stages.append(Stage("families", time.perf_counter() - t,
-                        f"{len(fams)} families; {len(ribs)} with >= 3 ordered ribs tried "
+                        f"{len(fams)} families; the {len(ribs)} of most support with >= 3 ordered ribs tried "
                         f"(ribs: {', '.join(str(len(r.order)) for r in ribs) or 'none'})",
                         {"families": len(fams), "tried": len(ribs)}))
     t = step("motion")

@@ -129,10 +129,11 @@ class SweepParams:
     mu : tuple of float
         Weights (mu_1, mu_2) of Eq. 7 (paper: (0.002, 0.1)).
     max_match_runs : int
-        At most this many good runs, lowest gliding energy first, are matched (the paper's
-        N_match, 144-229 in Fig. 15).
+        At most this many movable runs of the initial planes, longest first, are matched (the
+        paper's N_match, good runs only, is 144-229 in Fig. 15).
     max_families : int
-        At most this many families (most members first) are fitted with a general sweep.
+        At most this many families, of most support (members times the length of their common
+        part) first, are fitted with a general sweep.
     min_sweep_length : float
         A patch is kept when its profile's centroid travels at least this far (bounding-box
         diameters): a short sweep on any smooth surface fits within eps_prox.
@@ -178,7 +179,7 @@ class SweepParams:
     profile_cuts: int = 8
     general_iterations: int = 2
     mu: tuple[float, float] = (0.002, 0.1)
-    max_match_runs: int = 200
+    max_match_runs: int = 600
     max_families: int = 6
     min_sweep_length: float = 0.2
     patch_overlap: float = 0.8

@@ -57,7 +57,7 @@ from auszug.sweeps.planes import plane_recall
 from auszug.sweeps.stage import Stage
 
 __all__ = ["kabsch", "rib_velocity", "rib_velocities", "hermite_motion", "rib_parts", "general_patch",
-           "general_stages", "motion_planes", "GeneralSweep"]
+           "general_stages", "motion_planes", "profile_planes", "reslice", "GeneralSweep"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -281,40 +281,96 @@ class GeneralSweep:
     faces: IntArray
 
 
+def profile_planes(profile: Array, motion: Motion, t: ArrayLike) -> tuple[Array, Array]:
+    """The profile planes of a sweep at parameters ``t (q,)``: normals ``(q, 3)``, offsets ``(q,)``.
+
+    Our convention (the paper leaves the plane to the ribs found): the plane through the moved
+    profile's centroid that its points cross most squarely, normal to the principal direction
+    of their velocities (the top eigenvector of ``sum v_j v_j^T``). For a moulding swept with its
+    profile in the normal planes of its path this is that plane, up to the twist's share of the
+    velocity.
+    """
+    tt = np.atleast_1d(np.asarray(t, float))
+    lo, hi = motion.domain
+    h = 1e-3 * max(hi - lo, 1e-12)
+    tc = np.clip(tt, lo + h, hi - h)
+    x = motion.apply(profile, tt)
+    v = (motion.apply(profile, tc + h) - motion.apply(profile, tc - h)) / (2 * h)
+    _, vecs = np.linalg.eigh(np.einsum("qni,qnj->qij", v, v))
+    n = vecs[:, :, -1]
+    n *= np.sign(np.einsum("qi,qi->q", n, v.mean(axis=1)))[:, None]
+    return n, np.einsum("qi,qi->q", n, x.mean(axis=1))
+
+
+def reslice(mesh: SweepMesh, profile: Array, motion: Motion) -> Array | None:
+    """New ribs ``(k, n, 3)`` at the motion's integer parameters; None if a plane misses the mesh.
+
+    The mesh is cut by the profile planes (:func:`profile_planes`) there; sample ``j`` of a rib is
+    the closest cut point to the moved profile's point ``j``.
+    """
+    from auszug.sweeps.patches import closest_distance
+
+    k = int(round(motion.domain[1] - motion.domain[0])) + 1
+    ts = motion.domain[0] + np.arange(k, dtype=float)
+    n, d = profile_planes(profile, motion, ts)
+    x = motion.apply(profile, ts)
+    c = cut(mesh, n, d)
+    out = []
+    for i in range(k):
+        best: tuple[float, Array] | None = None
+        for j in np.flatnonzero(c.curve_plane == i):
+            q = c.curve(int(j))
+            if len(q) < 2:
+                continue
+            seg = np.stack([np.arange(len(q) - 1), np.arange(1, len(q))], axis=1)
+            dist, cp = closest_distance(x[i], q, seg)
+            if best is None or dist.mean() < best[0]:
+                best = (float(dist.mean()), cp)
+        if best is None:
+            return None
+        out.append(best[1])
+    return np.stack(out)
+
+
 def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
                   areas: Array | None = None) -> GeneralSweep:
-    """Fit a sweep to ordered rib parts ``(k, n, 3)`` (k >= 2), iterating sec. 2.3.2-2.3.4."""
+    """Fit a sweep to ordered rib parts ``(k, n, 3)`` (k >= 2), iterating sec. 2.3.2-2.3.4.
+
+    The first round fits the ribs as found (cuts by the initial planes, up to 8 degrees off the
+    profile planes); each further round (``general_iterations`` in all) re-slices the mesh by
+    the fitted motion's profile planes (:func:`reslice`) and fits again. The round of least fit
+    error is returned.
+    """
     from auszug.sweeps.patches import _improve
 
-    profile = parts[0].copy()
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
-    normals = _normals_at(mesh, parts)
     best: GeneralSweep | None = None
+    ribs: Array | None = parts
     for _ in range(params.general_iterations):
-        maps = [kabsch(profile, q) for q in parts]
+        if ribs is None:
+            break
+        profile = ribs[0].copy()
+        normals = _normals_at(mesh, ribs)
+        maps = [kabsch(profile, q) for q in ribs]
         rot = np.array([m[0] for m in maps])
         tr = np.array([m[1] for m in maps])
-        vel = rib_velocities(parts, normals, params.mu)
+        vel = rib_velocities(ribs, normals, params.mu)
         motion = hermite_motion(profile, rot, tr, vel, SAMPLES_PER_RIB)
         more = _recut(mesh, profile, motion, 4 * params.eps_prox)
         profile = _improve(profile, False, more)
-        # the improved profile at rib 0 is re-anchored: rib maps are refitted on the next round
         fit = fit_patch(mesh, profile, False, motion, params, a)
         cand = GeneralSweep(profile, motion, vel, fit.fit_error, fit.coverage, fit.faces)
         if best is None or cand.fit_error < best.fit_error:
             best = cand
+        ribs = reslice(mesh, profile, motion)
     assert best is not None
     return best
 
 
-def motion_planes(profile: Array, motion: Motion, per_knot: int = 8) -> tuple[Array, Array]:
-    """The profile's planes along the motion (``per_knot`` per knot interval): normals ``(q, 3)``, offsets ``(q,)``."""
-    n0, _ = _plane_of(profile)
+def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Array, Array]:
+    """The profile planes (:func:`profile_planes`) at the motion's knots, ``per_knot`` per knot interval."""
     t = np.interp(np.arange((len(motion) - 1) * per_knot + 1) / per_knot, np.arange(len(motion)), motion.t)
-    r, tr = motion.at(t)
-    n = np.einsum("qij,j->qi", r, n0)
-    o = np.einsum("qij,j->qi", r, profile.mean(axis=0)) + tr
-    return n, np.einsum("qi,qi->q", n, o)
+    return profile_planes(profile, motion, t)
 
 
 def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams, step: Callable[[str], float],

@@ -125,7 +125,8 @@ class SweepParams:
         closest points improve the profile (sec. 2.3.3; 0: the one cut as is).
     general_iterations : int
         Rounds of velocity estimation, Hermite interpolation and profile improvement of a
-        general sweep (sec. 2.3.4: "performed in an alternating way").
+        general sweep (sec. 2.3.4: "performed in an alternating way"), each after the first on
+        ribs re-sliced by the fitted motion's profile planes.
     mu : tuple of float
         Weights (mu_1, mu_2) of Eq. 7 (paper: (0.002, 0.1)).
     max_match_runs : int
@@ -177,7 +178,7 @@ class SweepParams:
     min_patch_area: float = 0.01
     motion_samples: int = 17
     profile_cuts: int = 8
-    general_iterations: int = 2
+    general_iterations: int = 3
     mu: tuple[float, float] = (0.002, 0.1)
     max_match_runs: int = 600
     max_families: int = 6

@@ -9,7 +9,12 @@ faster on this machine: 14.3 s and 11.7 s.
    spacing is chosen to give that count), g = 1 %, 3 rounds.
 2. Match: curvature plots of the good runs, all pairs within 25 degrees matched, families; and the
    same for the 167 lowest-energy runs (the paper's N_match), for a like-for-like time.
-3. Scaling of cut + weigh in vertices x planes (fixed planes, 4 mesh sizes; fixed mesh, 3 plane
+3. Build the sweeps (sec. 2.3): from the initial planes' cuts, match every movable run, order the
+   ribs of the ``--families`` families of most support and fit each a general sweep (Eq. 7
+   velocities, Hermite interpolation, projection to rigid motions, profile improvement, 3 rounds
+   of re-slicing, the fit check with libigl closest points). The paper optimised N_opt = 152
+   sweeps in T_opt = 86 s (0.57 s each); we compare per sweep. Then the whole ``detect``.
+4. Scaling of cut + weigh in vertices x planes (fixed planes, 4 mesh sizes; fixed mesh, 3 plane
    counts): time per (vertex x plane) should stay flat.
 
 Times are the minimum of ``--reps`` in-process runs after a warm-up run (numba compiles, or
@@ -65,6 +70,7 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--quick", action="store_true", help="8k vertices instead of 32k")
+    ap.add_argument("--families", type=int, default=24, help="sweeps to build in row 3 (default 24)")
     args = ap.parse_args(argv)
     n_prof, n_path = (64, 128) if args.quick else (128, 256)
     fx = moulding_along_cubic(n_profile=n_prof, n_path=n_path, sigma=5e-4)
@@ -105,6 +111,26 @@ def main(argv=None):
     print(f"| match, the paper's N_match: the {plots2.n_runs} lowest-energy runs, {m2.tested} pairs within 25 deg, "
           f"{m2.n_matches} matched, {len(fams2)} families | 234 s | {t_top:.2f} s | {234 / t_top:.0f}x | 20x |")
     print(f"rounds: {search.rounds}")
+
+    from auszug.sweeps import detect
+    from auszug.sweeps.general import general_stages
+
+    c0 = cut(mesh, *initial_planes(mesh.vertices, params.sphere_frequency, spacing))
+    mv0 = movability(c0, params)
+    pb = params.with_(max_families=args.families, eps_prox=0.005)
+    t_build, (pats, stages) = best_of(lambda: general_stages(mesh, c0, mv0, pb, lambda name: time.perf_counter()),
+                                      max(1, args.reps - 2))
+    t_motion = stages[-1].seconds
+    each = t_motion / max(len(pats), 1)
+    print(f"| build the sweeps (sec. 2.3): {len(pats)} families fitted (Eq. 7, Hermite, 3 rounds of re-slicing, "
+          f"fit check), fit errors {min(p.fit_error for p in pats):.1e}-{max(p.fit_error for p in pats):.1e} | "
+          f"86 s for N_opt = 152 (0.57 s each) | {t_motion:.2f} s ({each:.3f} s each) | {0.566 / each:.0f}x per sweep "
+          f"| 20x |")
+    print(f"| match + families + build from the initial cuts ({stages[0].numbers['runs']} runs, "
+          f"{stages[0].numbers['pairs']} pairs) | 234 + 86 s | {t_build:.2f} s | {(234 + 86) / t_build:.0f}x | 20x |")
+    t_all, rep = best_of(lambda: detect(mesh, params.with_(eps_prox=0.005)), 1)
+    print(f"| whole detect (defaults, eps_prox 0.005): {len(rep.patches)} patches, coverage {rep.coverage:.3f} | "
+          f"606 s (286 + 234 + 86) | {t_all:.2f} s | {606 / t_all:.0f}x | |")
 
     print()
     print("scaling of cut + weigh (one pass, no refinement):")

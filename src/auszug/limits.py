@@ -89,6 +89,13 @@ class Limits:
         Largest width or height of a rendered picture, in pixels. A 16 384 px
         square RGBA image is 1 GB in matplotlib; ``render --width 100000``
         was a MemoryError traceback.
+    sweep_faces : int
+        Most triangles of a mesh given to sweep analysis (``auszug sweeps``,
+        :func:`auszug.sweeps.detect`). Cutting and weighing is linear in
+        vertices x planes, but the refined plane search keeps every cut curve
+        in memory (about 50 bytes per cut point, some 10 000 planes): the
+        paper's largest mesh has 200 000 vertices (400 000 triangles); a
+        million triangles stays below 2 GB. 2 M are refused before any work.
     file_bytes : int
         Largest input file, checked before it is read. A 200 MB file cost
         7.7 GB of memory and 68 s; the largest corpus file is 3 KB, and 64 MB
@@ -111,6 +118,7 @@ class Limits:
     coordinate: float = 1e6
     mesh_triangles: int = 2_000_000
     pixels: int = 16384
+    sweep_faces: int = 1_000_000
     file_bytes: int = 64 * 1024 * 1024
     quoted: int = 80
     message: int = 2000

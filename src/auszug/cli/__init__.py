@@ -26,8 +26,8 @@ from typing import Sequence
 __all__ = ["COMMANDS", "make_parser", "main", "unexpected"]
 
 #: Subcommands in the order ``auszug --help`` lists them.
-COMMANDS: tuple[str, ...] = ("build", "info", "render", "convert", "demo", "tracery", "mesh", "lift", "studio",
-                            "examples")
+COMMANDS: tuple[str, ...] = ("build", "info", "render", "convert", "demo", "tracery", "mesh", "lift", "sweeps",
+                             "studio", "examples")
 
 
 def _version() -> str:

@@ -20,6 +20,7 @@ from auszug.formats import dxf as _dxf  # noqa: F401  (registers .dxf: polylines
 from auszug.formats import rhino as _rhino  # noqa: F401  (registers .3dm: exact arcs and lines, else polylines)
 from auszug.formats import sketch_svg as _sketch_svg  # noqa: F401  (reads .svg sketches, kind "sketch")
 from auszug.formats import sketch_json as _sketch_json  # noqa: F401  (registers .sketch.json sketches)
+from auszug.formats import sweeps_json as _sweeps_json  # noqa: F401  (registers .sweeps.json sweep analyses)
 # isort: on
 from auszug.formats._registry import (
     FileFormat,

@@ -89,7 +89,7 @@ def normalise(vertices: ArrayLike, faces: ArrayLike) -> SweepMesh:
     """Normalise a mesh ``(V, F)`` and build its edge topology.
 
     Raises :class:`~auszug.errors.GeometryError` on an empty mesh, non-finite coordinates, face
-    indices out of range, a zero-size bounding box, or an edge shared by more than two faces
+    indices out of range, a face repeating a vertex, a zero-size bounding box, or an edge shared by more than two faces
     (the cutter links cut segments through faces and needs a 2-manifold, boundaries allowed).
 
     Examples
@@ -111,6 +111,11 @@ def normalise(vertices: ArrayLike, faces: ArrayLike) -> SweepMesh:
     f = f.astype(np.int64)
     if f.min() < 0 or f.max() >= len(v):
         raise GeometryError(f"mesh faces: vertex indices must be in 0..{len(v) - 1}, got {f.min()}..{f.max()}")
+    rep = (f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])
+    if rep.any():
+        bad_face = int(np.flatnonzero(rep)[0])
+        raise GeometryError(f"mesh face {bad_face} {f[bad_face].tolist()} repeats a vertex: expected triangles of "
+                            "three distinct vertices (remove degenerate faces)")
     if not np.isfinite(v).all():
         bad = int(np.flatnonzero(~np.isfinite(v).all(axis=1))[0])
         raise GeometryError(f"mesh vertex {bad} has a non-finite coordinate: expected finite numbers")

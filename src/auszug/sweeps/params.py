@@ -51,6 +51,9 @@ class SweepParams:
         Spacing of the plane offsets along each normal, over the interval where the plane meets
         the mesh (paper: "regularly sampled", no spacing). Default 0.055: 81 normals x about 18
         offsets is about the paper's 1452 initial planes of Fig. 12 on a unit-diameter mesh.
+    initial_plane_count : int or None
+        If given, :func:`~auszug.sweeps.detect` picks the offset spacing that gives about this
+        many initial planes (``auszug sweeps --planes``), overriding ``offset_spacing``.
     percentile : float
         The share g (percent) of cuts kept as good after each round, lowest gliding energy first
         (paper: g in {1, 3, 5}).
@@ -103,6 +106,41 @@ class SweepParams:
         (a rotation about an axis 10 diameters away is a translation at 0.05).
     pitch_tolerance : float
         A screw with ``|pitch|`` at most this (bounding-box diameters per radian) is a rotation.
+    kinematic_min_agreement : float
+        The mesh is treated as kinematic (its patches come from :func:`kinematic_axis`) when at
+        least this share of the cuts glides under the consensus motion (our choice; revolved and
+        extruded fixtures score 0.92-1, general sweeps and random bumps 0.09-0.17).
+    eps_prox : float
+        Proximity threshold of the fit check (sec. 2.3.4, "typically 0.001 to 0.01" of the
+        diameter): a face is covered when its vertices lie within it of the swept surface.
+    fit_factor : float
+        A patch is kept when its fit error (largest distance of the swept profile to the mesh)
+        is at most ``fit_factor * eps_prox`` (the issue's bound: 2).
+    min_patch_area : float
+        A patch is kept when it covers at least this share of the mesh's area.
+    motion_samples : int
+        Rigid maps stored per patch, from the first rib to the last (at least 8).
+    profile_cuts : int
+        Further cuts, spread over a patch's parameter range and mapped back by the motion, whose
+        closest points improve the profile (sec. 2.3.3; 0: the one cut as is).
+    general_iterations : int
+        Rounds of velocity estimation, Hermite interpolation and profile improvement of a
+        general sweep (sec. 2.3.4: "performed in an alternating way"), each after the first on
+        ribs re-sliced by the fitted motion's profile planes.
+    mu : tuple of float
+        Weights (mu_1, mu_2) of Eq. 7 (paper: (0.002, 0.1)).
+    max_match_runs : int
+        At most this many movable runs of the initial planes, longest first, are matched (the
+        paper's N_match, good runs only, is 144-229 in Fig. 15).
+    max_families : int
+        At most this many families, of most support (members times the length of their common
+        part) first, are fitted with a general sweep.
+    min_sweep_length : float
+        A patch is kept when its profile's centroid travels at least this far (bounding-box
+        diameters): a short sweep on any smooth surface fits within eps_prox.
+    patch_overlap : float
+        A patch whose faces' area is covered by this share by a better patch (lower fit error)
+        is dropped.
     """
 
     beta: float = 400.0
@@ -115,6 +153,7 @@ class SweepParams:
     min_spread: float = 0.03
     sphere_frequency: int = 4
     offset_spacing: float = 0.055
+    initial_plane_count: int | None = None
     percentile: float = 5.0
     refinements: int = 3
     refine_steps: int = 3
@@ -133,6 +172,18 @@ class SweepParams:
     kinematic_share: float = 0.95
     translation_ratio: float = 0.05
     pitch_tolerance: float = 1e-3
+    kinematic_min_agreement: float = 0.5
+    eps_prox: float = 0.005
+    fit_factor: float = 2.0
+    min_patch_area: float = 0.01
+    motion_samples: int = 17
+    profile_cuts: int = 8
+    general_iterations: int = 3
+    mu: tuple[float, float] = (0.002, 0.1)
+    max_match_runs: int = 600
+    max_families: int = 6
+    min_sweep_length: float = 0.2
+    patch_overlap: float = 0.8
 
     def __post_init__(self) -> None:
         checks = [
@@ -146,6 +197,8 @@ class SweepParams:
             ("min_spread", 0 <= self.min_spread < 0.5, "in [0, 0.5)"),
             ("sphere_frequency", 1 <= self.sphere_frequency <= 64, "in 1..64"),
             ("offset_spacing", 0 < self.offset_spacing <= 1, "in (0, 1]"),
+            ("initial_plane_count", self.initial_plane_count is None or 10 <= self.initial_plane_count <= 100_000,
+             "None or in 10..100000"),
             ("percentile", 0 < self.percentile <= 100, "in (0, 100]"),
             ("refinements", 0 <= self.refinements <= 8, "in 0..8"),
             ("refine_steps", self.refine_steps >= 3 and self.refine_steps % 2 == 1, "odd and >= 3"),
@@ -157,6 +210,17 @@ class SweepParams:
             ("family_keep", 0 < self.family_keep <= 1, "in (0, 1]"),
             ("match_angle", 0 < self.match_angle <= 90, "in (0, 90]"),
             ("kinematic_gap", self.kinematic_gap >= 1, ">= 1"),
+            ("kinematic_min_agreement", 0 <= self.kinematic_min_agreement <= 1, "in [0, 1]"),
+            ("eps_prox", 1e-5 <= self.eps_prox <= 0.1, "in [1e-5, 0.1] (bounding-box diameters)"),
+            ("fit_factor", self.fit_factor >= 1, ">= 1"),
+            ("min_patch_area", 0 <= self.min_patch_area <= 1, "in [0, 1]"),
+            ("motion_samples", 8 <= self.motion_samples <= 4096, "in 8..4096"),
+            ("profile_cuts", 0 <= self.profile_cuts <= 256, "in 0..256"),
+            ("general_iterations", 1 <= self.general_iterations <= 16, "in 1..16"),
+            ("max_match_runs", 2 <= self.max_match_runs <= 100000, "in 2..100000"),
+            ("max_families", 0 <= self.max_families <= 1000, "in 0..1000"),
+            ("min_sweep_length", self.min_sweep_length >= 0, ">= 0"),
+            ("patch_overlap", 0 < self.patch_overlap <= 1, "in (0, 1]"),
         ]
         for name, ok, want in checks:
             if not ok:

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["geodesic_sphere", "hemisphere", "initial_planes", "refine_box", "canonical", "plane_recall"]
+__all__ = ["geodesic_sphere", "hemisphere", "initial_planes", "spacing_for", "refine_box", "canonical", "plane_recall"]
 
 Array = NDArray[np.float64]
 
@@ -97,6 +97,23 @@ def initial_planes(vertices: ArrayLike, frequency: int, spacing: float) -> tuple
     k = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
     d = (lo + hi)[which] / 2 + (k - (count[which] - 1) / 2) * spacing
     return normals[which], d
+
+
+def spacing_for(vertices: ArrayLike, frequency: int, target: int) -> float:
+    """The offset spacing at which :func:`initial_planes` gives about ``target`` planes (bisection).
+
+    Examples
+    --------
+    >>> v = np.random.default_rng(0).uniform(-0.3, 0.3, (500, 3))
+    >>> 280 <= len(initial_planes(v, 4, spacing_for(v, 4, 300))[1]) <= 320
+    True
+    """
+    lo, hi = 1e-4, 1.0
+    for _ in range(40):
+        mid = (lo * hi) ** 0.5
+        n = len(initial_planes(vertices, frequency, mid)[1])
+        lo, hi = (mid, hi) if n > target else (lo, mid)
+    return hi
 
 
 def _tangent_basis(n: Array) -> tuple[Array, Array]:

@@ -1,0 +1,234 @@
+"""The whole analysis in one call: :func:`detect` runs every stage and returns a :class:`SweepReport`.
+
+Stages (each also callable alone, see :mod:`auszug.sweeps`):
+
+1. ``normalise``: centre, bounding-box diameter 1, edge topology;
+2. ``cut``: the initial planes (geodesic sphere x offsets) and the movability of every cut;
+3. ``kinematic``: the consensus motion of all cuts; if at least ``kinematic_min_agreement`` of
+   them glide under it, the mesh is a surface of revolution, an extrusion or a helical surface and
+   its patches come from :func:`~auszug.sweeps.patches.kinematic_patches`;
+4. otherwise ``match`` (curvature plots of every movable run of the initial cuts, Eq. 6),
+   ``families`` (sec. 2.2, most support first) with their ribs ordered, and ``motion`` (sec. 2.3:
+   velocities by Eq. 7, Hermite interpolation, projection to rigid motions, profile improvement,
+   fit check). The paper's adaptive plane refinement (:func:`~auszug.sweeps.search_planes`) is
+   not run: its good planes, ranked by gliding energy, miss the profile planes (docs/sweeps.md);
+5. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
+   ``min_patch_area`` of the mesh are dropped; the rest are converted to the input's coordinates.
+
+Each stage reports what it kept in a :class:`Stage` (for ``auszug sweeps --explain``).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numpy as np
+from numpy.typing import NDArray
+
+from auszug.errors import GeometryError
+from auszug.limits import LIMITS
+from auszug.sweeps.cut import cut
+from auszug.sweeps.kinematic import kinematic_axis
+from auszug.sweeps.mesh import SweepMesh, normalise
+from auszug.sweeps.movability import movability
+from auszug.sweeps.params import DEFAULT, SweepParams
+from auszug.sweeps.patches import SweepPatch, face_areas, kinematic_patches
+from auszug.sweeps.planes import initial_planes, spacing_for
+from auszug.sweeps.stage import Stage
+
+__all__ = ["Stage", "SweepReport", "detect", "sweep_length", "STAGES"]
+
+Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+#: The stages in the order :func:`detect` runs them (the general ones only on non-kinematic meshes).
+STAGES = ("normalise", "cut", "kinematic", "match", "families", "motion", "fit")
+
+Progress = Callable[[str, int, int], None]
+
+
+@dataclass(frozen=True)
+class SweepReport:
+    """The result of :func:`detect`: sweep patches in the input's coordinates, and the stages.
+
+    Attributes
+    ----------
+    patches : tuple of SweepPatch
+        Profiles and motions in input coordinates (``fit_error`` relative to the diameter).
+    coverage : float
+        Share of the mesh's area covered by the union of the patches' faces, 0..1.
+    bbox_diameter : float
+        Of the input mesh.
+    centre : (3,) float array
+        Bounding-box centre of the input mesh.
+    n_vertices, n_faces : int
+    stages : tuple of Stage
+    params : SweepParams
+    source : str
+        The mesh file's name ("" when not from a file).
+    """
+
+    patches: tuple[SweepPatch, ...]
+    coverage: float
+    bbox_diameter: float
+    centre: Array
+    n_vertices: int
+    n_faces: int
+    stages: tuple[Stage, ...]
+    params: SweepParams = DEFAULT
+    source: str = ""
+
+    def stage(self, name: str) -> Stage | None:
+        """The stage called ``name`` (None if it did not run)."""
+        return next((s for s in self.stages if s.name == name), None)
+
+    def explain(self) -> str:
+        """One line per stage: name, time, what it kept; then the patches."""
+        lines = [f"{s.name:<10} {s.seconds:7.2f} s  {s.summary}" for s in self.stages]
+        for p in self.patches:
+            lines.append(f"patch {p.id}: {p.kind}, profile {len(p.profile)} points"
+                         f"{' (closed)' if p.closed else ''}, {len(p.motion)} motion samples, "
+                         f"{len(p.faces)} faces, coverage {p.coverage:.3f}, fit error {p.fit_error:.2e}")
+        lines.append(f"coverage {self.coverage:.3f} of the mesh's area by {len(self.patches)} patch(es)")
+        return "\n".join(lines)
+
+
+def _as_vf(mesh: Any) -> tuple[Any, Any]:
+    if hasattr(mesh, "vertices") and hasattr(mesh, "faces"):
+        return mesh.vertices, mesh.faces
+    v, f = mesh
+    return v, f
+
+
+def sweep_length(p: SweepPatch) -> float:
+    """Length of the path of the profile's centroid over the patch's motion (at its knots)."""
+    c = p.motion.apply(p.profile.mean(axis=0)[None], p.motion.t)[:, 0]
+    return float(np.linalg.norm(np.diff(c, axis=0), axis=1).sum())
+
+
+def _to_input(p: SweepPatch, m: SweepMesh, new_id: int) -> SweepPatch:
+    return SweepPatch(new_id, p.kind, m.to_input(p.profile), p.closed, p.motion.transformed(m.scale, m.centre),
+                      p.faces, p.fit_error, p.coverage)
+
+
+def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None = None,
+           source: str = "") -> SweepReport:
+    """Find the sweep patches of a triangle mesh.
+
+    Parameters
+    ----------
+    mesh : object with ``vertices (n, 3)`` and ``faces (m, 3)``, or a tuple ``(V, F)``
+    params : SweepParams
+    progress : callable, optional
+        ``progress(stage, done, total)``, called as each stage starts (done = its index) and once
+        at the end (done = total).
+    source : str
+        Recorded in the report (the mesh file's name).
+
+    Returns
+    -------
+    SweepReport
+
+    Raises
+    ------
+    auszug.errors.GeometryError
+        The mesh has more than :attr:`auszug.limits.Limits.sweep_faces` triangles, is empty, has
+        non-finite coordinates, bad indices, a face repeating a vertex, no extent, or an edge
+        with more than two faces (see :func:`~auszug.sweeps.normalise`).
+
+    Examples
+    --------
+    >>> from auszug.sweeps.fixtures import extruded
+    >>> fx = extruded(n_profile=40, n_path=40)
+    >>> r = detect((fx.vertices, fx.faces))
+    >>> [p.kind for p in r.patches], round(r.coverage, 6)
+    (['translation'], 1.0)
+    """
+    total = len(STAGES)
+
+    def step(name: str) -> float:
+        if progress is not None:
+            progress(name, STAGES.index(name), total)
+        return time.perf_counter()
+
+    stages: list[Stage] = []
+    t = step("normalise")
+    v, f = _as_vf(mesh)
+    n_faces = len(f) if hasattr(f, "__len__") else 0
+    if n_faces > LIMITS.sweep_faces:
+        raise GeometryError(f"mesh has {n_faces} triangles: more than the limit of {LIMITS.sweep_faces} for sweep "
+                            "analysis (auszug.limits.LIMITS.sweep_faces); decimate it first")
+    m = normalise(v, f)
+    areas = face_areas(m.vertices, m.faces)
+    stages.append(Stage("normalise", time.perf_counter() - t,
+                        f"{m.n_vertices} vertices, {len(m.faces)} faces, {len(m.edges)} edges, "
+                        f"bounding-box diameter {m.scale:.6g}",
+                        {"vertices": m.n_vertices, "faces": len(m.faces), "edges": len(m.edges),
+                         "bbox_diameter": m.scale}))
+
+    t = step("cut")
+    if params.initial_plane_count is not None:
+        params = params.with_(offset_spacing=spacing_for(m.vertices, params.sphere_frequency,
+                                                         params.initial_plane_count))
+    normals, offsets = initial_planes(m.vertices, params.sphere_frequency, params.offset_spacing)
+    cuts = cut(m, normals, offsets)
+    mov = movability(cuts, params)
+    stages.append(Stage("cut", time.perf_counter() - t,
+                        f"{cuts.n_planes} initial planes (offsets {params.offset_spacing:.4g} apart), "
+                        f"{cuts.n_curves} curves, {mov.n_runs} movable runs",
+                        {"planes": cuts.n_planes, "curves": cuts.n_curves, "runs": mov.n_runs}))
+
+    t = step("kinematic")
+    axis = kinematic_axis(cuts, mov, params)
+    raw: list[SweepPatch] = []
+    kinematic = axis is not None and axis.agreement >= params.kinematic_min_agreement
+    if axis is None:
+        stages.append(Stage("kinematic", time.perf_counter() - t, "no cuts: nothing glides", {"agreement": 0.0}))
+    else:
+        if kinematic:
+            raw = kinematic_patches(m, axis, params)
+        what = (f"{axis.kind}, direction {np.round(axis.direction, 4).tolist()}"
+                + (f", through {np.round(m.to_input(axis.point), 6).tolist()}" if axis.point is not None else "")
+                + (f", pitch {axis.pitch * m.scale:.6g}" if axis.kind == "screw" else ""))
+        verdict = (f"kinematic: {len(raw)} candidate patch(es)" if kinematic
+                   else f"not kinematic (below {params.kinematic_min_agreement})")
+        stages.append(Stage("kinematic", time.perf_counter() - t,
+                            f"{axis.agreement:.3f} of the cuts glide under one {what}: {verdict}",
+                            {"agreement": axis.agreement, "kind": axis.kind, "kinematic": int(kinematic),
+                             "candidates": len(raw)}))
+
+    if not kinematic:
+        from auszug.sweeps.general import general_stages
+
+        more, general = general_stages(m, cuts, mov, params, step)
+        raw.extend(more)
+        stages.extend(general)
+
+    t = step("fit")
+    bound = params.fit_factor * params.eps_prox
+    good = [p for p in raw if p.fit_error <= bound and p.coverage >= params.min_patch_area
+            and sweep_length(p) >= params.min_sweep_length]
+    kept: list[SweepPatch] = []
+    taken = np.zeros(len(m.faces), bool)
+    for p in sorted(good, key=lambda p: (-p.coverage, p.fit_error)):
+        a = areas[p.faces]
+        if a.sum() > 0 and float(a[taken[p.faces]].sum() / a.sum()) >= params.patch_overlap:
+            continue
+        kept.append(p)
+        taken[p.faces] = True
+    patches = tuple(_to_input(p, m, i) for i, p in enumerate(kept))
+    covered = np.zeros(len(m.faces), bool)
+    for p in patches:
+        covered[p.faces] = True
+    coverage = float(areas[covered].sum() / areas.sum()) if areas.sum() > 0 else 0.0
+    stages.append(Stage("fit", time.perf_counter() - t,
+                        f"{len(patches)} of {len(raw)} patch(es) kept ({len(good)} within fit error {bound:.3g}, "
+                        f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}; "
+                        f"then overlaps dropped); coverage {coverage:.3f}",
+                        {"candidates": len(raw), "patches": len(patches), "coverage": coverage}))
+    if progress is not None:
+        progress("fit", total, total)
+    return SweepReport(patches, coverage, m.scale, m.centre, m.n_vertices, len(m.faces), tuple(stages), params,
+                       source)

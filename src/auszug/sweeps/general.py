@@ -1,0 +1,424 @@
+"""General sweeps (paper sec. 2.3): from ordered ribs to a rigid motion, a profile and a fit.
+
+Given a family's ribs in order (:func:`~auszug.sweeps.order_ribs`), each rib a polyline whose
+samples correspond one to one (the family's common part):
+
+1. **Positions.** ``M_i``, the rigid map taking rib 0 to rib ``i`` (least squares over the
+   corresponding samples, Kabsch), at time ``t_i = i``.
+2. **Velocities** (sec. 2.3.2, Eq. 7): ``C_i`` minimises ``F(b_i, b_{i-1}) + F(b_i, b_{i+1})`` with
+   ``F = F_tang + mu_1 F_reg + mu_2 F_pivot``. As printed ``F_reg`` and ``F_pivot`` are the same sum
+   and ``F_tang`` does not measure tangential motion, so we read them as:
+
+   - ``F_tang = sum_i (n_i . xdot(x_i))^2``: the velocity at the rib's points is tangent to the
+     surface (normals ``n_i`` at the closest points on the mesh), the paper's words "small if x_i
+     moves tangential to the reference surface" and Eq. 3;
+   - ``F_reg = |C - C_0|^2``: a regulariser of a least-squares problem in ``C`` (Tikhonov),
+     towards ``C_0``, the twist of the best rigid map between the two ribs (Kabsch, then the
+     logarithm of SE(3), over ``dt``; the mean over both neighbours). Towards zero instead, with
+     ``mu_1 = 0.002``, it shrank the velocity: two ribs of a known screw motion 2-20 degrees
+     apart gave it 0.7-2.6 % off (and 4 % without F_tang); towards ``C_0`` it only fixes what
+     the data leave free (a straight rib's turn about itself);
+   - ``F_pivot = sum_i |x'_i - x_i - dt xdot(m_i)|^2`` with ``m_i = (x_i + x'_i) / 2``: the velocity
+     carries ``x_i`` to its partner. Evaluating the velocity at the *midpoint* of the pair (not at
+     ``x_i`` as printed) makes the estimate second-order: by the Cayley transform, the finite
+     screw motion ``x' = R x + T`` satisfies ``x' - x = c x m + c_bar`` exactly, with ``c``
+     along the screw axis and ``|c| = 2 tan(phi / 2)`` for the turn ``phi``; so two ribs of a
+     screw motion give its velocity up to the factor ``tan(phi / 2) / (phi / 2)`` (0.25 % at
+     10 degrees), where the printed form is off by ``phi / 2`` (9 % at 10 degrees).
+3. **Hermite interpolation** (sec. 2.3.1, [HPR04]): on each interval the affine maps
+   ``A(t) = (L(t), a(t))`` are the cubic Hermite interpolants of the positions ``(R_i, T_i)`` and
+   derivatives ``([c_i]x R_i, c_bar_i + c_i x T_i)``; then each ``A(t)`` is projected to the
+   closest rigid motion in the sense of the profile's points (Kabsch: ``sum_j |R p_j + T -
+   A(t) p_j|^2`` least, ``det R = +1``), at ``samples_per_rib`` parameters per interval.
+4. **Profile improvement** (sec. 2.3.3): the mesh is cut by the planes of the moved profile at
+   those parameters, each cut (the piece near the moved profile) is mapped back by the inverse
+   motion, and every profile point moves to the mean of its closest points on them.
+5. **Fit check** (sec. 2.3.4): :func:`~auszug.sweeps.patches.fit_patch`; steps 1-4 are repeated
+   ``general_iterations`` times with the improved profile.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from auszug.sweeps.cut import Cuts, cut
+from auszug.sweeps.matching import CurvaturePlots, Ribs, curvature_plots, families, match_cuts, order_ribs
+from auszug.sweeps.mesh import SweepMesh
+from auszug.sweeps.motion import Motion, se3_log
+from auszug.sweeps.movability import Movability
+from auszug.sweeps.params import DEFAULT, SweepParams
+from auszug.sweeps.patches import SweepPatch, face_areas, fit_patch
+from auszug.sweeps.planes import plane_recall
+from auszug.sweeps.stage import Stage
+
+__all__ = ["kabsch", "rib_velocity", "rib_velocities", "hermite_motion", "rib_parts", "general_patch",
+           "general_stages", "motion_planes", "profile_planes", "reslice", "GeneralSweep"]
+
+Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+#: Parameters per rib interval at which the Hermite motion is projected and the mesh re-cut (paper: "say, 8").
+SAMPLES_PER_RIB = 8
+
+
+def kabsch(p: ArrayLike, q: ArrayLike, weights: ArrayLike | None = None) -> tuple[Array, Array]:
+    """The proper rigid map ``(R (3, 3), T (3,))`` minimising ``sum w_j |R p_j + T - q_j|^2``.
+
+    Examples
+    --------
+    >>> from scipy.spatial.transform import Rotation
+    >>> p = np.random.default_rng(0).normal(size=(10, 3))
+    >>> r0 = Rotation.from_rotvec([0.3, -0.2, 1.0]).as_matrix()
+    >>> r, t = kabsch(p, p @ r0.T + [1.0, 2.0, 3.0])
+    >>> bool(np.allclose(r, r0)), np.round(t, 12).tolist()
+    (True, [1.0, 2.0, 3.0])
+    """
+    a = np.asarray(p, float)
+    b = np.asarray(q, float)
+    w = np.ones(len(a)) if weights is None else np.asarray(weights, float)
+    w = w / w.sum()
+    ca, cb = w @ a, w @ b
+    h = ((a - ca) * w[:, None]).T @ (b - cb)
+    u, _, vt = np.linalg.svd(h)
+    d = np.sign(np.linalg.det(vt.T @ u.T))
+    r = vt.T @ np.diag([1.0, 1.0, d if d != 0 else 1.0]) @ u.T
+    return r, cb - r @ ca
+
+
+def _rows(mid: Array, d: Array, mu2: float) -> tuple[Array, Array]:
+    """Normal-equation blocks (6 x 6, 6) of F_pivot for one neighbour: midpoints, displacements per unit time."""
+    # pivot: d_i = dt (c x m_i + c_bar): rows for each coordinate; c x m = -[m]x c
+    k = len(mid)
+    a = np.zeros((k, 3, 6))
+    a[:, 0, 1], a[:, 0, 2] = mid[:, 2], -mid[:, 1]
+    a[:, 1, 0], a[:, 1, 2] = -mid[:, 2], mid[:, 0]
+    a[:, 2, 0], a[:, 2, 1] = mid[:, 1], -mid[:, 0]
+    a[:, :, 3:] = np.eye(3)
+    a = a.reshape(-1, 6)
+    return mu2 * a.T @ a, mu2 * a.T @ d.reshape(-1)
+
+
+def rib_velocity(rib: ArrayLike, neighbours: list[tuple[Array, float]], normals: ArrayLike | None = None,
+                 mu: tuple[float, float] = DEFAULT.mu) -> Array:
+    """The velocity state ``(6,) = (c, c_bar)`` of a rib by Eq. 7 (our reading, module docstring).
+
+    Parameters
+    ----------
+    rib : (n, 3) array_like
+        The rib's samples.
+    neighbours : list of ((n, 3) array, float)
+        Each neighbouring rib (samples corresponding to ``rib``'s) with its time step ``dt``.
+    normals : (n, 3) array_like, optional
+        Surface normals at the rib's samples (F_tang); None leaves F_tang out.
+    mu : (float, float)
+
+    Examples
+    --------
+    Two positions of a profile 10 degrees apart about the z axis through (1, 0, 0):
+
+    >>> from auszug.sweeps.motion import screw_motion
+    >>> a = np.linspace(0, np.pi, 20)
+    >>> x = np.column_stack([1.3 + 0.1 * np.cos(a), np.zeros(20), 0.1 * np.sin(a)])   # a half circle
+    >>> r, t = screw_motion([0, 0, 1.0], [1.0, 0, 0], 0.0, [np.radians(10)])
+    >>> c = rib_velocity(x, [(x @ r[0].T + t[0], 1.0)])
+    >>> np.round(c / np.radians(10), 4).tolist()   # (0, 0, 1, 0, -1, 0), up to tan(5 deg) / (5 deg)
+    [0.0, 0.0, 1.0018, -0.0, -1.0016, 0.0]
+    """
+    x = np.asarray(rib, float)
+    lhs = mu[0] * np.eye(6)
+    rhs = np.zeros(6)
+    if normals is not None:
+        nr = np.asarray(normals, float)
+        t = np.hstack([np.cross(x, nr), nr])     # n . (c x x + c_bar) = (x x n) . c + n . c_bar
+        lhs += t.T @ t
+    prior = np.zeros(6)
+    for y, dt in neighbours:
+        yy = np.asarray(y, float)
+        a, b = _rows((x + yy) / 2, (yy - x) / dt, mu[1])
+        lhs += a
+        rhs += b
+        w, v = se3_log(*kabsch(x, yy))
+        prior += np.r_[w, v] / dt / len(neighbours)
+    rhs += mu[0] * prior
+    out: Array = np.asarray(np.linalg.solve(lhs, rhs), dtype=np.float64)
+    return out
+
+
+def rib_velocities(parts: Array, normals: Array | None, mu: tuple[float, float] = DEFAULT.mu) -> Array:
+    """Velocity states ``(k, 6)`` of ribs ``parts (k, n, 3)`` at times ``0..k-1`` (neighbours on both sides)."""
+    k = len(parts)
+    out = np.zeros((k, 6))
+    for i in range(k):
+        nb = [(parts[j], float(j - i)) for j in (i - 1, i + 1) if 0 <= j < k]
+        out[i] = rib_velocity(parts[i], nb, None if normals is None else normals[i], mu)
+    return out
+
+
+def hermite_motion(profile: Array, rotations: Array, translations: Array, velocities: Array,
+                   samples_per_rib: int = SAMPLES_PER_RIB) -> Motion:
+    """C1 Hermite interpolation of affine maps between ribs at times ``0..k-1``, projected to rigid motions.
+
+    Parameters
+    ----------
+    profile : (n, 3) float array
+        The points whose motion defines "closest" rigid map (Kabsch).
+    rotations : (k, 3, 3), translations : (k, 3)
+        The rigid maps at the ribs (``x -> R_i x + T_i``).
+    velocities : (k, 6)
+        Velocity states ``(c, c_bar)`` at the ribs (spatial: ``xdot = c x x + c_bar``).
+    samples_per_rib : int
+        Parameters per interval.
+
+    Returns
+    -------
+    Motion
+        Knots at ``i + j / samples_per_rib``; exactly the given maps at the ribs.
+    """
+    k = len(rotations)
+    c, cb = velocities[:, :3], velocities[:, 3:]
+    hat = np.zeros((k, 3, 3))
+    hat[:, 0, 1], hat[:, 0, 2] = -c[:, 2], c[:, 1]
+    hat[:, 1, 0], hat[:, 1, 2] = c[:, 2], -c[:, 0]
+    hat[:, 2, 0], hat[:, 2, 1] = -c[:, 1], c[:, 0]
+    dl = hat @ rotations                       # d/dt of the linear part
+    da = cb + np.cross(c, translations)        # d/dt of the translation
+    ts, rs, trs = [0.0], [rotations[0]], [translations[0]]
+    f = np.arange(1, samples_per_rib + 1) / samples_per_rib
+    h00, h10 = 2 * f**3 - 3 * f**2 + 1, f**3 - 2 * f**2 + f
+    h01, h11 = -2 * f**3 + 3 * f**2, f**3 - f**2
+    for i in range(k - 1):
+        lin = (h00[:, None, None] * rotations[i] + h10[:, None, None] * dl[i] + h01[:, None, None] * rotations[i + 1]
+               + h11[:, None, None] * dl[i + 1])
+        off = (h00[:, None] * translations[i] + h10[:, None] * da[i] + h01[:, None] * translations[i + 1]
+               + h11[:, None] * da[i + 1])
+        for j in range(samples_per_rib):
+            if j == samples_per_rib - 1:
+                r, t = rotations[i + 1], translations[i + 1]
+            else:
+                r, t = kabsch(profile, profile @ lin[j].T + off[j])
+            ts.append(i + f[j])
+            rs.append(r)
+            trs.append(t)
+    return Motion(np.array(ts), np.array(rs), np.array(trs))
+
+
+def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
+    """The ribs' common parts ``(k, n, 3)`` in rib order, sample ``j`` corresponding across ribs."""
+    fam = ribs.family
+    return np.stack([plots.samples(int(fam.members[j]))[fam.indices(j)] for j in ribs.order])
+
+
+def _normals_at(mesh: SweepMesh, points: Array) -> Array:
+    """Unit face normals of the mesh at the closest points of ``points (..., 3)``."""
+    import igl
+
+    p = np.ascontiguousarray(points.reshape(-1, 3))
+    _, face, _ = igl.point_mesh_squared_distance(p, mesh.vertices, mesh.faces)
+    v = mesh.vertices
+    f = mesh.faces[face]
+    n = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+    return n.reshape(points.shape)
+
+
+def _plane_of(points: Array) -> tuple[Array, float]:
+    o = points.mean(axis=0)
+    n = np.linalg.svd(points - o)[2][2]
+    return n, float(n @ o)
+
+
+def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float) -> list[Array]:
+    """Cuts of the mesh by the moved profile's planes at the motion's knots, mapped back (sec. 2.3.3)."""
+    n0, _ = _plane_of(profile)
+    moved = motion.apply(profile, motion.t)
+    normals = np.einsum("kij,j->ki", motion.rotation, n0)
+    offsets = np.einsum("ki,ki->k", normals, moved.mean(axis=1))
+    c = cut(mesh, normals, offsets)
+    out = []
+    for j in range(c.n_curves):
+        k = int(c.curve_plane[j])
+        q = c.curve(j)
+        if len(q) < 2:
+            continue
+        from auszug.sweeps.patches import closest_distance
+
+        seg = np.stack([np.arange(len(profile) - 1), np.arange(1, len(profile))], axis=1)
+        d, _ = closest_distance(q, moved[k], seg)
+        near = d <= reach
+        if near.sum() < 2:
+            continue
+        back = motion.inverse_apply(q[near], np.full(int(near.sum()), motion.t[k]))
+        out.append(back)
+    return out
+
+
+@dataclass(frozen=True)
+class GeneralSweep:
+    """A general sweep fitted to ordered ribs (normalised coordinates).
+
+    Attributes
+    ----------
+    profile : (n, 3) float array
+        The profile at the first rib (improved).
+    motion : Motion
+    velocities : (k, 6) float array
+        Eq. 7 velocity states at the ribs (last iteration).
+    fit_error : float
+    coverage : float
+    faces : (m,) int array
+    """
+
+    profile: Array
+    motion: Motion
+    velocities: Array
+    fit_error: float
+    coverage: float
+    faces: IntArray
+
+
+def profile_planes(profile: Array, motion: Motion, t: ArrayLike) -> tuple[Array, Array]:
+    """The profile planes of a sweep at parameters ``t (q,)``: normals ``(q, 3)``, offsets ``(q,)``.
+
+    Our convention (the paper leaves the plane to the ribs found): the plane through the moved
+    profile's centroid that its points cross most squarely, normal to the principal direction
+    of their velocities (the top eigenvector of ``sum v_j v_j^T``). For a moulding swept with its
+    profile in the normal planes of its path this is that plane, up to the twist's share of the
+    velocity.
+    """
+    tt = np.atleast_1d(np.asarray(t, float))
+    lo, hi = motion.domain
+    h = 1e-3 * max(hi - lo, 1e-12)
+    tc = np.clip(tt, lo + h, hi - h)
+    x = motion.apply(profile, tt)
+    v = (motion.apply(profile, tc + h) - motion.apply(profile, tc - h)) / (2 * h)
+    _, vecs = np.linalg.eigh(np.einsum("qni,qnj->qij", v, v))
+    n = vecs[:, :, -1]
+    n *= np.sign(np.einsum("qi,qi->q", n, v.mean(axis=1)))[:, None]
+    return n, np.einsum("qi,qi->q", n, x.mean(axis=1))
+
+
+def reslice(mesh: SweepMesh, profile: Array, motion: Motion) -> Array | None:
+    """New ribs ``(k, n, 3)`` at the motion's integer parameters; None if a plane misses the mesh.
+
+    The mesh is cut by the profile planes (:func:`profile_planes`) there; sample ``j`` of a rib is
+    the closest cut point to the moved profile's point ``j``.
+    """
+    from auszug.sweeps.patches import closest_distance
+
+    k = int(round(motion.domain[1] - motion.domain[0])) + 1
+    ts = motion.domain[0] + np.arange(k, dtype=float)
+    n, d = profile_planes(profile, motion, ts)
+    x = motion.apply(profile, ts)
+    c = cut(mesh, n, d)
+    out = []
+    for i in range(k):
+        best: tuple[float, Array] | None = None
+        for j in np.flatnonzero(c.curve_plane == i):
+            q = c.curve(int(j))
+            if len(q) < 2:
+                continue
+            seg = np.stack([np.arange(len(q) - 1), np.arange(1, len(q))], axis=1)
+            dist, cp = closest_distance(x[i], q, seg)
+            if best is None or dist.mean() < best[0]:
+                best = (float(dist.mean()), cp)
+        if best is None:
+            return None
+        out.append(best[1])
+    return np.stack(out)
+
+
+def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
+                  areas: Array | None = None) -> GeneralSweep:
+    """Fit a sweep to ordered rib parts ``(k, n, 3)`` (k >= 2), iterating sec. 2.3.2-2.3.4.
+
+    The first round fits the ribs as found (cuts by the initial planes, up to 8 degrees off the
+    profile planes); each further round (``general_iterations`` in all) re-slices the mesh by
+    the fitted motion's profile planes (:func:`reslice`) and fits again. The round of least fit
+    error is returned.
+    """
+    from auszug.sweeps.patches import _improve
+
+    a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
+    best: GeneralSweep | None = None
+    ribs: Array | None = parts
+    for _ in range(params.general_iterations):
+        if ribs is None:
+            break
+        profile = ribs[0].copy()
+        normals = _normals_at(mesh, ribs)
+        maps = [kabsch(profile, q) for q in ribs]
+        rot = np.array([m[0] for m in maps])
+        tr = np.array([m[1] for m in maps])
+        vel = rib_velocities(ribs, normals, params.mu)
+        motion = hermite_motion(profile, rot, tr, vel, SAMPLES_PER_RIB)
+        more = _recut(mesh, profile, motion, 4 * params.eps_prox)
+        profile = _improve(profile, False, more)
+        fit = fit_patch(mesh, profile, False, motion, params, a)
+        cand = GeneralSweep(profile, motion, vel, fit.fit_error, fit.coverage, fit.faces)
+        if best is None or cand.fit_error < best.fit_error:
+            best = cand
+        ribs = reslice(mesh, profile, motion)
+    assert best is not None
+    return best
+
+
+def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Array, Array]:
+    """The profile planes (:func:`profile_planes`) at the motion's knots, ``per_knot`` per knot interval."""
+    t = np.interp(np.arange((len(motion) - 1) * per_knot + 1) / per_knot, np.arange(len(motion)), motion.t)
+    return profile_planes(profile, motion, t)
+
+
+def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams, step: Callable[[str], float],
+                   true_planes: ArrayLike | None = None) -> tuple[list[SweepPatch], list[Stage]]:
+    """The stages match, families and motion on a non-kinematic mesh; patches and summaries.
+
+    ``cuts`` and ``mov`` are the initial planes' cuts and their movability. Every movable run of
+    them is matched (the longest ``max_match_runs``): ranking planes by gliding energy and
+    refining around the best (:func:`~auszug.sweeps.search_planes`) misses the profile planes
+    (docs/sweeps.md), while the families of the initial cuts with most support (members times
+    the length of their common part) lie near them. With ``true_planes`` the motion stage also
+    reports the plane recall of the fitted motions' profile planes.
+    """
+    stages: list[Stage] = []
+    t = step("match")
+    runs = np.arange(mov.n_runs, dtype=np.int64)
+    if len(runs) > params.max_match_runs:
+        runs = np.sort(np.argsort(-mov.run_length, kind="stable")[:params.max_match_runs])
+    plots = curvature_plots(cuts, mov, runs, params)
+    matches = match_cuts(plots, params)
+    stages.append(Stage("match", time.perf_counter() - t,
+                        f"{len(runs)} runs, {matches.tested} pairs within {params.match_angle:g} deg, "
+                        f"{matches.n_matches} matched",
+                        {"runs": len(runs), "pairs": matches.tested, "matches": matches.n_matches}))
+    t = step("families")
+    # support of a family: its members times the length of their common part
+    fams = sorted(families(matches, params), key=lambda f: (-len(f.members) * f.length, -f.length))
+    big = [f for f in fams if len(f.members) >= 3][:params.max_families]
+    ribs = [order_ribs(f, plots, params) for f in big]
+    ribs = [r for r in ribs if len(r.order) >= 3]
+    stages.append(Stage("families", time.perf_counter() - t,
+                        f"{len(fams)} families; the {len(ribs)} of most support with >= 3 ordered ribs tried "
+                        f"(ribs: {', '.join(str(len(r.order)) for r in ribs) or 'none'})",
+                        {"families": len(fams), "tried": len(ribs)}))
+    t = step("motion")
+    areas = face_areas(mesh.vertices, mesh.faces)
+    out: list[SweepPatch] = []
+    for r in ribs:
+        parts = rib_parts(r, plots)
+        g = general_patch(mesh, parts, params, areas)
+        out.append(SweepPatch(len(out), "general", g.profile, False, g.motion, g.faces, g.fit_error, g.coverage))
+    numbers: dict[str, float | int] = {"candidates": len(out)}
+    summary = f"{len(out)} general sweep(s) fitted" + (
+        ": fit errors " + ", ".join(f"{p.fit_error:.2e}" for p in out) if out else "")
+    if true_planes is not None and len(np.asarray(true_planes)):
+        found = [motion_planes(p.profile, p.motion) for p in out]
+        n = np.vstack([f[0] for f in found]) if found else np.zeros((0, 3))
+        d = np.concatenate([f[1] for f in found]) if found else np.zeros(0)
+        numbers["recall"] = plane_recall(true_planes, n, d)
+    stages.append(Stage("motion", time.perf_counter() - t, summary, numbers))
+    return out, stages

@@ -1,0 +1,438 @@
+"""Sweep patches: a profile, its motion, the mesh faces it covers, its fit error (paper sec. 2.3.4).
+
+A patch is a planar profile (a polyline at motion parameter ``t0``) and a :class:`Motion` taking it
+to every later position. Kinematic surfaces (revolution, extrusion, helical) give their patches
+directly from :func:`~auszug.sweeps.kinematic_axis`:
+
+- the **parameter** of a point: its angle about the axis (rotation; screw, unwound by the pitch)
+  or its distance along the direction (translation); the patch runs over the parameters of the
+  mesh's vertices (for a rotation, the full turn minus the largest empty angular gap);
+- the **profile**: the cut by the plane containing the axis (orthogonal to the direction) at the
+  middle parameter, its pieces at least ``l_min`` long each a patch, mapped back to ``t0``;
+  improved (sec. 2.3.3) by ``profile_cuts`` further cuts at parameters spread over the range, also
+  mapped back: each profile point moves to the mean of its closest points on them;
+- the **motion**: the exact kinematic motion at ``motion_samples`` (>= 8) parameters.
+
+The fit check (:func:`fit_patch`) meshes the swept surface (rings of the profile at parameters
+dense enough that chords stay within ``eps_prox / 10``), takes closest points both ways with
+libigl (``point_mesh_squared_distance``): the faces covered are the mesh faces whose three
+vertices lie within ``eps_prox`` of the swept surface, the fit error the largest distance of the
+swept surface's points to the mesh, and coverage the covered faces' share of the mesh's area.
+
+All in normalised coordinates (bounding-box diameter 1); :func:`auszug.sweeps.detect` converts
+the accepted patches to the input's coordinates.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from auszug.errors import GeometryError
+from auszug.sweeps.cut import cut
+from auszug.sweeps.kinematic import KinematicAxis
+from auszug.sweeps.mesh import SweepMesh
+from auszug.sweeps.motion import Motion, screw_motion
+from auszug.sweeps.params import DEFAULT, SweepParams
+
+if TYPE_CHECKING:
+    from auszug.meshing.sweepmodel import Sweep
+
+__all__ = ["SweepPatch", "Fit", "kinematic_patches", "fit_patch", "face_areas", "sweep_surface",
+           "closest_distance", "polyline_hausdorff"]
+
+Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+Kind = Literal["rotation", "translation", "screw", "general"]
+
+
+@dataclass(frozen=True)
+class SweepPatch:
+    """A profile swept by a rigid motion, and what of the mesh it explains.
+
+    Attributes
+    ----------
+    id : int
+    kind : {"rotation", "translation", "screw", "general"}
+    profile : (n, 3) float array
+        The profile polyline at the motion's first parameter (the first rib).
+    closed : bool
+        Whether the profile is a closed loop.
+    motion : Motion
+        Rigid maps taking the profile to its position at ``t``; identity at ``t[0]``. ``t`` is
+        the angle (radians) for rotations and screws, the distance for translations, the rib
+        number for general sweeps.
+    faces : (m,) int array
+        Indices of the mesh faces the patch covers (their vertices within ``eps_prox``).
+    fit_error : float
+        Largest distance of the swept profile to the mesh, over the bounding-box diameter.
+    coverage : float
+        The covered faces' share of the mesh's area, 0..1.
+    """
+
+    id: int
+    kind: Kind
+    profile: Array
+    closed: bool
+    motion: Motion
+    faces: IntArray
+    fit_error: float
+    coverage: float
+
+    def swept(self, t: ArrayLike) -> Array:
+        """The profile at parameters ``t (q,)``: shape ``(q, n, 3)``."""
+        return self.motion.apply(self.profile, t)
+
+    def sweep(self) -> Sweep:
+        """The patch as a value of meshing's sweep model (:class:`auszug.meshing.sweepmodel.Sweep`).
+
+        The profile plane gets the frame (W, D, N) with origin the profile's centroid, W along its
+        principal direction, N its normal; frame ``k`` is the motion's ``R_k`` applied to it.
+        Re-meshing it (``.mesh()``) gives the swept surface with a ring per motion knot.
+        """
+        from auszug.meshing.profile import Profile
+        from auszug.meshing.sweepmodel import Path, RigidFrames, Sweep
+
+        o = self.profile.mean(axis=0)
+        _, _, vt = np.linalg.svd(self.profile - o)
+        e1, e3 = vt[0], vt[2]
+        e2 = np.cross(e3, e1)
+        basis = np.stack([e1, e2, e3], axis=1)
+        xy = (self.profile - o) @ basis[:, :2]
+        prof = Profile(xy, closed=self.closed, name=f"patch {self.id}")
+        if self.closed and not np.allclose(prof.points, xy):
+            # Profile made a closed loop counter-clockwise: flip the frame's y instead of the points
+            e2, e3 = -e2, -e3
+            basis = np.stack([e1, e2, e3], axis=1)
+            prof = Profile((self.profile - o) @ basis[:, :2], closed=True, name=f"patch {self.id}")
+        rot = self.motion.rotation @ basis
+        origins = np.einsum("kij,j->ki", self.motion.rotation, o) + self.motion.translation
+        moved = np.linalg.norm(np.diff(origins, axis=0), axis=1)
+        if np.all(moved > 1e-12):
+            path = Path.polyline(origins)
+        else:   # the centroid stays put (a pure turn about it): tangents from the frames' normal
+            path = Path(origins + 1e-12 * np.arange(len(origins))[:, None] * rot[:, :, 2], rot[:, :, 2],
+                        s=self.motion.t)
+        return Sweep(prof, path, RigidFrames(self.motion.t, rot, origins))
+
+
+@dataclass(frozen=True)
+class Fit:
+    """The fit check of one swept surface against the mesh (normalised coordinates).
+
+    Attributes
+    ----------
+    vertex_distance : (n_vertices,) float array
+        Distance of every mesh vertex to the swept surface.
+    faces : (m,) int array
+        Faces whose three vertices are within ``eps_prox``.
+    fit_error : float
+        Largest distance of the swept surface's sample points to the mesh.
+    coverage : float
+        Area share of ``faces``.
+    """
+
+    vertex_distance: Array
+    faces: IntArray
+    fit_error: float
+    coverage: float
+
+
+def face_areas(vertices: ArrayLike, faces: ArrayLike) -> Array:
+    """Areas ``(m,)`` of triangles.
+
+    Examples
+    --------
+    >>> face_areas([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]]).tolist()
+    [0.5]
+    """
+    v = np.asarray(vertices, float)
+    f = np.asarray(faces, np.int64)
+    return 0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1)
+
+
+def closest_distance(points: ArrayLike, vertices: ArrayLike, elements: ArrayLike) -> tuple[Array, Array]:
+    """Distances ``(n,)`` and closest points ``(n, 3)`` of points to triangles or segments (libigl).
+
+    ``elements`` is ``(m, 3)`` triangles or ``(m, 2)`` segments into ``vertices (k, 3)``.
+
+    Examples
+    --------
+    >>> d, c = closest_distance([[0.2, 0.2, 1.0]], [[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+    >>> d.tolist(), np.round(c, 12).tolist()
+    ([1.0], [[0.2, 0.2, 0.0]])
+    """
+    import igl
+
+    p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
+    if len(p) == 0:
+        return np.zeros(0), np.zeros((0, 3))
+    sq, _, c = igl.point_mesh_squared_distance(p, np.ascontiguousarray(np.asarray(vertices, float)),
+                                               np.ascontiguousarray(np.asarray(elements, np.int64)))
+    return np.sqrt(np.maximum(sq, 0.0)), np.asarray(c)
+
+
+def polyline_hausdorff(a: ArrayLike, b: ArrayLike, closed_a: bool = False, closed_b: bool = False) -> float:
+    """Two-sided Hausdorff distance of two polylines ``(n, 3)``, ``(m, 3)`` (vertices to segments).
+
+    Exact up to the vertices: the largest distance from a polyline to another is attained at one
+    of its vertices or where the closest segment changes; the vertices are refined 8 times to
+    catch the latter.
+
+    Examples
+    --------
+    >>> polyline_hausdorff([[0, 0, 0], [1, 0, 0]], [[0, 0.1, 0], [1, 0.1, 0], [1.5, 0.1, 0]])
+    0.5099019513592785
+    """
+    pa = np.asarray(a, float)
+    pb = np.asarray(b, float)
+
+    def dense(p: Array, closed: bool) -> tuple[Array, IntArray]:
+        q = np.vstack([p, p[:1]]) if closed else p
+        f = np.linspace(0.0, 1.0, 8, endpoint=False)
+        pts = (q[:-1, None, :] + f[None, :, None] * np.diff(q, axis=0)[:, None, :]).reshape(-1, 3)
+        pts = np.vstack([pts, q[-1:]])
+        n = len(q)
+        seg = np.stack([np.arange(n - 1), np.arange(1, n)], axis=1)
+        return pts, seg
+
+    da, sa = dense(pa, closed_a)
+    db, sb = dense(pb, closed_b)
+    qa = np.vstack([pa, pa[:1]]) if closed_a else pa
+    qb = np.vstack([pb, pb[:1]]) if closed_b else pb
+    d1, _ = closest_distance(da, qb, sb)
+    d2, _ = closest_distance(db, qa, sa)
+    return float(max(d1.max(), d2.max()))
+
+
+# -- the parameter of a point under a kinematic motion ------------------------------------------
+
+
+def _axis_frame(direction: Array) -> tuple[Array, Array]:
+    """Two unit vectors completing ``direction`` to a right-handed frame."""
+    d = direction / np.linalg.norm(direction)
+    a = np.array([1.0, 0, 0]) if abs(d[0]) < 0.9 else np.array([0, 1.0, 0])
+    e1 = np.cross(d, a)
+    e1 /= np.linalg.norm(e1)
+    return e1, np.cross(d, e1)
+
+
+@dataclass(frozen=True)
+class _Kinematic:
+    """A kinematic motion with the angular origin of its parameter."""
+
+    kind: str
+    direction: Array
+    point: Array | None
+    pitch: float
+    e1: Array
+    e2: Array
+    phi0: float      # angle of the range's start (rotation, screw)
+    shift: float     # parameter offset: the range starts at 0
+
+    def raw_angle(self, x: Array) -> Array:
+        assert self.point is not None
+        y = x - self.point
+        return np.arctan2(y @ self.e2, y @ self.e1)
+
+    def param(self, x: Array) -> Array:
+        """Parameter of points ``(n, 3)`` (0 at the range's start)."""
+        if self.kind == "translation":
+            return x @ self.direction - self.shift
+        assert self.point is not None
+        phi = np.mod(self.raw_angle(x) - self.phi0, 2 * np.pi)
+        if self.kind == "rotation":
+            return phi
+        # screw: phi + 2 pi k with k chosen so that the height matches the pitch's advance
+        h = (x - self.point) @ self.direction
+        k = np.round((h / self.pitch - self.shift - phi) / (2 * np.pi))
+        return phi + 2 * np.pi * k
+
+    def motion(self, t: Array) -> tuple[Array, Array]:
+        """Maps at parameters ``t`` taking the profile at 0 to ``t``."""
+        return screw_motion(self.direction, self.point, self.pitch if self.kind == "screw" else 0.0, t)
+
+    def plane(self, t: float) -> tuple[Array, float]:
+        """The profile plane at parameter ``t``: normal and offset."""
+        if self.kind == "translation":
+            return self.direction, float(t + self.shift)
+        assert self.point is not None
+        ang = self.phi0 + t
+        radial = np.cos(ang) * self.e1 + np.sin(ang) * self.e2
+        n = np.cross(self.direction, radial)
+        return n, float(n @ self.point)
+
+
+def _kinematic(mesh: SweepMesh, axis: KinematicAxis, used: Array) -> tuple[_Kinematic, float]:
+    """The kinematic motion of ``axis`` with the parameter range of the ``used`` vertices."""
+    d = axis.direction / np.linalg.norm(axis.direction)
+    e1, e2 = _axis_frame(d)
+    x = mesh.vertices[used]
+    if axis.kind == "translation":
+        s = x @ d
+        return _Kinematic("translation", d, None, 0.0, e1, e2, 0.0, float(s.min())), float(np.ptp(s))
+    assert axis.point is not None
+    k0 = _Kinematic(axis.kind, d, axis.point, axis.pitch, e1, e2, 0.0, 0.0)
+    phi = np.sort(np.mod(k0.raw_angle(x), 2 * np.pi))
+    gaps = np.diff(np.concatenate([phi, phi[:1] + 2 * np.pi]))
+    g = int(np.argmax(gaps))
+    start = float(phi[(g + 1) % len(phi)])
+    if axis.kind == "rotation":
+        typical = float(np.median(gaps[gaps > 0])) if np.any(gaps > 0) else 0.0
+        # no real gap (the largest is within a few rings' spacing): a full turn
+        full = gaps[g] <= max(20 * typical, np.radians(5.0))
+        span = 2 * np.pi if full else float(2 * np.pi - gaps[g])
+        return _Kinematic("rotation", d, axis.point, 0.0, e1, e2, start, 0.0), span
+    # screw: unwind by the pitch; the parameter's origin at the lowest unwound vertex
+    k1 = replace(k0, phi0=start)
+    h = (x - axis.point) @ d
+    shift = float(np.median(h / axis.pitch - np.mod(k1.raw_angle(x) - start, 2 * np.pi)))
+    k2 = replace(k1, shift=shift)
+    t = k2.param(x)
+    lo = float(t.min())
+    return replace(k2, phi0=start + lo, shift=shift + lo), float(np.ptp(t))
+
+
+def _pieces(points: Array, keep: NDArray[np.bool_], closed: bool) -> list[tuple[Array, bool]]:
+    """Maximal runs of consecutive kept points of a polyline (wrapping for closed ones)."""
+    if keep.all():
+        return [(points, closed)]
+    idx = np.flatnonzero(keep)
+    if len(idx) == 0:
+        return []
+    breaks = np.flatnonzero(np.diff(idx) > 1)
+    runs = np.split(idx, breaks + 1)
+    if closed and keep[0] and keep[-1] and len(runs) > 1:
+        runs[0] = np.concatenate([runs[-1], runs[0]])
+        runs.pop()
+    return [(points[r], False) for r in runs if len(r) >= 2]
+
+
+def _length(p: Array, closed: bool) -> float:
+    q = np.vstack([p, p[:1]]) if closed else p
+    return float(np.linalg.norm(np.diff(q, axis=0), axis=1).sum())
+
+
+def _improve(profile: Array, closed: bool, others: list[Array]) -> Array:
+    """Each profile point moved to the mean of itself and its closest points on the other curves."""
+    if not others:
+        return profile
+    acc = profile.copy()
+    count = np.ones(len(profile))
+    reach = 0.02
+    for q in others:
+        if len(q) < 2:
+            continue
+        seg = np.stack([np.arange(len(q) - 1), np.arange(1, len(q))], axis=1)
+        d, c = closest_distance(profile, q, seg)
+        near = d <= reach
+        acc[near] += c[near]
+        count[near] += 1
+    return acc / count[:, None]
+
+
+def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
+                  max_rings: int = 4096) -> tuple[Array, IntArray]:
+    """The swept surface as a triangle mesh ``(V, F)``.
+
+    Rings of the profile at parameters refined until every profile point's path deviates from its
+    chords by at most ``tol``.
+    """
+    n = len(profile)
+    t = np.array(motion.t, float)
+    while len(t) < max_rings:
+        mid = (t[:-1] + t[1:]) / 2
+        a = motion.apply(profile, t)
+        m = motion.apply(profile, mid)
+        dev = np.linalg.norm(m - (a[:-1] + a[1:]) / 2, axis=2).max(axis=1)
+        bad = dev > tol
+        if not bad.any():
+            break
+        t = np.sort(np.concatenate([t, mid[bad]]))
+    rings = motion.apply(profile, t)
+    k = len(t)
+    j = np.arange(n if closed else n - 1)
+    j1 = (j + 1) % n
+    i = np.arange(k - 1)[:, None]
+    a_, b_, c_, d_ = i * n + j, i * n + j1, (i + 1) * n + j1, (i + 1) * n + j
+    f = np.stack([np.stack([a_, b_, c_], -1), np.stack([a_, c_, d_], -1)], axis=2).reshape(-1, 3)
+    return rings.reshape(-1, 3), f.astype(np.int64)
+
+
+def fit_patch(mesh: SweepMesh, profile: Array, closed: bool, motion: Motion,
+              params: SweepParams = DEFAULT, areas: Array | None = None) -> Fit:
+    """The fit check (sec. 2.3.4) of a profile and motion against the mesh (normalised coordinates)."""
+    eps = params.eps_prox
+    sv, sf = sweep_surface(profile, closed, motion, eps / 10)
+    dv, _ = closest_distance(mesh.vertices, sv, sf)
+    near = dv <= eps
+    faces = np.flatnonzero(near[mesh.faces].all(axis=1)).astype(np.int64)
+    ds, _ = closest_distance(sv, mesh.vertices, mesh.faces)
+    a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
+    total = float(a.sum())
+    cov = float(a[faces].sum() / total) if total > 0 else 0.0
+    return Fit(dv, faces, float(ds.max()) if len(ds) else float("inf"), cov)
+
+
+def kinematic_patches(mesh: SweepMesh, axis: KinematicAxis, params: SweepParams = DEFAULT,
+                      first_id: int = 0) -> list[SweepPatch]:
+    """The patches of a kinematic surface (normalised coordinates), fitted but not yet filtered.
+
+    One patch per piece of the middle profile cut at least ``l_min`` long; each piece's profile is
+    improved by ``profile_cuts`` further cuts and fitted by :func:`fit_patch`.
+
+    Examples
+    --------
+    >>> from auszug.sweeps import cut, initial_planes, kinematic_axis, movability, normalise
+    >>> from auszug.sweeps.fixtures import extruded
+    >>> fx = extruded(n_profile=40, n_path=40)
+    >>> m = normalise(fx.vertices, fx.faces)
+    >>> c = cut(m, *initial_planes(m.vertices, 3, 0.1))
+    >>> p = kinematic_patches(m, kinematic_axis(c, movability(c)))
+    >>> len(p), p[0].kind, p[0].coverage > 0.99, p[0].fit_error < 1e-6
+    (1, 'translation', True, True)
+    """
+    used = np.zeros(mesh.n_vertices, bool)
+    used[mesh.faces.ravel()] = True
+    kin, span = _kinematic(mesh, axis, used)
+    if not span > 0:
+        raise GeometryError("the kinematic motion has an empty parameter range over the mesh")
+    t_mid = span / 2
+    n, off = kin.plane(t_mid)
+    c = cut(mesh, n[None], np.array([off]))
+    m = max(8, params.motion_samples)
+    t_knots = np.linspace(0.0, span, m)
+    rot, tr = kin.motion(t_knots)
+    motion = Motion(t_knots, rot, tr)
+    areas = face_areas(mesh.vertices, mesh.faces)
+    # further cuts for the profile improvement, inside the range
+    t_more = np.linspace(0.0, span, params.profile_cuts + 2)[1:-1]
+    t_more = t_more[np.abs(t_more - t_mid) > 1e-9 * max(span, 1.0)]
+    more = []
+    for tk in t_more:
+        nk, ok = kin.plane(float(tk))
+        ck = cut(mesh, nk[None], np.array([ok]))
+        for j in range(ck.n_curves):
+            q = ck.curve(j)
+            keep = np.abs(kin.param(q) - tk) < np.pi / 2 if kin.kind != "translation" else np.ones(len(q), bool)
+            for piece, _ in _pieces(q, keep, bool(ck.curve_closed[j])):
+                tq = kin.param(piece) if kin.kind != "translation" else np.full(len(piece), tk)
+                more.append(motion.inverse_apply(piece, np.clip(tq, 0.0, span)))
+    out: list[SweepPatch] = []
+    for j in range(c.n_curves):
+        q = c.curve(j)
+        tq = kin.param(q)
+        keep = np.abs(tq - t_mid) < np.pi / 2 if kin.kind != "translation" else np.ones(len(q), bool)
+        for piece, closed in _pieces(q, keep, bool(c.curve_closed[j])):
+            if _length(piece, closed) < params.l_min:
+                continue
+            tp = np.full(len(piece), t_mid) if kin.kind == "translation" else np.clip(kin.param(piece), 0.0, span)
+            prof = _improve(motion.inverse_apply(piece, tp), closed, more)
+            fit = fit_patch(mesh, prof, closed, motion, params, areas)
+            kind: Kind = kin.kind  # type: ignore[assignment]
+            out.append(SweepPatch(first_id + len(out), kind, prof, closed, motion, fit.faces, fit.fit_error,
+                                  fit.coverage))
+    return out

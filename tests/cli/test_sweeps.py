@@ -1,0 +1,132 @@
+"""``auszug sweeps``: a mesh file in, a .sweeps.json (and pictures) out; bad input exits 2, no file."""
+
+from __future__ import annotations
+
+import struct
+from functools import cache
+
+import numpy as np
+import pytest
+
+from auszug.formats import load, save
+from auszug.meshing.mesh import Mesh
+from auszug.sweeps.fixtures import extruded, revolved
+from tests.cli.conftest import files_in, png_size
+
+
+@cache
+def _mesh(name):
+    fx = {"revolved": revolved, "extruded": extruded}[name](sigma=2e-4)
+    return Mesh(50.0 * fx.vertices + [3.0, -1.0, 20.0], fx.faces)
+
+
+@pytest.mark.parametrize("name, suffix", [("revolved", ".stl"), ("extruded", ".ply"), ("revolved", ".obj"),
+                                          ("extruded", ".glb")])
+def test_kinematic_meshes_give_one_patch_in_every_mesh_format(cli, tmp_path, name, suffix):
+    src = tmp_path / f"{name}{suffix}"
+    save(_mesh(name), src, kind="mesh")
+    out = tmp_path / "r.sweeps.json"
+    r = cli("sweeps", src, "-o", out)
+    assert r.code == 0, r.err
+    assert r.out.startswith(f"wrote {out}: 1 patch(es), coverage ")
+    for stage in ("normalise", "cut", "kinematic", "fit"):
+        assert f": {stage}\n" in r.err
+    rep = load(out, kind="sweeps")
+    assert rep.source == src.name and rep.coverage >= 0.95
+    (p,) = rep.patches
+    assert p.kind == ("rotation" if name == "revolved" else "translation")
+    assert p.fit_error <= 2 * 0.005
+    # the profile and its last position lie on the input mesh (its coordinates, not normalised ones)
+    from auszug.sweeps.patches import closest_distance
+
+    m = load(src, kind="mesh")
+    for pts in (p.profile, p.motion.apply(p.profile, [p.motion.t[-1]])[0]):
+        d, _ = closest_distance(pts, m.vertices, m.faces)
+        assert d.max() <= 2e-3 * rep.bbox_diameter
+
+
+def test_explain_glb_png_and_default_output_name(cli, tmp_path, monkeypatch):
+    src = tmp_path / "base.stl"
+    save(_mesh("revolved"), src, kind="mesh")
+    monkeypatch.chdir(tmp_path)
+    r = cli("sweeps", src, "--glb", "base.glb", "--png", "base.png", "--explain", "--eps-prox", "0.002",
+            "--planes", "500", "--quiet")
+    assert r.code == 0, r.err
+    assert r.err == ""
+    assert files_in(tmp_path) == ["base.glb", "base.png", "base.stl", "base.sweeps.json"]
+    lines = r.out.splitlines()
+    assert [ln.split()[0] for ln in lines[:4]] == ["normalise", "cut", "kinematic", "fit"]
+    assert "patch 0: rotation" in r.out
+    planes = int(lines[1].split()[3])
+    assert 450 <= planes <= 550
+    rep = load(tmp_path / "base.sweeps.json", kind="sweeps")
+    assert rep.params.eps_prox == 0.002 and rep.params.initial_plane_count == 500
+    w, h = png_size((tmp_path / "base.png").read_bytes())
+    assert w > 300 and h > 300
+    scene = load(tmp_path / "base.glb", kind="mesh")
+    assert scene.n_faces > _mesh("revolved").n_faces      # the mesh plus profile and path tubes
+
+
+def _stl(tris: np.ndarray) -> bytes:
+    rec = b"".join(struct.pack("<12fH", 0, 0, 0, *t.ravel(), 0) for t in tris)
+    return b"\0" * 80 + struct.pack("<I", len(tris)) + rec
+
+
+@pytest.mark.parametrize("name, data, message", [
+    ("empty.stl", b"\0" * 80 + struct.pack("<I", 0), "non-empty"),
+    ("nan.stl", _stl(np.array([[[0, 0, 0], [1, 0, 0], [0, np.nan, 0]]], float)), "non-finite"),
+    ("fan.stl", _stl(np.array([[[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 0], [1, 0, 0], [0, -1, 0]],
+                               [[0, 0, 0], [1, 0, 0], [0, 0, 1]]], float)), "shared by 3 faces"),
+    ("flat.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 1 2\nf 1 2 3\n", "repeats a vertex"),
+    ("text.ply", b"hello", "ply"),
+    ("mesh.xyz", b"1 2 3", "xyz"),
+])
+def test_bad_meshes_exit_2_with_the_file_named_and_no_output(cli, tmp_path, name, data, message):
+    src = tmp_path / name
+    src.write_bytes(data)
+    out = tmp_path / "r.sweeps.json"
+    r = cli("sweeps", src, "-o", out, "--png", tmp_path / "r.png")
+    assert r.code == 2, r.err
+    last = r.err.splitlines()[-1]
+    assert last.startswith("auszug: ") and name in last and message in last
+    assert "Traceback" not in r.err
+    assert files_in(tmp_path) == [name]
+
+
+def test_too_many_triangles_is_refused_before_any_work(cli, tmp_path, monkeypatch):
+    import importlib
+
+    import auszug.limits
+
+    det = importlib.import_module("auszug.sweeps.detect")
+    monkeypatch.setattr(det, "LIMITS", auszug.limits.Limits(sweep_faces=1000))
+    src = tmp_path / "big.stl"
+    save(_mesh("extruded"), src, kind="mesh")
+    r = cli("sweeps", src, "-o", tmp_path / "r.sweeps.json")
+    assert r.code == 2 and "more than the limit of 1000" in r.err and "big.stl" in r.err
+    assert files_in(tmp_path) == ["big.stl"]
+
+
+def test_two_million_triangles_refused_without_running_out_of_memory():
+    """The documented limit holds at the issue's size: 2 M triangles are refused at once."""
+    from auszug.errors import GeometryError
+    from auszug.sweeps import detect
+
+    faces = np.zeros((2_000_000, 3), np.int64)
+    with pytest.raises(GeometryError, match="2000000 triangles: more than the limit of 1000000"):
+        detect((np.zeros((3, 3)), faces))
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--eps-prox", "0.5"], "(0, 0.1]"),
+    (["--eps-prox", "nan"], "finite"),
+    (["--planes", "3"], ">= 10"),
+    (["-o", "x.json"], "x.json"),
+    (["--png", "x.gif"], "x.gif"),
+])
+def test_bad_options_exit_2(cli, tmp_path, args, message):
+    src = tmp_path / "a.stl"
+    save(_mesh("extruded"), src, kind="mesh")
+    r = cli("sweeps", src, *args)
+    assert r.code == 2 and message in r.err
+    assert files_in(tmp_path) == ["a.stl"]

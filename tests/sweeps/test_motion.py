@@ -1,0 +1,68 @@
+"""Rigid motions sampled at parameters (auszug.sweeps.motion): SE(3) log/exp, screw interpolation."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from auszug.errors import GeometryError
+from auszug.sweeps.motion import Motion, screw_motion, se3_exp, se3_log
+
+
+def test_log_exp_round_trip_on_random_maps():
+    rng = np.random.default_rng(3)
+    w = rng.normal(size=(50, 3))
+    w *= (rng.uniform(0.0, 3.0, 50) / np.linalg.norm(w, axis=1))[:, None]
+    v = rng.normal(size=(50, 3))
+    r, t = se3_exp(w, v)
+    assert np.allclose(np.linalg.det(r), 1.0, atol=1e-12)
+    w2, v2 = se3_log(r, t)
+    assert np.allclose(w2, w, atol=1e-10) and np.allclose(v2, v, atol=1e-9)
+
+
+@pytest.mark.parametrize("pitch", [0.0, 0.07])
+def test_screw_is_exact_between_sparse_knots(pitch):
+    """A rotation (or screw) sampled at 3 knots is reproduced exactly at every parameter in between."""
+    d, p = np.array([0.2, -0.3, 1.0]), np.array([0.4, 0.1, -0.2])
+    knots = np.array([0.0, 1.3, 2.9])
+    m = Motion(knots, *screw_motion(d, p, pitch, knots))
+    t = np.linspace(0.0, 2.9, 37)
+    r, tr = m.at(t)
+    r0, t0 = screw_motion(d, p, pitch, t)
+    assert np.abs(r - r0).max() < 1e-12 and np.abs(tr - t0).max() < 1e-12
+
+
+def test_maps_are_rigid_and_hit_the_knots():
+    rng = np.random.default_rng(5)
+    r = Rotation.random(6, random_state=7).as_matrix()
+    tr = rng.normal(size=(6, 3))
+    m = Motion(np.arange(6.0), r, tr)
+    ri, ti = m.at(np.arange(6.0))
+    assert np.abs(ri - r).max() < 1e-12 and np.abs(ti - tr).max() < 1e-12
+    rq, _ = m.at(rng.uniform(0, 5, 40))
+    assert np.abs(np.einsum("kji,kjl->kil", rq, rq) - np.eye(3)).max() < 1e-12
+    assert np.allclose(np.linalg.det(rq), 1.0, atol=1e-12)
+
+
+def test_inverse_apply_undoes_apply_and_change_of_coordinates():
+    rng = np.random.default_rng(1)
+    knots = np.linspace(0, 2, 5)
+    m = Motion(knots, *screw_motion([0, 1.0, 0], [1.0, 0, 0], 0.05, knots))
+    x = rng.normal(size=(8, 3))
+    t = rng.uniform(0, 2, 8)
+    moved = np.stack([m.apply(x[i : i + 1], [t[i]])[0, 0] for i in range(8)])
+    assert np.allclose(m.inverse_apply(moved, t), x, atol=1e-12)
+    # the same motion seen in coordinates y = 3 x + c moves 3 x + c to 3 (R x + T) + c
+    c = np.array([1.0, -2.0, 0.5])
+    big = m.transformed(3.0, c)
+    assert np.allclose(big.apply(3 * x + c, [0.7])[0], 3 * m.apply(x, [0.7])[0] + c, atol=1e-12)
+
+
+def test_bad_motions_are_refused():
+    with pytest.raises(GeometryError, match="increase"):
+        Motion(np.array([0.0, 0.0]), np.stack([np.eye(3)] * 2), np.zeros((2, 3)))
+    with pytest.raises(GeometryError, match="not a rotation"):
+        Motion(np.array([0.0, 1.0]), np.stack([np.eye(3), np.diag([1.0, 1, -1])]), np.zeros((2, 3)))
+    with pytest.raises(GeometryError, match="k >= 2"):
+        Motion(np.array([0.0]), np.eye(3)[None], np.zeros((1, 3)))

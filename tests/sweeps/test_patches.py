@@ -1,0 +1,121 @@
+"""Kinematic sweep patches (auszug.sweeps.patches): profile, motion, faces, fit error, coverage."""
+
+from __future__ import annotations
+
+from functools import cache
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from auszug.sweeps import cut, initial_planes, kinematic_axis, movability, normalise
+from auszug.sweeps.fixtures import extruded, revolved
+from auszug.sweeps.params import DEFAULT
+from auszug.sweeps.patches import kinematic_patches, polyline_hausdorff
+
+N_PROFILE = 60
+
+
+@cache
+def _patches(name, sigma, eps=0.005):
+    fx = {"revolved": revolved, "extruded": extruded}[name](sigma=sigma)
+    m = normalise(fx.vertices, fx.faces)
+    c = cut(m, *initial_planes(m.vertices, 4, 0.055))
+    k = kinematic_axis(c, movability(c))
+    return fx, m, k, kinematic_patches(m, k, DEFAULT.with_(eps_prox=eps))
+
+
+def _end_rings(name):
+    """The clean fixture's first and last ring of vertices: the true profile at either end."""
+    fx = {"revolved": revolved, "extruded": extruded}[name]()
+    return fx.vertices[:N_PROFILE], fx.vertices[-N_PROFILE:]
+
+
+def _profile_error(name, patch):
+    return min(polyline_hausdorff(patch.profile, ring) for ring in _end_rings(name))
+
+
+@pytest.mark.parametrize("name", ["revolved", "extruded"])
+def test_clean_kinematic_patch_is_the_whole_mesh_and_its_profile(name):
+    fx, m, k, patches = _patches(name, 0.0)
+    assert len(patches) == 1
+    p = patches[0]
+    assert p.kind == ("rotation" if name == "revolved" else "translation")
+    assert p.coverage >= 0.999 and len(p.faces) == len(fx.faces)
+    assert _profile_error(name, p) <= 1e-3
+    assert p.fit_error <= 2 * 0.005 and p.fit_error <= 2e-4
+    assert len(p.motion) >= 8
+    assert np.allclose(p.motion.rotation[0], np.eye(3)) and np.allclose(p.motion.translation[0], 0)
+
+
+def test_revolved_motion_is_the_true_rotation_over_300_degrees():
+    fx, m, k, (p,) = _patches("revolved", 0.0)
+    assert p.motion.t[-1] == pytest.approx(np.radians(300.0), abs=1e-3)
+    sign = np.sign(k.direction @ fx.axis_direction)
+    t = np.linspace(*p.motion.domain, 31)
+    r, tr = p.motion.at(t)
+    truth = Rotation.from_rotvec(sign * t[:, None] * fx.axis_direction).as_matrix()
+    rot_err = np.degrees(Rotation.from_matrix(np.einsum("kij,kjl->kil", r, np.swapaxes(truth, 1, 2))).magnitude())
+    assert np.median(rot_err) <= 0.5 and rot_err.max() <= 0.05
+    # the axis point stays put
+    fixed = np.einsum("kij,j->ki", r, fx.axis_point) + tr
+    assert np.abs(fixed - fx.axis_point).max() <= 1e-3
+
+
+def test_extruded_motion_is_the_true_translation():
+    fx, m, k, (p,) = _patches("extruded", 0.0)
+    t = np.linspace(*p.motion.domain, 11)
+    r, tr = p.motion.at(t)
+    assert np.abs(r - np.eye(3)).max() <= 1e-12
+    sign = np.sign(k.direction @ fx.axis_direction)
+    assert np.abs(tr - sign * t[:, None] * fx.axis_direction).max() <= 1e-3
+    assert p.motion.t[-1] == pytest.approx(np.ptp(fx.vertices[:, 0]), abs=1e-9)
+
+
+@pytest.mark.parametrize("name", ["revolved", "extruded"])
+@pytest.mark.parametrize("sigma", [5e-4, 1e-3])
+def test_noisy_kinematic_patch(name, sigma):
+    fx, m, k, patches = _patches(name, sigma)
+    assert len(patches) == 1
+    p = patches[0]
+    assert p.coverage >= 0.85
+    assert p.fit_error <= 2 * 0.005
+    assert _profile_error(name, p) <= 4 * sigma
+
+
+def test_profile_improvement_reduces_noise():
+    """Sec. 2.3.3: averaging intermediate cuts mapped back by the motion beats the single cut."""
+    fx = revolved(sigma=1e-3)
+    m = normalise(fx.vertices, fx.faces)
+    c = cut(m, *initial_planes(m.vertices, 4, 0.055))
+    k = kinematic_axis(c, movability(c))
+    one = kinematic_patches(m, k, DEFAULT.with_(profile_cuts=0))[0]
+    many = kinematic_patches(m, k, DEFAULT.with_(profile_cuts=16))[0]
+    assert _profile_error("revolved", many) < 0.75 * _profile_error("revolved", one)
+
+
+def test_tight_eps_prox_covers_less_of_a_noisy_mesh():
+    *_, (loose,) = _patches("revolved", 1e-3, 0.005)
+    *_, (tight,) = _patches("revolved", 1e-3, 0.001)
+    assert tight.coverage < 0.5 < 0.99 < loose.coverage
+    assert set(tight.faces.tolist()) <= set(loose.faces.tolist())
+
+
+def test_sweep_value_remeshes_onto_the_mesh():
+    """A found patch is a value of meshing's sweep model; its mesh lies on the input."""
+    from auszug.sweeps.patches import closest_distance
+
+    fx, m, k, (p,) = _patches("revolved", 0.0)
+    sw = p.sweep()
+    mesh = sw.mesh()
+    d, _ = closest_distance(mesh.vertices, m.vertices, m.faces)
+    assert d.max() <= 2e-4
+    r, t = sw.frames_at(sw.rigid.s)
+    assert np.allclose(np.linalg.det(r), 1.0)
+
+
+def test_hausdorff_of_polylines_known_answer():
+    a = np.array([[0, 0, 0], [1, 0, 0.0]])
+    b = np.array([[0, 0.2, 0], [0.5, 0.3, 0], [1, 0.2, 0.0]])
+    assert polyline_hausdorff(a, b) == pytest.approx(0.3)
+    assert polyline_hausdorff(a, a) == 0.0

@@ -202,3 +202,84 @@ def test_shutdown_flushes_autosaves(workspace):
             _geometry(ws)
             assert not (workspace / ".auszug").exists()    # an hour's delay: nothing written yet
     assert load(workspace / ".auszug" / "autosave" / "tn-2.uc.json").curves[0].height == 2.5
+
+
+@pytest.mark.parametrize("origin", ["http://localhost:8766", "http://127.0.0.1:80", "http://127.0.0.1",
+                                    "https://127.0.0.1:8765x"])
+def test_origin_of_another_port_refused(client, origin):
+    """Another local server's page (same host, other port) is another origin."""
+    with pytest.raises(WebSocketDisconnect) as e:
+        with client.websocket_connect(WS, headers={"origin": origin}) as ws:
+            ws.receive_json()
+    assert e.value.code == 1008
+    assert client.get("/", headers={"origin": origin}).status_code == 403
+
+
+def test_default_ports_compare_equal(workspace):
+    with TestClient(create_app(workspace), base_url="http://127.0.0.1") as c:
+        with c.websocket_connect("ws://127.0.0.1/ws", headers={"origin": "http://127.0.0.1:80"}) as ws:
+            ws.send_json({"type": "list_files", "id": 1})
+            assert ws.receive_json()["id"] == 1
+        with pytest.raises(WebSocketDisconnect):
+            with c.websocket_connect("ws://127.0.0.1/ws", headers={"origin": "https://127.0.0.1"}) as ws:
+                ws.receive_json()
+
+
+@pytest.mark.parametrize("headers", [{}, {"origin": "http://evil.example"}])
+def test_every_http_response_forbids_framing(client, headers):
+    for path in ("/", "/no-such-file.js"):
+        r = client.get(path, headers=headers)
+        assert r.headers["content-security-policy"] == "frame-ancestors 'none'"
+        assert r.headers["x-frame-options"] == "DENY"
+
+
+@pytest.mark.parametrize("text", [
+    '{"type": "undo", "id": 7, "x": ' + "[" * 100_000 + "]" * 100_000 + "}",
+    "[" * (P.MAX_MESSAGE_BYTES // 2) + "]" * (P.MAX_MESSAGE_BYTES // 2),   # as deep as the size limit allows
+    '{"a":' * 40_000 + "1" + "}" * 40_000,
+])
+def test_deeply_nested_json_gets_error_and_connection_stays(client, text):
+    """Python's JSON parser recurses per level: a RecursionError used to drop the connection."""
+    assert len(text.encode()) <= P.MAX_MESSAGE_BYTES
+    with client.websocket_connect(WS) as ws:
+        ws.send_text(text)
+        assert _error(ws) == {"type": "error", "id": 0, "message": "JSON nested too deeply for a message"}
+        ws.send_json({"type": "open", "path": "tn-2.uc", "id": 3})
+        g, _ = _geometry(ws)
+        assert g["id"] == 3
+
+
+def test_listing_skips_link_loops_with_a_note(client, workspace):
+    """One link loop (and a link out of the workspace) must not hide the other drawings or the examples."""
+    import os
+
+    from auszug import examples
+
+    os.symlink("loop.uc", workspace / "loop.uc")          # a link to itself
+    (workspace / "sub").mkdir()
+    os.symlink("b.json", workspace / "sub" / "a.json")    # a two-link loop
+    os.symlink("a.json", workspace / "sub" / "b.json")
+    os.symlink("..", workspace / "sub" / "up")            # a folder loop: not followed
+    os.symlink(workspace.parent / "outside.uc", workspace / "out.uc")
+    (workspace.parent / "outside.uc").write_text((workspace / "tn-2.uc").read_text())
+    with client.websocket_connect(WS) as ws:
+        ws.send_json({"type": "list_files", "id": 2})
+        f = ws.receive_json()
+    assert f["type"] == "files" and f["id"] == 2
+    assert f["workspace"] == ["tn-11.uc", "tn-2.uc"]
+    assert f["examples"] == examples.names() and f["examples"]
+    assert f["notes"] == ["loop.uc: skipped, a symbolic link loop", "out.uc: skipped, it links outside the workspace",
+                          "sub/a.json: skipped, a symbolic link loop", "sub/b.json: skipped, a symbolic link loop"]
+
+
+def test_listing_of_a_vanished_workspace_still_lists_examples(client, workspace):
+    import shutil
+
+    from auszug import examples
+
+    shutil.rmtree(workspace)
+    with client.websocket_connect(WS) as ws:
+        ws.send_json({"type": "list_files", "id": 2})
+        f = ws.receive_json()
+    assert f["workspace"] == [] and f["examples"] == examples.names()
+    assert len(f["notes"]) == 1 and "cannot" in f["notes"][0], f["notes"]

@@ -356,6 +356,7 @@ export interface Loops {
 export interface Files {
   workspace: string[];
   examples: string[];
+  notes: string[];
   id: number;
   type: "files";
 }

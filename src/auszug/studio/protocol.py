@@ -642,6 +642,8 @@ class Files:
 
     workspace: list[str]
     examples: list[str]
+    #: One line per workspace entry left out because it could not be read (a link loop...).
+    notes: list[str] = field(default_factory=list)
     id: int = 0
     type: Literal["files"] = "files"
 
@@ -760,6 +762,8 @@ def decode(text: str | bytes) -> Any:
         obj = json.loads(text)
     except (ValueError, UnicodeDecodeError) as e:
         raise ProtocolError(f"not valid JSON ({e})") from None
+    except RecursionError:   # "[[[[...": Python's parser recurses once per level
+        raise ProtocolError("JSON nested too deeply for a message") from None
     if not isinstance(obj, dict):
         raise ProtocolError("a message must be a JSON object with a 'type'")
     kind = obj.get("type")

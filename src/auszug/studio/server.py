@@ -4,8 +4,10 @@ Security, for a server that edits files on the user's machine:
 
 - it is meant to bind 127.0.0.1 only (the CLI does);
 - every HTTP and WebSocket request whose ``Host`` or ``Origin`` names another
-  host is refused (403 / close 1008): this defeats DNS rebinding, where a
-  foreign page's domain resolves to 127.0.0.1;
+  host, or whose ``Origin`` names another port, is refused (403 / close 1008):
+  this defeats DNS rebinding, where a foreign page's domain resolves to
+  127.0.0.1, and pages of other local servers;
+- every HTTP response forbids framing (``frame-ancestors 'none'``);
 - drawings are opened and saved only inside the workspace folder;
 - client messages larger than :data:`~auszug.studio.protocol.MAX_MESSAGE_BYTES`
   are refused with an error reply;
@@ -31,7 +33,7 @@ from starlette.requests import Request
 from starlette.responses import PlainTextResponse, Response
 from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
-from starlette.types import ASGIApp, Receive, Scope, Send
+from starlette.types import ASGIApp, Message, Receive, Scope, Send
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from auszug.errors import AuszugError
@@ -40,7 +42,7 @@ from auszug.studio import protocol as P
 from auszug.studio.hub import AUTOSAVE_DELAY, Connection, Hub
 from auszug.studio.session import Document, Workspace, example_document, new_document, open_document, text_document
 
-__all__ = ["LOCAL_HOSTS", "BUILD_COMMAND", "static_dir", "create_app", "HostOriginGuard"]
+__all__ = ["LOCAL_HOSTS", "BUILD_COMMAND", "SECURITY_HEADERS", "static_dir", "create_app", "HostOriginGuard"]
 
 log = logging.getLogger(__name__)
 
@@ -87,9 +89,19 @@ class HostOriginGuard:
         if origin is not None:  # browsers always send it on WebSockets and cross-origin requests
             try:
                 parts = urlsplit(origin)
+                host_port = urlsplit("//" + host).port
+                origin_port = parts.port
             except ValueError:
                 return False
             if parts.scheme not in ("http", "https") or parts.hostname not in self.hosts:
+                return False
+            # the same scheme and port too: another local server (a dev server, another app on
+            # localhost:OTHER) is another origin and must not drive this one
+            scheme = _PAGE_SCHEME.get(scope.get("scheme", "http"), "http")
+            if parts.scheme != scheme:
+                return False
+            default = _DEFAULT_PORTS[scheme]
+            if (origin_port or default) != (host_port or default):
                 return False
         return True
 
@@ -99,9 +111,32 @@ class HostOriginGuard:
             if scope["type"] == "websocket":
                 await send({"type": "websocket.close", "code": 1008, "reason": "foreign host or origin"})
             else:
-                await PlainTextResponse("foreign host or origin", status_code=403)(scope, receive, send)
+                await PlainTextResponse("foreign host or origin", status_code=403,
+                                        headers=dict(SECURITY_HEADERS))(scope, receive, send)
             return
-        await self.app(scope, receive, send)
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+
+        async def send_with_headers(message: Message) -> None:
+            if message["type"] == "http.response.start":
+                message = dict(message)
+                message["headers"] = [*message.get("headers", []), *_SECURITY_RAW]
+            await send(message)
+
+        await self.app(scope, receive, send_with_headers)
+
+
+#: The page scheme of a request's scheme.
+_PAGE_SCHEME = {"http": "http", "ws": "http", "https": "https", "wss": "https"}
+#: Ports a Host or Origin without one means.
+_DEFAULT_PORTS = {"http": 80, "https": 443}
+#: Headers of every HTTP response: no other page may show the studio in a frame (clickjacking).
+SECURITY_HEADERS: tuple[tuple[str, str], ...] = (
+    ("content-security-policy", "frame-ancestors 'none'"),
+    ("x-frame-options", "DENY"),
+)
+_SECURITY_RAW = [(k.encode("latin-1"), v.encode("latin-1")) for k, v in SECURITY_HEADERS]
 
 
 #: An edit that took longer than this (seconds, edit + geometry) sends the document's next
@@ -121,7 +156,7 @@ def _raw_id(data: str | bytes) -> int:
     """The ``id`` of a message that did not decode, if it has an integer one (else 0)."""
     try:
         v = json.loads(data).get("id", 0)
-    except (ValueError, AttributeError, UnicodeDecodeError):
+    except (ValueError, AttributeError, UnicodeDecodeError, RecursionError):
         return 0
     return v if isinstance(v, int) and not isinstance(v, bool) else 0
 
@@ -283,8 +318,12 @@ class _Studio:
         elif isinstance(msg, P.ListFiles):
             from auszug import examples
 
-            ws_files = await asyncio.to_thread(self.workspace.drawings)
-            conn.outbox.put(P.encode(P.Files(workspace=ws_files, examples=examples.names(), id=msg.id)))
+            try:
+                ws_files, notes = await asyncio.to_thread(self.workspace.listing)
+            except OSError as e:   # the workspace folder itself is gone or unreadable: still the examples
+                ws_files, notes = [], [f"workspace: cannot list it ({e.strerror or e})"]
+            conn.outbox.put(P.encode(P.Files(workspace=ws_files, examples=examples.names(), notes=notes,
+                                             id=msg.id)))
         elif isinstance(msg, (P.GetMesh, P.GetLoops, P.Export)):
             doc = self._need(conn)
             jobs.put_nowait((msg, doc.snapshot(), doc.label))

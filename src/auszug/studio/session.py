@@ -16,6 +16,7 @@ geometry JSON is written from plain dicts without dataclasses (same text as
 from __future__ import annotations
 
 import copy
+import errno
 import itertools
 import json
 import os
@@ -149,28 +150,59 @@ class Workspace:
     def drawings(self, limit: int = 10000) -> list[str]:
         """Drawing files below the root (every registered drawing format), relative and sorted.
 
+        :meth:`listing` without its notes.
+        """
+        return self.listing(limit)[0]
+
+    def listing(self, limit: int = 10000) -> tuple[list[str], list[str]]:
+        """(drawings, notes): :meth:`drawings`, and a note per entry skipped as unreadable.
+
+        A note is one line: a symbolic link loop, a folder without permission, a
+        link to nothing or a link that points outside the workspace.
+
         Hidden folders (``.auszug`` with the autosaves, ``.git``...) and
-        ``node_modules`` are skipped, as are other files the registry knows
-        (network files ``*.network.json``, tracery styles ``*.tracery.json``)
-        and links that lead outside the workspace.
+        ``node_modules`` are skipped silently, as are other files the registry
+        knows (network files ``*.network.json``, tracery styles ``*.tracery.json``).
+        Links to folders are not followed (a loop cannot make the walk endless).
         """
         root = self.root.resolve()
         out: list[str] = []
-        for dirpath, dirnames, filenames in os.walk(root):
+        notes: list[str] = []
+
+        def rel(p: Path | str) -> str:
+            try:
+                return Path(p).relative_to(root).as_posix()
+            except ValueError:
+                return str(p)
+
+        def unreadable(e: OSError) -> None:
+            notes.append(f"{rel(e.filename) if e.filename else 'a folder'}: skipped, cannot read it "
+                         f"({e.strerror or e})")
+
+        for dirpath, dirnames, filenames in os.walk(root, onerror=unreadable):
             dirnames[:] = sorted(d for d in dirnames if not d.startswith(".") and d != "node_modules")
-            for fn in filenames:
+            for fn in sorted(filenames):
                 if fn.startswith(".") or not _is_drawing(fn):
                     continue
                 p = Path(dirpath) / fn
                 try:
-                    real = p.resolve()
-                except OSError:
+                    real = p.resolve(strict=True)
+                except RuntimeError:   # Python < 3.13 reports a link loop so
+                    notes.append(f"{rel(p)}: skipped, a symbolic link loop")
                     continue
-                if (root in real.parents) and real.is_file():
+                except OSError as e:
+                    what = ("a symbolic link loop" if e.errno == errno.ELOOP else "a link to nothing"
+                            if isinstance(e, FileNotFoundError) else f"cannot read it ({e.strerror or e})")
+                    notes.append(f"{rel(p)}: skipped, {what}")
+                    continue
+                if root not in real.parents:
+                    notes.append(f"{rel(p)}: skipped, it links outside the workspace")
+                elif real.is_file():
                     out.append(p.relative_to(root).as_posix())
                     if len(out) >= limit:
-                        return sorted(out)
-        return sorted(out)
+                        notes.append(f"only the first {limit} drawings are listed")
+                        return sorted(out), notes
+        return sorted(out), notes
 
 
 # ---------------------------------------------------------------- networks and geometry

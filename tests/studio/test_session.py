@@ -323,3 +323,72 @@ def test_curves_carry_the_networks_replica_transforms_and_the_palette(name):
         for lb, t in zip(p.labels, tr, strict=True):
             want = (pts[:, :2] - ctr) @ by_label[lb].T + ctr
             np.testing.assert_allclose(pts[:, :2] @ t[:2, :2].T + t[:2, 3], want, atol=1e-5)
+
+
+def _state(doc) -> tuple:
+    return (doc.drawing, doc.net, list(doc.undo_stack), list(doc.redo_stack), doc.revision, doc.changes,
+            doc.frames()[1])
+
+
+@pytest.mark.parametrize("op", ["apply", "undo", "redo"])
+def test_a_change_whose_reply_fails_is_rolled_back(workspace, monkeypatch, op):
+    """All or nothing: if the geometry of a change cannot be built, the change is undone too."""
+    import auszug.studio.session as S
+
+    doc = S.open_document(Workspace(workspace), "tn-2.uc")
+    doc.change(doc.apply, P.SetApexHeight(curve=0, height=2.0))
+    doc.change(doc.apply, P.SetApexHeight(curve=0, height=2.2))
+    doc.change(doc.undo)
+    before = _state(doc)
+    real = S.geometry_frames
+
+    def failing(**kw):
+        raise RuntimeError("no reply")
+
+    monkeypatch.setattr(S, "geometry_frames", failing)
+    fn, args = {"apply": (doc.apply, (P.SetApexHeight(curve=0, height=2.5, drag=3),)),
+                "undo": (doc.undo, ()), "redo": (doc.redo, ())}[op]
+    with pytest.raises(RuntimeError, match="no reply"):
+        doc.change(fn, *args)
+    monkeypatch.setattr(S, "geometry_frames", real)
+    after = _state(doc)
+    assert after[:6] == before[:6] and after[0] is before[0] and after[6] == before[6]
+    # the next drag edit starts a new undo step (the failed one left no drag behind)
+    doc.change(doc.apply, P.SetApexHeight(curve=0, height=2.6, drag=3))
+    assert len(doc.undo_stack) == len(before[2]) + 1
+
+
+def test_a_cancelled_change_is_rolled_back(workspace):
+    import threading
+
+    import auszug.studio.session as S
+
+    doc = S.open_document(Workspace(workspace), "tn-2.uc")
+    before = _state(doc)
+    cancel = threading.Event()
+    cancel.set()
+    with pytest.raises(S.EditCancelled):
+        doc.change(doc.apply, P.SetSymmetry(curve=0, fold=12), cancel=cancel)
+    assert _state(doc)[:6] == before[:6] and not doc.dirty
+
+
+@pytest.mark.parametrize("ending", [".json", ".uc"])
+def test_every_value_an_edit_accepts_saves_and_reopens(workspace, ending):
+    """The studio's edits check the limits the readers check: a drawing at the limits reopens equal."""
+    from auszug.limits import LIMITS
+
+    s = Session(Workspace(workspace))
+    s.open("tn-2.uc")
+    c = LIMITS.coordinate
+    s.apply(P.SetApexHeight(curve=0, height=c))
+    s.apply(P.SetSymmetry(curve=0, fold=LIMITS.fold))
+    s.apply(P.MoveVertex(curve=0, vertex=0, xy=(-c, c)))
+    for bad in (1e300, 1e120, c * (1 + 1e-12), float("inf")):
+        with pytest.raises(AuszugError, match="apex height"):
+            s.apply(P.SetApexHeight(curve=0, height=bad))
+    with pytest.raises(AuszugError, match="fold"):
+        s.apply(P.SetSymmetry(curve=0, fold=LIMITS.fold + 1))
+    s.save("limits" + ending)
+    back = load(workspace / ("limits" + ending))
+    assert back.curves[0].height == c and back.curves[0].symmetry.fold == LIMITS.fold
+    assert tuple(back.curves[0].vertices[0]) == (-c, c)

@@ -22,6 +22,7 @@ import contextlib
 import json
 import logging
 import os
+import threading
 import time
 from importlib.resources import files
 from pathlib import Path
@@ -37,10 +38,19 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from auszug.errors import AuszugError
+from auszug.limits import LIMITS
 from auszug.studio import meshes
 from auszug.studio import protocol as P
 from auszug.studio.hub import AUTOSAVE_DELAY, Connection, Hub
-from auszug.studio.session import Document, Workspace, example_document, new_document, open_document, text_document
+from auszug.studio.session import (
+    Document,
+    EditCancelled,
+    Workspace,
+    example_document,
+    new_document,
+    open_document,
+    text_document,
+)
 
 __all__ = ["LOCAL_HOSTS", "BUILD_COMMAND", "SECURITY_HEADERS", "static_dir", "create_app", "HostOriginGuard"]
 
@@ -266,24 +276,24 @@ class _Studio:
     async def handle(self, conn: Connection, msg: Any, jobs: asyncio.Queue) -> None:
         """Carry out one decoded message for ``conn``; replies go to the outboxes."""
         hub = self.hub
-        if isinstance(msg, (P.EditOp, P.Undo, P.Redo)):
+        if isinstance(msg, (P.EditOp, P.Undo, P.Redo, P.Recover)):
             doc = self._need(conn)
             async with hub.lock(doc):
-                fn = doc.apply if isinstance(msg, P.EditOp) else doc.undo if isinstance(msg, P.Undo) else doc.redo
-                args = (msg,) if isinstance(msg, P.EditOp) else ()
-                if doc.slow_edits:
-                    t0 = time.perf_counter()
-                    await asyncio.to_thread(self._edit, doc, fn, args)
+                if isinstance(msg, P.EditOp):
+                    fn, args = doc.apply, (msg,)
                 else:
-                    t0 = time.perf_counter()
-                    self._edit(doc, fn, args)
+                    fn, args = {P.Undo: doc.undo, P.Redo: doc.redo, P.Recover: doc.recover}[type(msg)], ()
+                # a drag's edits on a quick document run on the event loop (a thread hop would cost more
+                # than they take); everything else (a fold, a new curve, a slow document) in a worker
+                # thread, so the other tabs are answered meanwhile
+                dragging = isinstance(msg, (P.Undo, P.Redo)) or bool(getattr(msg, "drag", 0))
+                inline = dragging and not doc.slow_edits
+                t0 = time.perf_counter()
+                if inline:
+                    doc.change(fn, *args)
+                else:
+                    await self._in_worker(doc, fn, args)
                 doc.slow_edits = time.perf_counter() - t0 > INLINE_EDIT_SECONDS
-                hub.broadcast(doc, conn, msg.id)
-            hub.changed(doc)
-        elif isinstance(msg, P.Recover):
-            doc = self._need(conn)
-            async with hub.lock(doc):
-                await asyncio.to_thread(self._edit, doc, doc.recover, ())
                 hub.broadcast(doc, conn, msg.id)
             hub.changed(doc)
         elif isinstance(msg, P.Open):
@@ -331,14 +341,32 @@ class _Studio:
             raise P.ProtocolError(f"unhandled message {type(msg).__name__}")
 
     @staticmethod
-    def _edit(doc: Document, fn: Any, args: tuple) -> None:
-        fn(*args)
-        doc.frames()   # the geometry, computed where the edit ran (the event loop or a worker)
+    async def _in_worker(doc: Document, fn: Any, args: tuple) -> None:
+        """``doc.change(fn, *args)`` in a worker thread within :attr:`Limits.edit_seconds`.
+
+        Past the budget the change is cancelled: the error is raised at once (the
+        sender hears of it), and the document is put back when the thread ends
+        (the caller's document lock is held until then, so no change slips in).
+        """
+        cancel = threading.Event()
+        task = asyncio.ensure_future(asyncio.to_thread(doc.change, fn, *args, cancel=cancel))
+        budget = LIMITS.edit_seconds
+        done, _ = await asyncio.wait({task}, timeout=budget)
+        if task in done:
+            task.result()
+            return
+        cancel.set()
+        with contextlib.suppress(Exception):
+            await task   # rolled back (or it failed anyway)
+        raise EditCancelled(f"the change took longer than {budget:g} s and was given up; the drawing is "
+                            "unchanged (auszug.limits.LIMITS.edit_seconds)")
 
     @staticmethod
     def _opened(make: Any, *args: Any) -> Document:
+        t0 = time.perf_counter()
         doc = make(*args)
         doc.frames()
+        doc.slow_edits = time.perf_counter() - t0 > INLINE_EDIT_SECONDS   # its first drag edit goes to a thread
         return doc
 
 

@@ -41,6 +41,7 @@ from auszug.studio import protocol as P
 
 __all__ = [
     "WorkspaceError",
+    "EditCancelled",
     "Workspace",
     "AUTOSAVE_DIR",
     "drawing_endings",
@@ -69,6 +70,10 @@ _REVISIONS = itertools.count(1)
 
 class WorkspaceError(AuszugError, ValueError):
     """A path that leaves the workspace folder, or a file that cannot be used there."""
+
+
+class EditCancelled(AuszugError):
+    """A change given up (its time budget ran out); the document is as before it."""
 
 
 def _is_drawing(name: str) -> bool:
@@ -678,12 +683,44 @@ class Document:
         self.redo_stack.clear()
         self._set(new, net)
 
+    def change(self, fn: Any, *args: Any, cancel: threading.Event | None = None) -> None:
+        """Run one change ``fn(*args)`` and compute its geometry: all or nothing.
+
+        ``fn`` is :meth:`apply`, :meth:`undo`, :meth:`redo` or :meth:`recover`.
+        If the change or its geometry message fails, or ``cancel`` is set by
+        the time both are done (the server's time budget ran out), the
+        document is put back exactly as it was (drawing, undo and redo
+        stacks, revision, change count) and the error is raised; there is
+        no undo step for a change the page never saw.
+
+        Raises
+        ------
+        EditCancelled
+            ``cancel`` was set.
+        """
+        with self.lock:
+            before = (self.drawing, self.net, list(self.undo_stack), list(self.redo_stack), self.revision,
+                      self.recoverable, self.changes, self._frames, self._drag)
+        try:
+            fn(*args)
+            if cancel is not None and cancel.is_set():
+                raise EditCancelled("cancelled")
+            self.frames()
+            if cancel is not None and cancel.is_set():
+                raise EditCancelled("cancelled")
+        except BaseException:
+            with self.lock:
+                (self.drawing, self.net, self.undo_stack[:], self.redo_stack[:], self.revision,
+                 self.recoverable, self.changes, self._frames, self._drag) = before
+            raise
+
     def apply(self, op: P.EditOp) -> None:
         """Apply one edit message; on error nothing changes.
 
         The edit and its build run outside the lock (readers such as a mesh
         snapshot never wait for them); the commit checks that no other change
-        came in between, and else starts over from the newer drawing.
+        came in between, and else starts over from the newer drawing. A
+        change whose reply must be built too goes through :meth:`change`.
         """
         drag = getattr(op, "drag", 0)
         while True:

@@ -328,8 +328,8 @@ def test_failed_reply_rolls_the_edit_back_over_the_socket(client, monkeypatch):
 
 
 def test_other_tabs_answered_while_one_runs_a_heavy_edit(client):
-    """A fold-1019 edit (a fold no other test builds: the engine caches pieces) of U.XI.28 (about 0.6 s here) runs off the event loop: another tab's edit
-    is answered within 200 ms meanwhile."""
+    """A fold-1019 edit of U.XI.28 (about 0.6 s here; a fold no other test builds, as the engine
+    caches pieces) runs off the event loop: another tab's edit is answered within 200 ms meanwhile."""
     import time
 
     with client.websocket_connect(WS) as a, client.websocket_connect(WS) as b:

@@ -87,6 +87,7 @@ __all__ = [
     "Saved",
     "Error",
     "WITH_PAYLOAD",
+    "Resume",
     "CLIENT_MESSAGES",
     "SERVER_MESSAGES",
     "decode",
@@ -97,7 +98,7 @@ __all__ = [
 ]
 
 #: Bumped whenever a message changes shape; the client shows it on mismatch.
-PROTOCOL_VERSION = 3
+PROTOCOL_VERSION = 4
 #: Largest client message the server reads (bytes); larger ones get an :class:`Error` reply.
 MAX_MESSAGE_BYTES = 256 * 1024
 
@@ -416,6 +417,21 @@ class Recover:
 
 
 @dataclass(frozen=True)
+class Resume:
+    """Show document ``doc`` (``Geometry.doc``) again: a tab that reconnects or reloads.
+
+    The document itself if the server still has it open; else the workspace
+    file ``path`` (its autosave restored if this document wrote it), or the
+    autosave of the unsaved document ``doc``.
+    """
+
+    doc: str
+    path: str = ""
+    id: int = 0
+    type: Literal["resume"] = "resume"
+
+
+@dataclass(frozen=True)
 class GetMesh:
     """Ask for the members (and faces) of the current drawing (answered by :class:`MeshGeometry`).
 
@@ -561,7 +577,9 @@ class Geometry:
 
     Sent to every tab that has the document open (``id`` is the requester's,
     0 for the others). ``dirty``: edited since the last save. ``recoverable``:
-    an autosave newer than the file exists (send :class:`Recover`), else "".
+    an autosave newer than the file exists (send :class:`Recover`), else "";
+    it stays offered (and its file untouched) until recovered, whatever is
+    edited meanwhile. ``doc``: the document's id (for :class:`Resume`).
     ``layers`` are the bottoms of all layers.
     """
 
@@ -579,6 +597,7 @@ class Geometry:
     can_redo: bool
     dirty: bool
     recoverable: str
+    doc: str
     binary_floats: int
     id: int = 0
     protocol: int = PROTOCOL_VERSION
@@ -678,7 +697,7 @@ class Error:
 
 
 CLIENT_MESSAGES: tuple[type, ...] = (
-    Open, Save, Undo, Redo, MoveVertex, MoveHandle, SetApexHeight, SetPrc, RecomputePrc,
+    Open, Resume, Save, Undo, Redo, MoveVertex, MoveHandle, SetApexHeight, SetPrc, RecomputePrc,
     SetLayerBottom, SetDecoration, SetPost, SetSymmetry, RemoveCurve,
     DrawCurve, SetLayer, SetPrcAt, SetPrcHeight, AddLayer, RemoveLayer,
     ListFiles, OpenExample, OpenText, NewDrawing, Recover, GetMesh, GetLoops, Export,

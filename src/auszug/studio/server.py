@@ -49,6 +49,7 @@ from auszug.studio.session import (
     example_document,
     new_document,
     open_document,
+    resume_document,
     text_document,
 )
 
@@ -306,6 +307,17 @@ class _Studio:
             await hub.attach(conn, doc)
             text, payload = doc.frames()
             conn.outbox.put(text.text(msg.id), payload)
+        elif isinstance(msg, P.Resume):
+            await hub.settle()
+            doc = hub.by_id(msg.doc)
+            if doc is None and msg.path:
+                doc = hub.get(self.workspace.relative(self.workspace.resolve(msg.path)))
+            if doc is None:
+                doc = await asyncio.to_thread(self._opened, resume_document, self.workspace, msg.doc, msg.path)
+                doc = hub.add(doc, doc.path or conn.private_key())
+            await hub.attach(conn, doc)
+            text, payload = doc.frames()
+            conn.outbox.put(text.text(msg.id), payload)
         elif isinstance(msg, (P.OpenExample, P.OpenText, P.NewDrawing)):
             await hub.settle()
             if isinstance(msg, P.OpenExample):
@@ -321,7 +333,17 @@ class _Studio:
         elif isinstance(msg, P.Save):
             doc = self._need(conn)
             async with hub.lock(doc):
-                rel = await asyncio.to_thread(doc.save, msg.path)
+                others = hub.members.get(doc, set()) - {conn}
+                target = msg.path and self.workspace.relative(self.workspace.resolve(msg.path))
+                if others and target and target != doc.path:
+                    # "Save as" in one tab of a shared document: only this tab moves to the new file
+                    fork = doc.fork()
+                    rel = await asyncio.to_thread(fork.save, msg.path)
+                    hub.add(fork, conn.private_key())
+                    await hub.attach(conn, fork)
+                    doc = fork
+                else:
+                    rel = await asyncio.to_thread(doc.save, msg.path)
                 await hub.rekey(doc, rel)
                 conn.outbox.put(P.encode(P.Saved(path=rel, id=msg.id)))
                 hub.broadcast(doc, None, 0)

@@ -20,6 +20,8 @@ import errno
 import itertools
 import json
 import os
+import re
+import secrets
 import stat
 import threading
 import weakref
@@ -33,7 +35,7 @@ from numpy.typing import NDArray
 
 from auszug._cache import LruCache
 from auszug.errors import AuszugError, DrawingError, FormatError
-from auszug.limits import check_file_size
+from auszug.limits import check_file_size, shown
 from auszug.microarch.model import Drawing
 from auszug.microarch.network import Network, build
 from auszug.microarch.prc import intersections
@@ -58,6 +60,8 @@ __all__ = [
     "text_document",
     "new_document",
     "open_document",
+    "resume_document",
+    "check_doc_id",
 ]
 
 #: How many edits undo remembers.
@@ -149,7 +153,7 @@ class Workspace:
         return p.resolve().relative_to(self.root.resolve()).as_posix()
 
     def autosave_path(self, key: str) -> Path:
-        """Where the autosave of ``key`` goes: a workspace path, or ``unsaved/<name>``."""
+        """Where the autosave of ``key`` goes: a workspace path, or ``unsaved/<doc id>/<name>``."""
         return self.root.resolve() / AUTOSAVE_DIR / (key + ".json")
 
     def drawings(self, limit: int = 10000) -> list[str]:
@@ -464,7 +468,7 @@ class _Body:
         self.curve_keys = [(c, drawing.apex_height(i, bottoms), bottoms[c.layer], i) for i, c in enumerate(curves)]
 
     def as_dict(self, *, path: str, revision: int, can_undo: bool, can_redo: bool, dirty: bool,
-                recoverable: str) -> dict:
+                recoverable: str, doc: str) -> dict:
         """The Geometry message as a dict in field order, without the trailing id/protocol/type."""
         d = self.drawing
         return {
@@ -472,11 +476,11 @@ class _Body:
             "n_replicas": self.n_rep, "pieces": [p.as_dict(o) for p, o in zip(self.pieces, self.offsets, strict=True)],
             "intersections": self.markers, "curves": [copy.deepcopy(_curve_info(*k)) for k in self.curve_keys],
             "layers": self.layers, "bounds": self.bounds, "can_undo": can_undo, "can_redo": can_redo,
-            "dirty": dirty, "recoverable": recoverable, "binary_floats": self.binary_floats,
+            "dirty": dirty, "recoverable": recoverable, "doc": doc, "binary_floats": self.binary_floats,
         }
 
     def head(self, *, path: str, revision: int, can_undo: bool, can_redo: bool, dirty: bool,
-             recoverable: str) -> str:
+             recoverable: str, doc: str) -> str:
         """The JSON text of :meth:`as_dict` without its closing brace (fragments cached per piece and curve)."""
         d = self.drawing
         pieces = ",".join(p.as_json(o) for p, o in zip(self.pieces, self.offsets, strict=True))
@@ -486,7 +490,7 @@ class _Body:
                 f'"intersections":{_dumps(self.markers)},"curves":[{curves}],"layers":{_dumps(self.layers)},'
                 f'"bounds":{_dumps(self.bounds)},"can_undo":{_dumps(bool(can_undo))},'
                 f'"can_redo":{_dumps(bool(can_redo))},"dirty":{_dumps(bool(dirty))},'
-                f'"recoverable":{_dumps(recoverable)},"binary_floats":{self.binary_floats}')
+                f'"recoverable":{_dumps(recoverable)},"doc":{_dumps(doc)},"binary_floats":{self.binary_floats}')
 
 
 class GeometryText:
@@ -507,7 +511,7 @@ class GeometryText:
 
 def geometry_frames(drawing: Drawing, *, net: Network | None = None, path: str = "", revision: int = 0,
                     can_undo: bool = False, can_redo: bool = False, dirty: bool = False,
-                    recoverable: str = "") -> tuple[GeometryText, bytes]:
+                    recoverable: str = "", doc: str = "") -> tuple[GeometryText, bytes]:
     """The geometry message of ``drawing`` as ready-to-send text (for any id) and its binary payload.
 
     The fast path of :func:`geometry`: no dataclasses, the network built once
@@ -516,7 +520,7 @@ def geometry_frames(drawing: Drawing, *, net: Network | None = None, path: str =
     """
     body = _Body(drawing, network_of(drawing) if net is None else net)
     head = body.head(path=path, revision=revision, can_undo=can_undo, can_redo=can_redo, dirty=dirty,
-                     recoverable=recoverable)
+                     recoverable=recoverable, doc=doc)
     return GeometryText(head), body.payload
 
 
@@ -531,7 +535,7 @@ def _message(d: dict, msg_id: int) -> P.Geometry:
 
 def geometry(drawing: Drawing, *, path: str = "", revision: int = 0, can_undo: bool = False,
              can_redo: bool = False, msg_id: int = 0, dirty: bool = False,
-             recoverable: str = "", net: Network | None = None) -> tuple[P.Geometry, bytes]:
+             recoverable: str = "", net: Network | None = None, doc: str = "") -> tuple[P.Geometry, bytes]:
     """The :class:`~auszug.studio.protocol.Geometry` message of ``drawing`` and its binary payload.
 
     Posts and pillars that lie on a mirror axis are their own mirror image;
@@ -540,7 +544,7 @@ def geometry(drawing: Drawing, *, path: str = "", revision: int = 0, can_undo: b
     """
     body = _Body(drawing, network_of(drawing) if net is None else net)
     d = body.as_dict(path=path, revision=revision, can_undo=can_undo, can_redo=can_redo, dirty=dirty,
-                     recoverable=recoverable)
+                     recoverable=recoverable, doc=doc)
     return _message(d, msg_id), body.payload
 
 
@@ -608,8 +612,10 @@ class Document:
         File name for an unsaved document (its default save name and autosave name).
     """
 
-    def __init__(self, workspace: Workspace, drawing: Drawing, path: str = "", name: str = ""):
+    def __init__(self, workspace: Workspace, drawing: Drawing, path: str = "", name: str = "", doc_id: str = ""):
         self.workspace = workspace
+        self.doc_id = doc_id or secrets.token_hex(8)   # names the document in Resume and its autosave
+        self.offered: Path | None = None     # the autosave offered by ``recoverable``, kept aside
         self.lock = threading.RLock()
         self.drawing = drawing
         self.net = network_of(drawing)
@@ -640,8 +646,12 @@ class Document:
 
     @property
     def autosave_key(self) -> str:
-        """The autosave's name below the autosave folder: the path, or ``unsaved/<name>``."""
-        return self.path if self.path else "unsaved/" + self.name
+        """The autosave's name below the autosave folder: the path, or ``unsaved/<doc id>/<name>``.
+
+        Per document, not per name: two unsaved "untitled" drawings (or two tabs on
+        one example) never share an autosave.
+        """
+        return self.path if self.path else f"unsaved/{self.doc_id}/{self.name}"
 
     def autosave_file(self) -> Path:
         """The autosave file of this document."""
@@ -653,7 +663,12 @@ class Document:
             return self.drawing, self.net, self.revision
 
     def check_recoverable(self) -> str:
-        """Set and return :attr:`recoverable`: the autosave's ISO time if it differs from the drawing."""
+        """Set and return :attr:`recoverable`: the autosave's ISO time if it differs from the drawing.
+
+        The autosave then moves aside (``<autosave>.offered-<time>.json``, :attr:`offered`):
+        the autosaves of the edits that follow cannot overwrite it, and it stays
+        offered until :meth:`recover` (an older offer still on disk is kept too).
+        """
         p = self.autosave_file()
         rec = ""
         try:
@@ -662,17 +677,27 @@ class Document:
                 saved = read_drawing(p.name, p.read_text(encoding="utf-8"))
                 if not _same_drawing(saved, self.drawing):
                     rec = _autosave_time(p)
+                    aside = p.with_name(f"{p.name}.offered-{p.stat().st_mtime_ns}.json")
+                    os.replace(p, aside)
+                    self.offered = aside
         except (OSError, AuszugError, UnicodeDecodeError):
             rec = ""   # an unreadable autosave is no recovery; it is overwritten on the next change
         self.recoverable = rec
         return rec
+
+    def autosave_owner(self) -> str:
+        """The document id that wrote the current autosave ("" if none or unknown)."""
+        try:
+            a = self.autosave_file()
+            return a.with_name(a.name + ".doc").read_text(encoding="utf-8").strip()
+        except OSError:
+            return ""
 
     # -- changes ----------------------------------------------------------------------
     def _set(self, new: Drawing, net: Network) -> None:
         self.drawing = new
         self.net = net
         self.revision = next(_REVISIONS)
-        self.recoverable = ""
         self.changes += 1
         self._frames = None
 
@@ -768,14 +793,28 @@ class Document:
             self._set(nxt, net)
 
     def recover(self) -> None:
-        """Replace the drawing by its autosave (an undoable edit; the document becomes dirty)."""
-        p = self.autosave_file()
+        """Replace the drawing by the offered autosave (an undoable edit; the document becomes dirty)."""
+        p = self.offered if self.offered is not None else self.autosave_file()
         if not p.is_file():
             raise WorkspaceError(f"{self.label}: no autosave to recover")
         check_file_size(p)
-        saved = read_drawing(p.name, p.read_text(encoding="utf-8"))
+        saved = read_drawing("autosave.json", p.read_text(encoding="utf-8"))
         with self.lock:
             self.replace_drawing(replace(saved, name=self.drawing.name))
+            self.recoverable = ""
+
+    def fork(self) -> "Document":
+        """A new document with this one's drawing, file, dirty state and undo/redo history.
+
+        "Save as" in one tab of a shared document forks it: that tab moves to the
+        new file, the other tabs stay on the old one.
+        """
+        with self.lock:
+            d = Document(self.workspace, self.drawing, path=self.path, name=self.name)
+            d.undo_stack, d.redo_stack = list(self.undo_stack), list(self.redo_stack)
+            d.clean, d.changes = self.clean, self.changes
+            d.slow_edits = self.slow_edits
+            return d
 
     def default_save_path(self) -> str:
         """Where an unsaved document goes by default: ``<name>.json`` (a drawing ending replaced)."""
@@ -824,10 +863,11 @@ class Document:
                 self.autosaved_changes = self.changes
                 self._frames = None
             for a in {old_autosave, self.autosave_file()}:
-                try:
-                    a.unlink()
-                except FileNotFoundError:
-                    pass
+                for f in (a, a.with_name(a.name + ".doc")):
+                    try:
+                        f.unlink()
+                    except FileNotFoundError:
+                        pass
         return new_rel
 
     def write_autosave(self) -> int:
@@ -841,13 +881,17 @@ class Document:
         with self.autosave_lock:
             with self.lock:
                 d, changes, dirty, target = self.drawing, self.changes, self.dirty, self.autosave_file()
+            owner = target.with_name(target.name + ".doc")
             if dirty:
                 save(d, target, kind="drawing")
+                if not owner.is_file() or owner.read_text(encoding="utf-8") != self.doc_id:
+                    owner.write_text(self.doc_id, encoding="utf-8")
             else:
-                try:
-                    target.unlink()
-                except FileNotFoundError:
-                    pass
+                for f in (target, owner):
+                    try:
+                        f.unlink()
+                    except FileNotFoundError:
+                        pass
             with self.lock:
                 self.autosaved_changes = max(self.autosaved_changes, changes)
         return changes
@@ -864,7 +908,7 @@ class Document:
                 return f[1], f[2]
             state: dict[str, Any] = dict(drawing=self.drawing, net=self.net, path=self.path, revision=self.revision,
                          can_undo=bool(self.undo_stack), can_redo=bool(self.redo_stack), dirty=self.dirty,
-                         recoverable=self.recoverable)
+                         recoverable=self.recoverable, doc=self.doc_id)
         text, payload = geometry_frames(**state)
         with self.lock:
             if self.revision == state["revision"]:
@@ -876,13 +920,16 @@ class Document:
         with self.lock:
             return geometry(self.drawing, net=self.net, path=self.path, revision=self.revision,
                             can_undo=bool(self.undo_stack), can_redo=bool(self.redo_stack),
-                            msg_id=msg_id, dirty=self.dirty, recoverable=self.recoverable)
+                            msg_id=msg_id, dirty=self.dirty, recoverable=self.recoverable, doc=self.doc_id)
 
 
-def open_document(workspace: Workspace, rel: str) -> Document:
+def open_document(workspace: Workspace, rel: str, resume: str = "") -> Document:
     """Load ``rel`` (inside the workspace) as a new document; errors name ``rel``.
 
     Checks for an autosave that differs from the file (:attr:`Document.recoverable`).
+    ``resume``: the id of the document a reconnecting tab showed; if that
+    document wrote the autosave, the autosave is restored at once (an undoable
+    edit) and the new document takes the id.
     """
     p = workspace.resolve(rel)
     rel_clean = workspace.relative(p)
@@ -900,7 +947,54 @@ def open_document(workspace: Workspace, rel: str) -> Document:
         raise WorkspaceError(f"{rel_clean}: cannot read ({e.strerror or e})") from None
     d = fmt.reader(text, rel_clean)
     doc = _built(workspace, d, rel_clean, "", rel_clean)
+    if resume and check_doc_id(resume) and doc.autosave_owner() == resume and doc.autosave_file().is_file():
+        a = doc.autosave_file()
+        check_file_size(a)
+        saved = read_drawing("autosave.json", a.read_text(encoding="utf-8"))
+        doc.doc_id = resume
+        if not _same_drawing(saved, doc.drawing):
+            doc.replace_drawing(replace(saved, name=doc.drawing.name))
+        return doc
     doc.check_recoverable()
+    return doc
+
+
+_DOC_ID = re.compile(r"[0-9a-f]{16}")
+
+
+def check_doc_id(doc_id: str) -> str:
+    """``doc_id`` if it is a document id (16 hex digits), else a :class:`WorkspaceError`."""
+    if not _DOC_ID.fullmatch(doc_id):
+        raise WorkspaceError(f"not a document id: {shown(doc_id)}")
+    return doc_id
+
+
+def resume_document(workspace: Workspace, doc_id: str, path: str = "") -> Document:
+    """The document a reconnecting (or reloaded) tab showed, from the workspace and the autosaves.
+
+    ``path``: the workspace file (:func:`open_document` with ``resume``).
+    Else the unsaved document ``doc_id``'s autosave, as a dirty document with
+    that id.
+
+    Raises
+    ------
+    WorkspaceError
+        Not a document id, or an unsaved document without an autosave.
+    """
+    check_doc_id(doc_id)
+    if path:
+        return open_document(workspace, path, resume=doc_id)
+    folder = workspace.autosave_path(f"unsaved/{doc_id}").with_suffix("")
+    found = sorted(p for p in folder.glob("*.json") if ".offered-" not in p.name) if folder.is_dir() else []
+    if not found:
+        raise WorkspaceError("the unsaved drawing of this tab is gone (no autosave of it); open it again")
+    p = found[-1]
+    check_file_size(p)
+    name = p.name[: -len(".json")]
+    saved = read_drawing("autosave.json", p.read_text(encoding="utf-8"))
+    doc = _built(workspace, saved, "", name, name)
+    doc.doc_id = doc_id
+    doc.clean = Drawing((), name=name)   # unsaved: dirty until saved
     return doc
 
 

@@ -248,11 +248,11 @@ def test_concurrent_edits_from_threads_are_all_kept(workspace):
 
     doc = open_document(Workspace(workspace), "tn-2.uc")
 
-    def nudge():
-        for _ in range(10):
-            doc.apply(P.SetApexHeight(curve=0, height=doc.drawing.curves[0].height or 1.0))
+    def nudge(t):
+        for i in range(10):   # every edit sets a height of its own (setting the same one is a no-op)
+            doc.apply(P.SetApexHeight(curve=0, height=1.0 + 0.01 * (10 * t + i)))
 
-    threads = [threading.Thread(target=nudge) for _ in range(4)]
+    threads = [threading.Thread(target=nudge, args=(t,)) for t in range(4)]
     for t in threads:
         t.start()
     for t in threads:
@@ -392,3 +392,40 @@ def test_every_value_an_edit_accepts_saves_and_reopens(workspace, ending):
     back = load(workspace / ("limits" + ending))
     assert back.curves[0].height == c and back.curves[0].symmetry.fold == LIMITS.fold
     assert tuple(back.curves[0].vertices[0]) == (-c, c)
+
+
+def test_a_no_op_edit_leaves_no_undo_step(workspace):
+    """Setting what is already set (a PRC click on the PRC, the same apex) changes nothing."""
+    s = Session(Workspace(workspace))
+    s.open("tn-2.uc")
+    d0, rev = s.drawing, s.revision
+    s.apply(P.SetApexHeight(curve=0, height=d0.curves[0].height))
+    s.apply(P.SetPrc(curve=0, segment=0, fraction=d0.curves[0].prc[0]))
+    assert s.drawing is d0 and s.revision == rev and not s.undo_stack and not s.document.dirty
+    s.apply(P.SetApexHeight(curve=0, height=2.0))
+    s.apply(P.SetApexHeight(curve=0, height=2.0))
+    assert len(s.undo_stack) == 1 and s.drawing.curves[0].height == 2.0
+
+
+def test_interleaved_drags_of_two_tabs_make_no_partial_undo_steps(workspace):
+    """Two tabs drag at once (their edits interleave): no undo lands in the middle of either drag."""
+    s = Session(Workspace(workspace))
+    s.open("tn-2.uc")
+    d0 = s.drawing
+    x, y = d0.curves[0].vertices[1]
+    for k in range(1, 5):
+        s.apply(P.MoveVertex(curve=0, vertex=1, xy=(x + 0.01 * k, y), drag=11))   # tab A
+        s.apply(P.SetApexHeight(curve=0, height=2.0 + 0.05 * k, drag=22))         # tab B
+    assert len(s.undo_stack) == 1
+    s.undo()
+    assert s.drawing == d0
+    s.redo()
+    assert s.drawing.curves[0].vertices[1] == (x + 0.04, y) and s.drawing.curves[0].height == 2.2
+    # drags one after the other stay one step each
+    for k in range(1, 4):
+        s.apply(P.MoveVertex(curve=0, vertex=1, xy=(x, y + 0.01 * k), drag=33))
+    for k in range(1, 4):
+        s.apply(P.SetApexHeight(curve=0, height=2.5 + 0.01 * k, drag=44))
+    assert len(s.undo_stack) == 3
+    s.undo()
+    assert s.drawing.curves[0].height == 2.2 and s.drawing.curves[0].vertices[1] == (x, y + 0.03)

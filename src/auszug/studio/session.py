@@ -66,6 +66,8 @@ __all__ = [
 
 #: How many edits undo remembers.
 UNDO_DEPTH = 500
+#: How many undo steps back a drag's next edit looks for the drag's own step.
+_DRAG_REACH = 16
 #: Where autosaves live, relative to the workspace.
 AUTOSAVE_DIR = ".auszug/autosave"
 #: Revisions count up over all documents, so a tab that moves to another document never goes back.
@@ -631,7 +633,7 @@ class Document:
         self.autosave_lock = threading.Lock()  # one autosave or save at a time touches the files
         self.slow_edits = False              # the last edit was slow: the server runs the next in a thread
         self._frames: tuple[int, GeometryText, bytes] | None = None
-        self._drag = 0                       # the drag gesture of the last edit (0: none)
+        self._steps: list[frozenset[int]] = []  # the drag gestures in each undo step (parallel to undo_stack)
 
     # -- state ------------------------------------------------------------------------
     @property
@@ -701,12 +703,24 @@ class Document:
         self.changes += 1
         self._frames = None
 
-    def _push(self, new: Drawing, net: Network) -> None:
-        self._drag = 0
+    def _push(self, new: Drawing, net: Network, drag: int = 0) -> None:
         self.undo_stack.append(self.drawing)
+        self._steps.append(frozenset((drag,)) if drag else frozenset())
         del self.undo_stack[:-UNDO_DEPTH]
+        del self._steps[:-UNDO_DEPTH]
         self.redo_stack.clear()
         self._set(new, net)
+
+    def _drag_step(self, drag: int) -> int:
+        """The index of the undo step that holds drag gesture ``drag`` (-1: none).
+
+        Only the last few steps are searched: a drag's step is near the top
+        (other tabs' edits may have come in between).
+        """
+        for i in range(len(self._steps) - 1, max(-1, len(self._steps) - 1 - _DRAG_REACH), -1):
+            if drag in self._steps[i]:
+                return i
+        return -1
 
     def change(self, fn: Any, *args: Any, cancel: threading.Event | None = None) -> None:
         """Run one change ``fn(*args)`` and compute its geometry: all or nothing.
@@ -725,7 +739,7 @@ class Document:
         """
         with self.lock:
             before = (self.drawing, self.net, list(self.undo_stack), list(self.redo_stack), self.revision,
-                      self.recoverable, self.changes, self._frames, self._drag)
+                      self.recoverable, self.changes, self._frames, list(self._steps))
         try:
             fn(*args)
             if cancel is not None and cancel.is_set():
@@ -736,7 +750,7 @@ class Document:
         except BaseException:
             with self.lock:
                 (self.drawing, self.net, self.undo_stack[:], self.redo_stack[:], self.revision,
-                 self.recoverable, self.changes, self._frames, self._drag) = before
+                 self.recoverable, self.changes, self._frames, self._steps[:]) = before
             raise
 
     def apply(self, op: P.EditOp) -> None:
@@ -751,15 +765,24 @@ class Document:
         while True:
             base = self.drawing
             new = op.apply(base)
+            if new == base:
+                return   # a no-op (a click that sets what is already set): no change, no undo step
             net = network_of(new)   # refuses a drawing that does not build
             with self.lock:
                 if self.drawing is base:
-                    if drag and drag == self._drag and self.undo_stack:
-                        self.redo_stack.clear()   # the same drag goes on: still one undo step
+                    i = self._drag_step(drag) if drag else -1
+                    if i >= 0:
+                        # the same drag goes on: still one undo step. If other edits (another tab's
+                        # drag) came in since it began, they join that step: an undo never lands in
+                        # the middle of a drag
+                        merged = frozenset().union(*self._steps[i:])
+                        del self.undo_stack[i + 1:]
+                        del self._steps[i + 1:]
+                        self._steps[i] = merged
+                        self.redo_stack.clear()
                         self._set(new, net)
                     else:
-                        self._push(new, net)
-                    self._drag = drag
+                        self._push(new, net, drag)
                     return
 
     def replace_drawing(self, new: Drawing) -> None:
@@ -771,25 +794,25 @@ class Document:
     def undo(self) -> None:
         """Go back one edit."""
         with self.lock:
-            self._drag = 0
             if not self.undo_stack:
                 raise AuszugError("nothing to undo")
             prev = self.undo_stack[-1]
             net = network_of(prev)
             self.undo_stack.pop()
+            self._steps.pop()
             self.redo_stack.append(self.drawing)
             self._set(prev, net)
 
     def redo(self) -> None:
         """Redo the last undone edit."""
         with self.lock:
-            self._drag = 0
             if not self.redo_stack:
                 raise AuszugError("nothing to redo")
             nxt = self.redo_stack[-1]
             net = network_of(nxt)
             self.redo_stack.pop()
             self.undo_stack.append(self.drawing)
+            self._steps.append(frozenset())   # a redone drag is over: it takes no more edits
             self._set(nxt, net)
 
     def recover(self) -> None:
@@ -812,6 +835,7 @@ class Document:
         with self.lock:
             d = Document(self.workspace, self.drawing, path=self.path, name=self.name)
             d.undo_stack, d.redo_stack = list(self.undo_stack), list(self.redo_stack)
+            d._steps = list(self._steps)
             d.clean, d.changes = self.clean, self.changes
             d.slow_edits = self.slow_edits
             return d

@@ -1,0 +1,81 @@
+"""End to end, picking (issue 13 section 3): at a crossing of two curves a click sets the selected
+curve's PRC even where the other curve's faded marker lies on top; markers take clicks over 16 px;
+a click that changes nothing leaves no undo step."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from auszug.formats import load
+from auszug.microarch import edit
+
+from .e2e import browser, geometry, needs_browser, open_drawing, page, studio, top_to_client, wait_revision  # noqa: F401
+from .test_e2e_design import overlay_ready, select_curve
+
+pytestmark = needs_browser
+
+
+def _crossing(g: dict) -> tuple[int, dict]:
+    """A marker of a lower curve (a) at a point where a higher curve (b) has one too (drawn on top),
+    away from a's end points and its PRC."""
+    ms = g["intersections"]
+    for m in ms:
+        a = m["curve"]
+        ends = np.array(g["curves"][a]["vertices"])
+        if np.linalg.norm(ends - m["point"], axis=1).min() < 0.05:
+            continue
+        prcs = [p["prc"] for p in g["pieces"] if p["basic"] == a and p["prc"] and p["segment"] == m["segment"]]
+        if prcs and np.linalg.norm(np.subtract(m["point"], prcs[0][:2])) < 0.05:
+            continue
+        if any(o["curve"] > a and np.linalg.norm(np.subtract(o["point"], m["point"])) < 1e-9 for o in ms):
+            return a, m
+    raise AssertionError("no crossing of two curves in this drawing")
+
+
+def test_crossing_sets_the_selected_curves_prc_and_a_repeat_is_no_undo_step(studio, workspace, page):
+    drawing = load(workspace / "tn-11.uc")
+    g = open_drawing(page, studio, "tn-11.uc")
+    a, m = _crossing(g)
+    select_curve(page, drawing, a)
+    overlay_ready(page)
+    x, y = top_to_client(page, *m["point"])
+    # the other curve's faded marker is the element on top there
+    top = page.evaluate(f"() => document.elementFromPoint({x}, {y}).dataset.curve")
+    assert top != str(a)
+    page.mouse.click(x + 6.5, y)          # 6.5 px off the centre: inside a 16 px target
+    g1 = wait_revision(page, g["revision"])
+    assert page.evaluate("() => window.auszug.store.selection") == a
+    expected = edit.set_prc_at(drawing, a, tuple(m["point"]), m["segment"]).curves[a].prc[m["segment"]]
+    assert g1["curves"][a]["prc"][m["segment"]] == pytest.approx(expected, abs=1e-12)
+    assert g1["can_undo"]
+    # the same click again changes nothing: no new revision, no undo step
+    overlay_ready(page)
+    page.mouse.click(x, y)
+    page.wait_for_timeout(400)
+    assert geometry(page)["revision"] == g1["revision"]
+    page.evaluate("() => document.activeElement && document.activeElement.blur()")
+    page.keyboard.press("Control+z")
+    g2 = wait_revision(page, g1["revision"])
+    assert g2["curves"][a]["prc"] == g["curves"][a]["prc"] and not g2["can_undo"]
+
+
+def test_a_marker_takes_no_clicks_beyond_8_px(studio, workspace, page):
+    drawing = load(workspace / "tn-11.uc")
+    g = open_drawing(page, studio, "tn-11.uc")
+    a, m = _crossing(g)
+    select_curve(page, drawing, a)
+    overlay_ready(page)
+    x, y = top_to_client(page, *m["point"])
+    ends = [top_to_client(page, *v) for c in g["curves"] for v in c["vertices"]]
+    marks = [top_to_client(page, *o["point"]) for o in g["intersections"]]
+    # a spot 9.5 px away from this marker, not within 8 px of any other point target either
+    for ang in np.linspace(0, 2 * np.pi, 24, endpoint=False):
+        px, py = x + 9.5 * np.cos(ang), y + 9.5 * np.sin(ang)
+        if min(np.hypot(px - qx, py - qy) for qx, qy in ends + marks) > 9:
+            break
+    else:
+        raise AssertionError("no free spot around this marker")
+    page.mouse.click(px, py)
+    page.wait_for_timeout(400)
+    assert geometry(page)["revision"] == g["revision"]

@@ -79,3 +79,22 @@ def test_a_marker_takes_no_clicks_beyond_8_px(studio, workspace, page):
     page.mouse.click(px, py)
     page.wait_for_timeout(400)
     assert geometry(page)["revision"] == g["revision"]
+
+
+def test_enter_in_a_number_field_commits_and_hands_back_the_keyboard(studio, workspace, page):
+    """After Enter in the apex field the focus leaves it: Ctrl+Z undoes the edit (not the field's
+    text) and the field shows the drawing's value again."""
+    original = load(workspace / "tn-2.uc").apex_height(0)
+    g = open_drawing(page, studio, "tn-2.uc")
+    page.select_option("[data-testid=side-curve]", "0")
+    field = page.locator("[data-testid=apex-height]")
+    field.fill("2.4")
+    field.press("Enter")
+    g1 = wait_revision(page, g["revision"])
+    assert g1["curves"][0]["apex"] == pytest.approx(2.4)
+    page.wait_for_function("() => document.activeElement.dataset.testid !== 'apex-height'")
+    page.keyboard.press("Control+z")      # no blur by the test: the page must have handed the keys back
+    g2 = wait_revision(page, g1["revision"])
+    assert g2["curves"][0]["apex"] == pytest.approx(original) and not g2["can_undo"]
+    page.wait_for_function("() => document.querySelector('[data-testid=apex-height]').value !== '2.4'")
+    assert float(field.input_value()) == pytest.approx(original, abs=5e-4)   # the field shows 3 decimals

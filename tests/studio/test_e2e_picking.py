@@ -98,3 +98,25 @@ def test_enter_in_a_number_field_commits_and_hands_back_the_keyboard(studio, wor
     assert g2["curves"][0]["apex"] == pytest.approx(original) and not g2["can_undo"]
     page.wait_for_function("() => document.querySelector('[data-testid=apex-height]').value !== '2.4'")
     assert float(field.input_value()) == pytest.approx(original, abs=5e-4)   # the field shows 3 decimals
+
+
+@pytest.mark.parametrize("value", ["1e300", "1e120"])
+def test_a_refused_value_is_explained_at_its_field(studio, workspace, page, value):
+    """Issue 13 section 2: an apex beyond the limits is refused, said at the field, and changes nothing."""
+    g = open_drawing(page, studio, "tn-2.uc")
+    page.select_option("[data-testid=side-curve]", "0")
+    field = page.locator("[data-testid=apex-height]")
+    field.fill(value)
+    field.press("Enter")
+    msg = page.locator("[data-testid=field-error][data-for=apex-height]")
+    msg.wait_for()
+    assert "apex height" in msg.inner_text() and "beyond the limit of +-1e+06" in msg.inner_text()
+    assert field.get_attribute("aria-invalid") == "true"
+    g1 = geometry(page)
+    assert g1["revision"] == g["revision"] and not g1["can_undo"] and not g1["dirty"]
+    page.wait_for_function("() => document.querySelector('[data-testid=apex-height]').value !== '" + value + "'")
+    assert float(field.input_value()) == pytest.approx(g["curves"][0]["apex"], abs=5e-4)   # back to the drawing's
+    field.fill("2.4")                      # typing clears the message; a good value goes through
+    assert msg.count() == 0 or not msg.is_visible()
+    field.press("Enter")
+    assert wait_revision(page, g["revision"])["curves"][0]["apex"] == pytest.approx(2.4)

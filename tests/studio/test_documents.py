@@ -602,3 +602,25 @@ def test_outbox_stops_when_the_peer_is_gone():
         return len(calls), box.pending()
 
     assert asyncio.run(run()) == (1, 0)
+
+
+def test_two_tabs_dragging_at_once_undo_whole_drags(workspace):
+    """Two tabs drag on one document, their edits interleaved: an undo in either tab takes back
+    whole drags, never a single edit of the other's drag."""
+    with _app(workspace) as c, c.websocket_connect(WS) as a, c.websocket_connect(WS) as b:
+        a.send_json({"type": "open", "path": "tn-2.uc"})
+        g0, data0 = _geometry(a)
+        b.send_json({"type": "open", "path": "tn-2.uc"})
+        _geometry(b)
+        x, y = g0["curves"][0]["vertices"][1]
+        for k in range(1, 5):
+            a.send_json({"type": "move_vertex", "curve": 0, "vertex": 1, "xy": [x + 0.01 * k, y], "drag": 101})
+            _geometry(a)
+            _geometry(b)
+            b.send_json({"type": "set_apex_height", "curve": 0, "height": 2.0 + 0.05 * k, "drag": 202})
+            _geometry(b)
+            _geometry(a)
+        b.send_json({"type": "undo", "id": 9})
+        g, data = _geometry(b)
+        assert g["id"] == 9 and not g["can_undo"] and np.array_equal(np.frombuffer(data, "<f4"),
+                                                                     np.frombuffer(data0, "<f4"))

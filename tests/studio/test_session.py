@@ -97,7 +97,7 @@ def test_fast_geometry_text_equals_dataclass_encoding(name):
 
     d = load(examples.path(name))
     kw = dict(path="sub/x.uc", revision=17, can_undo=True, can_redo=False, dirty=True,
-              recoverable="2026-01-02T03:04:05+00:00")
+              recoverable="2026-01-02T03:04:05+00:00", doc="0123456789abcdef")
     text, payload = geometry_frames(d, **kw)
     for msg_id in (0, 5, 123456):
         msg, payload2 = geometry(d, msg_id=msg_id, **kw)
@@ -429,3 +429,23 @@ def test_interleaved_drags_of_two_tabs_make_no_partial_undo_steps(workspace):
     assert len(s.undo_stack) == 3
     s.undo()
     assert s.drawing.curves[0].height == 2.2 and s.drawing.curves[0].vertices[1] == (x, y + 0.03)
+
+
+def test_listing_notes_a_folder_it_cannot_read(workspace, monkeypatch):
+    """A folder that cannot be listed (permissions; the tests run as root, so the refusal is staged)
+    is skipped with a note; the rest is listed."""
+    import os
+
+    (workspace / "locked").mkdir()
+    (workspace / "locked" / "x.uc").write_text((workspace / "tn-2.uc").read_text())
+    real = os.scandir
+
+    def scandir(path="."):
+        if os.fspath(path).endswith("locked"):
+            raise PermissionError(13, "Permission denied", os.fspath(path))
+        return real(path)
+
+    monkeypatch.setattr(os, "scandir", scandir)
+    files, notes = Workspace(workspace).listing()
+    assert files == ["tn-11.uc", "tn-2.uc"]
+    assert notes == ["locked: skipped, cannot read it (Permission denied)"]

@@ -120,3 +120,21 @@ def test_a_refused_value_is_explained_at_its_field(studio, workspace, page, valu
     assert msg.count() == 0 or not msg.is_visible()
     field.press("Enter")
     assert wait_revision(page, g["revision"])["curves"][0]["apex"] == pytest.approx(2.4)
+
+
+@pytest.mark.parametrize(("testid", "value", "says"), [
+    ("fold-input", "2000", "rotation fold 2000 is above the limit of 1024"),
+    ("point-x-0", "1e7", "beyond the limit of +-1e+06"),
+])
+def test_curve_panel_refusals_show_at_the_field(studio, workspace, page, testid, value, says):
+    drawing = load(workspace / "tn-2.uc")
+    g = open_drawing(page, studio, "tn-2.uc")
+    select_curve(page, drawing, 0)
+    field = page.locator(f"[data-testid={testid}]")
+    field.fill(value)
+    field.press("Enter")
+    msg = page.locator(f"[data-testid=field-error][data-for={testid}]")
+    msg.wait_for()
+    assert says in msg.inner_text(), msg.inner_text()
+    g1 = geometry(page)
+    assert g1["revision"] == g["revision"] and not g1["can_undo"]

@@ -20,7 +20,7 @@ export function showFieldError(input: HTMLElement, message: string): void {
   m.textContent = message;
   input.setAttribute("aria-invalid", "true");
   input.title = message;
-  (input.closest("label, .row, div") ?? input).insertAdjacentElement("afterend", m);
+  (input.closest("label, .row, table, div") ?? input).insertAdjacentElement("afterend", m);
 }
 
 /** Remove the message of `input`, if any. */

@@ -449,3 +449,27 @@ def test_listing_notes_a_folder_it_cannot_read(workspace, monkeypatch):
     files, notes = Workspace(workspace).listing()
     assert files == ["tn-11.uc", "tn-2.uc"]
     assert notes == ["locked: skipped, cannot read it (Permission denied)"]
+
+
+def test_structural_edits_keep_the_other_curves_apexes(workspace):
+    """Issue 13: drawing the first curve of layer 1 raised a layer-0 curve whose apex follows the next
+    layer's bottom. Now a new curve, a curve moved to another layer or a removed curve leaves every
+    other curve's apex where it was (a default apex is written down); moving a bottom still moves it."""
+    from auszug.microarch import BasicCurve, Drawing, Segment
+    from auszug.microarch import edit as E
+
+    c = BasicCurve(((1.0, 0.0), (0.0, 0.0)), (Segment(),), ("ground", "apex"))   # no height of its own
+    d = Drawing((c,), (0.0, 2.5))
+    assert d.apex_height(0) == 1.0
+    raw = E.draw_curve(d, [(0.0, 1.0), (0.0, 0.0)], [[]], ["ground", "apex"], layer=1)
+    assert raw.apex_height(0) == 2.5          # the edit function alone raises it
+    new = P.DrawCurve(vertices=[(0.0, 1.0), (0.0, 0.0)], handles=[[]], marks=["ground", "apex"], layer=1).apply(d)
+    assert new.apex_height(0) == 1.0 and new.curves[0].height == 1.0 and new.curves[1].layer == 1
+    back = P.RemoveCurve(curve=1).apply(new)
+    assert back.apex_height(0) == 1.0
+    moved = P.SetLayer(curve=1, layer=0).apply(new)
+    assert moved.apex_height(0) == 1.0
+    # a layer bottom is what a default apex follows: that edit still moves it
+    two = Drawing((c, c.with_(layer=1, height=4.0)), (0.0, 2.5))
+    assert two.apex_height(0) == 2.5
+    assert P.SetLayerBottom(layer=1, z=3.0).apply(two).apex_height(0) == 3.0

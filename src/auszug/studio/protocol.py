@@ -170,11 +170,33 @@ class EditOp:
     #: The request number the reply echoes (a field of every edit message).
     id: int
 
+    #: Structural edits (a new curve, a curve to another layer, a removed curve) keep the apex of
+    #: every curve they leave alone: a curve whose apex follows the next layer's bottom by default
+    #: (no height of its own) gets its old apex written down when the edit would move it, so
+    #: drawing the first curve of layer 1 never silently raises a layer-0 curve.
+    KEEPS_APEXES: ClassVar[bool] = False
+
     def apply(self, drawing: Drawing) -> Drawing:
         """The edited drawing (the input is not changed)."""
         kw = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)  # type: ignore[arg-type]  # edit messages are dataclasses
               if f.name not in EditOp.NOT_PARAMETERS}
-        return type(self).fn(drawing, **kw)
+        out = type(self).fn(drawing, **kw)
+        return _keep_apexes(drawing, out) if self.KEEPS_APEXES else out
+
+
+def _keep_apexes(before: Drawing, after: Drawing) -> Drawing:
+    """``after`` with the apex of every curve it shares (the same object) with ``before`` kept."""
+    old = {id(c): i for i, c in enumerate(before.curves)}
+    b0, b1 = before.bottoms(), after.bottoms()
+    for j, c in enumerate(after.curves):
+        i = old.get(id(c))
+        if i is None or c.height is not None:
+            continue
+        h0 = before.apex_height(i, b0)
+        if after.apex_height(j, b1) != h0:
+            after = after.with_curve(j, c.with_(height=h0))
+            b1 = after.bottoms()   # derived bottoms follow the heights written down
+    return after
 
 
 @dataclass(frozen=True)
@@ -295,6 +317,7 @@ class RemoveCurve(EditOp):
     id: int = 0
     type: Literal["remove_curve"] = "remove_curve"
     fn = staticmethod(edit.remove_curve)
+    KEEPS_APEXES = True
 
 
 @dataclass(frozen=True)
@@ -314,6 +337,7 @@ class DrawCurve(EditOp):
     id: int = 0
     type: Literal["draw_curve"] = "draw_curve"
     fn = staticmethod(edit.draw_curve)
+    KEEPS_APEXES = True
 
 
 @dataclass(frozen=True)
@@ -325,6 +349,7 @@ class SetLayer(EditOp):
     id: int = 0
     type: Literal["set_layer"] = "set_layer"
     fn = staticmethod(edit.set_layer)
+    KEEPS_APEXES = True
 
 
 @dataclass(frozen=True)

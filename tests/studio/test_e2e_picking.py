@@ -138,3 +138,39 @@ def test_curve_panel_refusals_show_at_the_field(studio, workspace, page, testid,
     assert says in msg.inner_text(), msg.inner_text()
     g1 = geometry(page)
     assert g1["revision"] == g["revision"] and not g1["can_undo"]
+
+
+def test_two_tabs_dragging_at_once_one_undo_takes_back_whole_drags(studio, workspace, page):
+    """Two tabs drag points of one document at the same time (their edits interleave): an undo
+    never lands in the middle of a drag (issue 13: it took back a single edit of the other's drag)."""
+    drawing = load(workspace / "tn-2.uc")
+    other = page.context.new_page()
+    g0 = open_drawing(page, studio, "tn-2.uc")
+    open_drawing(other, studio, "tn-2.uc")
+    for pg in (page, other):
+        select_curve(pg, drawing, 0)
+    v1, v0 = g0["curves"][0]["vertices"][1], g0["curves"][0]["vertices"][0]
+    page.mouse.move(*top_to_client(page, *v1))
+    page.mouse.down()
+    other.mouse.move(*top_to_client(other, *v0))
+    other.mouse.down()
+    for pg in (page, other):
+        pg.keyboard.down("Alt")
+    for k in range(1, 7):
+        page.mouse.move(*top_to_client(page, v1[0] - 0.02 * k, v1[1] + 0.02 * k))
+        page.wait_for_timeout(40)
+        other.mouse.move(*top_to_client(other, v0[0] + 0.015 * k, v0[1] - 0.01 * k))
+        other.wait_for_timeout(40)
+    for pg in (page, other):
+        pg.mouse.up()
+        pg.keyboard.up("Alt")
+    page.wait_for_function(f"""() => {{ const v = window.auszug.store.geometry.curves[0].vertices;
+        return Math.abs(v[1][0] - {v1[0] - 0.12}) < 0.01 && Math.abs(v[0][0] - {v0[0] + 0.09}) < 0.01; }}""")
+    page.wait_for_timeout(300)
+    g = geometry(page)
+    page.keyboard.press("Control+z")
+    g1 = wait_revision(page, g["revision"])
+    # nothing of either drag is left half-done: back to the file (both drags were one step) ...
+    assert g1["curves"][0]["vertices"] == g0["curves"][0]["vertices"] and not g1["can_undo"]
+    other.wait_for_function(f"() => window.auszug.store.geometry.revision >= {g1['revision']}")
+    assert geometry(other)["curves"][0]["vertices"] == g0["curves"][0]["vertices"]

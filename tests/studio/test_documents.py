@@ -401,19 +401,109 @@ def test_recover_without_autosave_is_an_error(client):
         assert err == {"type": "error", "id": 3, "message": "tn-2.uc: no autosave to recover"}
 
 
-def test_unsaved_documents_autosave_under_unsaved(workspace):
+def test_unsaved_documents_autosave_per_document(workspace):
+    """Two tabs on one example (same name) are two documents with two autosaves; after a restart
+    each tab resumes its own drawing by its document id."""
+    auto = workspace / ".auszug" / "autosave" / "unsaved"
+    with _app(workspace, autosave_delay=0) as c, c.websocket_connect(WS) as a, c.websocket_connect(WS) as b:
+        ids = []
+        for ws, h in ((a, 2.5), (b, 3.5)):
+            ws.send_json({"type": "open_example", "name": "teaching-sheet/tn-2.uc"})
+            ids.append(_geometry(ws)[0]["doc"])
+            ws.send_json({"type": "set_apex_height", "curve": 0, "height": h})
+            _geometry(ws)
+        assert ids[0] != ids[1]
+        for i in ids:
+            _wait_for(auto / i / "tn-2.uc.json")
+    for i, h in zip(ids, (2.5, 3.5), strict=True):
+        assert load(auto / i / "tn-2.uc.json").curves[0].height == h
+    with _app(workspace) as c, c.websocket_connect(WS) as ws:
+        for i, h in zip(ids, (2.5, 3.5), strict=True):
+            ws.send_json({"type": "resume", "doc": i, "id": 4})
+            g, _ = _geometry(ws)
+            assert (g["id"], g["doc"], g["path"], g["dirty"], g["curves"][0]["apex"]) == (4, i, "", True, h)
+        ws.send_json({"type": "resume", "doc": "0123456789abcdef", "id": 5})
+        assert "gone" in _reply(ws, "error")["message"]
+        ws.send_json({"type": "resume", "doc": "../../etc", "id": 6})
+        assert "not a document id" in _reply(ws, "error")["message"]
+
+
+def test_offered_autosave_is_never_overwritten(workspace):
+    """A restart offers the autosave; edits made before restoring it do not overwrite it."""
     with _app(workspace, autosave_delay=0) as c, c.websocket_connect(WS) as ws:
-        ws.send_json({"type": "open_example", "name": "teaching-sheet/tn-2.uc"})
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
         _geometry(ws)
         ws.send_json({"type": "set_apex_height", "curve": 0, "height": 2.5})
         _geometry(ws)
-        _wait_for(workspace / ".auszug" / "autosave" / "unsaved" / "tn-2.uc.json")
-    with _app(workspace) as c, c.websocket_connect(WS) as ws:
-        ws.send_json({"type": "open_example", "name": "teaching-sheet/tn-2.uc"})
-        assert _geometry(ws)[0]["recoverable"]
-        ws.send_json({"type": "recover"})
+    with _app(workspace, autosave_delay=0) as c, c.websocket_connect(WS) as ws:
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
         g, _ = _geometry(ws)
-        assert g["curves"][0]["apex"] == 2.5 and g["path"] == ""
+        assert g["recoverable"]
+        for h in (3.0, 3.25):
+            ws.send_json({"type": "set_apex_height", "curve": 0, "height": h})
+            g, _ = _geometry(ws)
+            assert g["recoverable"]            # still offered after edits
+        _wait_for(workspace / ".auszug" / "autosave" / "tn-2.uc.json")
+        time.sleep(0.2)
+        assert load(workspace / ".auszug" / "autosave" / "tn-2.uc.json").curves[0].height == 3.25
+        ws.send_json({"type": "recover", "id": 8})
+        g, _ = _geometry(ws)
+        assert g["id"] == 8 and g["curves"][0]["apex"] == 2.5 and not g["recoverable"]
+        ws.send_json({"type": "undo", "id": 9})
+        assert _geometry(ws)[0]["curves"][0]["apex"] == 3.25   # the recovery is one undoable edit
+
+
+def test_reconnecting_tab_gets_back_its_own_state(workspace):
+    """After a crash (here: a restart after the autosave), the tab that wrote the autosave resumes
+    with it applied; any other tab that opens the file gets the offer instead."""
+    with _app(workspace, autosave_delay=0) as c, c.websocket_connect(WS) as ws:
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
+        doc = _geometry(ws)[0]["doc"]
+        ws.send_json({"type": "set_apex_height", "curve": 0, "height": 2.5})
+        _geometry(ws)
+    with _app(workspace) as c, c.websocket_connect(WS) as ws:
+        ws.send_json({"type": "resume", "doc": doc, "path": "tn-2.uc", "id": 3})
+        g, _ = _geometry(ws)
+        assert (g["doc"], g["path"], g["dirty"], g["can_undo"], g["recoverable"]) == (doc, "tn-2.uc", True, True, "")
+        assert g["curves"][0]["apex"] == 2.5
+        with c.websocket_connect(WS) as other:   # a reload of the same tab while the document is open
+            other.send_json({"type": "resume", "doc": doc, "path": "tn-2.uc"})
+            assert _geometry(other)[0]["revision"] == g["revision"]
+        ws.send_json({"type": "undo"})
+        assert _geometry(ws)[0]["curves"][0]["apex"] == load(workspace / "tn-2.uc").curves[0].height
+        ws.send_json({"type": "redo"})
+        _geometry(ws)
+    with _app(workspace) as c, c.websocket_connect(WS) as ws:   # a stranger: offered, not applied
+        ws.send_json({"type": "resume", "doc": "0123456789abcdef", "path": "tn-2.uc"})
+        g, _ = _geometry(ws)
+        assert g["recoverable"] and g["curves"][0]["apex"] == load(workspace / "tn-2.uc").curves[0].height
+
+
+def test_save_as_in_one_tab_does_not_move_the_others(workspace):
+    with _app(workspace) as c, c.websocket_connect(WS) as a, c.websocket_connect(WS) as b:
+        a.send_json({"type": "open", "path": "tn-2.uc"})
+        _geometry(a)
+        b.send_json({"type": "open", "path": "tn-2.uc"})
+        _geometry(b)
+        a.send_json({"type": "set_apex_height", "curve": 0, "height": 2.5})
+        _geometry(a)
+        _geometry(b)
+        a.send_json({"type": "save", "path": "copy.json", "id": 5})
+        assert _reply(a, "saved")["path"] == "copy.json"
+        ga, _ = _geometry(a)
+        assert ga["path"] == "copy.json" and not ga["dirty"]
+        a.send_json({"type": "set_apex_height", "curve": 0, "height": 3.0})
+        assert _geometry(a)[0]["curves"][0]["apex"] == 3.0
+        b.send_json({"type": "set_apex_height", "curve": 0, "height": 2.75, "id": 6})
+        gb, _ = _geometry(b)      # b heard nothing of a's save or of a's edit after it
+        assert (gb["id"], gb["path"], gb["dirty"], gb["doc"]) == (6, "tn-2.uc", True, gb["doc"])
+        assert gb["doc"] != ga["doc"]
+        b.send_json({"type": "undo"})
+        b.send_json({"type": "undo"})
+        _geometry(b)
+        gb, _ = _geometry(b)     # the history before the fork is b's too
+        assert gb["curves"][0]["apex"] == load(workspace / "tn-2.uc").curves[0].height and not gb["dirty"]
+    assert load(workspace / "copy.json").curves[0].height == 2.5
 
 
 def test_undo_back_to_the_file_removes_the_autosave(workspace):
@@ -512,3 +602,25 @@ def test_outbox_stops_when_the_peer_is_gone():
         return len(calls), box.pending()
 
     assert asyncio.run(run()) == (1, 0)
+
+
+def test_two_tabs_dragging_at_once_undo_whole_drags(workspace):
+    """Two tabs drag on one document, their edits interleaved: an undo in either tab takes back
+    whole drags, never a single edit of the other's drag."""
+    with _app(workspace) as c, c.websocket_connect(WS) as a, c.websocket_connect(WS) as b:
+        a.send_json({"type": "open", "path": "tn-2.uc"})
+        g0, data0 = _geometry(a)
+        b.send_json({"type": "open", "path": "tn-2.uc"})
+        _geometry(b)
+        x, y = g0["curves"][0]["vertices"][1]
+        for k in range(1, 5):
+            a.send_json({"type": "move_vertex", "curve": 0, "vertex": 1, "xy": [x + 0.01 * k, y], "drag": 101})
+            _geometry(a)
+            _geometry(b)
+            b.send_json({"type": "set_apex_height", "curve": 0, "height": 2.0 + 0.05 * k, "drag": 202})
+            _geometry(b)
+            _geometry(a)
+        b.send_json({"type": "undo", "id": 9})
+        g, data = _geometry(b)
+        assert g["id"] == 9 and not g["can_undo"] and np.array_equal(np.frombuffer(data, "<f4"),
+                                                                     np.frombuffer(data0, "<f4"))

@@ -97,7 +97,7 @@ def test_fast_geometry_text_equals_dataclass_encoding(name):
 
     d = load(examples.path(name))
     kw = dict(path="sub/x.uc", revision=17, can_undo=True, can_redo=False, dirty=True,
-              recoverable="2026-01-02T03:04:05+00:00")
+              recoverable="2026-01-02T03:04:05+00:00", doc="0123456789abcdef")
     text, payload = geometry_frames(d, **kw)
     for msg_id in (0, 5, 123456):
         msg, payload2 = geometry(d, msg_id=msg_id, **kw)
@@ -248,11 +248,11 @@ def test_concurrent_edits_from_threads_are_all_kept(workspace):
 
     doc = open_document(Workspace(workspace), "tn-2.uc")
 
-    def nudge():
-        for _ in range(10):
-            doc.apply(P.SetApexHeight(curve=0, height=doc.drawing.curves[0].height or 1.0))
+    def nudge(t):
+        for i in range(10):   # every edit sets a height of its own (setting the same one is a no-op)
+            doc.apply(P.SetApexHeight(curve=0, height=1.0 + 0.01 * (10 * t + i)))
 
-    threads = [threading.Thread(target=nudge) for _ in range(4)]
+    threads = [threading.Thread(target=nudge, args=(t,)) for t in range(4)]
     for t in threads:
         t.start()
     for t in threads:
@@ -323,3 +323,153 @@ def test_curves_carry_the_networks_replica_transforms_and_the_palette(name):
         for lb, t in zip(p.labels, tr, strict=True):
             want = (pts[:, :2] - ctr) @ by_label[lb].T + ctr
             np.testing.assert_allclose(pts[:, :2] @ t[:2, :2].T + t[:2, 3], want, atol=1e-5)
+
+
+def _state(doc) -> tuple:
+    return (doc.drawing, doc.net, list(doc.undo_stack), list(doc.redo_stack), doc.revision, doc.changes,
+            doc.frames()[1])
+
+
+@pytest.mark.parametrize("op", ["apply", "undo", "redo"])
+def test_a_change_whose_reply_fails_is_rolled_back(workspace, monkeypatch, op):
+    """All or nothing: if the geometry of a change cannot be built, the change is undone too."""
+    import auszug.studio.session as S
+
+    doc = S.open_document(Workspace(workspace), "tn-2.uc")
+    doc.change(doc.apply, P.SetApexHeight(curve=0, height=2.0))
+    doc.change(doc.apply, P.SetApexHeight(curve=0, height=2.2))
+    doc.change(doc.undo)
+    before = _state(doc)
+    real = S.geometry_frames
+
+    def failing(**kw):
+        raise RuntimeError("no reply")
+
+    monkeypatch.setattr(S, "geometry_frames", failing)
+    fn, args = {"apply": (doc.apply, (P.SetApexHeight(curve=0, height=2.5, drag=3),)),
+                "undo": (doc.undo, ()), "redo": (doc.redo, ())}[op]
+    with pytest.raises(RuntimeError, match="no reply"):
+        doc.change(fn, *args)
+    monkeypatch.setattr(S, "geometry_frames", real)
+    after = _state(doc)
+    assert after[:6] == before[:6] and after[0] is before[0] and after[6] == before[6]
+    # the next drag edit starts a new undo step (the failed one left no drag behind)
+    doc.change(doc.apply, P.SetApexHeight(curve=0, height=2.6, drag=3))
+    assert len(doc.undo_stack) == len(before[2]) + 1
+
+
+def test_a_cancelled_change_is_rolled_back(workspace):
+    import threading
+
+    import auszug.studio.session as S
+
+    doc = S.open_document(Workspace(workspace), "tn-2.uc")
+    before = _state(doc)
+    cancel = threading.Event()
+    cancel.set()
+    with pytest.raises(S.EditCancelled):
+        doc.change(doc.apply, P.SetSymmetry(curve=0, fold=12), cancel=cancel)
+    assert _state(doc)[:6] == before[:6] and not doc.dirty
+
+
+@pytest.mark.parametrize("ending", [".json", ".uc"])
+def test_every_value_an_edit_accepts_saves_and_reopens(workspace, ending):
+    """The studio's edits check the limits the readers check: a drawing at the limits reopens equal."""
+    from auszug.limits import LIMITS
+
+    s = Session(Workspace(workspace))
+    s.open("tn-2.uc")
+    c = LIMITS.coordinate
+    s.apply(P.SetApexHeight(curve=0, height=c))
+    s.apply(P.SetSymmetry(curve=0, fold=LIMITS.fold))
+    s.apply(P.MoveVertex(curve=0, vertex=0, xy=(-c, c)))
+    for bad in (1e300, 1e120, c * (1 + 1e-12), float("inf")):
+        with pytest.raises(AuszugError, match="apex height"):
+            s.apply(P.SetApexHeight(curve=0, height=bad))
+    with pytest.raises(AuszugError, match="fold"):
+        s.apply(P.SetSymmetry(curve=0, fold=LIMITS.fold + 1))
+    s.save("limits" + ending)
+    back = load(workspace / ("limits" + ending))
+    assert back.curves[0].height == c and back.curves[0].symmetry.fold == LIMITS.fold
+    assert tuple(back.curves[0].vertices[0]) == (-c, c)
+
+
+def test_a_no_op_edit_leaves_no_undo_step(workspace):
+    """Setting what is already set (a PRC click on the PRC, the same apex) changes nothing."""
+    s = Session(Workspace(workspace))
+    s.open("tn-2.uc")
+    d0, rev = s.drawing, s.revision
+    s.apply(P.SetApexHeight(curve=0, height=d0.curves[0].height))
+    s.apply(P.SetPrc(curve=0, segment=0, fraction=d0.curves[0].prc[0]))
+    assert s.drawing is d0 and s.revision == rev and not s.undo_stack and not s.document.dirty
+    s.apply(P.SetApexHeight(curve=0, height=2.0))
+    s.apply(P.SetApexHeight(curve=0, height=2.0))
+    assert len(s.undo_stack) == 1 and s.drawing.curves[0].height == 2.0
+
+
+def test_interleaved_drags_of_two_tabs_make_no_partial_undo_steps(workspace):
+    """Two tabs drag at once (their edits interleave): no undo lands in the middle of either drag."""
+    s = Session(Workspace(workspace))
+    s.open("tn-2.uc")
+    d0 = s.drawing
+    x, y = d0.curves[0].vertices[1]
+    for k in range(1, 5):
+        s.apply(P.MoveVertex(curve=0, vertex=1, xy=(x + 0.01 * k, y), drag=11))   # tab A
+        s.apply(P.SetApexHeight(curve=0, height=2.0 + 0.05 * k, drag=22))         # tab B
+    assert len(s.undo_stack) == 1
+    s.undo()
+    assert s.drawing == d0
+    s.redo()
+    assert s.drawing.curves[0].vertices[1] == (x + 0.04, y) and s.drawing.curves[0].height == 2.2
+    # drags one after the other stay one step each
+    for k in range(1, 4):
+        s.apply(P.MoveVertex(curve=0, vertex=1, xy=(x, y + 0.01 * k), drag=33))
+    for k in range(1, 4):
+        s.apply(P.SetApexHeight(curve=0, height=2.5 + 0.01 * k, drag=44))
+    assert len(s.undo_stack) == 3
+    s.undo()
+    assert s.drawing.curves[0].height == 2.2 and s.drawing.curves[0].vertices[1] == (x, y + 0.03)
+
+
+def test_listing_notes_a_folder_it_cannot_read(workspace, monkeypatch):
+    """A folder that cannot be listed (permissions; the tests run as root, so the refusal is staged)
+    is skipped with a note; the rest is listed."""
+    import os
+
+    (workspace / "locked").mkdir()
+    (workspace / "locked" / "x.uc").write_text((workspace / "tn-2.uc").read_text())
+    real = os.scandir
+
+    def scandir(path="."):
+        if os.fspath(path).endswith("locked"):
+            raise PermissionError(13, "Permission denied", os.fspath(path))
+        return real(path)
+
+    monkeypatch.setattr(os, "scandir", scandir)
+    files, notes = Workspace(workspace).listing()
+    assert files == ["tn-11.uc", "tn-2.uc"]
+    assert notes == ["locked: skipped, cannot read it (Permission denied)"]
+
+
+def test_structural_edits_keep_the_other_curves_apexes(workspace):
+    """Issue 13: drawing the first curve of layer 1 raised a layer-0 curve whose apex follows the next
+    layer's bottom. Now a new curve, a curve moved to another layer or a removed curve leaves every
+    other curve's apex where it was (a default apex is written down); moving a bottom still moves it."""
+    from auszug.microarch import BasicCurve, Drawing, Segment
+    from auszug.microarch import edit as E
+
+    c = BasicCurve(((1.0, 0.0), (0.0, 0.0)), (Segment(),), ("ground", "apex"))   # no height of its own
+    d = Drawing((c,), (0.0, 2.5))
+    assert d.apex_height(0) == 1.0
+    raw = E.draw_curve(d, [(0.0, 1.0), (0.0, 0.0)], [[]], ["ground", "apex"], layer=1)
+    assert raw.apex_height(0) == 2.5          # the edit function alone raises it
+    new = P.DrawCurve(vertices=[(0.0, 1.0), (0.0, 0.0)], handles=[[]], marks=["ground", "apex"], layer=1).apply(d)
+    assert new.apex_height(0) == 1.0 and new.curves[0].height == 1.0 and new.curves[1].layer == 1
+    back = P.RemoveCurve(curve=1).apply(new)
+    assert back.apex_height(0) == 1.0
+    moved = P.SetLayer(curve=1, layer=0).apply(new)
+    assert moved.apex_height(0) == 1.0
+    # a layer bottom is what a default apex follows: that edit still moves it
+    two = Drawing((c, c.with_(layer=1, height=4.0)), (0.0, 2.5))
+    assert two.apex_height(0) == 2.5
+    assert P.SetLayerBottom(layer=1, z=3.0).apply(two).apex_height(0) == 3.0

@@ -5,6 +5,7 @@ import { perFrame } from "./frames";
 import "./curvepanel.css";
 import type { Ctx } from "./context";
 import type { ClientMessage, Geometry } from "./protocol";
+import { atField } from "./fielderror";
 import { registerShortcut } from "./shortcuts";
 import { MIRROR_RULES, type MirrorRule } from "./topview";
 
@@ -38,7 +39,7 @@ export function initCurvePanel(ctx: Ctx): void {
 
   const sym = el(body, "div", { className: "row" });
   const fold = field(sym, "fold", el(null, "input",
-    { type: "number", min: "1", max: "64", step: "1", title: "Rotation fold n (1-64)" }, "fold-input"));
+    { type: "number", min: "1", step: "1", title: "Rotation fold n (the limit is auszug.limits.LIMITS.fold)" }, "fold-input"));
   const mirror = field(sym, "mirror", el(null, "select",
     { title: "Mirror: none, through the first or last point, or the y axis" }, "mirror-select"));
   for (const m of MIRROR_RULES) mirror.add(new Option(m, m));
@@ -57,7 +58,11 @@ export function initCurvePanel(ctx: Ctx): void {
     "delete-curve");
 
   /** Send an edit; a refused one puts the controls back to the drawing's values (the status bar says why). */
-  const edit = (msg: ClientMessage) => void ctx.request(msg).catch(() => update(true));
+  const edit = (msg: ClientMessage, input?: HTMLElement) => {
+    const r = ctx.request(msg);
+    if (input) atField(input, r, () => update(true));
+    else void r.catch(() => update(true));
+  };
   const selected = (): number | null => {
     const g = store.geometry, s = store.selection;
     return g && s !== null && s < g.curves.length ? s : null;
@@ -66,8 +71,9 @@ export function initCurvePanel(ctx: Ctx): void {
   fold.addEventListener("change", () => {
     const s = selected(), n = Math.round(Number(fold.value));
     if (s === null) return;
-    if (!(n >= 1 && n <= 64)) { fold.value = String(store.geometry!.curves[s].fold); return; }
-    if (n !== store.geometry!.curves[s].fold) edit({ type: "set_symmetry", curve: s, fold: n });
+    if (!Number.isFinite(n)) { fold.value = String(store.geometry!.curves[s].fold); return; }
+    // the server checks the fold against auszug.limits (the refusal shows at the field)
+    if (n !== store.geometry!.curves[s].fold) edit({ type: "set_symmetry", curve: s, fold: n }, fold);
   });
   mirror.addEventListener("change", () => {
     const s = selected();
@@ -113,7 +119,7 @@ export function initCurvePanel(ctx: Ctx): void {
           if (s === null || input.value === "" || !Number.isFinite(v)) return;
           const xy = [...store.geometry!.curves[s].vertices[k]] as [number, number];
           xy[axis] = v;
-          edit({ type: "move_vertex", curve: s, vertex: k, xy });
+          edit({ type: "move_vertex", curve: s, vertex: k, xy }, input);
         });
         return input;
       };

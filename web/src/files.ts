@@ -201,12 +201,22 @@ export function initFiles(ctx: Ctx): void {
   galleryMessage.setAttribute("role", "status");
   const groupsEl = document.createElement("div");
   groupsEl.className = "gallery-groups";
-  gallery.body.append(top, galleryMessage, groupsEl);
+  // workspace entries the server skipped (a link loop, an unreadable folder): said, not hidden
+  const notesEl = document.createElement("ul");
+  notesEl.className = "gallery-notes";
+  notesEl.dataset.testid = "gallery-notes";
+  gallery.body.append(top, galleryMessage, groupsEl, notesEl);
   let listing: Files | null = null;
 
   function renderGallery(): void {
     groupsEl.replaceChildren();
+    notesEl.replaceChildren();
     if (!listing) return;
+    for (const note of listing.notes) {
+      const li = document.createElement("li");
+      li.textContent = note;
+      notesEl.appendChild(li);
+    }
     const groups = galleryGroups(listing, search.value);
     galleryMessage.classList.remove("error");
     galleryMessage.textContent = groups.length ? "" : `No drawing matches “${search.value.trim()}”.`;

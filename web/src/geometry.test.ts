@@ -17,7 +17,7 @@ const msg: Geometry = {
     side: { offset: 38, shape: [2, 2], dtype: "f4" }, labels: ["r0", "r1"], prc: null, prc_s: null,
   }],
   intersections: [], curves: [], layers: [0], bounds: [0, 0, 0, 3, 1, 1], can_undo: false, can_redo: false,
-  dirty: false, recoverable: "", binary_floats: data.length, id: 0, protocol: 2, type: "geometry",
+  dirty: false, recoverable: "", doc: "0123456789abcdef", binary_floats: data.length, id: 0, protocol: 2, type: "geometry",
 };
 
 describe("geometry", () => {

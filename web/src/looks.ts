@@ -41,6 +41,8 @@ export function initLooks(ctx: Ctx): void {
   const style = select(bar, "look-style", "How the members are drawn", STYLES, (v) => store.setLooks({ style: v }));
   const faces = select(bar, "look-faces", "Fill the network's loops with minimal surfaces: none, all, " +
     "or the loops you click (in the 3D view; in preview also the top view)", FACES, (v) => store.setLooks({ faces: v }));
+  style.value = store.looks.style;   // the URL may have set them (main.ts)
+  faces.value = store.looks.faces;
   const info = document.createElement("span");
   info.className = "look-info";
   info.dataset.testid = "look-info";

@@ -14,6 +14,7 @@ import { installShortcuts, registerShortcut } from "./shortcuts";
 import { initSideView } from "./sideview";
 import { Store, type Mode } from "./store";
 import { initTopView } from "./topview";
+import { readUrlState, writeUrlState } from "./urlstate";
 
 /** One edit's timeline (performance.now() values), for the speed benchmark and the e2e tests. */
 export interface EditTiming {
@@ -90,10 +91,14 @@ const conn = new Connection(socketUrl(window.location), {
     document.body.dataset.connected = "true";
     if (store.geometry) store.status(statusText(store.geometry));
     else store.status("connected: open a drawing (Open..., Ctrl+O) or start a new one (New)");
-    if (again && store.geometry?.path) conn.send({ type: "open", path: store.geometry.path });
+    // a reconnecting tab (or a reload, from the URL) asks for its own document back: the server still
+    // has it, or restores it from the autosave this document wrote (docs/studio.md, "Resume")
+    const g = store.geometry;
+    if (again && g) conn.send({ type: "resume", doc: g.doc, path: g.path });
     else if (!again) {
-      const open = new URLSearchParams(window.location.search).get("open");
-      if (open) conn.send({ type: "open", path: open });
+      const u = readUrlState(window.location.search);
+      if (u.doc) conn.send({ type: "resume", doc: u.doc, path: u.open });
+      else if (u.open) conn.send({ type: "open", path: u.open });
     }
   },
   closed() {
@@ -156,6 +161,23 @@ registerShortcut({ key: "z", ctrl: true, description: "Undo", run: () => conn.se
 registerShortcut({ key: "z", ctrl: true, shift: true, description: "Redo", run: () => conn.send({ type: "redo" }) });
 registerShortcut({ key: "y", ctrl: true, description: "Redo", run: () => conn.send({ type: "redo" }) });
 registerShortcut({ key: "f", description: "Fit the views to the drawing", run: () => { views.fit(); views.requestRender(); } });
+
+// the URL keeps the open document, the looks and the mode (a reload restores them)
+const fromUrl = readUrlState(window.location.search);
+if (fromUrl.style) store.setLooks({ style: fromUrl.style });
+if (fromUrl.faces) store.setLooks({ faces: fromUrl.faces });
+if (fromUrl.mode) store.setMode(fromUrl.mode);
+function syncUrl(): void {
+  const g = store.geometry;
+  const search = writeUrlState(window.location.search, {
+    open: g?.path ?? fromUrl.open, doc: g?.doc ?? fromUrl.doc, style: store.looks.style, faces: store.looks.faces,
+    mode: store.mode,
+  });
+  if (search !== window.location.search) window.history.replaceState(null, "", window.location.pathname + search);
+}
+store.on("geometry", syncUrl);
+store.on("looks", syncUrl);
+store.on("mode", syncUrl);
 
 initTopView(ctx);
 initCurvePanel(ctx);

@@ -42,7 +42,19 @@ export function match(ev: KeyboardEvent, list: readonly Shortcut[] = registry): 
   return null;
 }
 
+/** Whether Enter in `el` commits its value and hands the keyboard back to the shortcuts: the number
+ * and text fields of the panels (not those of dialogs, whose Enter is their own). */
+export function commitsOnEnter(el: Element | null): el is HTMLInputElement {
+  return el instanceof HTMLInputElement && (el.type === "number" || el.type === "text") && !el.closest("dialog");
+}
+
 export function installShortcuts(): void {
+  // Enter in a panel's field commits it (its change event) and leaves the field, so Ctrl+Z undoes the
+  // edit instead of the field's text, the other shortcuts work again and the field follows the drawing
+  window.addEventListener("keydown", (ev) => {
+    const el = ev.target as Element | null;
+    if (ev.key === "Enter" && !ev.isComposing && commitsOnEnter(el)) setTimeout(() => el.blur(), 0);
+  });
   window.addEventListener("keydown", (ev) => {
     const s = match(ev);
     if (!s) return;

@@ -12,6 +12,7 @@ import "./sideview.css";
 import type { Ctx } from "./context";
 import { view } from "./geometry";
 import type { ClientMessage, Geometry } from "./protocol";
+import { atField } from "./fielderror";
 
 const SVG = "http://www.w3.org/2000/svg";
 const HEIGHT = 260;
@@ -438,7 +439,9 @@ function initSide(ctx: Ctx): void {
 
   apexInput.addEventListener("change", () => {
     const c = selected(), v = Number(apexInput.value);
-    if (c !== null && apexInput.value !== "" && Number.isFinite(v)) void ctx.request({ type: "set_apex_height", curve: c, height: v }).catch(draw);
+    if (c !== null && apexInput.value !== "" && Number.isFinite(v)) {
+      atField(apexInput, ctx.request({ type: "set_apex_height", curve: c, height: v }), draw);
+    }
   });
   decoToggle.addEventListener("change", () => {
     const c = selected();
@@ -463,7 +466,7 @@ function initSide(ctx: Ctx): void {
   });
   postTop.addEventListener("change", () => {
     const c = selected(), v = Number(postTop.value);
-    if (c !== null && postTop.value !== "" && Number.isFinite(v)) void ctx.request({ type: "set_post", curve: c, top: v }).catch(draw);
+    if (c !== null && postTop.value !== "" && Number.isFinite(v)) atField(postTop, ctx.request({ type: "set_post", curve: c, top: v }), draw);
   });
 
   // store events redraw once a frame (a drag's stream of geometry costs one redraw per frame);
@@ -526,7 +529,7 @@ function initLayers(ctx: Ctx): void {
         bottom.title = `Bottom height of layer ${l}`;
         bottom.addEventListener("change", () => {
           const v = Number(bottom.value);
-          if (bottom.value !== "" && Number.isFinite(v)) void ctx.request({ type: "set_layer_bottom", layer: l, z: v }).catch(draw);
+          if (bottom.value !== "" && Number.isFinite(v)) atField(bottom, ctx.request({ type: "set_layer_bottom", layer: l, z: v }), draw);
         });
         inputs[l] = bottom;
         const count = el("span", "count", `${counts[l]} curve${counts[l] === 1 ? "" : "s"}`);

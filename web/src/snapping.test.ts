@@ -2,7 +2,7 @@ import { describe, expect, it } from "vitest";
 import fixture from "./replicas.fixture.json";
 import {
   arcPoints, guideLines, images, mirrorAxis, pickCurve, projectOnLine, replicaMatrices, replicaVertices,
-  segmentDistance, snap, symmetryMatrices, type Vec,
+  pickTarget, segmentDistance, snap, symmetryMatrices, targetRank, type Vec,
 } from "./snapping";
 
 describe("symmetry", () => {
@@ -114,5 +114,23 @@ describe("arc of a drawn curve", () => {
 
   it("is the chord when the handle is on the line", () => {
     expect(arcPoints([0, 0], [1, 1], [2, 2])).toEqual([[0, 0], [2, 2]]);
+  });
+});
+
+describe("pickTarget", () => {
+  const at = (x: number, y: number, rank: number) => ({ x, y, rank });
+  it("prefers the selected curve's marker over a faded one lying on top and over its own vertex", () => {
+    const ts = [at(100, 100, targetRank("intersection", false)), at(101, 100, targetRank("intersection", true)),
+      at(100, 101, targetRank("vertex", true))];
+    expect(pickTarget(100, 100, ts)).toBe(1);
+  });
+  it("takes clicks within 8 px (a 16 px target), not beyond", () => {
+    const ts = [at(0, 0, 1)];
+    expect(pickTarget(7.9, 0, ts)).toBe(0);
+    expect(pickTarget(0, 8, ts)).toBe(0);
+    expect(pickTarget(8.1, 0, ts)).toBe(-1);
+  });
+  it("takes the nearest of equal ranks", () => {
+    expect(pickTarget(5, 0, [at(0, 0, 2), at(6, 0, 2)])).toBe(1);
   });
 });

@@ -204,3 +204,33 @@ export function arcPoints(a: Vec, h: Vec, b: Vec, n = 48): Vec[] {
   }
   return out;
 }
+
+/** A point target under the pointer: its screen position (CSS px) and its rank (higher wins). */
+export interface Target { x: number; y: number; rank: number }
+
+/** Half the size of a point target (CSS px): every marker and point takes clicks over 2 * 8 = 16 px. */
+export const TARGET_PX = 8;
+
+/** Rank of a target in the top view: the selected curve's markers first (the paper's core action:
+ * a click on a crossing puts that curve's PRC there), then the selected curve's points and handles,
+ * then the other curves' markers, then their points. */
+export function targetRank(kind: "intersection" | "vertex" | "handle", selected: boolean): number {
+  if (kind === "intersection") return selected ? 4 : 2;
+  return selected ? 3 : 1;
+}
+
+/** The index of the target that takes a press at (x, y): the highest rank within `radius`, the
+ * nearest among equals; -1 if none. */
+export function pickTarget(x: number, y: number, targets: readonly Target[], radius = TARGET_PX): number {
+  let best = -1, bestRank = -Infinity, bestD = Infinity;
+  targets.forEach((t, i) => {
+    const d = Math.hypot(t.x - x, t.y - y);
+    if (d > radius) return;
+    if (t.rank > bestRank || (t.rank === bestRank && d < bestD)) {
+      best = i;
+      bestRank = t.rank;
+      bestD = d;
+    }
+  });
+  return best;
+}

@@ -12,7 +12,8 @@ import type { CurveInfo, DrawCurve, Geometry, MoveHandle, MoveVertex } from "./p
 import { registerShortcut } from "./shortcuts";
 import type { Store, Tool } from "./store";
 import {
-  arcPoints, guideLines, images, mirrorAxis, pickCurve, replicaMatrices, replicaVertices, snap, symmetryMatrices,
+  arcPoints, guideLines, images, mirrorAxis, pickCurve, pickTarget, replicaMatrices, replicaVertices, snap, symmetryMatrices,
+  targetRank,
   type CurveSymmetry, type Mat2, type PickPiece, type Snap, type SnapTargets, type Vec,
 } from "./snapping";
 
@@ -164,7 +165,9 @@ class TopView {
   private cursor: Vec | null = null;
   private lastSnap: Snap | null = null;
   private drag: Drag | null = null;
-  private press: { index: number; x: number; y: number } | null = null;
+  /** A press on an intersection marker: a click puts the PRC there; if a point lies under it too,
+   * moving the press drags that point instead. */
+  private press: { index: number; x: number; y: number; point: SVGElement | null; ev: PointerEvent } | null = null;
   /** The drag's edits: sent at once, one awaiting its reply, at most one a frame. */
   private readonly sender: DragSender<MoveVertex | MoveHandle>;
   /** Redraws the overlay at the next animation frame (once, however often asked). */
@@ -360,7 +363,31 @@ class TopView {
   private down(ev: PointerEvent): void {
     if (ev.defaultPrevented || ev.button !== 0 || !this.store.geometry) return; // panning, or not loaded
     if (this.store.tool !== "select") return this.drawDown(ev);
-    const d = (ev.target as SVGElement).dataset ?? {};
+    const el = this.targetAt(ev);
+    const d = el?.dataset ?? {};
+    if (d.testid === "intersection") {
+      this.press = { index: Number(d.index), x: ev.clientX, y: ev.clientY, point: this.targetAt(ev, true), ev };
+      return;
+    }
+    this.startDrag(ev, d);
+  }
+
+  /** The point target (marker, point, handle) a press at `ev` takes, by rank (snapping.pickTarget);
+   * `pointsOnly`: the best point or handle. */
+  private targetAt(ev: PointerEvent, pointsOnly = false): SVGElement | null {
+    const r = this.svg.getBoundingClientRect(), sel = this.store.selection;
+    const els = Array.from(this.svg.querySelectorAll<SVGCircleElement>("circle.hit"))
+      .filter((e) => !pointsOnly || e.dataset.role === "vertex" || e.dataset.role === "handle");
+    const i = pickTarget(ev.clientX - r.left, ev.clientY - r.top, els.map((e) => ({
+      x: Number(e.getAttribute("cx")), y: Number(e.getAttribute("cy")),
+      rank: targetRank(e.dataset.testid === "intersection" ? "intersection" : e.dataset.role === "handle" ? "handle" : "vertex",
+        sel !== null && Number(e.dataset.curve) === sel),
+    })));
+    return i >= 0 ? els[i] : null;
+  }
+
+  /** Start dragging the point or handle `d` describes, else select the curve under the pointer. */
+  private startDrag(ev: PointerEvent, d: DOMStringMap): void {
     const curve = Number(d.curve);
     if (d.role === "vertex" || d.role === "handle") {
       const target: DragTarget = d.role === "vertex"
@@ -371,8 +398,6 @@ class TopView {
         targets: this.targets(curve), gesture: newDragId(), raw: false };
       this.sender.begin();
       this.svg.setPointerCapture(ev.pointerId);
-    } else if (d.testid === "intersection") {
-      this.press = { index: Number(d.index), x: ev.clientX, y: ev.clientY };
     } else {
       const hit = pickCurve(this.world(ev), this.pick, PICK_PX * this.ctx.views.topScale);
       this.store.select(hit ? hit.basic : null);
@@ -401,6 +426,13 @@ class TopView {
       if (!drag.raw) this.dragMove(ev);
       return;
     }
+    const press = this.press;
+    if (press?.point && Math.hypot(ev.clientX - press.x, ev.clientY - press.y) >= DRAG_PX) {
+      this.press = null;   // a marker on a point: moving the press drags the point
+      this.startDrag(press.ev, press.point.dataset);
+      if (this.drag) this.dragMove(ev);
+      return;
+    }
     if (this.store.tool === "select") {
       const over = !!pickCurve(this.world(ev), this.pick, PICK_PX * this.ctx.views.topScale);
       this.svg.classList.toggle("over-curve", over);
@@ -408,9 +440,9 @@ class TopView {
     }
     this.lastSnap = this.snapped(ev, this.targets());
     this.cursor = this.lastSnap.p;
-    const press = this.draft?.press;
-    if (press && (press.moved || Math.hypot(ev.clientX - press.x, ev.clientY - press.y) >= DRAG_PX)) {
-      press.moved = true;
+    const dpress = this.draft?.press;
+    if (dpress && (dpress.moved || Math.hypot(ev.clientX - dpress.x, ev.clientY - dpress.y) >= DRAG_PX)) {
+      dpress.moved = true;
       this.draft!.handle = this.cursor;
     }
     this.schedule(false);

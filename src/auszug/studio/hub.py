@@ -177,6 +177,13 @@ class Hub:
         """The open document of ``key`` (a workspace path), if any tab has it."""
         return self.docs.get(key)
 
+    def by_id(self, doc_id: str) -> Document | None:
+        """The open document whose :attr:`~Document.doc_id` is ``doc_id``, if any."""
+        for d in self.members:
+            if d.doc_id == doc_id:
+                return d
+        return None
+
     def add(self, doc: Document, key: str) -> Document:
         """Register ``doc`` under ``key``; if another document got there first, that one is returned."""
         have = self.docs.get(key)

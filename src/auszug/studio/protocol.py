@@ -87,6 +87,7 @@ __all__ = [
     "Saved",
     "Error",
     "WITH_PAYLOAD",
+    "Resume",
     "CLIENT_MESSAGES",
     "SERVER_MESSAGES",
     "decode",
@@ -97,7 +98,7 @@ __all__ = [
 ]
 
 #: Bumped whenever a message changes shape; the client shows it on mismatch.
-PROTOCOL_VERSION = 3
+PROTOCOL_VERSION = 4
 #: Largest client message the server reads (bytes); larger ones get an :class:`Error` reply.
 MAX_MESSAGE_BYTES = 256 * 1024
 
@@ -169,11 +170,33 @@ class EditOp:
     #: The request number the reply echoes (a field of every edit message).
     id: int
 
+    #: Structural edits (a new curve, a curve to another layer, a removed curve) keep the apex of
+    #: every curve they leave alone: a curve whose apex follows the next layer's bottom by default
+    #: (no height of its own) gets its old apex written down when the edit would move it, so
+    #: drawing the first curve of layer 1 never silently raises a layer-0 curve.
+    KEEPS_APEXES: ClassVar[bool] = False
+
     def apply(self, drawing: Drawing) -> Drawing:
         """The edited drawing (the input is not changed)."""
         kw = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)  # type: ignore[arg-type]  # edit messages are dataclasses
               if f.name not in EditOp.NOT_PARAMETERS}
-        return type(self).fn(drawing, **kw)
+        out = type(self).fn(drawing, **kw)
+        return _keep_apexes(drawing, out) if self.KEEPS_APEXES else out
+
+
+def _keep_apexes(before: Drawing, after: Drawing) -> Drawing:
+    """``after`` with the apex of every curve it shares (the same object) with ``before`` kept."""
+    old = {id(c): i for i, c in enumerate(before.curves)}
+    b0, b1 = before.bottoms(), after.bottoms()
+    for j, c in enumerate(after.curves):
+        i = old.get(id(c))
+        if i is None or c.height is not None:
+            continue
+        h0 = before.apex_height(i, b0)
+        if after.apex_height(j, b1) != h0:
+            after = after.with_curve(j, c.with_(height=h0))
+            b1 = after.bottoms()   # derived bottoms follow the heights written down
+    return after
 
 
 @dataclass(frozen=True)
@@ -294,6 +317,7 @@ class RemoveCurve(EditOp):
     id: int = 0
     type: Literal["remove_curve"] = "remove_curve"
     fn = staticmethod(edit.remove_curve)
+    KEEPS_APEXES = True
 
 
 @dataclass(frozen=True)
@@ -313,6 +337,7 @@ class DrawCurve(EditOp):
     id: int = 0
     type: Literal["draw_curve"] = "draw_curve"
     fn = staticmethod(edit.draw_curve)
+    KEEPS_APEXES = True
 
 
 @dataclass(frozen=True)
@@ -324,6 +349,7 @@ class SetLayer(EditOp):
     id: int = 0
     type: Literal["set_layer"] = "set_layer"
     fn = staticmethod(edit.set_layer)
+    KEEPS_APEXES = True
 
 
 @dataclass(frozen=True)
@@ -413,6 +439,21 @@ class Recover:
 
     id: int = 0
     type: Literal["recover"] = "recover"
+
+
+@dataclass(frozen=True)
+class Resume:
+    """Show document ``doc`` (``Geometry.doc``) again: a tab that reconnects or reloads.
+
+    The document itself if the server still has it open; else the workspace
+    file ``path`` (its autosave restored if this document wrote it), or the
+    autosave of the unsaved document ``doc``.
+    """
+
+    doc: str
+    path: str = ""
+    id: int = 0
+    type: Literal["resume"] = "resume"
 
 
 @dataclass(frozen=True)
@@ -561,7 +602,9 @@ class Geometry:
 
     Sent to every tab that has the document open (``id`` is the requester's,
     0 for the others). ``dirty``: edited since the last save. ``recoverable``:
-    an autosave newer than the file exists (send :class:`Recover`), else "".
+    an autosave newer than the file exists (send :class:`Recover`), else "";
+    it stays offered (and its file untouched) until recovered, whatever is
+    edited meanwhile. ``doc``: the document's id (for :class:`Resume`).
     ``layers`` are the bottoms of all layers.
     """
 
@@ -579,6 +622,7 @@ class Geometry:
     can_redo: bool
     dirty: bool
     recoverable: str
+    doc: str
     binary_floats: int
     id: int = 0
     protocol: int = PROTOCOL_VERSION
@@ -642,6 +686,8 @@ class Files:
 
     workspace: list[str]
     examples: list[str]
+    #: One line per workspace entry left out because it could not be read (a link loop...).
+    notes: list[str] = field(default_factory=list)
     id: int = 0
     type: Literal["files"] = "files"
 
@@ -676,7 +722,7 @@ class Error:
 
 
 CLIENT_MESSAGES: tuple[type, ...] = (
-    Open, Save, Undo, Redo, MoveVertex, MoveHandle, SetApexHeight, SetPrc, RecomputePrc,
+    Open, Resume, Save, Undo, Redo, MoveVertex, MoveHandle, SetApexHeight, SetPrc, RecomputePrc,
     SetLayerBottom, SetDecoration, SetPost, SetSymmetry, RemoveCurve,
     DrawCurve, SetLayer, SetPrcAt, SetPrcHeight, AddLayer, RemoveLayer,
     ListFiles, OpenExample, OpenText, NewDrawing, Recover, GetMesh, GetLoops, Export,
@@ -758,8 +804,10 @@ def decode(text: str | bytes) -> Any:
     """
     try:
         obj = json.loads(text)
-    except (ValueError, UnicodeDecodeError, RecursionError) as e:  # RecursionError: nested too deep
+    except (ValueError, UnicodeDecodeError) as e:
         raise ProtocolError(f"not valid JSON ({str(e)[:LIMITS.quoted]})") from None
+    except RecursionError:   # "[[[[...": Python's parser recurses once per level
+        raise ProtocolError("JSON nested too deeply for a message") from None
     if not isinstance(obj, dict):
         raise ProtocolError("a message must be a JSON object with a 'type'")
     kind = obj.get("type")

@@ -4,8 +4,10 @@ Security, for a server that edits files on the user's machine:
 
 - it is meant to bind 127.0.0.1 only (the CLI does);
 - every HTTP and WebSocket request whose ``Host`` or ``Origin`` names another
-  host is refused (403 / close 1008): this defeats DNS rebinding, where a
-  foreign page's domain resolves to 127.0.0.1;
+  host, or whose ``Origin`` names another port, is refused (403 / close 1008):
+  this defeats DNS rebinding, where a foreign page's domain resolves to
+  127.0.0.1, and pages of other local servers;
+- every HTTP response forbids framing (``frame-ancestors 'none'``);
 - drawings are opened and saved only inside the workspace folder;
 - client messages larger than :data:`~auszug.studio.protocol.MAX_MESSAGE_BYTES`
   are refused with an error reply;
@@ -20,6 +22,7 @@ import contextlib
 import json
 import logging
 import os
+import threading
 import time
 from importlib.resources import files
 from pathlib import Path
@@ -31,16 +34,26 @@ from starlette.requests import Request
 from starlette.responses import PlainTextResponse, Response
 from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
-from starlette.types import ASGIApp, Receive, Scope, Send
+from starlette.types import ASGIApp, Message, Receive, Scope, Send
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from auszug.errors import AuszugError
+from auszug.limits import LIMITS
 from auszug.studio import meshes
 from auszug.studio import protocol as P
 from auszug.studio.hub import AUTOSAVE_DELAY, Connection, Hub
-from auszug.studio.session import Document, Workspace, example_document, new_document, open_document, text_document
+from auszug.studio.session import (
+    Document,
+    EditCancelled,
+    Workspace,
+    example_document,
+    new_document,
+    open_document,
+    resume_document,
+    text_document,
+)
 
-__all__ = ["LOCAL_HOSTS", "BUILD_COMMAND", "static_dir", "create_app", "HostOriginGuard"]
+__all__ = ["LOCAL_HOSTS", "BUILD_COMMAND", "SECURITY_HEADERS", "static_dir", "create_app", "HostOriginGuard"]
 
 log = logging.getLogger(__name__)
 
@@ -87,9 +100,19 @@ class HostOriginGuard:
         if origin is not None:  # browsers always send it on WebSockets and cross-origin requests
             try:
                 parts = urlsplit(origin)
+                host_port = urlsplit("//" + host).port
+                origin_port = parts.port
             except ValueError:
                 return False
             if parts.scheme not in ("http", "https") or parts.hostname not in self.hosts:
+                return False
+            # the same scheme and port too: another local server (a dev server, another app on
+            # localhost:OTHER) is another origin and must not drive this one
+            scheme = _PAGE_SCHEME.get(scope.get("scheme", "http"), "http")
+            if parts.scheme != scheme:
+                return False
+            default = _DEFAULT_PORTS[scheme]
+            if (origin_port or default) != (host_port or default):
                 return False
         return True
 
@@ -99,9 +122,32 @@ class HostOriginGuard:
             if scope["type"] == "websocket":
                 await send({"type": "websocket.close", "code": 1008, "reason": "foreign host or origin"})
             else:
-                await PlainTextResponse("foreign host or origin", status_code=403)(scope, receive, send)
+                await PlainTextResponse("foreign host or origin", status_code=403,
+                                        headers=dict(SECURITY_HEADERS))(scope, receive, send)
             return
-        await self.app(scope, receive, send)
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+
+        async def send_with_headers(message: Message) -> None:
+            if message["type"] == "http.response.start":
+                message = dict(message)
+                message["headers"] = [*message.get("headers", []), *_SECURITY_RAW]
+            await send(message)
+
+        await self.app(scope, receive, send_with_headers)
+
+
+#: The page scheme of a request's scheme.
+_PAGE_SCHEME = {"http": "http", "ws": "http", "https": "https", "wss": "https"}
+#: Ports a Host or Origin without one means.
+_DEFAULT_PORTS = {"http": 80, "https": 443}
+#: Headers of every HTTP response: no other page may show the studio in a frame (clickjacking).
+SECURITY_HEADERS: tuple[tuple[str, str], ...] = (
+    ("content-security-policy", "frame-ancestors 'none'"),
+    ("x-frame-options", "DENY"),
+)
+_SECURITY_RAW = [(k.encode("latin-1"), v.encode("latin-1")) for k, v in SECURITY_HEADERS]
 
 
 #: An edit that took longer than this (seconds, edit + geometry) sends the document's next
@@ -231,24 +277,24 @@ class _Studio:
     async def handle(self, conn: Connection, msg: Any, jobs: asyncio.Queue) -> None:
         """Carry out one decoded message for ``conn``; replies go to the outboxes."""
         hub = self.hub
-        if isinstance(msg, (P.EditOp, P.Undo, P.Redo)):
+        if isinstance(msg, (P.EditOp, P.Undo, P.Redo, P.Recover)):
             doc = self._need(conn)
             async with hub.lock(doc):
-                fn = doc.apply if isinstance(msg, P.EditOp) else doc.undo if isinstance(msg, P.Undo) else doc.redo
-                args = (msg,) if isinstance(msg, P.EditOp) else ()
-                if doc.slow_edits:
-                    t0 = time.perf_counter()
-                    await asyncio.to_thread(self._edit, doc, fn, args)
+                if isinstance(msg, P.EditOp):
+                    fn, args = doc.apply, (msg,)
                 else:
-                    t0 = time.perf_counter()
-                    self._edit(doc, fn, args)
+                    fn, args = {P.Undo: doc.undo, P.Redo: doc.redo, P.Recover: doc.recover}[type(msg)], ()
+                # a drag's edits on a quick document run on the event loop (a thread hop would cost more
+                # than they take); everything else (a fold, a new curve, a slow document) in a worker
+                # thread, so the other tabs are answered meanwhile
+                dragging = isinstance(msg, (P.Undo, P.Redo)) or bool(getattr(msg, "drag", 0))
+                inline = dragging and not doc.slow_edits
+                t0 = time.perf_counter()
+                if inline:
+                    doc.change(fn, *args)
+                else:
+                    await self._in_worker(doc, fn, args)
                 doc.slow_edits = time.perf_counter() - t0 > INLINE_EDIT_SECONDS
-                hub.broadcast(doc, conn, msg.id)
-            hub.changed(doc)
-        elif isinstance(msg, P.Recover):
-            doc = self._need(conn)
-            async with hub.lock(doc):
-                await asyncio.to_thread(self._edit, doc, doc.recover, ())
                 hub.broadcast(doc, conn, msg.id)
             hub.changed(doc)
         elif isinstance(msg, P.Open):
@@ -258,6 +304,17 @@ class _Studio:
             if doc is None:
                 doc = await asyncio.to_thread(self._opened, open_document, self.workspace, msg.path)
                 doc = hub.add(doc, rel)
+            await hub.attach(conn, doc)
+            text, payload = doc.frames()
+            conn.outbox.put(text.text(msg.id), payload)
+        elif isinstance(msg, P.Resume):
+            await hub.settle()
+            doc = hub.by_id(msg.doc)
+            if doc is None and msg.path:
+                doc = hub.get(self.workspace.relative(self.workspace.resolve(msg.path)))
+            if doc is None:
+                doc = await asyncio.to_thread(self._opened, resume_document, self.workspace, msg.doc, msg.path)
+                doc = hub.add(doc, doc.path or conn.private_key())
             await hub.attach(conn, doc)
             text, payload = doc.frames()
             conn.outbox.put(text.text(msg.id), payload)
@@ -276,15 +333,29 @@ class _Studio:
         elif isinstance(msg, P.Save):
             doc = self._need(conn)
             async with hub.lock(doc):
-                rel = await asyncio.to_thread(doc.save, msg.path)
+                others = hub.members.get(doc, set()) - {conn}
+                target = msg.path and self.workspace.relative(self.workspace.resolve(msg.path))
+                if others and target and target != doc.path:
+                    # "Save as" in one tab of a shared document: only this tab moves to the new file
+                    fork = doc.fork()
+                    rel = await asyncio.to_thread(fork.save, msg.path)
+                    hub.add(fork, conn.private_key())
+                    await hub.attach(conn, fork)
+                    doc = fork
+                else:
+                    rel = await asyncio.to_thread(doc.save, msg.path)
                 await hub.rekey(doc, rel)
                 conn.outbox.put(P.encode(P.Saved(path=rel, id=msg.id)))
                 hub.broadcast(doc, None, 0)
         elif isinstance(msg, P.ListFiles):
             from auszug import examples
 
-            ws_files = await asyncio.to_thread(self.workspace.drawings)
-            conn.outbox.put(P.encode(P.Files(workspace=ws_files, examples=examples.names(), id=msg.id)))
+            try:
+                ws_files, notes = await asyncio.to_thread(self.workspace.listing)
+            except OSError as e:   # the workspace folder itself is gone or unreadable: still the examples
+                ws_files, notes = [], [f"workspace: cannot list it ({e.strerror or e})"]
+            conn.outbox.put(P.encode(P.Files(workspace=ws_files, examples=examples.names(), notes=notes,
+                                             id=msg.id)))
         elif isinstance(msg, (P.GetMesh, P.GetLoops, P.Export)):
             doc = self._need(conn)
             jobs.put_nowait((msg, doc.snapshot(), doc.label))
@@ -292,14 +363,32 @@ class _Studio:
             raise P.ProtocolError(f"unhandled message {type(msg).__name__}")
 
     @staticmethod
-    def _edit(doc: Document, fn: Any, args: tuple) -> None:
-        fn(*args)
-        doc.frames()   # the geometry, computed where the edit ran (the event loop or a worker)
+    async def _in_worker(doc: Document, fn: Any, args: tuple) -> None:
+        """``doc.change(fn, *args)`` in a worker thread within :attr:`Limits.edit_seconds`.
+
+        Past the budget the change is cancelled: the error is raised at once (the
+        sender hears of it), and the document is put back when the thread ends
+        (the caller's document lock is held until then, so no change slips in).
+        """
+        cancel = threading.Event()
+        task = asyncio.ensure_future(asyncio.to_thread(doc.change, fn, *args, cancel=cancel))
+        budget = LIMITS.edit_seconds
+        done, _ = await asyncio.wait({task}, timeout=budget)
+        if task in done:
+            task.result()
+            return
+        cancel.set()
+        with contextlib.suppress(Exception):
+            await task   # rolled back (or it failed anyway)
+        raise EditCancelled(f"the change took longer than {budget:g} s and was given up; the drawing is "
+                            "unchanged (auszug.limits.LIMITS.edit_seconds)")
 
     @staticmethod
     def _opened(make: Any, *args: Any) -> Document:
+        t0 = time.perf_counter()
         doc = make(*args)
         doc.frames()
+        doc.slow_edits = time.perf_counter() - t0 > INLINE_EDIT_SECONDS   # its first drag edit goes to a thread
         return doc
 
 

@@ -16,9 +16,12 @@ geometry JSON is written from plain dicts without dataclasses (same text as
 from __future__ import annotations
 
 import copy
+import errno
 import itertools
 import json
 import os
+import re
+import secrets
 import stat
 import threading
 import weakref
@@ -32,7 +35,7 @@ from numpy.typing import NDArray
 
 from auszug._cache import LruCache
 from auszug.errors import AuszugError, DrawingError, FormatError
-from auszug.limits import check_file_size
+from auszug.limits import check_file_size, shown
 from auszug.microarch.model import Drawing
 from auszug.microarch.network import Network, build
 from auszug.microarch.prc import intersections
@@ -40,6 +43,7 @@ from auszug.studio import protocol as P
 
 __all__ = [
     "WorkspaceError",
+    "EditCancelled",
     "Workspace",
     "AUTOSAVE_DIR",
     "drawing_endings",
@@ -56,10 +60,14 @@ __all__ = [
     "text_document",
     "new_document",
     "open_document",
+    "resume_document",
+    "check_doc_id",
 ]
 
 #: How many edits undo remembers.
 UNDO_DEPTH = 500
+#: How many undo steps back a drag's next edit looks for the drag's own step.
+_DRAG_REACH = 16
 #: Where autosaves live, relative to the workspace.
 AUTOSAVE_DIR = ".auszug/autosave"
 #: Revisions count up over all documents, so a tab that moves to another document never goes back.
@@ -68,6 +76,10 @@ _REVISIONS = itertools.count(1)
 
 class WorkspaceError(AuszugError, ValueError):
     """A path that leaves the workspace folder, or a file that cannot be used there."""
+
+
+class EditCancelled(AuszugError):
+    """A change given up (its time budget ran out); the document is as before it."""
 
 
 def _is_drawing(name: str) -> bool:
@@ -143,34 +155,65 @@ class Workspace:
         return p.resolve().relative_to(self.root.resolve()).as_posix()
 
     def autosave_path(self, key: str) -> Path:
-        """Where the autosave of ``key`` goes: a workspace path, or ``unsaved/<name>``."""
+        """Where the autosave of ``key`` goes: a workspace path, or ``unsaved/<doc id>/<name>``."""
         return self.root.resolve() / AUTOSAVE_DIR / (key + ".json")
 
     def drawings(self, limit: int = 10000) -> list[str]:
         """Drawing files below the root (every registered drawing format), relative and sorted.
 
+        :meth:`listing` without its notes.
+        """
+        return self.listing(limit)[0]
+
+    def listing(self, limit: int = 10000) -> tuple[list[str], list[str]]:
+        """(drawings, notes): :meth:`drawings`, and a note per entry skipped as unreadable.
+
+        A note is one line: a symbolic link loop, a folder without permission, a
+        link to nothing or a link that points outside the workspace.
+
         Hidden folders (``.auszug`` with the autosaves, ``.git``...) and
-        ``node_modules`` are skipped, as are other files the registry knows
-        (network files ``*.network.json``, tracery styles ``*.tracery.json``)
-        and links that lead outside the workspace.
+        ``node_modules`` are skipped silently, as are other files the registry
+        knows (network files ``*.network.json``, tracery styles ``*.tracery.json``).
+        Links to folders are not followed (a loop cannot make the walk endless).
         """
         root = self.root.resolve()
         out: list[str] = []
-        for dirpath, dirnames, filenames in os.walk(root):
+        notes: list[str] = []
+
+        def rel(p: Path | str) -> str:
+            try:
+                return Path(p).relative_to(root).as_posix()
+            except ValueError:
+                return str(p)
+
+        def unreadable(e: OSError) -> None:
+            notes.append(f"{rel(e.filename) if e.filename else 'a folder'}: skipped, cannot read it "
+                         f"({e.strerror or e})")
+
+        for dirpath, dirnames, filenames in os.walk(root, onerror=unreadable):
             dirnames[:] = sorted(d for d in dirnames if not d.startswith(".") and d != "node_modules")
-            for fn in filenames:
+            for fn in sorted(filenames):
                 if fn.startswith(".") or not _is_drawing(fn):
                     continue
                 p = Path(dirpath) / fn
                 try:
-                    real = p.resolve()
-                except OSError:
+                    real = p.resolve(strict=True)
+                except RuntimeError:   # Python < 3.13 reports a link loop so
+                    notes.append(f"{rel(p)}: skipped, a symbolic link loop")
                     continue
-                if (root in real.parents) and real.is_file():
+                except OSError as e:
+                    what = ("a symbolic link loop" if e.errno == errno.ELOOP else "a link to nothing"
+                            if isinstance(e, FileNotFoundError) else f"cannot read it ({e.strerror or e})")
+                    notes.append(f"{rel(p)}: skipped, {what}")
+                    continue
+                if root not in real.parents:
+                    notes.append(f"{rel(p)}: skipped, it links outside the workspace")
+                elif real.is_file():
                     out.append(p.relative_to(root).as_posix())
                     if len(out) >= limit:
-                        return sorted(out)
-        return sorted(out)
+                        notes.append(f"only the first {limit} drawings are listed")
+                        return sorted(out), notes
+        return sorted(out), notes
 
 
 # ---------------------------------------------------------------- networks and geometry
@@ -427,7 +470,7 @@ class _Body:
         self.curve_keys = [(c, drawing.apex_height(i, bottoms), bottoms[c.layer], i) for i, c in enumerate(curves)]
 
     def as_dict(self, *, path: str, revision: int, can_undo: bool, can_redo: bool, dirty: bool,
-                recoverable: str) -> dict:
+                recoverable: str, doc: str) -> dict:
         """The Geometry message as a dict in field order, without the trailing id/protocol/type."""
         d = self.drawing
         return {
@@ -435,11 +478,11 @@ class _Body:
             "n_replicas": self.n_rep, "pieces": [p.as_dict(o) for p, o in zip(self.pieces, self.offsets, strict=True)],
             "intersections": self.markers, "curves": [copy.deepcopy(_curve_info(*k)) for k in self.curve_keys],
             "layers": self.layers, "bounds": self.bounds, "can_undo": can_undo, "can_redo": can_redo,
-            "dirty": dirty, "recoverable": recoverable, "binary_floats": self.binary_floats,
+            "dirty": dirty, "recoverable": recoverable, "doc": doc, "binary_floats": self.binary_floats,
         }
 
     def head(self, *, path: str, revision: int, can_undo: bool, can_redo: bool, dirty: bool,
-             recoverable: str) -> str:
+             recoverable: str, doc: str) -> str:
         """The JSON text of :meth:`as_dict` without its closing brace (fragments cached per piece and curve)."""
         d = self.drawing
         pieces = ",".join(p.as_json(o) for p, o in zip(self.pieces, self.offsets, strict=True))
@@ -449,7 +492,7 @@ class _Body:
                 f'"intersections":{_dumps(self.markers)},"curves":[{curves}],"layers":{_dumps(self.layers)},'
                 f'"bounds":{_dumps(self.bounds)},"can_undo":{_dumps(bool(can_undo))},'
                 f'"can_redo":{_dumps(bool(can_redo))},"dirty":{_dumps(bool(dirty))},'
-                f'"recoverable":{_dumps(recoverable)},"binary_floats":{self.binary_floats}')
+                f'"recoverable":{_dumps(recoverable)},"doc":{_dumps(doc)},"binary_floats":{self.binary_floats}')
 
 
 class GeometryText:
@@ -470,7 +513,7 @@ class GeometryText:
 
 def geometry_frames(drawing: Drawing, *, net: Network | None = None, path: str = "", revision: int = 0,
                     can_undo: bool = False, can_redo: bool = False, dirty: bool = False,
-                    recoverable: str = "") -> tuple[GeometryText, bytes]:
+                    recoverable: str = "", doc: str = "") -> tuple[GeometryText, bytes]:
     """The geometry message of ``drawing`` as ready-to-send text (for any id) and its binary payload.
 
     The fast path of :func:`geometry`: no dataclasses, the network built once
@@ -479,7 +522,7 @@ def geometry_frames(drawing: Drawing, *, net: Network | None = None, path: str =
     """
     body = _Body(drawing, network_of(drawing) if net is None else net)
     head = body.head(path=path, revision=revision, can_undo=can_undo, can_redo=can_redo, dirty=dirty,
-                     recoverable=recoverable)
+                     recoverable=recoverable, doc=doc)
     return GeometryText(head), body.payload
 
 
@@ -494,7 +537,7 @@ def _message(d: dict, msg_id: int) -> P.Geometry:
 
 def geometry(drawing: Drawing, *, path: str = "", revision: int = 0, can_undo: bool = False,
              can_redo: bool = False, msg_id: int = 0, dirty: bool = False,
-             recoverable: str = "", net: Network | None = None) -> tuple[P.Geometry, bytes]:
+             recoverable: str = "", net: Network | None = None, doc: str = "") -> tuple[P.Geometry, bytes]:
     """The :class:`~auszug.studio.protocol.Geometry` message of ``drawing`` and its binary payload.
 
     Posts and pillars that lie on a mirror axis are their own mirror image;
@@ -503,7 +546,7 @@ def geometry(drawing: Drawing, *, path: str = "", revision: int = 0, can_undo: b
     """
     body = _Body(drawing, network_of(drawing) if net is None else net)
     d = body.as_dict(path=path, revision=revision, can_undo=can_undo, can_redo=can_redo, dirty=dirty,
-                     recoverable=recoverable)
+                     recoverable=recoverable, doc=doc)
     return _message(d, msg_id), body.payload
 
 
@@ -571,8 +614,10 @@ class Document:
         File name for an unsaved document (its default save name and autosave name).
     """
 
-    def __init__(self, workspace: Workspace, drawing: Drawing, path: str = "", name: str = ""):
+    def __init__(self, workspace: Workspace, drawing: Drawing, path: str = "", name: str = "", doc_id: str = ""):
         self.workspace = workspace
+        self.doc_id = doc_id or secrets.token_hex(8)   # names the document in Resume and its autosave
+        self.offered: Path | None = None     # the autosave offered by ``recoverable``, kept aside
         self.lock = threading.RLock()
         self.drawing = drawing
         self.net = network_of(drawing)
@@ -588,7 +633,7 @@ class Document:
         self.autosave_lock = threading.Lock()  # one autosave or save at a time touches the files
         self.slow_edits = False              # the last edit was slow: the server runs the next in a thread
         self._frames: tuple[int, GeometryText, bytes] | None = None
-        self._drag = 0                       # the drag gesture of the last edit (0: none)
+        self._steps: list[frozenset[int]] = []  # the drag gestures in each undo step (parallel to undo_stack)
 
     # -- state ------------------------------------------------------------------------
     @property
@@ -603,8 +648,12 @@ class Document:
 
     @property
     def autosave_key(self) -> str:
-        """The autosave's name below the autosave folder: the path, or ``unsaved/<name>``."""
-        return self.path if self.path else "unsaved/" + self.name
+        """The autosave's name below the autosave folder: the path, or ``unsaved/<doc id>/<name>``.
+
+        Per document, not per name: two unsaved "untitled" drawings (or two tabs on
+        one example) never share an autosave.
+        """
+        return self.path if self.path else f"unsaved/{self.doc_id}/{self.name}"
 
     def autosave_file(self) -> Path:
         """The autosave file of this document."""
@@ -616,7 +665,12 @@ class Document:
             return self.drawing, self.net, self.revision
 
     def check_recoverable(self) -> str:
-        """Set and return :attr:`recoverable`: the autosave's ISO time if it differs from the drawing."""
+        """Set and return :attr:`recoverable`: the autosave's ISO time if it differs from the drawing.
+
+        The autosave then moves aside (``<autosave>.offered-<time>.json``, :attr:`offered`):
+        the autosaves of the edits that follow cannot overwrite it, and it stays
+        offered until :meth:`recover` (an older offer still on disk is kept too).
+        """
         p = self.autosave_file()
         rec = ""
         try:
@@ -625,47 +679,110 @@ class Document:
                 saved = read_drawing(p.name, p.read_text(encoding="utf-8"))
                 if not _same_drawing(saved, self.drawing):
                     rec = _autosave_time(p)
+                    aside = p.with_name(f"{p.name}.offered-{p.stat().st_mtime_ns}.json")
+                    os.replace(p, aside)
+                    self.offered = aside
         except (OSError, AuszugError, UnicodeDecodeError):
             rec = ""   # an unreadable autosave is no recovery; it is overwritten on the next change
         self.recoverable = rec
         return rec
+
+    def autosave_owner(self) -> str:
+        """The document id that wrote the current autosave ("" if none or unknown)."""
+        try:
+            a = self.autosave_file()
+            return a.with_name(a.name + ".doc").read_text(encoding="utf-8").strip()
+        except OSError:
+            return ""
 
     # -- changes ----------------------------------------------------------------------
     def _set(self, new: Drawing, net: Network) -> None:
         self.drawing = new
         self.net = net
         self.revision = next(_REVISIONS)
-        self.recoverable = ""
         self.changes += 1
         self._frames = None
 
-    def _push(self, new: Drawing, net: Network) -> None:
-        self._drag = 0
+    def _push(self, new: Drawing, net: Network, drag: int = 0) -> None:
         self.undo_stack.append(self.drawing)
+        self._steps.append(frozenset((drag,)) if drag else frozenset())
         del self.undo_stack[:-UNDO_DEPTH]
+        del self._steps[:-UNDO_DEPTH]
         self.redo_stack.clear()
         self._set(new, net)
+
+    def _drag_step(self, drag: int) -> int:
+        """The index of the undo step that holds drag gesture ``drag`` (-1: none).
+
+        Only the last few steps are searched: a drag's step is near the top
+        (other tabs' edits may have come in between).
+        """
+        for i in range(len(self._steps) - 1, max(-1, len(self._steps) - 1 - _DRAG_REACH), -1):
+            if drag in self._steps[i]:
+                return i
+        return -1
+
+    def change(self, fn: Any, *args: Any, cancel: threading.Event | None = None) -> None:
+        """Run one change ``fn(*args)`` and compute its geometry: all or nothing.
+
+        ``fn`` is :meth:`apply`, :meth:`undo`, :meth:`redo` or :meth:`recover`.
+        If the change or its geometry message fails, or ``cancel`` is set by
+        the time both are done (the server's time budget ran out), the
+        document is put back exactly as it was (drawing, undo and redo
+        stacks, revision, change count) and the error is raised; there is
+        no undo step for a change the page never saw.
+
+        Raises
+        ------
+        EditCancelled
+            ``cancel`` was set.
+        """
+        with self.lock:
+            before = (self.drawing, self.net, list(self.undo_stack), list(self.redo_stack), self.revision,
+                      self.recoverable, self.changes, self._frames, list(self._steps))
+        try:
+            fn(*args)
+            if cancel is not None and cancel.is_set():
+                raise EditCancelled("cancelled")
+            self.frames()
+            if cancel is not None and cancel.is_set():
+                raise EditCancelled("cancelled")
+        except BaseException:
+            with self.lock:
+                (self.drawing, self.net, self.undo_stack[:], self.redo_stack[:], self.revision,
+                 self.recoverable, self.changes, self._frames, self._steps[:]) = before
+            raise
 
     def apply(self, op: P.EditOp) -> None:
         """Apply one edit message; on error nothing changes.
 
         The edit and its build run outside the lock (readers such as a mesh
         snapshot never wait for them); the commit checks that no other change
-        came in between, and else starts over from the newer drawing.
+        came in between, and else starts over from the newer drawing. A
+        change whose reply must be built too goes through :meth:`change`.
         """
         drag = getattr(op, "drag", 0)
         while True:
             base = self.drawing
             new = op.apply(base)
+            if new == base:
+                return   # a no-op (a click that sets what is already set): no change, no undo step
             net = network_of(new)   # refuses a drawing that does not build
             with self.lock:
                 if self.drawing is base:
-                    if drag and drag == self._drag and self.undo_stack:
-                        self.redo_stack.clear()   # the same drag goes on: still one undo step
+                    i = self._drag_step(drag) if drag else -1
+                    if i >= 0:
+                        # the same drag goes on: still one undo step. If other edits (another tab's
+                        # drag) came in since it began, they join that step: an undo never lands in
+                        # the middle of a drag
+                        merged = frozenset().union(*self._steps[i:])
+                        del self.undo_stack[i + 1:]
+                        del self._steps[i + 1:]
+                        self._steps[i] = merged
+                        self.redo_stack.clear()
                         self._set(new, net)
                     else:
-                        self._push(new, net)
-                    self._drag = drag
+                        self._push(new, net, drag)
                     return
 
     def replace_drawing(self, new: Drawing) -> None:
@@ -677,36 +794,51 @@ class Document:
     def undo(self) -> None:
         """Go back one edit."""
         with self.lock:
-            self._drag = 0
             if not self.undo_stack:
                 raise AuszugError("nothing to undo")
             prev = self.undo_stack[-1]
             net = network_of(prev)
             self.undo_stack.pop()
+            self._steps.pop()
             self.redo_stack.append(self.drawing)
             self._set(prev, net)
 
     def redo(self) -> None:
         """Redo the last undone edit."""
         with self.lock:
-            self._drag = 0
             if not self.redo_stack:
                 raise AuszugError("nothing to redo")
             nxt = self.redo_stack[-1]
             net = network_of(nxt)
             self.redo_stack.pop()
             self.undo_stack.append(self.drawing)
+            self._steps.append(frozenset())   # a redone drag is over: it takes no more edits
             self._set(nxt, net)
 
     def recover(self) -> None:
-        """Replace the drawing by its autosave (an undoable edit; the document becomes dirty)."""
-        p = self.autosave_file()
+        """Replace the drawing by the offered autosave (an undoable edit; the document becomes dirty)."""
+        p = self.offered if self.offered is not None else self.autosave_file()
         if not p.is_file():
             raise WorkspaceError(f"{self.label}: no autosave to recover")
         check_file_size(p)
-        saved = read_drawing(p.name, p.read_text(encoding="utf-8"))
+        saved = read_drawing("autosave.json", p.read_text(encoding="utf-8"))
         with self.lock:
             self.replace_drawing(replace(saved, name=self.drawing.name))
+            self.recoverable = ""
+
+    def fork(self) -> "Document":
+        """A new document with this one's drawing, file, dirty state and undo/redo history.
+
+        "Save as" in one tab of a shared document forks it: that tab moves to the
+        new file, the other tabs stay on the old one.
+        """
+        with self.lock:
+            d = Document(self.workspace, self.drawing, path=self.path, name=self.name)
+            d.undo_stack, d.redo_stack = list(self.undo_stack), list(self.redo_stack)
+            d._steps = list(self._steps)
+            d.clean, d.changes = self.clean, self.changes
+            d.slow_edits = self.slow_edits
+            return d
 
     def default_save_path(self) -> str:
         """Where an unsaved document goes by default: ``<name>.json`` (a drawing ending replaced)."""
@@ -755,10 +887,11 @@ class Document:
                 self.autosaved_changes = self.changes
                 self._frames = None
             for a in {old_autosave, self.autosave_file()}:
-                try:
-                    a.unlink()
-                except FileNotFoundError:
-                    pass
+                for f in (a, a.with_name(a.name + ".doc")):
+                    try:
+                        f.unlink()
+                    except FileNotFoundError:
+                        pass
         return new_rel
 
     def write_autosave(self) -> int:
@@ -772,13 +905,17 @@ class Document:
         with self.autosave_lock:
             with self.lock:
                 d, changes, dirty, target = self.drawing, self.changes, self.dirty, self.autosave_file()
+            owner = target.with_name(target.name + ".doc")
             if dirty:
                 save(d, target, kind="drawing")
+                if not owner.is_file() or owner.read_text(encoding="utf-8") != self.doc_id:
+                    owner.write_text(self.doc_id, encoding="utf-8")
             else:
-                try:
-                    target.unlink()
-                except FileNotFoundError:
-                    pass
+                for f in (target, owner):
+                    try:
+                        f.unlink()
+                    except FileNotFoundError:
+                        pass
             with self.lock:
                 self.autosaved_changes = max(self.autosaved_changes, changes)
         return changes
@@ -795,7 +932,7 @@ class Document:
                 return f[1], f[2]
             state: dict[str, Any] = dict(drawing=self.drawing, net=self.net, path=self.path, revision=self.revision,
                          can_undo=bool(self.undo_stack), can_redo=bool(self.redo_stack), dirty=self.dirty,
-                         recoverable=self.recoverable)
+                         recoverable=self.recoverable, doc=self.doc_id)
         text, payload = geometry_frames(**state)
         with self.lock:
             if self.revision == state["revision"]:
@@ -807,13 +944,16 @@ class Document:
         with self.lock:
             return geometry(self.drawing, net=self.net, path=self.path, revision=self.revision,
                             can_undo=bool(self.undo_stack), can_redo=bool(self.redo_stack),
-                            msg_id=msg_id, dirty=self.dirty, recoverable=self.recoverable)
+                            msg_id=msg_id, dirty=self.dirty, recoverable=self.recoverable, doc=self.doc_id)
 
 
-def open_document(workspace: Workspace, rel: str) -> Document:
+def open_document(workspace: Workspace, rel: str, resume: str = "") -> Document:
     """Load ``rel`` (inside the workspace) as a new document; errors name ``rel``.
 
     Checks for an autosave that differs from the file (:attr:`Document.recoverable`).
+    ``resume``: the id of the document a reconnecting tab showed; if that
+    document wrote the autosave, the autosave is restored at once (an undoable
+    edit) and the new document takes the id.
     """
     p = workspace.resolve(rel)
     rel_clean = workspace.relative(p)
@@ -831,7 +971,54 @@ def open_document(workspace: Workspace, rel: str) -> Document:
         raise WorkspaceError(f"{rel_clean}: cannot read ({e.strerror or e})") from None
     d = fmt.reader(text, rel_clean)
     doc = _built(workspace, d, rel_clean, "", rel_clean)
+    if resume and check_doc_id(resume) and doc.autosave_owner() == resume and doc.autosave_file().is_file():
+        a = doc.autosave_file()
+        check_file_size(a)
+        saved = read_drawing("autosave.json", a.read_text(encoding="utf-8"))
+        doc.doc_id = resume
+        if not _same_drawing(saved, doc.drawing):
+            doc.replace_drawing(replace(saved, name=doc.drawing.name))
+        return doc
     doc.check_recoverable()
+    return doc
+
+
+_DOC_ID = re.compile(r"[0-9a-f]{16}")
+
+
+def check_doc_id(doc_id: str) -> str:
+    """``doc_id`` if it is a document id (16 hex digits), else a :class:`WorkspaceError`."""
+    if not _DOC_ID.fullmatch(doc_id):
+        raise WorkspaceError(f"not a document id: {shown(doc_id)}")
+    return doc_id
+
+
+def resume_document(workspace: Workspace, doc_id: str, path: str = "") -> Document:
+    """The document a reconnecting (or reloaded) tab showed, from the workspace and the autosaves.
+
+    ``path``: the workspace file (:func:`open_document` with ``resume``).
+    Else the unsaved document ``doc_id``'s autosave, as a dirty document with
+    that id.
+
+    Raises
+    ------
+    WorkspaceError
+        Not a document id, or an unsaved document without an autosave.
+    """
+    check_doc_id(doc_id)
+    if path:
+        return open_document(workspace, path, resume=doc_id)
+    folder = workspace.autosave_path(f"unsaved/{doc_id}").with_suffix("")
+    found = sorted(p for p in folder.glob("*.json") if ".offered-" not in p.name) if folder.is_dir() else []
+    if not found:
+        raise WorkspaceError("the unsaved drawing of this tab is gone (no autosave of it); open it again")
+    p = found[-1]
+    check_file_size(p)
+    name = p.name[: -len(".json")]
+    saved = read_drawing("autosave.json", p.read_text(encoding="utf-8"))
+    doc = _built(workspace, saved, "", name, name)
+    doc.doc_id = doc_id
+    doc.clean = Drawing((), name=name)   # unsaved: dirty until saved
     return doc
 
 

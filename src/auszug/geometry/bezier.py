@@ -31,6 +31,7 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
 # the sum over its two halves agree to this fraction of the curve length.
 _TABLE_REL = 1e-15
 _TABLE_MAX_LEVELS = 60
+_I2 = np.eye(2)
 
 
 @dataclass(frozen=True, eq=False, repr=False, init=False)
@@ -187,7 +188,15 @@ class CubicBezier(Curve):
 
     @cached_property
     def _table(self) -> tuple[Array, Array]:
-        """(knots (k+1,), cumulative arc length at the knots (k+1,)), computed on first use."""
+        """(knots (k+1,), cumulative arc length at the knots (k+1,)), computed on first use.
+
+        A rigid image of a curve (:meth:`transformed` by an orthogonal matrix: the
+        replicas of a symmetry) has the same speed at every ``t``, so it shares the
+        table of the curve it was made from instead of computing its own.
+        """
+        src = self.__dict__.get("_arc_source")
+        if src is not None:
+            return src._table
         # Knots at the extrema of the speed, so that a cusp (where |B'| has a kink
         # rather than being smooth) is always at a knot, never inside an interval.
         knots = np.unique(np.concatenate([np.linspace(0.0, 1.0, 17), self._speed_extrema()]))
@@ -317,7 +326,10 @@ class CubicBezier(Curve):
         """The curve mapped by ``x -> matrix @ x + offset`` (applied to the control points)."""
         m = np.asarray(matrix, dtype=float)
         c = self.controls @ m.T + np.asarray(offset, dtype=float)
-        return CubicBezier(c[0], c[1], c[2], c[3])
+        out = CubicBezier(c[0], c[1], c[2], c[3])
+        if m.shape == (2, 2) and np.abs(m @ m.T - _I2).max() <= 1e-12:   # rigid: the same arc-length table
+            object.__setattr__(out, "_arc_source", self.__dict__.get("_arc_source", self))
+        return out
 
     def project(self, p: ArrayLike) -> float:
         """Parameter ``t`` of the point of the curve closest to ``p``.

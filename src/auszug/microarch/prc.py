@@ -203,6 +203,10 @@ def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Cur
     out: list[TopIntersection] = []
     ptop = None
     pairs = _PAIRS.data   # (its values may be None: a miss is _MISS)
+    # with one symmetry group for both curves, segment i meets replica k of segment j where
+    # replica k of (the inverse's replica m of segment i) meets segment j: a pair computed
+    # already the other way round (an earlier block, or an earlier k) gives this one
+    inverse = _inverses(sym) if sym == drawing.curves[ci].symmetry else None
     for k, (lab, rep) in enumerate(zip(sym.labels(), _replicas(top_j, sym), strict=True)):
         if k == 0 and same_family:
             continue
@@ -213,6 +217,9 @@ def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Cur
                 pairs.move_to_end(pk)
             except KeyError:   # evicted meanwhile by another thread; the value is still right
                 pass
+        elif inverse is not None and (back := pairs.get((kid_j, kid_i, inverse[k]), _MISS)) is not _MISS:
+            hits = None if back is None else _mapped(back, sym, k)
+            _PAIRS.put(pk, hits)
         else:
             if ptop is None:
                 ptop = prepare(top)
@@ -230,6 +237,30 @@ def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Cur
                                        (abs(u - u2) <= param_equal) if same_family else True)
                        for u, u2, pt in hits)
     return tuple(out)
+
+
+@lru_cache(maxsize=1024)
+def _inverses(sym) -> tuple[int, ...] | None:
+    """For each replica k of a symmetry group, the replica m whose matrix is k's inverse (None if any lacks one)."""
+    mats = sym.matrices()
+    out = []
+    for mk in mats:
+        m = [i for i, mi in enumerate(mats) if np.abs(mk @ mi - np.eye(2)).max() <= 1e-12]
+        if len(m) != 1:
+            return None
+        out.append(m[0])
+    return tuple(out)
+
+
+def _mapped(back: tuple, sym, k: int) -> tuple:
+    """The hits of (segment i, replica k of j) from those of (segment j, replica k^-1 of i).
+
+    The parameters swap (a rigid replica has its curve's parametrisation) and the points
+    map by replica k; sorted along segment i, as the kernel returns them.
+    """
+    m = sym.matrices()[k]
+    c = np.asarray(sym.center, dtype=float)
+    return tuple(sorted(((u2, u, m @ (np.asarray(pt) - c) + c) for u, u2, pt in back), key=lambda h: h[0]))
 
 
 #: Intersections of one basic segment with one replica, keyed by the geometry of both (their

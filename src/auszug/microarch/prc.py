@@ -224,7 +224,12 @@ def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Cur
             if ptop is None:
                 ptop = prepare(top)
             found = intersect_prepared(ptop, prepare(rep))
-            hits = tuple((float(top.u_at_t(h.t1)), float(rep.u_at_t(h.t2)), h.point) for h in found)
+            if found:   # one arc-length evaluation per curve and pair, not per hit
+                u1 = top.u_at_t(np.array([h.t1 for h in found]))
+                u2 = rep.u_at_t(np.array([h.t2 for h in found]))
+                hits = tuple((float(a), float(b), h.point) for a, b, h in zip(u1, u2, found, strict=True))
+            else:
+                hits = ()
             if hits and same_family:
                 if scale[0] is None:
                     ends = [t.start for _, _, t in segs] + [t.end for _, _, t in segs]

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -203,11 +203,16 @@ def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Cur
     out: list[TopIntersection] = []
     ptop = None
     pairs = _PAIRS.data   # (its values may be None: a miss is _MISS)
-    # with one symmetry group for both curves, segment i meets replica k of segment j where
-    # replica k of (the inverse's replica m of segment i) meets segment j: a pair computed
-    # already the other way round (an earlier block, or an earlier k) gives this one
-    inverse = _inverses(sym) if sym == drawing.curves[ci].symmetry else None
-    for k, (lab, rep) in enumerate(zip(sym.labels(), _replicas(top_j, sym), strict=True)):
+    # segment i meets replica k of segment j where replica k of (segment j against replica m
+    # of segment i, m the inverse of k in i's group) does: a pair computed already the other
+    # way round (an earlier block, or an earlier k) gives this one
+    inverse = _inverses(sym, drawing.curves[ci].symmetry)
+    labels = sym.labels()
+    reps = _replicas(top_j, sym)
+    got: dict[int, Any] = {}          # k -> hits (a tuple, or None for an identical replica)
+    found: dict[int, list] = {}       # k -> the kernel's raw hits, for pairs computed here
+    later: list[int] = []             # k derived from a pair computed here (same family)
+    for k in range(len(reps)):
         if k == 0 and same_family:
             continue
         pk = (kid_i, kid_j, k)
@@ -217,43 +222,67 @@ def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Cur
                 pairs.move_to_end(pk)
             except KeyError:   # evicted meanwhile by another thread; the value is still right
                 pass
-        elif inverse is not None and (back := pairs.get((kid_j, kid_i, inverse[k]), _MISS)) is not _MISS:
-            hits = None if back is None else _mapped(back, sym, k)
-            _PAIRS.put(pk, hits)
+            got[k] = hits
+        elif inverse[k] >= 0 and (back := pairs.get((kid_j, kid_i, inverse[k]), _MISS)) is not _MISS:
+            got[k] = None if back is None else _mapped(back, sym, k)
+            _PAIRS.put(pk, got[k])
+        elif same_family and inverse[k] in found:
+            later.append(k)
         else:
             if ptop is None:
                 ptop = prepare(top)
-            found = intersect_prepared(ptop, prepare(rep))
-            if found:   # one arc-length evaluation per curve and pair, not per hit
-                u1 = top.u_at_t(np.array([h.t1 for h in found]))
-                u2 = rep.u_at_t(np.array([h.t2 for h in found]))
-                hits = tuple((float(a), float(b), h.point) for a, b, h in zip(u1, u2, found, strict=True))
-            else:
-                hits = ()
-            if hits and same_family:
-                if scale[0] is None:
-                    ends = [t.start for _, _, t in segs] + [t.end for _, _, t in segs]
-                    scale[0] = max(1.0, float(np.max(np.abs(ends))))
-                if _same_curve(top, rep, 1e-9 * scale[0]):
-                    hits = None
-            _PAIRS.put(pk, hits)
+            found[k] = intersect_prepared(ptop, prepare(reps[k]))
+    # arc length once per curve for all the pairs computed here (a replica has its curve's)
+    t1 = [h.t1 for k in found for h in found[k]]
+    if t1:
+        u1 = top.u_at_t(np.array(t1)).tolist()
+        u2 = top_j.u_at_t(np.array([h.t2 for k in found for h in found[k]])).tolist()
+    n = 0
+    for k, fk in found.items():
+        hits = tuple((u1[n + q], u2[n + q], h.point) for q, h in enumerate(fk))
+        n += len(fk)
+        if hits and same_family:
+            if scale[0] is None:
+                ends = [t.start for _, _, t in segs] + [t.end for _, _, t in segs]
+                scale[0] = max(1.0, float(np.max(np.abs(ends))))
+            if _same_curve(top, reps[k], 1e-9 * scale[0]):
+                hits = None
+        got[k] = hits
+        _PAIRS.put((kid_i, kid_j, k), hits)
+    for k in later:
+        back = got[inverse[k]]
+        got[k] = None if back is None else _mapped(back, sym, k)
+        _PAIRS.put((kid_i, kid_j, k), got[k])
+    for k in sorted(got):
+        hits = got[k]
         if hits:
+            lab = labels[k]
             out.extend(TopIntersection(ci, si, cj, sj, lab, u, u2, pt, same_family,
                                        (abs(u - u2) <= param_equal) if same_family else True)
                        for u, u2, pt in hits)
     return tuple(out)
 
 
+def _inverses(sym_j, sym_i) -> tuple[int, ...]:
+    """For each replica k of group ``sym_j``, the replica m of ``sym_i`` whose map is k's inverse, else -1.
+
+    Both groups must turn about one centre (else every entry is -1); two groups of the same
+    elements in another order (a D2 whose axis is x, another's y) find each other's inverses.
+    """
+    mats_j, mats_i = sym_j.matrices(), sym_i.matrices()
+    if tuple(sym_j.center) != tuple(sym_i.center):
+        return (-1,) * len(mats_j)
+    return _inverse_indices(mats_j.tobytes(), mats_i.tobytes())
+
+
 @lru_cache(maxsize=1024)
-def _inverses(sym) -> tuple[int, ...] | None:
-    """For each replica k of a symmetry group, the replica m whose matrix is k's inverse (None if any lacks one)."""
-    mats = sym.matrices()
+def _inverse_indices(mats_j: bytes, mats_i: bytes) -> tuple[int, ...]:
+    mj = np.frombuffer(mats_j).reshape(-1, 2, 2)
+    mi = np.frombuffer(mats_i).reshape(-1, 2, 2)
     out = []
-    for mk in mats:
-        m = [i for i, mi in enumerate(mats) if np.abs(mk @ mi - np.eye(2)).max() <= 1e-12]
-        if len(m) != 1:
-            return None
-        out.append(m[0])
+    for mk in mj:
+        m = [i for i, x in enumerate(mi) if np.abs(mk @ x - np.eye(2)).max() <= 1e-12]
+        out.append(m[0] if len(m) == 1 else -1)
     return tuple(out)
 
 

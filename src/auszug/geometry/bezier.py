@@ -10,6 +10,7 @@ Newton iteration.
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass
 from functools import cached_property
@@ -261,6 +262,8 @@ class CubicBezier(Curve):
         0.5
         """
         u = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
+        if u.ndim == 0 and 0.0 < float(u) < 1.0:
+            return np.asarray(self._t_at_u_scalar(float(u)))
         knots, cum = self._table
         total = cum[-1]
         target = u * total
@@ -285,6 +288,55 @@ class CubicBezier(Curve):
                 break
             t = np.where(done, t, tn)
         return np.where(u >= 1.0, 1.0, np.where(u <= 0.0, 0.0, t))
+
+    @cached_property
+    def _scalar_table(self) -> tuple[list[float], list[float], tuple[float, ...], list[tuple[float, float]]]:
+        """The arc-length table, the derivative's coefficients and the Gauss-Legendre rule as floats."""
+        knots, cum = self._table
+        a, b, c = self.p1 - self.p0, self.p2 - self.p1, self.p3 - self.p2
+        coef = (float(a[0]), float(a[1]), float(b[0]), float(b[1]), float(c[0]), float(c[1]))
+        return knots.tolist(), cum.tolist(), coef, list(zip(_GL_X.tolist(), _GL_W.tolist(), strict=True))
+
+    def _t_at_u_scalar(self, u: float) -> float:
+        """:meth:`t_at_u` of one ``u`` in (0, 1) in floats: the same Newton iteration without arrays.
+
+        (An edit rebuilds a curve's PRC and intersection heights through a few single
+        values; numpy's per-call cost was most of their time.)
+        """
+        knots, cum, (ax, ay, bx, by, cx, cy), rule = self._scalar_table
+        hyp = math.hypot
+
+        def speed(t: float) -> float:
+            m = 1.0 - t
+            p, q, r = m * m, 2.0 * m * t, t * t
+            return 3.0 * hyp(p * ax + q * bx + r * cx, p * ay + q * by + r * cy)
+
+        def integral(lo: float, hi: float) -> float:
+            half, mid = 0.5 * (hi - lo), 0.5 * (hi + lo)
+            return half * sum(w * speed(mid + half * x) for x, w in rule)
+
+        total = cum[-1]
+        target = u * total
+        k = min(max(bisect.bisect_right(cum, target) - 1, 0), len(knots) - 2)
+        lo, hi = knots[k], knots[k + 1]
+        seg = cum[k + 1] - cum[k]
+        t = lo + (hi - lo) * (target - cum[k]) / seg if seg > 0 else lo
+        t = min(max(t, lo), hi)
+        base, start = cum[k], knots[k]
+        for _ in range(100):
+            f = base + integral(start, t) - target
+            sp = speed(t)
+            if f > 0:
+                hi = t
+            else:
+                lo = t
+            tn = t - f / sp if sp != 0.0 else math.nan
+            if not (math.isfinite(tn) and lo < tn < hi):
+                tn = 0.5 * (lo + hi)
+            if abs(f) <= 1e-15 * total or hi - lo <= 1e-16:
+                break
+            t = tn
+        return t
 
     # -- editing --------------------------------------------------------------------------
     def split(self, t: float) -> tuple[CubicBezier, CubicBezier]:

@@ -33,6 +33,8 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
 _TABLE_REL = 1e-15
 _TABLE_MAX_LEVELS = 60
 _I2 = np.eye(2)
+#: Up to this many values, u_at_t runs in floats (numpy's per-call cost is larger).
+_FEW = 8
 
 
 @dataclass(frozen=True, eq=False, repr=False, init=False)
@@ -244,6 +246,8 @@ class CubicBezier(Curve):
         [0.0, 0.5, 1.0]
         """
         t = np.clip(np.asarray(t, dtype=float), 0.0, 1.0)
+        if t.size <= _FEW:
+            return np.array([self._u_at_t_scalar(x) for x in t.ravel().tolist()]).reshape(t.shape)
         knots, cum = self._table
         k = np.clip(np.searchsorted(knots, t, side="right") - 1, 0, len(knots) - 2)
         s = cum[k] + self._integral(knots[k], t)
@@ -296,6 +300,27 @@ class CubicBezier(Curve):
         a, b, c = self.p1 - self.p0, self.p2 - self.p1, self.p3 - self.p2
         coef = (float(a[0]), float(a[1]), float(b[0]), float(b[1]), float(c[0]), float(c[1]))
         return knots.tolist(), cum.tolist(), coef, list(zip(_GL_X.tolist(), _GL_W.tolist(), strict=True))
+
+    def _speed_integral(self, lo: float, hi: float) -> float:
+        """:meth:`_integral` of one interval in floats (16-point Gauss-Legendre)."""
+        _, _, (ax, ay, bx, by, cx, cy), rule = self._scalar_table
+        half, mid = 0.5 * (hi - lo), 0.5 * (hi + lo)
+        acc = 0.0
+        for x, w in rule:
+            t = mid + half * x
+            m = 1.0 - t
+            p, q, r = m * m, 2.0 * m * t, t * t
+            acc += w * math.hypot(p * ax + q * bx + r * cx, p * ay + q * by + r * cy)
+        return 3.0 * half * acc
+
+    def _u_at_t_scalar(self, t: float) -> float:
+        """:meth:`u_at_t` of one ``t`` in [0, 1] in floats."""
+        if t >= 1.0:
+            return 1.0
+        knots, cum, _, _ = self._scalar_table
+        k = min(max(bisect.bisect_right(knots, t) - 1, 0), len(knots) - 2)
+        s = cum[k] + self._speed_integral(knots[k], t)
+        return min(max(s / cum[-1], 0.0), 1.0)
 
     def _t_at_u_scalar(self, u: float) -> float:
         """:meth:`t_at_u` of one ``u`` in (0, 1) in floats: the same Newton iteration without arrays.

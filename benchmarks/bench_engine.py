@@ -8,7 +8,8 @@
    interactive use; everything else is recomputed. Every repetition moves to a
    fresh value (a real drag never repeats one), so the edited curve misses the
    caches; a warm-cache figure (values cycling through 7) is reported apart.
-   Target: median <= 0.5 ms, worst <= 3 ms. The authors' demo: 1.2 ms (point)
+   Per drawing the median and the fastest repetition (the least disturbed by other load
+   on a shared machine) are kept. Target: median <= 0.5 ms, worst <= 3 ms. The authors' demo: 1.2 ms (point)
    and 4.2 ms (apex) per edit, 0.04 ms of it geometry.
 2. The whole corpus built into network JSON by ONE `auszug build` call, wall
    clock, interpreter start included. Target: < 2 s.
@@ -65,6 +66,7 @@ def per_edit(drawing, reps: int, fresh: bool = True) -> dict[str, float]:
             ts.append(time.perf_counter() - t0)
         out[name] = statistics.median(ts) * 1e3
         out[name + " max"] = max(ts) * 1e3
+        out[name + " min"] = min(ts) * 1e3
     return out
 
 
@@ -90,16 +92,18 @@ def main(argv: list[str] | None = None) -> int:
     print(f"# machine: {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
           f"{platform.platform()}; {time.strftime('%Y-%m-%d')}")
     print(f"# {len(rows)} drawings, median of {a.reps} repetitions each; fresh values every repetition\n")
-    print("| edit + full rebuild | median of drawings (ms) | worst drawing (ms) | slowest single edit (ms) "
-          "| target | authors' demo (ms) |")
-    print("|---|---|---|---|---|---|")
+    print("| edit + full rebuild | median of drawings (ms) | worst drawing (ms) | worst drawing by its fastest "
+          "edit (ms) | slowest single edit (ms) | target | authors' demo (ms) |")
+    print("|---|---|---|---|---|---|---|")
     for label, table in (("", rows), (" (warm: 7 values cycled)", warm)):
         for name in ("point drag", "apex drag"):
             v = [r[name] for _, r in table]
             worst = max(table, key=lambda x: x[1][name])
+            low = max(table, key=lambda x: x[1][name + " min"])   # the least disturbed by other load
             slow = max(table, key=lambda x: x[1][name + " max"])
             print(f"| {name}{label} | {statistics.median(v):.3f} | {max(v):.3f} ({worst[0]}) | "
-                  f"{slow[1][name + ' max']:.2f} ({slow[0]}) | median <= 0.5, worst <= 3 | {ANCHOR[name]} |")
+                  f"{low[1][name + ' min']:.3f} ({low[0]}) | {slow[1][name + ' max']:.2f} ({slow[0]}) | "
+                  f"median <= 0.5, worst <= 3 | {ANCHOR[name]} |")
     exe = Path(sys.executable).with_name("auszug")
     with tempfile.TemporaryDirectory() as tmp:
         walls = []
@@ -114,7 +118,8 @@ def main(argv: list[str] | None = None) -> int:
     print(f"\n| whole corpus, one `auszug build` call | {n_out} files | best of 3: {min(walls):.2f} s "
           f"(all: {', '.join(f'{w:.2f}' for w in walls)}) | target < 2 s |")
     if a.markdown:
-        print("\nper drawing (ms): " + "; ".join(f"{n}: {r['point drag']:.2f}/{r['apex drag']:.2f}" for n, r in rows))
+        print("\nper drawing, point/apex drag median (ms): "
+              + "; ".join(f"{n}: {r['point drag']:.2f}/{r['apex drag']:.2f}" for n, r in rows))
     return 0
 
 

@@ -17,12 +17,14 @@ from pathlib import Path
 
 import pytest
 
+from auszug import examples
 from auszug.errors import AuszugError, DrawingError, FormatError
 from auszug.formats import load
 from auszug.formats.uc import read_uc
 from auszug.limits import LIMITS, Limits, clip, shown
 from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry
 from tests.cli.conftest import TN
+from tests.conftest import CORPUS
 
 ROOT = Path(__file__).resolve().parents[1]
 TN2 = (TN / "tn-2.uc").read_text()
@@ -371,3 +373,64 @@ def test_largest_accepted_inputs_run_in_2_gb(tmp_path, args):
     env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
     r = subprocess.run([sys.executable, "-c", _RUN, *argv], capture_output=True, text=True, env=env, timeout=600)
     assert r.returncode == 0, r.stderr[-2000:]
+
+
+# -- work limits of the mesh stages: refused up front, in 2 GB and seconds ----------------------
+@pytest.mark.skipif(not hasattr(resource, "RLIMIT_AS") or sys.platform != "linux", reason="Linux address limit")
+@pytest.mark.parametrize("args, words", [
+    (["--faces", "auto"], "above the limit of 512 curves (auszug.limits.LIMITS.face_solid_curves)"),
+    (["--solid"], "a solid of a network of 2048 curves is above the limit of 512"),
+    (["--solid", "--faces", "auto"], "a solid of a network of 2048 curves is above the limit of 512"),
+    (["--segments", "10000"], "the members would have about 163,840,000 triangles, above the limit"),
+    (["--style", "tube", "--around", "1000"], "use fewer segments, fewer points around"),
+], ids=["faces", "solid", "solid-faces", "segments", "around"])
+def test_mesh_stages_of_a_fold_1024_drawing_are_refused_at_once_in_2_gb(tmp_path, args, words):
+    """Before: fold 256 --faces auto took 188 s and 5.2 GB, --segments 10000 on fold 1024 ran out of memory."""
+    import time
+
+    fold = tmp_path / "fold.uc"
+    fold.write_text(_with(TN2, "unitCurve 4 1", f"unitCurve {LIMITS.fold} 1"))
+    out = tmp_path / "f.glb"
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+    t0 = time.monotonic()
+    r = subprocess.run([sys.executable, "-c", _RUN, "mesh", str(fold), *args, "-o", str(out)],
+                       capture_output=True, text=True, env=env, timeout=600)
+    assert r.returncode == 2 and words in r.stderr and str(fold) in r.stderr, r.stderr[-2000:]
+    assert "Traceback" not in r.stderr and not out.exists()
+    assert time.monotonic() - t0 < 120  # refused before the work (about 1 s alone; generous under load)
+
+
+@pytest.mark.parametrize("name", examples.names())
+def test_the_loop_bound_bounds_the_loops_found(name):
+    """The estimate the faces stage checks is never below the loops find_loops returns."""
+    from auszug.meshing.faces import _loop_bound
+    from auszug.meshing.loops import _add_rims, find_loops, network_graph
+    from auszug.microarch import build
+
+    try:
+        g = _add_rims(network_graph(build(load(CORPUS / name))))
+    except AuszugError:
+        return  # a drawing that does not build has no faces to bound
+    n = len(find_loops(g, rims=False))
+    assert n <= _loop_bound(g), (n, _loop_bound(g))
+
+
+def test_the_loop_bound_of_a_fold_16_drawing():
+    from auszug.meshing.faces import _loop_bound
+    from auszug.meshing.loops import _add_rims, find_loops, network_graph
+    from auszug.microarch import build
+
+    g = _add_rims(network_graph(build(read_uc(_with(TN2, "unitCurve 4 1", "unitCurve 16 1"), "t.uc"))))
+    assert len(find_loops(g, rims=False)) == 176 <= _loop_bound(g) <= 190
+
+
+def test_given_loops_beyond_the_faces_limit_are_refused(monkeypatch):
+    from auszug.meshing.faces import network_faces
+    from auszug.meshing.loops import find_loops
+    from auszug.microarch import build
+
+    net = build(read_uc(TN2, "t.uc"))
+    loops = find_loops(net)
+    monkeypatch.setattr("auszug.meshing.faces.LIMITS", Limits(faces=len(loops) - 1))
+    with pytest.raises(DrawingError, match=f"{len(loops)} faces are above the limit of {len(loops) - 1}"):
+        network_faces(net, loops)

@@ -80,11 +80,25 @@ class Limits:
         keep 0.06 units of resolution at the very edge, and a drawing in
         millimetres can still span a kilometre.
     mesh_triangles : int
-        Most triangles, and most vertices, of a mesh read from a file (STL,
-        PLY, glTF, OBJ), checked on the counts a header declares before any
-        array is made: a PLY header can claim 1e11 vertices in a file of a
-        few bytes. A binary STL of :attr:`file_bytes` holds 1.3 M triangles;
-        2 M triangles are under 200 MB as arrays.
+        Most triangles (and vertices) of a mesh: read from a file (STL, PLY,
+        glTF, OBJ; checked on the counts a header declares before any array
+        is made: a PLY header can claim 1e11 vertices in a few bytes), or
+        made by ``mesh`` (estimated before each stage runs: members from
+        curves x segments x profile points, faces from the loops x
+        resolution squared). A mesh costs about 120 bytes a triangle at its
+        peak (the default mesh of a fold-1024 drawing, 3.3 M triangles, peaked
+        at 0.47 GB); ``--segments 10000`` on it ran out of memory.
+    face_solid_curves : int
+        Most network curves (replicas counted) for ``mesh --faces`` and
+        ``--solid``: the loop search and the solid's union compare curves
+        pairwise. Measured on tn-2 at fold 256 (512 curves): ``--solid`` 82 s
+        and 0.66 GB; ``--faces auto`` there was 188 s and 5.2 GB before the
+        triangle estimate refused it.
+    faces : int
+        Most faces (loops) of ``mesh --faces``, bounded before the loops are
+        searched by the cycle rank of the network's graph. Finding the loops
+        grows faster than their number (tn-2 at fold 64: 3 008 loops in 5 s;
+        fold 128: 12 160 in 34 s), and each is a minimal surface to mesh.
     pixels : int
         Largest width or height of a rendered picture, in pixels. A 16 384 px
         square RGBA image is 1 GB in matplotlib; ``render --width 100000``
@@ -122,7 +136,9 @@ class Limits:
     samples: int = 10_000
     network_points: int = 2_000_000
     coordinate: float = 1e6
-    mesh_triangles: int = 2_000_000
+    mesh_triangles: int = 8_000_000
+    face_solid_curves: int = 512
+    faces: int = 16384
     pixels: int = 16384
     sweep_faces: int = 1_000_000
     file_bytes: int = 64 * 1024 * 1024

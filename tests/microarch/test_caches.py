@@ -72,3 +72,38 @@ def test_cached_pieces_follow_the_tolerances():
     with tolerances(samples=11):
         assert len(build(d).pieces[0].points) == 11
     assert len(build(d).pieces[0].points) == n0
+
+
+@pytest.mark.parametrize("name", ["legacy/U.XI.29.uc", "legacy/U.XI.34.uc", "legacy/U.XI.20.uc", "web/two_curves.uc",
+                                  "web/3d-scan-final.uc"])
+def test_pairs_derived_the_other_way_round_equal_computed_ones(name, monkeypatch):
+    """A pair taken from its mirror pair (replica k of i against j = image of i against k^-1 of j)
+    has the records the kernel computes directly, to rounding."""
+    d = load(examples.path(name))
+    moved = edit.move_vertex(d, 0, len(d.curves[0].vertices) - 1,
+                             tuple(np.add(d.curves[0].vertices[-1], (1e-3, -2e-3))))
+    _cold()
+    derived = prc.intersections(moved)
+    _cold()
+    monkeypatch.setattr(prc, "_inverses", lambda sym_j, sym_i: (-1,) * len(sym_j.matrices()))
+    direct = prc.intersections(moved)
+    _cold()
+    assert len(derived) == len(direct) > 0
+    for a, b in zip(derived, direct, strict=True):
+        assert (a.curve, a.segment, a.other_curve, a.other_segment, a.replica, a.same_family, a.true) == (
+            b.curve, b.segment, b.other_curve, b.other_segment, b.replica, b.same_family, b.true)
+        assert abs(a.u - b.u) <= 1e-12 and abs(a.u_other - b.u_other) <= 1e-12
+        assert np.abs(a.point - b.point).max() <= 1e-12
+
+
+def test_a_rigid_replica_shares_the_arc_length_table():
+    from auszug.geometry import CubicBezier
+
+    b = CubicBezier((0, -1), (0.1, -1.1), (0.9, -1.0), (1.1, -0.6))
+    c, s = np.cos(0.7), np.sin(0.7)
+    rot = b.transformed([[c, -s], [s, c]], (0.3, 0.2))
+    fresh = CubicBezier(*rot.controls)   # the same curve, its table computed on its own
+    t = np.linspace(0, 1, 11)
+    assert rot._table is b._table and fresh._table is not b._table
+    assert np.abs(rot.u_at_t(t) - fresh.u_at_t(t)).max() <= 1e-14
+    assert "_arc_source" not in b.transformed([[2, 0], [0, 1]]).__dict__   # not rigid: its own table

@@ -10,6 +10,7 @@ Newton iteration.
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass
 from functools import cached_property
@@ -31,6 +32,9 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
 # the sum over its two halves agree to this fraction of the curve length.
 _TABLE_REL = 1e-15
 _TABLE_MAX_LEVELS = 60
+_I2 = np.eye(2)
+#: Up to this many values, u_at_t runs in floats (numpy's per-call cost is larger).
+_FEW = 8
 
 
 @dataclass(frozen=True, eq=False, repr=False, init=False)
@@ -187,7 +191,15 @@ class CubicBezier(Curve):
 
     @cached_property
     def _table(self) -> tuple[Array, Array]:
-        """(knots (k+1,), cumulative arc length at the knots (k+1,)), computed on first use."""
+        """(knots (k+1,), cumulative arc length at the knots (k+1,)), computed on first use.
+
+        A rigid image of a curve (:meth:`transformed` by an orthogonal matrix: the
+        replicas of a symmetry) has the same speed at every ``t``, so it shares the
+        table of the curve it was made from instead of computing its own.
+        """
+        src = self.__dict__.get("_arc_source")
+        if src is not None:
+            return src._table
         # Knots at the extrema of the speed, so that a cusp (where |B'| has a kink
         # rather than being smooth) is always at a knot, never inside an interval.
         knots = np.unique(np.concatenate([np.linspace(0.0, 1.0, 17), self._speed_extrema()]))
@@ -234,6 +246,8 @@ class CubicBezier(Curve):
         [0.0, 0.5, 1.0]
         """
         t = np.clip(np.asarray(t, dtype=float), 0.0, 1.0)
+        if t.size <= _FEW:
+            return np.array([self._u_at_t_scalar(x) for x in t.ravel().tolist()]).reshape(t.shape)
         knots, cum = self._table
         k = np.clip(np.searchsorted(knots, t, side="right") - 1, 0, len(knots) - 2)
         s = cum[k] + self._integral(knots[k], t)
@@ -252,6 +266,8 @@ class CubicBezier(Curve):
         0.5
         """
         u = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
+        if u.ndim == 0 and 0.0 < float(u) < 1.0:
+            return np.asarray(self._t_at_u_scalar(float(u)))
         knots, cum = self._table
         total = cum[-1]
         target = u * total
@@ -276,6 +292,76 @@ class CubicBezier(Curve):
                 break
             t = np.where(done, t, tn)
         return np.where(u >= 1.0, 1.0, np.where(u <= 0.0, 0.0, t))
+
+    @cached_property
+    def _scalar_table(self) -> tuple[list[float], list[float], tuple[float, ...], list[tuple[float, float]]]:
+        """The arc-length table, the derivative's coefficients and the Gauss-Legendre rule as floats."""
+        knots, cum = self._table
+        a, b, c = self.p1 - self.p0, self.p2 - self.p1, self.p3 - self.p2
+        coef = (float(a[0]), float(a[1]), float(b[0]), float(b[1]), float(c[0]), float(c[1]))
+        return knots.tolist(), cum.tolist(), coef, list(zip(_GL_X.tolist(), _GL_W.tolist(), strict=True))
+
+    def _speed_integral(self, lo: float, hi: float) -> float:
+        """:meth:`_integral` of one interval in floats (16-point Gauss-Legendre)."""
+        _, _, (ax, ay, bx, by, cx, cy), rule = self._scalar_table
+        half, mid = 0.5 * (hi - lo), 0.5 * (hi + lo)
+        acc = 0.0
+        for x, w in rule:
+            t = mid + half * x
+            m = 1.0 - t
+            p, q, r = m * m, 2.0 * m * t, t * t
+            acc += w * math.hypot(p * ax + q * bx + r * cx, p * ay + q * by + r * cy)
+        return 3.0 * half * acc
+
+    def _u_at_t_scalar(self, t: float) -> float:
+        """:meth:`u_at_t` of one ``t`` in [0, 1] in floats."""
+        if t >= 1.0:
+            return 1.0
+        knots, cum, _, _ = self._scalar_table
+        k = min(max(bisect.bisect_right(knots, t) - 1, 0), len(knots) - 2)
+        s = cum[k] + self._speed_integral(knots[k], t)
+        return min(max(s / cum[-1], 0.0), 1.0)
+
+    def _t_at_u_scalar(self, u: float) -> float:
+        """:meth:`t_at_u` of one ``u`` in (0, 1) in floats: the same Newton iteration without arrays.
+
+        (An edit rebuilds a curve's PRC and intersection heights through a few single
+        values; numpy's per-call cost was most of their time.)
+        """
+        knots, cum, (ax, ay, bx, by, cx, cy), rule = self._scalar_table
+        hyp = math.hypot
+
+        def speed(t: float) -> float:
+            m = 1.0 - t
+            p, q, r = m * m, 2.0 * m * t, t * t
+            return 3.0 * hyp(p * ax + q * bx + r * cx, p * ay + q * by + r * cy)
+
+        def integral(lo: float, hi: float) -> float:
+            half, mid = 0.5 * (hi - lo), 0.5 * (hi + lo)
+            return half * sum(w * speed(mid + half * x) for x, w in rule)
+
+        total = cum[-1]
+        target = u * total
+        k = min(max(bisect.bisect_right(cum, target) - 1, 0), len(knots) - 2)
+        lo, hi = knots[k], knots[k + 1]
+        seg = cum[k + 1] - cum[k]
+        t = lo + (hi - lo) * (target - cum[k]) / seg if seg > 0 else lo
+        t = min(max(t, lo), hi)
+        base, start = cum[k], knots[k]
+        for _ in range(100):
+            f = base + integral(start, t) - target
+            sp = speed(t)
+            if f > 0:
+                hi = t
+            else:
+                lo = t
+            tn = t - f / sp if sp != 0.0 else math.nan
+            if not (math.isfinite(tn) and lo < tn < hi):
+                tn = 0.5 * (lo + hi)
+            if abs(f) <= 1e-15 * total or hi - lo <= 1e-16:
+                break
+            t = tn
+        return t
 
     # -- editing --------------------------------------------------------------------------
     def split(self, t: float) -> tuple[CubicBezier, CubicBezier]:
@@ -317,7 +403,10 @@ class CubicBezier(Curve):
         """The curve mapped by ``x -> matrix @ x + offset`` (applied to the control points)."""
         m = np.asarray(matrix, dtype=float)
         c = self.controls @ m.T + np.asarray(offset, dtype=float)
-        return CubicBezier(c[0], c[1], c[2], c[3])
+        out = CubicBezier(c[0], c[1], c[2], c[3])
+        if m.shape == (2, 2) and np.abs(m @ m.T - _I2).max() <= 1e-12:   # rigid: the same arc-length table
+            object.__setattr__(out, "_arc_source", self.__dict__.get("_arc_source", self))
+        return out
 
     def project(self, p: ArrayLike) -> float:
         """Parameter ``t`` of the point of the curve closest to ``p``.

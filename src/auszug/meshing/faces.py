@@ -18,9 +18,11 @@ from typing import Any, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from auszug.errors import GeometryError
+from auszug.errors import DrawingError, GeometryError
 from auszug.geometry.network import as_curve_network
-from auszug.meshing.loops import Loop, NetworkGraph, find_loops, network_graph
+from auszug.limits import LIMITS
+from auszug.meshing._work import check_triangles, face_triangles
+from auszug.meshing.loops import Loop, NetworkGraph, _add_rims, find_loops, network_graph
 from auszug.meshing.mesh import Mesh, Part
 from auszug.meshing.minimal import RESIDUAL_TOL, MinimalSurface, flat_area, minimal_surface
 
@@ -165,6 +167,28 @@ def _map_face(ms: MinimalSurface, m: Array, centre: Array, loop: Loop, rep_loop:
     return v, f
 
 
+def _loop_bound(graph: Any) -> int:
+    """An estimate, from above, of the loops :func:`find_loops` finds in ``graph`` (rims added).
+
+    The graph's cycle rank, edges - nodes + components (for a planar graph
+    its bounded faces, by Euler), plus one per pair of loose ends. It bounded
+    the loops found on every drawing of the bundled examples and on tn-2 up
+    to fold 128 (12 673 for 12 160), which tests/test_limits.py checks.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    n = len(graph.nodes)
+    if n == 0:
+        return 0
+    a = np.array([e.a for e in graph.edges], dtype=np.int64)
+    b = np.array([e.b for e in graph.edges], dtype=np.int64)
+    adj = coo_matrix((np.ones(len(a)), (a, b)), shape=(n, n))
+    comps = connected_components(adj, directed=False)[0]
+    degree = np.bincount(np.concatenate([a, b]), minlength=n)
+    return max(0, len(a) - n + comps) + int((degree == 1).sum()) // 2
+
+
 def network_faces(
     network: Any,
     loops: Sequence[Loop] | None = None,
@@ -209,11 +233,24 @@ def network_faces(
     """
     if int(resolution) < 12:
         raise GeometryError(f"need at least 12 boundary points per face, got {resolution}")
+    lower = "a lower face resolution, a lower fold or fewer curves"
     if loops is None:
-        graph = network_graph(network, meet_tol)
+        graph = network_graph(network, meet_tol)   # checks the curves against LIMITS.face_solid_curves
+        if rims:
+            graph = _add_rims(graph)   # here, not in find_loops: the bound counts them
+            rims = False
+        n = _loop_bound(graph)
+        if n > LIMITS.faces:
+            raise DrawingError(f"the faces (up to {n:,} loops) are above the limit of {LIMITS.faces:,} loops "
+                               f"(auszug.limits.LIMITS.faces); {lower.replace('a lower face resolution, ', 'use ')}")
+        check_triangles(face_triangles(n, int(resolution)), f"the faces (up to {n:,} loops)", lower)
         loops = find_loops(graph, rims=rims)
     else:
         loops = list(loops)
+        if len(loops) > LIMITS.faces:
+            raise DrawingError(f"{len(loops):,} faces are above the limit of {LIMITS.faces:,} "
+                               "(auszug.limits.LIMITS.faces)")
+        check_triangles(face_triangles(len(loops), int(resolution)), f"{len(loops):,} faces", lower)
         if not loops:
             return Faces((), network_graph(network, meet_tol))
         graph = loops[0].graph

@@ -38,6 +38,7 @@ from numpy.typing import ArrayLike, NDArray
 from auszug.errors import GeometryError
 from auszug.geometry import Curve
 from auszug.geometry.network import CurveNetwork, Piece, as_curve_network
+from auszug.meshing._work import check_curves
 
 __all__ = ["Strand", "GraphEdge", "NetworkGraph", "Loop", "network_graph", "find_loops", "loop_through"]
 
@@ -359,8 +360,16 @@ def network_graph(network: Any, meet_tol: float = 1e-2) -> NetworkGraph:
     Returns
     -------
     NetworkGraph
+
+    Raises
+    ------
+    DrawingError
+        For a network of more curves than
+        :attr:`~auszug.limits.Limits.face_solid_curves` (the graph compares
+        curves pairwise).
     """
     network = as_curve_network(network)
+    check_curves(network, "the loop graph (for faces)")
     strands = _strands(network)
     size = network.size
     tol = 1e-7 * size

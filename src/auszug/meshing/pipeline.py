@@ -33,6 +33,7 @@ from typing import Any, Literal
 
 from auszug.errors import GeometryError
 from auszug.geometry.network import as_curve_network
+from auszug.meshing._work import check_curves, check_triangles, curve_count, member_triangles
 from auszug.meshing.faces import Faces, network_faces
 from auszug.meshing.loops import Loop
 from auszug.meshing.mesh import Mesh, Part, concatenate
@@ -233,6 +234,11 @@ def mesh_network(network: Any, look: Look, *, faces: Faces | None = None) -> Mes
         As :func:`profile_of`; an open profile for a solid.
     """
     prof = profile_of(network, look)
+    if prof is not None and not look.solid:   # solid() checks its own members
+        check_triangles(member_triangles(curve_count(network), look.steps, prof.n), "the members",
+                        "fewer segments, fewer points around, a lower fold or fewer curves")
+    if look.solid:
+        check_curves(network, "a solid")    # before the faces, which a solid includes
     fs = faces if faces is not None else faces_of(network, look)
     if look.solid:
         assert prof is not None   # Look refuses a solid without members

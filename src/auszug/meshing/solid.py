@@ -22,6 +22,7 @@ from auszug.errors import GeometryError
 from auszug.geometry import TOL
 from auszug.geometry.network import as_curve_network
 from auszug.meshing._clip import plane_loops
+from auszug.meshing._work import check_curves, check_triangles, member_triangles
 from auszug.meshing.faces import Faces
 from auszug.meshing.mesh import Mesh, Part, is_closed, weld
 from auszug.meshing.profile import Profile, triangulate_polygon
@@ -302,6 +303,9 @@ def solid(
     (True, 1, True)
     """
     profile.require_closed("a solid")
+    n = check_curves(network, "a solid")
+    check_triangles(member_triangles(n, int(segments), profile.n), "the solid's members",
+                    "fewer segments, fewer points around, a lower fold or fewer curves")
     ext = profile.points.max(0) - profile.points.min(0)
     # uncut: at a mirror joint the cut halves would touch the neighbour along a lens that ends in a
     # point (a zero-thickness contact); overlapping members unite into a clean fork instead

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -203,7 +203,16 @@ def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Cur
     out: list[TopIntersection] = []
     ptop = None
     pairs = _PAIRS.data   # (its values may be None: a miss is _MISS)
-    for k, (lab, rep) in enumerate(zip(sym.labels(), _replicas(top_j, sym), strict=True)):
+    # segment i meets replica k of segment j where replica k of (segment j against replica m
+    # of segment i, m the inverse of k in i's group) does: a pair computed already the other
+    # way round (an earlier block, or an earlier k) gives this one
+    inverse = _inverses(sym, drawing.curves[ci].symmetry)
+    labels = sym.labels()
+    reps = _replicas(top_j, sym)
+    got: dict[int, Any] = {}          # k -> hits (a tuple, or None for an identical replica)
+    found: dict[int, list] = {}       # k -> the kernel's raw hits, for pairs computed here
+    later: list[int] = []             # k derived from a pair computed here (same family)
+    for k in range(len(reps)):
         if k == 0 and same_family:
             continue
         pk = (kid_i, kid_j, k)
@@ -213,23 +222,79 @@ def _block(drawing: Drawing, segs: list, scale: list, ci: int, si: int, top: Cur
                 pairs.move_to_end(pk)
             except KeyError:   # evicted meanwhile by another thread; the value is still right
                 pass
+            got[k] = hits
+        elif inverse[k] >= 0 and (back := pairs.get((kid_j, kid_i, inverse[k]), _MISS)) is not _MISS:
+            got[k] = None if back is None else _mapped(back, sym, k)
+            _PAIRS.put(pk, got[k])
+        elif same_family and inverse[k] in found:
+            later.append(k)
         else:
             if ptop is None:
                 ptop = prepare(top)
-            found = intersect_prepared(ptop, prepare(rep))
-            hits = tuple((float(top.u_at_t(h.t1)), float(rep.u_at_t(h.t2)), h.point) for h in found)
-            if hits and same_family:
-                if scale[0] is None:
-                    ends = [t.start for _, _, t in segs] + [t.end for _, _, t in segs]
-                    scale[0] = max(1.0, float(np.max(np.abs(ends))))
-                if _same_curve(top, rep, 1e-9 * scale[0]):
-                    hits = None
-            _PAIRS.put(pk, hits)
+            found[k] = intersect_prepared(ptop, prepare(reps[k]))
+    # arc length once per curve for all the pairs computed here (a replica has its curve's)
+    t1 = [h.t1 for k in found for h in found[k]]
+    if t1:
+        u1 = top.u_at_t(np.array(t1)).tolist()
+        u2 = top_j.u_at_t(np.array([h.t2 for k in found for h in found[k]])).tolist()
+    n = 0
+    for k, fk in found.items():
+        hits = tuple((u1[n + q], u2[n + q], h.point) for q, h in enumerate(fk))
+        n += len(fk)
+        if hits and same_family:
+            if scale[0] is None:
+                ends = [t.start for _, _, t in segs] + [t.end for _, _, t in segs]
+                scale[0] = max(1.0, float(np.max(np.abs(ends))))
+            if _same_curve(top, reps[k], 1e-9 * scale[0]):
+                hits = None
+        got[k] = hits
+        _PAIRS.put((kid_i, kid_j, k), hits)
+    for k in later:
+        back = got[inverse[k]]
+        got[k] = None if back is None else _mapped(back, sym, k)
+        _PAIRS.put((kid_i, kid_j, k), got[k])
+    for k in sorted(got):
+        hits = got[k]
         if hits:
+            lab = labels[k]
             out.extend(TopIntersection(ci, si, cj, sj, lab, u, u2, pt, same_family,
                                        (abs(u - u2) <= param_equal) if same_family else True)
                        for u, u2, pt in hits)
     return tuple(out)
+
+
+def _inverses(sym_j, sym_i) -> tuple[int, ...]:
+    """For each replica k of group ``sym_j``, the replica m of ``sym_i`` whose map is k's inverse, else -1.
+
+    Both groups must turn about one centre (else every entry is -1); two groups of the same
+    elements in another order (a D2 whose axis is x, another's y) find each other's inverses.
+    """
+    mats_j, mats_i = sym_j.matrices(), sym_i.matrices()
+    if tuple(sym_j.center) != tuple(sym_i.center):
+        return (-1,) * len(mats_j)
+    return _inverse_indices(mats_j.tobytes(), mats_i.tobytes())
+
+
+@lru_cache(maxsize=1024)
+def _inverse_indices(mats_j: bytes, mats_i: bytes) -> tuple[int, ...]:
+    mj = np.frombuffer(mats_j).reshape(-1, 2, 2)
+    mi = np.frombuffer(mats_i).reshape(-1, 2, 2)
+    out = []
+    for mk in mj:
+        m = [i for i, x in enumerate(mi) if np.abs(mk @ x - np.eye(2)).max() <= 1e-12]
+        out.append(m[0] if len(m) == 1 else -1)
+    return tuple(out)
+
+
+def _mapped(back: tuple, sym, k: int) -> tuple:
+    """The hits of (segment i, replica k of j) from those of (segment j, replica k^-1 of i).
+
+    The parameters swap (a rigid replica has its curve's parametrisation) and the points
+    map by replica k; sorted along segment i, as the kernel returns them.
+    """
+    m = sym.matrices()[k]
+    c = np.asarray(sym.center, dtype=float)
+    return tuple(sorted(((u2, u, m @ (np.asarray(pt) - c) + c) for u, u2, pt in back), key=lambda h: h[0]))
 
 
 #: Intersections of one basic segment with one replica, keyed by the geometry of both (their

@@ -75,6 +75,9 @@ def test_revolve_baseline_recovers_the_depth(truth, baseline):
     """Meridians and parallels of a vase: fidelity + hard orthogonality at the smooth crossings."""
     err, sign = depth_rmse(truth, baseline)
     assert baseline.converged
+    # every solve converged (KKT residual), none from a discarded seed; measured 4 solves, 35 Newton steps
+    assert all(s.converged and not s.discarded for s in baseline.stages)
+    assert sum(s.iterations for s in baseline.stages) <= 50
     assert sign == 1                       # the convexity rule picks the true sign
     assert err <= 0.015                    # measured 1.27 % of the diagonal
     ortho = [c.angle for c in baseline.cues if c.kind == "smooth-orthogonal"]

@@ -157,10 +157,15 @@ def _seed(g: SketchGraph, ortho: cu.Orthogonal) -> NDArray[np.intp]:
 
 
 def _initial(g: SketchGraph, n: int, ortho: cu.Orthogonal, k: int) -> Array:
-    """Sketch positions, z = 0 but at the seed crossing.
+    """Sketch positions lifted onto the seed crossing's tangent plane.
 
-    Its two tangents are lifted to orthogonal, equally foreshortened
-    (dz_a dz_b = -a.b, |dz_a|/|a| = |dz_b|/|b|).
+    The seed's two tangents a, b are lifted to orthogonal, equally
+    foreshortened (dz_a dz_b = -a.b, |dz_a|/|a| = |dz_b|/|b|); every control
+    point then starts on the plane through the crossing that contains both
+    lifted tangents, ``z = grad . (x - x_p)``. *Choice* (the paper lifts only
+    the seed's sub-network): with z = 0 elsewhere, a straight stroke's
+    orthogonality ``a.b + dz_a dz_b = 0`` has no gradient in z, and a sketch of
+    straight strokes (a box) could only meet it by moving x and y.
     """
     v = np.zeros(n)
     N = len(g.points)
@@ -171,20 +176,11 @@ def _initial(g: SketchGraph, n: int, ortho: cu.Orthogonal, k: int) -> Array:
     na, nb = float(np.linalg.norm(a)), float(np.linalg.norm(b))
     dza = float(np.sqrt(abs(c) * na / nb)) if c != 0 else 0.0
     dzb = -c / dza if dza else 0.0
-    v[3 * ha + 2] = dza
-    v[3 * hb + 2] = dzb
-    # the opposite handles of the two G1 strokes, collinear through the crossing
-    for h, dz, nh in ((ha, dza, na), (hb, dzb, nb)):
-        for c_ in g.crossings:
-            if c_.point != p:
-                continue
-            for s, e in c_.ends:
-                other = int(g.segments[s, 1] if e == 0 else g.segments[s, 2])
-                if other == h:
-                    continue
-                d = g.points[other] - g.points[p]
-                if np.dot(d, g.points[h] - g.points[p]) < -0.99 * np.linalg.norm(d) * nh:
-                    v[3 * other + 2] = -dz * np.linalg.norm(d) / nh
+    M = np.array([a, b])
+    if abs(float(np.linalg.det(M))) <= 1e-12 * na * nb:
+        return v
+    grad = np.linalg.solve(M, np.array([dza, dzb]))
+    v[: 3 * N].reshape(N, 3)[:, 2] = (g.points - g.points[p]) @ grad
     return v
 
 
@@ -397,6 +393,10 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     return X, results, pr.stages, bool(ok), bool(flip)
 
 
+#: Normal curvature (diagonal 1) below which a crossing's curves count as straight (no convexity vote).
+CURVED = 1e-6
+
+
 def _concave(g: SketchGraph, X: Array, smooth: cu.Orthogonal) -> bool:
     """The convexity rule: True when the solution is concave seen from the viewer at +z.
 
@@ -433,7 +433,7 @@ def _concave(g: SketchGraph, X: Array, smooth: cu.Orthogonal) -> bool:
                 else:
                     continue
                 kn += float(np.dot(d2, n)) / max(float(np.dot(d1, d1)), 1e-300)
-        votes += 1 if kn < 0 else (-1 if kn > 0 else 0)
+        votes += 1 if kn < -CURVED else (-1 if kn > CURVED else 0)   # straight strokes do not vote
         up += n[1]
     return votes < 0 or (votes == 0 and up < 0)
 

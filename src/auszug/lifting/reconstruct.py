@@ -157,15 +157,10 @@ def _seed(g: SketchGraph, ortho: cu.Orthogonal) -> NDArray[np.intp]:
 
 
 def _initial(g: SketchGraph, n: int, ortho: cu.Orthogonal, k: int) -> Array:
-    """Sketch positions lifted onto the seed crossing's tangent plane.
+    """Sketch positions, z = 0 but at the seed crossing.
 
-    The seed's two tangents a, b are lifted to orthogonal, equally
-    foreshortened (dz_a dz_b = -a.b, |dz_a|/|a| = |dz_b|/|b|); every control
-    point then starts on the plane through the crossing that contains both
-    lifted tangents, ``z = grad . (x - x_p)``. *Choice* (the paper lifts only
-    the seed's sub-network): with z = 0 elsewhere, a straight stroke's
-    orthogonality ``a.b + dz_a dz_b = 0`` has no gradient in z, and a sketch of
-    straight strokes (a box) could only meet it by moving x and y.
+    Its two tangents are lifted to orthogonal, equally foreshortened
+    (dz_a dz_b = -a.b, |dz_a|/|a| = |dz_b|/|b|).
     """
     v = np.zeros(n)
     N = len(g.points)
@@ -176,11 +171,20 @@ def _initial(g: SketchGraph, n: int, ortho: cu.Orthogonal, k: int) -> Array:
     na, nb = float(np.linalg.norm(a)), float(np.linalg.norm(b))
     dza = float(np.sqrt(abs(c) * na / nb)) if c != 0 else 0.0
     dzb = -c / dza if dza else 0.0
-    M = np.array([a, b])
-    if abs(float(np.linalg.det(M))) <= 1e-12 * na * nb:
-        return v
-    grad = np.linalg.solve(M, np.array([dza, dzb]))
-    v[: 3 * N].reshape(N, 3)[:, 2] = (g.points - g.points[p]) @ grad
+    v[3 * ha + 2] = dza
+    v[3 * hb + 2] = dzb
+    # the opposite handles of the two G1 strokes, collinear through the crossing
+    for h, dz, nh in ((ha, dza, na), (hb, dzb, nb)):
+        for c_ in g.crossings:
+            if c_.point != p:
+                continue
+            for s, e in c_.ends:
+                other = int(g.segments[s, 1] if e == 0 else g.segments[s, 2])
+                if other == h:
+                    continue
+                d = g.points[other] - g.points[p]
+                if np.dot(d, g.points[h] - g.points[p]) < -0.99 * np.linalg.norm(d) * nh:
+                    v[3 * other + 2] = -dz * np.linalg.norm(d) / nh
     return v
 
 

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from auszug.errors import GeometryError
-from auszug.lifting import DEFAULT, Marker, Sketch, Stroke, lift, sketch_graph
-from auszug.lifting.cues import likelihood
-from tests.lifting.truth import box, depth_rmse, revolve
+from auszug.lifting import DEFAULT, Marker, Sketch, Stroke, layer_graphs, lift, sketch_graph
+from auszug.lifting.cues import likelihood, parallel_cues
+from tests.lifting.truth import box, depth_rmse, revolve, truth_points
 
 H = Stroke(np.array([[[-1, 0], [-0.4, 0.25], [0.4, 0.25], [1, 0]]], float), "h")
 V = Stroke(np.array([[[0.3, -1], [0.1, -0.3], [-0.1, 0.3], [-0.3, 1]]], float), "v")
@@ -156,3 +156,20 @@ def test_box_with_half_a_percent_of_noise_and_the_cues(seed):
     assert r.converged
     assert err <= 0.011
     assert sign == (-1 if seed == 1 else 1)
+
+
+def test_revolve_parallel_cues_against_the_truth(truth):
+    """Precision and recall of tangent parallelism on the vase, labels from the 3D truth (angle <= I_b).
+
+    Of 38 candidates 23 are parallel in 3D (18 exactly, 5 at 1.2 deg); the other 15 (5.4-8.2 deg, the
+    taper of the vase) are applied too: the cue term outweighs fidelity, which hardly resists depth
+    changes (docs/lifting.md). Measured precision 23/38, recall 1, F1 0.75 (issue target 0.9: not met).
+    """
+    (_, g), = layer_graphs(truth.sketch)
+    par = parallel_cues(g, DEFAULT)
+    true_parallel = par.angles(truth_points(truth, g)) <= DEFAULT.inner_deg
+    r = lift(truth.sketch)
+    applied = np.array([c.applied for c in r.cues if c.kind == "parallel"])
+    assert len(applied) == len(par) == 38 and true_parallel.sum() == 23
+    tp = int((applied & true_parallel).sum())
+    assert tp == 23 and int(applied.sum()) == 38

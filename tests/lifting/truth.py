@@ -212,3 +212,21 @@ def depth_rmse(truth: Truth, result) -> tuple[float, int]:
         errs[sign] = float(np.sqrt(np.mean((zl + off - zt) ** 2)))
     s = min(errs, key=errs.get)
     return errs[s] / truth.diagonal(), s
+
+
+def truth_points(truth: Truth, graph) -> np.ndarray:
+    """The true 3D position (graph units: diagonal-normalised, as the solver's) of every graph control point.
+
+    Only for truths whose strokes are split exactly at their chains' knots (every crossing at a knot,
+    as in :func:`revolve`): each graph point is then one of the truth's control points. Raises when
+    a graph point has no truth control point within 1e-9 of the diagonal.
+    """
+    allc = np.concatenate([c.reshape(-1, 3) for c in truth.chains3d])
+    xy = graph.points * graph.scale + graph.offset
+    d = np.linalg.norm(xy[:, None, :] - allc[None, :, :2], axis=2)
+    if d.min(1).max() > 1e-9 * truth.diagonal():
+        raise ValueError("graph points off the truth's control points: the truth is not split at its knots")
+    X = np.zeros((len(xy), 3))
+    X[:, :2] = graph.points
+    X[:, 2] = allc[d.argmin(1), 2] / graph.scale
+    return X

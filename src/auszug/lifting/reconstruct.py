@@ -194,7 +194,7 @@ class _Problem:
     def __init__(self, g: SketchGraph, params: LiftParams, layer: int, progress: Progress | None):
         self.g, self.params, self.layer, self.progress = g, params, layer, progress
         self.N = len(g.points)
-        self.n = 3 * (self.N + len(g.chains))
+        self.n = 3 * (self.N + len(g.chains)) + len(g.chains)   # points, normals, plane offsets
         self.smooth = cu.smooth_orthogonal(g)
         self.stages: list[Stage] = []
         self.seeds = _seed(g, self.smooth)
@@ -210,9 +210,8 @@ class _Problem:
 
     def _normal_anchor(self, P: Poly2) -> None:
         # normals that no cue uses stay where they are (a tiny pull keeps Newton's matrix regular)
-        m = self.n // 3 - self.N
-        cols = 3 * self.N + np.arange(3 * m)
-        P.add(-self.v[cols], 1e-8, lin=(np.arange(3 * m), cols, np.ones(3 * m)))
+        cols = np.arange(3 * self.N, self.n)
+        P.add(-self.v[cols], 1e-8, lin=(np.arange(len(cols)), cols, np.ones(len(cols))))
 
     def run(self, name: str, energy: Poly2, cons: Poly2, applied: int = 0, rejected: int = 0,
             candidate: bool = False) -> SolveResult:
@@ -379,7 +378,16 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         pla_state["sel"] = sel
 
     hard.append(lambda c: pla.add_hard(c, pla_state["sel"]))
-    pla_applied = resolve("planar", pla, pla_apply, lambda E, i, w: pla.add_soft(E, i, w, pr.X()))
+    offset_slot = 3 * (pr.N + len(g.chains)) + pla.stroke   # one plane offset unknown per candidate
+
+    def pla_soft(E: Poly2, idx: NDArray[np.intp], w: Array) -> None:
+        X = pr.X()
+        nrm = pla.normals(X)
+        for i in idx:   # offsets start at their optimum, n . mean X
+            pr.v[offset_slot[i]] = float(nrm[i] @ X[pla.points[i]].mean(0))
+        pla.add_soft(E, idx, w, X, offset_slot)
+
+    pla_applied = resolve("planar", pla, pla_apply, pla_soft)
 
     X = pr.X().copy()
     for kind, fam, app in (("parallel", par, par_applied), ("orthogonal", orth, orth_applied),

@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import os
 import platform
+import sys
 import time
 from collections import defaultdict
 
@@ -68,6 +69,7 @@ def main() -> None:
     ap.add_argument("--meridians", type=int, default=50)
     ap.add_argument("--parallels", type=int, default=50)
     ap.add_argument("--markdown", action="store_true")
+    ap.add_argument("--progress", action="store_true", help="print the lift's progress lines (stderr) as they come")
     args = ap.parse_args()
     text = vase_svg(args.meridians, args.parallels)
     rows: list[tuple[str, float, str]] = []
@@ -81,7 +83,12 @@ def main() -> None:
     rows.append(("curve graph", t_graph, f"{len(g.crossings)} crossings, {len(g.segments)} segments, "
                                          f"{3 * len(g.points)} unknowns"))
     t0 = time.perf_counter()
-    r = lift(sketch)
+    t_start = time.perf_counter()
+
+    def show(line: str) -> None:
+        print(f"  [{time.perf_counter() - t_start:7.2f} s] {line}", file=sys.stderr, flush=True)
+
+    r = lift(sketch, progress=show if args.progress else None)
     t_lift = time.perf_counter() - t0
     by: dict[str, list[float]] = defaultdict(lambda: [0.0, 0, 0, 0])
     for st in r.stages:

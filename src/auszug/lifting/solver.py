@@ -186,7 +186,8 @@ class _KKT:
 
 def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = None, *, iterations: int = 60,
           tol: float = 1e-10, kkt_reg: float = 1e-11, hessian_reg: float = 1e-10,
-          stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 3) -> SolveResult:
+          stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 3,
+          stall_tol: float = 1e-6) -> SolveResult:
     """Minimise ``sum w_r p_r(v)^2`` subject to ``q(v) = 0`` from ``v0``.
 
     Each step solves the KKT system
@@ -209,7 +210,11 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     relative so that large multipliers are reached in a few steps).
     Converged: ``|q|_inf <= tol`` and either ``|g + Jq^T lam|_inf <= stat_tol`` or a full Newton
     step below ``tol`` (the KKT point is within ``tol``: near redundant constraints the
-    stationarity residual stalls at the linear solve's rounding).
+    stationarity residual stalls at the linear solve's rounding), or the line
+    search finds no decrease (the merit's changes are below its float
+    resolution, about 1e-13 for thousands of rows) while feasible and the
+    Newton step is below ``stall_tol`` (1e-6 of the diagonal: the point is
+    determined to that).
 
     Parameters
     ----------
@@ -221,6 +226,8 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
         Most Newton steps.
     tol, stat_tol : float
         Feasibility and stationarity tolerances (absolute; the lifting works at diagonal 1).
+    stall_tol : float
+        Largest remaining Newton step accepted as converged when the line search stalls.
     kkt_reg, hessian_reg : float
         ``-kkt_reg I`` in the constraint block (redundant constraints), ``hessian_reg I`` on the energy
         Hessian (directions no term sees).
@@ -332,6 +339,8 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
                     break
             step *= 0.5
         if not accepted:   # no decrease along the step: stalled
+            # at the energy's float resolution with the remaining Newton step below stall_tol: done
+            converged = feas <= tol and float(np.abs(dv).max(initial=0.0)) <= stall_tol
             break
         if small_step(dv) and feas <= tol and step == 1.0:   # the Newton step says v is the KKT point
             converged = True

@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import os
 import platform
+import sys
 import time
 from collections import defaultdict
 
@@ -68,6 +69,7 @@ def main() -> None:
     ap.add_argument("--meridians", type=int, default=50)
     ap.add_argument("--parallels", type=int, default=50)
     ap.add_argument("--markdown", action="store_true")
+    ap.add_argument("--progress", action="store_true", help="print the lift's progress lines (stderr) as they come")
     args = ap.parse_args()
     text = vase_svg(args.meridians, args.parallels)
     rows: list[tuple[str, float, str]] = []
@@ -81,17 +83,24 @@ def main() -> None:
     rows.append(("curve graph", t_graph, f"{len(g.crossings)} crossings, {len(g.segments)} segments, "
                                          f"{3 * len(g.points)} unknowns"))
     t0 = time.perf_counter()
-    r = lift(sketch)
+    t_start = time.perf_counter()
+
+    def show(line: str) -> None:
+        print(f"  [{time.perf_counter() - t_start:7.2f} s] {line}", file=sys.stderr, flush=True)
+
+    r = lift(sketch, progress=show if args.progress else None)
     t_lift = time.perf_counter() - t0
-    by: dict[str, list[float]] = defaultdict(lambda: [0.0, 0, 0, 0])
+    by: dict[str, list[float]] = defaultdict(lambda: [0.0, 0, 0, 0, 0])
     for st in r.stages:
         key = st.name.split(" round")[0].split(" ")[0] if st.name.startswith("seed") else st.name.split(" round")[0]
         by[key][0] += st.seconds
         by[key][1] += st.iterations
         by[key][2] += 1
-        by[key][3] += 0 if st.converged else 1
-    for k, (sec, it, n, bad) in by.items():
-        rows.append((k, sec, f"{n} solves, {it} Newton steps" + (f", {bad} not converged" if bad else "")))
+        by[key][3] += 0 if st.converged or st.discarded else 1
+        by[key][4] += 1 if st.discarded else 0
+    for k, (sec, it, n, bad, dropped) in by.items():
+        rows.append((k, sec, f"{n} solves, {it} Newton steps" + (f", {bad} not converged" if bad else "")
+                     + (f", {dropped} of a discarded seed (not converged)" if dropped else "")))
     solves = sum(st.seconds for st in r.stages)
     rows.append(("lift: graph, network, stacking", t_lift - solves, ""))
     rows.append(("**total lift**", t_lift, f"target <= {TARGET_S} s: {'met' if t_lift <= TARGET_S else 'NOT met'}"

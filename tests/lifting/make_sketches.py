@@ -5,8 +5,8 @@ Run: python -m tests.lifting.make_sketches
 Each object is a 3D curve network whose crossings are orthogonal in 3D (a vase
 of meridians and parallels, an ogee roof's S-shaped sections joined by
 straight generators, a pointed barrel vault's two arches joined the same way), seen orthographically
-from a generic view (``JITTER`` adds seeded 2D noise; 0: the
-solver does not yet converge on noisy sketches, docs/lifting.md).
+from a generic view (``JITTER`` adds seeded 2D noise; 0: the bundled examples are noise-free
+projections; the noise measurements are in tests/lifting/test_lifting.py and docs/lifting.md).
 2D crossings that are not 3D intersections get an occlusion marker, derived from
 the truth. The SVG is written as Inkscape would: a layer, ids, cubic paths.
 """

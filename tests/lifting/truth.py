@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from auszug.lifting import Sketch, Stroke
+from auszug.lifting import Marker, Sketch, Stroke
 
 
 @dataclass(frozen=True)
@@ -77,20 +77,104 @@ def revolve(n_mer: int = 6, n_par: int = 4, tilt: float = 25.0, turn: float = 15
     return _project(chains, R, noise, seed)
 
 
+def _line(a: np.ndarray, b: np.ndarray, over: float = 0.0) -> np.ndarray:
+    """A straight chain (1, 4, 3) from a to b, extended by ``over`` of its length at both ends."""
+    d = b - a
+    a, b = a - over * d, b + over * d
+    return np.array([[a, a + (b - a) / 3, a + 2 * (b - a) / 3, b]])
+
+
+def box(size: tuple[float, float, float] = (2.0, 1.4, 1.0), tilt: float = 25.0, turn: float = 30.0,
+        noise: float = 0.0, seed: int = 0) -> Truth:
+    """A box of straight strokes: its 9 visible edges and two cross-sections through every visible face.
+
+    Edges end at the corners (non-smooth intersections: orthogonal corners, three at the front
+    corner); each section crosses the face's two opposite edges (overshooting them by 8 %) and the
+    face's other section: every crossing is a smooth crossing, orthogonal in 3D.
+    """
+    hx, hy, hz = (0.5 * np.asarray(size, float)).tolist()
+    R = rotation(tilt, turn)
+    view = np.array([0.0, 0.0, 1.0]) @ R          # the viewer's direction in object coordinates
+    sx, sy, sz = np.sign(view)                      # the visible faces: x = sx hx, y = sy hy, z = sz hz
+    corner = np.array([sx * hx, sy * hy, sz * hz])
+    chains = []
+    ext = np.array([hx, hy, hz])
+    for a in range(3):                              # the three edges from the front corner
+        b = corner.copy()
+        b[a] = -b[a]
+        chains.append(_line(corner, b))
+    for a in range(3):                              # the silhouette: edges of visible faces not at the corner
+        for c in range(3):
+            if c == a:
+                continue
+            p = corner.copy()
+            p[c] = -p[c]
+            q = p.copy()
+            q[a] = -q[a]
+            chains.append(_line(p, q))
+    # section positions (share of the half extent) on the face normal to f, per other axis; two faces
+    # sharing an edge cut it at different places, so no three strokes cross at one point
+    pos = {0: {1: 0.2, 2: -0.3}, 1: {0: 0.35, 2: 0.15}, 2: {0: -0.2, 1: -0.1}}
+    for f in range(3):                              # sections of the face normal to axis f
+        u, w = [a for a in range(3) if a != f]
+        for along, across in ((u, w), (w, u)):
+            p = np.zeros(3)
+            p[f] = corner[f]
+            p[across] = pos[f][across] * ext[across]
+            q = p.copy()
+            p[along] = -ext[along]
+            q[along] = ext[along]
+            chains.append(_line(p, q, 0.08))
+    return _project(chains, R, noise, seed)
+
+
+def occlusions(view: tuple[np.ndarray, ...], tol: float) -> list[np.ndarray]:
+    """2D crossings of two chains (view coordinates) whose depths there differ by more than ``tol``."""
+    from auszug.geometry import CubicBezier, intersect_many
+
+    curves, owner = [], []
+    for i, c in enumerate(view):
+        for k, seg in enumerate(c):
+            curves.append(CubicBezier.from_array(seg[:, :2]))
+            owner.append((i, k))
+    out = []
+    for (a, b), hits in intersect_many(curves).items():
+        (ia, ka), (ib, kb) = owner[a], owner[b]
+        if ia == ib:
+            continue
+        for h in hits:
+            za = CubicBezier.from_array(view[ia][ka][:, [0, 2]]).point(h.t1)[1]
+            zb = CubicBezier.from_array(view[ib][kb][:, [0, 2]]).point(h.t2)[1]
+            if abs(za - zb) > tol:
+                out.append(np.asarray(h.point, float))
+    return out
+
+
 def _project(chains, R, noise: float, seed: int) -> Truth:
     view = tuple(c @ R.T for c in chains)
-    sk = Sketch(tuple(Stroke(c[:, :, :2].copy(), f"c{i}") for i, c in enumerate(view)))
+    strokes0 = tuple(Stroke(c[:, :, :2].copy(), f"c{i}") for i, c in enumerate(view))
+    d0 = Sketch(strokes0).diagonal()
+    marks = tuple(Marker("occlusion", p, f"occlusion-{i + 1}") for i, p in enumerate(occlusions(view, 1e-6 * d0)))
+    sk = Sketch(strokes0, marks)
     if noise:
         rng = np.random.default_rng(seed)
         d = sk.diagonal()
-        # noise on the distinct control points, shared points moved together
-        strokes = []
-        for s in sk.strokes:
-            c = s.controls.copy()
-            c += rng.normal(0, noise * d, c.shape)
-            c[1:, 0] = c[:-1, 3]   # keep each chain connected
-            strokes.append(Stroke(c, s.id))
-        sk = Sketch(tuple(strokes))
+        # a wobbly hand: a smooth random displacement field over the sketch (sum of 8 plane waves of
+        # wavelengths diagonal/4 .. diagonal/2, each coordinate's standard deviation noise * diagonal)
+        # applied to every control point, so shared points stay shared and tangents stay continuous
+        k = 8
+        ang = rng.uniform(0, 2 * np.pi, k)
+        freq = 2 * np.pi / (d * rng.uniform(0.25, 0.5, k))
+        wave = np.stack([np.cos(ang), np.sin(ang)], 1) * freq[:, None]      # (k, 2)
+        phase = rng.uniform(0, 2 * np.pi, (k, 2))
+        amp = rng.normal(0, 1, (k, 2)) * noise * d * np.sqrt(2.0 / k)        # E[sin^2] = 1/2
+
+        def field(xy: np.ndarray) -> np.ndarray:
+            arg = xy @ wave.T                                                  # (..., k)
+            return np.einsum("...kc,kc->...c", np.sin(arg[..., None] + phase), amp)
+
+        strokes = [Stroke(s.controls + field(s.controls), s.id) for s in sk.strokes]
+        sk = Sketch(tuple(strokes), tuple(Marker(m.kind, m.point + field(m.point), m.id) for m in marks))
     return Truth(sk, view)
 
 
@@ -128,3 +212,21 @@ def depth_rmse(truth: Truth, result) -> tuple[float, int]:
         errs[sign] = float(np.sqrt(np.mean((zl + off - zt) ** 2)))
     s = min(errs, key=errs.get)
     return errs[s] / truth.diagonal(), s
+
+
+def truth_points(truth: Truth, graph) -> np.ndarray:
+    """The true 3D position (graph units: diagonal-normalised, as the solver's) of every graph control point.
+
+    Only for truths whose strokes are split exactly at their chains' knots (every crossing at a knot,
+    as in :func:`revolve`): each graph point is then one of the truth's control points. Raises when
+    a graph point has no truth control point within 1e-9 of the diagonal.
+    """
+    allc = np.concatenate([c.reshape(-1, 3) for c in truth.chains3d])
+    xy = graph.points * graph.scale + graph.offset
+    d = np.linalg.norm(xy[:, None, :] - allc[None, :, :2], axis=2)
+    if d.min(1).max() > 1e-9 * truth.diagonal():
+        raise ValueError("graph points off the truth's control points: the truth is not split at its knots")
+    X = np.zeros((len(xy), 3))
+    X[:, :2] = graph.points
+    X[:, 2] = allc[d.argmin(1), 2] / graph.scale
+    return X

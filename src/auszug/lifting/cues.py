@@ -200,26 +200,50 @@ class Planar:
             out[i] = float((dev * w).sum() / w.sum()) if w.sum() > 0 else 0.0
         return out
 
-    def add_soft(self, P: Poly2, which: Index, weight: Array, X: Array) -> None:
-        """Soft planarity rows with the best-fit normals on X fixed (the local step)."""
+    def add_soft(self, P: Poly2, which: Index, weight: Array, X: Array, offset_slot: Index | None = None) -> None:
+        """Soft planarity rows with the best-fit normals on X fixed (the local step).
+
+        With ``offset_slot`` (one unknown per candidate, its column index) the rows are
+        ``n . X_k - d`` with d that unknown: minimised over d this is exactly
+        ``n . (X_k - mean X)``, without coupling every point of the stroke to every other
+        (the mean's rows are dense: the KKT factorisation filled in).
+        """
         n = self.normals(X)
         for i, wt in zip(which, np.broadcast_to(weight, (len(which),)), strict=True):
             p = self.points[i]
             m = len(p)
-            rows = np.repeat(np.arange(m), 3 * (m + 1))
             own = 3 * p[:, None] + np.arange(3)
-            cols = np.concatenate([np.concatenate([own[k], own.reshape(-1)]) for k in range(m)])
-            vals = np.tile(np.concatenate([n[i], np.tile(-n[i] / m, m)]), m)
+            if offset_slot is not None:
+                rows = np.repeat(np.arange(m), 4)
+                cols = np.concatenate([own, np.full((m, 1), int(offset_slot[i]))], axis=1).reshape(-1)
+                vals = np.tile(np.concatenate([n[i], [-1.0]]), m)
+            else:
+                rows = np.repeat(np.arange(m), 3 * (m + 1))
+                cols = np.concatenate([np.concatenate([own[k], own.reshape(-1)]) for k in range(m)])
+                vals = np.tile(np.concatenate([n[i], np.tile(-n[i] / m, m)]), m)
             P.add(np.zeros(m), float(wt) * 2 * m, lin=(rows, cols, vals))
 
-    def add_hard(self, C: Poly2, which: Index) -> None:
-        """Hard planarity with each stroke's normal variable (unit length)."""
+    def add_hard(self, C: Poly2, which: Index, offset_slot: Index | None = None) -> None:
+        """Hard planarity with each stroke's normal variable N (unit length).
+
+        Rows ``N . (X_k - X_0) = 0``, or with ``offset_slot`` (one unknown d per
+        candidate, its column index) ``N . X_k - d = 0``: the same plane, without
+        every row sharing X_0.
+        """
         for i in which:
             p = self.points[i]
             ns = int(self.normal_slot[i])
-            k = len(p) - 1
-            add_dot(C, np.full((k, 1), ns), np.ones((k, 1)), np.stack([p[1:], np.full(k, p[0])], 1),
-                    np.tile([1.0, -1.0], (k, 1)), 0.0, 1.0)
+            if offset_slot is None:
+                k = len(p) - 1
+                add_dot(C, np.full((k, 1), ns), np.ones((k, 1)), np.stack([p[1:], np.full(k, p[0])], 1),
+                        np.tile([1.0, -1.0], (k, 1)), 0.0, 1.0)
+            else:
+                m = len(p)
+                rows = np.repeat(np.arange(m), 3)
+                ii = (3 * ns + np.tile(np.arange(3), m))
+                jj = (3 * p[:, None] + np.arange(3)).reshape(-1)
+                C.add(np.zeros(m), 1.0, lin=(np.arange(m), np.full(m, int(offset_slot[i])), -np.ones(m)),
+                      bil=(rows, ii, jj, np.ones(3 * m)))
             add_dot(C, np.array([[ns]]), np.ones((1, 1)), np.array([[ns]]), np.ones((1, 1)), -1.0, 1.0)
 
 

@@ -61,7 +61,10 @@ class CueResult:
 
 @dataclass(frozen=True)
 class Stage:
-    """One stage of the reconstruction: name, seconds, energy, constraint residual, Newton steps."""
+    """One stage of the reconstruction: name, seconds, energy, constraint residual, Newton steps.
+
+    ``discarded``: a solve from a candidate seed crossing that did not converge; that seed is not used.
+    """
 
     name: str
     seconds: float
@@ -72,6 +75,7 @@ class Stage:
     applied: int = 0
     rejected: int = 0
     layer: int = 0
+    discarded: bool = False
 
 
 @dataclass(frozen=True, eq=False)
@@ -130,6 +134,9 @@ def _components(g: SketchGraph) -> NDArray[np.intp]:
 #: The baseline is computed from this many seed crossings; the lowest fidelity energy wins
 #: (the paper lifts one; several guard against a poor local minimum, docs/lifting.md).
 SEEDS = 4
+#: Two seeds' baselines are the same minimum when their energies agree to this relative tolerance;
+#: the remaining seeds are then skipped.
+SAME_MINIMUM = 1e-7
 
 
 def _seed(g: SketchGraph, ortho: cu.Orthogonal) -> NDArray[np.intp]:
@@ -187,7 +194,7 @@ class _Problem:
     def __init__(self, g: SketchGraph, params: LiftParams, layer: int, progress: Progress | None):
         self.g, self.params, self.layer, self.progress = g, params, layer, progress
         self.N = len(g.points)
-        self.n = 3 * (self.N + len(g.chains))
+        self.n = 3 * (self.N + len(g.chains)) + len(g.chains)   # points, normals, plane offsets
         self.smooth = cu.smooth_orthogonal(g)
         self.stages: list[Stage] = []
         self.seeds = _seed(g, self.smooth)
@@ -203,11 +210,11 @@ class _Problem:
 
     def _normal_anchor(self, P: Poly2) -> None:
         # normals that no cue uses stay where they are (a tiny pull keeps Newton's matrix regular)
-        m = self.n // 3 - self.N
-        cols = 3 * self.N + np.arange(3 * m)
-        P.add(-self.v[cols], 1e-8, lin=(np.arange(3 * m), cols, np.ones(3 * m)))
+        cols = np.arange(3 * self.N, self.n)
+        P.add(-self.v[cols], 1e-8, lin=(np.arange(len(cols)), cols, np.ones(len(cols))))
 
-    def run(self, name: str, energy: Poly2, cons: Poly2, applied: int = 0, rejected: int = 0) -> SolveResult:
+    def run(self, name: str, energy: Poly2, cons: Poly2, applied: int = 0, rejected: int = 0,
+            candidate: bool = False) -> SolveResult:
         t0 = time.perf_counter()
         self._normal_anchor(energy)
         lam0 = self.lam if self.lam is not None and len(self.lam) == cons.rows else None
@@ -215,12 +222,13 @@ class _Problem:
                   tol=self.params.newton_tol, kkt_reg=self.params.kkt_reg, hessian_reg=self.params.hessian_reg)
         self.v, self.lam = r.v, r.lam
         st = Stage(name, time.perf_counter() - t0, r.energy, r.violation, r.iterations, r.converged,
-                   applied, rejected, self.layer)
+                   applied, rejected, self.layer, candidate and not r.converged)
         self.stages.append(st)
         if self.progress is not None:
             self.progress(f"layer {self.layer} {name}: energy {r.energy:.3g}, {r.iterations} Newton steps"
                           + (f", {applied} applied, {rejected} rejected" if applied or rejected else "")
-                          + ("" if r.converged else " (NOT converged)"))
+                          + ("" if r.converged else " (no convergence from this seed: discarded)" if candidate
+                             else " (NOT converged)"))
         return r
 
     def energy(self, w_a: float) -> Poly2:
@@ -250,7 +258,10 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        subject to orthogonality at the seed only;
     2. *baseline*: fidelity (w_a = 10) with soft parallelism
        w_p = 0.1 exp(-alpha^2 / sigma^2) subject to orthogonality at every
-       smooth crossing;
+       smooth crossing. Stages 1-2 run from up to :data:`SEEDS` seed crossings,
+       the lowest converged baseline kept; a seed that does not converge is
+       discarded, and once two seeds reach the same minimum (energies within
+       :data:`SAME_MINIMUM`) the others are skipped;
     3. one progressive resolution per cue class of :data:`CLASSES`, with
        w_a = 1: each round minimises fidelity + w_c sum L(alpha) C^2 over the
        undecided cues, subject to the applied ones; L = 1 applies a cue
@@ -276,20 +287,26 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         par.add(E, all_par, params.w_p_propagate * wfac)
         C = pr.constraints()
         pr.smooth.add(C, np.array([int(k)]), 1.0)
-        r1 = pr.run(f"seed {int(k)}", E, C)
+        r1 = pr.run(f"seed {int(k)}", E, C, candidate=True)
         E = pr.energy(params.w_a_baseline)
         par.add(E, all_par, params.w_p_baseline * wfac)
         C = pr.constraints()
         pr.smooth.add(C, np.arange(len(pr.smooth)), 1.0)
         pr.lam = None
-        r2 = pr.run("baseline", E, C)
+        r2 = pr.run("baseline", E, C, candidate=True)
         score = r2.energy if r1.converged and r2.converged else np.inf
+        start_stages = list(pr.stages)
+        if best is not None and np.isfinite(score) and np.isfinite(best[0]) \
+                and abs(score - best[0]) <= SAME_MINIMUM * abs(best[0]):
+            break   # a second seed reached the same minimum: the others are not tried
         if best is None or score < best[0]:
             best = (score, pr.v.copy(), pr.lam, list(pr.stages))
-        start_stages = list(pr.stages)
     assert best is not None
     _, pr.v, pr.lam, pr.stages = best[0], best[1], best[2], start_stages
-    ok &= bool(np.isfinite(best[0]))
+    if not np.isfinite(best[0]):
+        ok = False
+        if progress is not None:
+            progress(f"layer {layer}: no seed's baseline converged (NOT converged)")
     hard: list[Callable[[Poly2], None]] = [lambda c: pr.smooth.add(c, np.arange(len(pr.smooth)), 1.0)]
     soft_kept: list[Callable[[Poly2], None]] = []
     results: list[CueResult] = []
@@ -352,17 +369,28 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     pla = cu.planar_cues(g, pr.N)
     pla_state = {"sel": np.zeros(0, np.intp)}
 
+    offset_slot = 3 * (pr.N + len(g.chains)) + pla.stroke   # one plane offset unknown per candidate
+
     def pla_apply(sel: NDArray[np.intp]) -> None:
         new = np.setdiff1d(sel, pla_state["sel"])
-        if len(new):   # the normal variables start at the best fit
-            nrm = pla.normals(pr.X())
+        if len(new):   # the normal and offset variables start at the best fit
+            X = pr.X()
+            nrm = pla.normals(X)
             for i in new:
                 ns = int(pla.normal_slot[i])
                 pr.v[3 * ns: 3 * ns + 3] = nrm[i]
+                pr.v[offset_slot[i]] = float(nrm[i] @ X[pla.points[i]].mean(0))
         pla_state["sel"] = sel
 
-    hard.append(lambda c: pla.add_hard(c, pla_state["sel"]))
-    pla_applied = resolve("planar", pla, pla_apply, lambda E, i, w: pla.add_soft(E, i, w, pr.X()))
+    hard.append(lambda c: pla.add_hard(c, pla_state["sel"], offset_slot))
+    def pla_soft(E: Poly2, idx: NDArray[np.intp], w: Array) -> None:
+        X = pr.X()
+        nrm = pla.normals(X)
+        for i in idx:   # offsets start at their optimum, n . mean X
+            pr.v[offset_slot[i]] = float(nrm[i] @ X[pla.points[i]].mean(0))
+        pla.add_soft(E, idx, w, X, offset_slot)
+
+    pla_applied = resolve("planar", pla, pla_apply, pla_soft)
 
     X = pr.X().copy()
     for kind, fam, app in (("parallel", par, par_applied), ("orthogonal", orth, orth_applied),
@@ -378,6 +406,10 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         X[:, 2] *= -1.0
         X[:, 2] -= X[pr.pin, 2]
     return X, results, pr.stages, bool(ok), bool(flip)
+
+
+#: Normal curvature (diagonal 1) below which a crossing's curves count as straight (no convexity vote).
+CURVED = 1e-6
 
 
 def _concave(g: SketchGraph, X: Array, smooth: cu.Orthogonal) -> bool:
@@ -416,7 +448,7 @@ def _concave(g: SketchGraph, X: Array, smooth: cu.Orthogonal) -> bool:
                 else:
                     continue
                 kn += float(np.dot(d2, n)) / max(float(np.dot(d1, d1)), 1e-300)
-        votes += 1 if kn < 0 else (-1 if kn > 0 else 0)
+        votes += 1 if kn < -CURVED else (-1 if kn > CURVED else 0)   # straight strokes do not vote
         up += n[1]
     return votes < 0 or (votes == 0 and up < 0)
 

@@ -7,15 +7,20 @@ with a free normal is bilinear. :class:`Poly2` holds many such polynomials at
 once in sparse coordinate form; :func:`solve` minimises
 ``sum_r w_r p_r(v)^2`` subject to ``q_k(v) = 0`` by Newton's method on the
 Karush-Kuhn-Tucker system (Gauss-Newton Hessian of the energy, exact Hessian
-of the constraints' Lagrangian term), with the paper's bound on the
-multiplier increments (sec. 5.3: normalised by the largest when above one).
-The sparse system is factorised by SuperLU (``scipy.sparse.linalg.splu``)
-with the COLAMD fill-reducing ordering.
+of the constraints' Lagrangian term), globalised by a backtracking line
+search on the l1 exact penalty merit function ``f + mu |q|_1`` with a
+second-order correction, an inertia-free curvature test that regularises the
+Hessian where it is not positive on the step, the paper's bound on the
+multiplier increments (sec. 5.3), and a convergence test on the KKT residual.
+The sparse system is factorised by SuperLU (``scipy.sparse.linalg.splu``);
+the COLAMD fill-reducing column ordering of the first factorisation is
+reused for the later ones (same sparsity pattern).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
@@ -23,6 +28,9 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.sparse.linalg import splu
 
 __all__ = ["Poly2", "SolveResult", "solve"]
+
+#: Factor by which the Hessian regularisation delta grows (negative curvature, short steps) or shrinks.
+GROW = 10.0
 
 Array = NDArray[np.float64]
 Index = NDArray[np.intp]
@@ -133,7 +141,14 @@ class SolveResult:
     violation : float
         Largest absolute constraint residual at ``v``.
     iterations : int
+        Newton steps taken (KKT factorisations, including regularised retries, are in ``factorisations``).
     converged : bool
+        The KKT residual met the tolerances (or the iteration stalled at float resolution on a
+        feasible point).
+    stationarity : float
+        Largest absolute entry of the Lagrangian's gradient ``g + Jq^T lam`` at ``v``.
+    factorisations : int
+        Sparse LU factorisations done.
     """
 
     v: Array
@@ -142,17 +157,80 @@ class SolveResult:
     violation: float
     iterations: int
     converged: bool
+    stationarity: float = 0.0
+    factorisations: int = 0
+
+
+class _KKT:
+    """Factorises KKT matrices of one sparsity pattern, reusing the first COLAMD column ordering."""
+
+    def __init__(self) -> None:
+        self.perm: NDArray[np.intp] | None = None
+        self.count = 0
+
+    def factor(self, K: sp.csc_matrix) -> Callable[[Array], Array]:
+        self.count += 1
+        if self.perm is None or len(self.perm) != K.shape[0]:
+            lu = splu(K, permc_spec="COLAMD")
+            self.perm = np.asarray(lu.perm_c, dtype=np.intp)
+            return lu.solve
+        inv = np.empty_like(self.perm)
+        inv[self.perm] = np.arange(len(self.perm))
+        lu = splu(K[:, inv].tocsc(), permc_spec="NATURAL")
+
+        def solve_(b: Array) -> Array:
+            return lu.solve(b)[self.perm]
+
+        return solve_
 
 
 def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = None, *, iterations: int = 60,
-          tol: float = 1e-10, kkt_reg: float = 1e-11, hessian_reg: float = 1e-10) -> SolveResult:
+          tol: float = 1e-10, kkt_reg: float = 1e-11, hessian_reg: float = 1e-10,
+          stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 3,
+          stall_tol: float = 1e-6) -> SolveResult:
     """Minimise ``sum w_r p_r(v)^2`` subject to ``q(v) = 0`` from ``v0``.
 
     Each step solves the KKT system
-    ``[[H + sum lam_k d2q_k - ... , Jq^T], [Jq, -kkt_reg I]] [dv, lam'] = [-g, -q]``
+    ``[[H + sum lam_k d2q_k + delta I, Jq^T], [Jq, -kkt_reg I]] [dv, lam'] = [-g, -q]``
     with the Gauss-Newton Hessian ``H = 2 Jp^T W Jp + hessian_reg I`` and
-    ``g = 2 Jp^T W p``; the step is scaled so that no multiplier changes by more
-    than one (the paper's bounded multiplier increments).
+    ``g = 2 Jp^T W p``. When the step's curvature ``dv^T (H + ...) dv`` is
+    not positive (inertia-free test: a step that need not descend), the
+    constraints' Hessian is dropped for that step (Gauss-Newton SQP, positive
+    semi-definite on the energy's own scale), and if that still fails
+    ``delta I`` is added, growing tenfold. *Measured*: adding ``delta I`` to the
+    full Hessian alone settled at delta = 1 on a 30 x 4 vase grid and crawled
+    (|dv| ~ 5e-4) for 60 steps; with the Gauss-Newton fallback that solve
+    converged in 41 steps to a 5 times lower energy. The step
+    length comes from backtracking (Armijo, factor 1/2) on the l1 merit
+    ``f + mu |q|_1`` with ``mu`` above the largest multiplier, trying a
+    second-order correction (the same factorisation, right-hand side
+    ``[0, -q(v + dv)]``) when the full step is refused. The multipliers move
+    by the same step length toward ``lam'``, the increment scaled down to at
+    most ``lam_bound max(1, |lam|)`` (the paper's bounded multiplier steps,
+    relative so that large multipliers are reached in a few steps).
+    Converged: ``|q|_inf <= tol`` and either ``|g + Jq^T lam|_inf <= stat_tol`` or a full Newton
+    step below ``tol`` (the KKT point is within ``tol``: near redundant constraints the
+    stationarity residual stalls at the linear solve's rounding), or the line
+    search finds no decrease (the merit's changes are below its float
+    resolution, about 1e-13 for thousands of rows) while feasible and the
+    Newton step is below ``stall_tol`` (1e-6 of the diagonal: the point is
+    determined to that).
+
+    Parameters
+    ----------
+    energy, constraints : Poly2
+        The energy's residual rows (weighted) and the constraints (weights unused).
+    v0 : (n,) ndarray
+        Starting point; ``lam0`` (k,): starting multipliers (default 0).
+    iterations : int
+        Most Newton steps.
+    tol, stat_tol : float
+        Feasibility and stationarity tolerances (absolute; the lifting works at diagonal 1).
+    stall_tol : float
+        Largest remaining Newton step accepted as converged when the line search stalls.
+    kkt_reg, hessian_reg : float
+        ``-kkt_reg I`` in the constraint block (redundant constraints), ``hessian_reg I`` on the energy
+        Hessian (directions no term sees).
 
     Examples
     --------
@@ -168,42 +246,114 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     k = constraints.rows
     lam = np.zeros(k) if lam0 is None else np.asarray(lam0, dtype=float).copy()
     w = energy.weights
-    reg = sp.identity(n, format="csr") * hessian_reg
+    eye = sp.identity(n, format="csr")
+    reg = eye * hessian_reg
     creg = sp.identity(k, format="csr") * (-kkt_reg)
+    kkt = _KKT()
+    mu = 0.0
+    delta = 0.0
     converged = False
     it = 0
-    last = np.inf
-    for it in range(1, iterations + 1):  # noqa: B007 - the count is reported
+    stat = np.inf
+
+    def small_step(d: Array) -> bool:
+        return float(np.abs(d).max(initial=0.0)) <= tol
+
+    def merit_parts(x: Array) -> tuple[float, Array]:
+        px = energy.value(x)
+        return float(np.dot(w, px * px)), (constraints.value(x) if k else np.zeros(0))
+
+    for it in range(iterations + 1):
         p = energy.value(v)
+        f = float(np.dot(w, p * p))
         Jp = energy.jacobian(v)
         WJ = Jp.multiply(w[:, None]).tocsr() if len(w) else Jp
-        H = 2.0 * (Jp.T @ WJ) + reg
         g = 2.0 * (Jp.T @ (w * p))
         if k:
             q = constraints.value(v)
             Jq = constraints.jacobian(v)
-            K = sp.bmat([[H + constraints.hessian(lam), Jq.T], [Jq, creg]], format="csc")
-            rhs = np.concatenate([-g, -q])
+            gl = g + Jq.T @ lam
         else:
             q = np.zeros(0)
-            K = H.tocsc()
-            rhs = -g
-        sol = splu(K, permc_spec="COLAMD").solve(rhs)
-        dv = sol[:n]
-        step = 1.0
-        if k:
-            dlam = sol[n:] - lam
-            big = float(np.abs(dlam).max())
-            if big > 1.0:
-                step = 1.0 / big
-            lam = lam + step * dlam
-        v = v + step * dv
-        last = step * float(np.abs(dv).max())
-        if step == 1.0 and float(np.abs(dv).max()) < tol and (not k or float(np.abs(q).max()) < tol):
+            gl = g
+        stat = float(np.abs(gl).max()) if n else 0.0
+        feas = float(np.abs(q).max()) if k else 0.0
+        if stat <= stat_tol and feas <= tol:
             converged = True
             break
+        if it == iterations:
+            break
+        HGN = 2.0 * (Jp.T @ WJ) + reg
+        H = HGN + constraints.hessian(lam) if k else HGN
+        # the step, with the Hessian regularised until its curvature along the step is positive:
+        # first without the constraints' curvature (the energy's own, positive, scale), then + delta I
+        gauss_newton = not k
+        while True:
+            Hd = H + eye * delta if delta else H
+            if k:
+                K = sp.bmat([[Hd, Jq.T], [Jq, creg]], format="csc")
+                rhs = np.concatenate([-g, -q])
+            else:
+                K = Hd.tocsc()
+                rhs = -g
+            lu = kkt.factor(K)
+            sol = lu(rhs)
+            if k:   # iterative refinement toward the unregularised system's solution
+                for _ in range(2):
+                    sol = sol + lu(rhs - K @ sol - kkt_reg * np.concatenate([np.zeros(n), sol[n:]]))
+            dv = sol[:n]
+            curv = float(dv @ (Hd @ dv))
+            dd = float(dv @ dv)
+            if (np.all(np.isfinite(sol)) and curv >= 1e-10 * dd) or delta > 1e8:
+                break
+            if not gauss_newton:
+                gauss_newton, H, delta = True, HGN, 0.0
+                continue
+            delta = max(1e-8, GROW * delta)
+        lam_new = sol[n:] if k else np.zeros(0)
+        # l1 merit with a penalty above the multipliers
+        q1 = float(np.abs(q).sum())
+        mu = max(mu, 1.5 * float(np.abs(lam_new).max(initial=0.0)) + 1e-8)
+        slope = float(g @ dv) - mu * q1
+        phi0 = f + mu * q1
+        step = 1.0
+        accepted = False
+        v_new = v
+        small = float(np.abs(dv).max(initial=0.0)) < 1e-12
+        while step >= 1e-10:
+            vt = v + step * dv
+            ft, qt = merit_parts(vt)
+            slack = 1e-14 * max(1.0, abs(phi0))
+            if small or ft + mu * float(np.abs(qt).sum()) <= phi0 + 1e-4 * step * slope + slack:
+                v_new, accepted = vt, True
+                break
+            if k:   # second-order corrections: back onto the curved constraints
+                vs, qs = vt, qt
+                for _ in range(soc_steps):
+                    vs = vs + lu(np.concatenate([np.zeros(n), -qs]))[:n]
+                    fs, qs = merit_parts(vs)
+                    if fs + mu * float(np.abs(qs).sum()) <= phi0 + 1e-4 * step * slope + slack:
+                        v_new, accepted = vs, True
+                        break
+                if accepted:
+                    break
+            step *= 0.5
+        if not accepted:   # no decrease along the step: stalled
+            # at the energy's float resolution with the remaining Newton step below stall_tol: done
+            converged = feas <= tol and float(np.abs(dv).max(initial=0.0)) <= stall_tol
+            break
+        if small_step(dv) and feas <= tol and step == 1.0:   # the Newton step says v is the KKT point
+            converged = True
+            v = v_new
+            break
+        # Levenberg-Marquardt-like: a short step means a poor quadratic model, so regularise more
+        delta = max(GROW * delta, 1e-6) if step < 0.25 else (delta / GROW if delta > 1e-10 else 0.0)
+        if k:
+            dlam = lam_new - lam
+            big = float(np.abs(dlam).max(initial=0.0))
+            bound = lam_bound * max(1.0, float(np.abs(lam).max(initial=0.0)))
+            lam = lam + step * dlam * (min(1.0, bound / big) if big > 0 else 1.0)
+        v = v_new
     p = energy.value(v)
     viol = float(np.abs(constraints.value(v)).max()) if k else 0.0
-    if not converged and viol < 1e-9 and last < 1e-7:   # stalled at float resolution: as good as it gets
-        converged = bool(np.all(np.isfinite(v)))
-    return SolveResult(v, lam, float(np.dot(w, p * p)), viol, it, converged)
+    return SolveResult(v, lam, float(np.dot(w, p * p)), viol, it, converged, stat, kkt.count)

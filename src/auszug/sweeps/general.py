@@ -52,7 +52,7 @@ from auszug.sweeps.mesh import SweepMesh
 from auszug.sweeps.motion import Motion, se3_log
 from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
-from auszug.sweeps.patches import SweepPatch, face_areas, fit_patch
+from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas, fit_patch
 from auszug.sweeps.planes import plane_recall
 from auszug.sweeps.stage import Stage
 
@@ -213,12 +213,9 @@ def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
     return np.stack([plots.samples(int(fam.members[j]))[fam.indices(j)] for j in ribs.order])
 
 
-def _normals_at(mesh: SweepMesh, points: Array) -> Array:
+def _normals_at(mesh: SweepMesh, points: Array, tree: MeshTree) -> Array:
     """Unit face normals of the mesh at the closest points of ``points (..., 3)``."""
-    import igl
-
-    p = np.ascontiguousarray(points.reshape(-1, 3))
-    _, face, _ = igl.point_mesh_squared_distance(p, mesh.vertices, mesh.faces)
+    _, face, _ = tree.query(points)
     v = mesh.vertices
     f = mesh.faces[face]
     n = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
@@ -232,28 +229,36 @@ def _plane_of(points: Array) -> tuple[Array, float]:
     return n, float(n @ o)
 
 
+def _polyline_distance(points: Array, polyline: Array) -> Array:
+    """Distances ``(m,)`` of points ``(m, 3)`` to a polyline ``(n, 3)`` (vectorised over both)."""
+    a, b = polyline[:-1], polyline[1:]
+    ab = b - a
+    w = np.einsum("ij,ij->i", ab, ab)
+    f = np.clip(np.einsum("mij,ij->mi", points[:, None, :] - a[None], ab) / np.where(w > 0, w, 1.0), 0.0, 1.0)
+    foot = a[None] + f[..., None] * ab[None]
+    out: Array = np.linalg.norm(points[:, None, :] - foot, axis=2).min(axis=1)
+    return out
+
+
 def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float) -> list[Array]:
-    """Cuts of the mesh by the moved profile's planes at the motion's knots, mapped back (sec. 2.3.3)."""
+    """Cuts of the mesh by the moved profile's planes at the motion's knots, mapped back (sec. 2.3.3).
+
+    Per knot, the cut points within ``reach`` of the moved profile, mapped back by the inverse of
+    the knot's map.
+    """
     n0, _ = _plane_of(profile)
     moved = motion.apply(profile, motion.t)
     normals = np.einsum("kij,j->ki", motion.rotation, n0)
     offsets = np.einsum("ki,ki->k", normals, moved.mean(axis=1))
     c = cut(mesh, normals, offsets)
+    plane_of_point = np.repeat(c.curve_plane, np.diff(c.curve_start))
     out = []
-    for j in range(c.n_curves):
-        k = int(c.curve_plane[j])
-        q = c.curve(j)
-        if len(q) < 2:
-            continue
-        from auszug.sweeps.patches import closest_distance
-
-        seg = np.stack([np.arange(len(profile) - 1), np.arange(1, len(profile))], axis=1)
-        d, _ = closest_distance(q, moved[k], seg)
-        near = d <= reach
+    for k in np.unique(c.curve_plane):
+        q = c.points[plane_of_point == k]
+        near = _polyline_distance(q, moved[k]) <= reach
         if near.sum() < 2:
             continue
-        back = motion.inverse_apply(q[near], np.full(int(near.sum()), motion.t[k]))
-        out.append(back)
+        out.append(np.einsum("ji,nj->ni", motion.rotation[k], q[near] - motion.translation[k]))
     return out
 
 
@@ -333,7 +338,7 @@ def reslice(mesh: SweepMesh, profile: Array, motion: Motion) -> Array | None:
 
 
 def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
-                  areas: Array | None = None) -> GeneralSweep:
+                  areas: Array | None = None, tree: MeshTree | None = None) -> GeneralSweep:
     """Fit a sweep to ordered rib parts ``(k, n, 3)`` (k >= 2), iterating sec. 2.3.2-2.3.4.
 
     The first round fits the ribs as found (cuts by the initial planes, up to 8 degrees off the
@@ -344,13 +349,14 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
     from auszug.sweeps.patches import _improve
 
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
+    tr_ = MeshTree(mesh.vertices, mesh.faces) if tree is None else tree
     best: GeneralSweep | None = None
     ribs: Array | None = parts
     for _ in range(params.general_iterations):
         if ribs is None:
             break
         profile = ribs[0].copy()
-        normals = _normals_at(mesh, ribs)
+        normals = _normals_at(mesh, ribs, tr_)
         maps = [kabsch(profile, q) for q in ribs]
         rot = np.array([m[0] for m in maps])
         tr = np.array([m[1] for m in maps])
@@ -358,7 +364,7 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
         motion = hermite_motion(profile, rot, tr, vel, SAMPLES_PER_RIB)
         more = _recut(mesh, profile, motion, 4 * params.eps_prox)
         profile = _improve(profile, False, more)
-        fit = fit_patch(mesh, profile, False, motion, params, a)
+        fit = fit_patch(mesh, profile, False, motion, params, a, tr_)
         cand = GeneralSweep(profile, motion, vel, fit.fit_error, fit.coverage, fit.faces)
         if best is None or cand.fit_error < best.fit_error:
             best = cand
@@ -407,10 +413,11 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
                         {"families": len(fams), "tried": len(ribs)}))
     t = step("motion")
     areas = face_areas(mesh.vertices, mesh.faces)
+    tree = MeshTree(mesh.vertices, mesh.faces)
     out: list[SweepPatch] = []
     for r in ribs:
         parts = rib_parts(r, plots)
-        g = general_patch(mesh, parts, params, areas)
+        g = general_patch(mesh, parts, params, areas, tree)
         out.append(SweepPatch(len(out), "general", g.profile, False, g.motion, g.faces, g.fit_error, g.coverage))
     numbers: dict[str, float | int] = {"candidates": len(out)}
     summary = f"{len(out)} general sweep(s) fitted" + (

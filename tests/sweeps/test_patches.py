@@ -119,3 +119,24 @@ def test_hausdorff_of_polylines_known_answer():
     b = np.array([[0, 0.2, 0], [0.5, 0.3, 0], [1, 0.2, 0.0]])
     assert polyline_hausdorff(a, b) == pytest.approx(0.3)
     assert polyline_hausdorff(a, a) == 0.0
+
+
+def test_closed_profile_of_an_extruded_pipe():
+    """A pipe (closed cross-section, no caps) is one translation patch with a closed profile; its
+    sweep value re-meshes exactly onto the input."""
+    from auszug.sweeps import detect
+    from auszug.sweeps.patches import closest_distance
+
+    n, k = 48, 30
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    prof = np.column_stack([0.3 * np.cos(a) + 0.05 * np.cos(3 * a), 0.2 * np.sin(a)])
+    z = np.linspace(0, 0.8, k)
+    v = np.column_stack([np.tile(prof[:, 0], k), np.tile(prof[:, 1], k), np.repeat(z, n)])
+    i, j = np.meshgrid(np.arange(k - 1), np.arange(n), indexing="ij")
+    a0, b0 = i * n + j, i * n + (j + 1) % n
+    f = np.vstack([np.stack([a0, b0, b0 + n], -1).reshape(-1, 3), np.stack([a0, b0 + n, a0 + n], -1).reshape(-1, 3)])
+    (p,) = detect((v, f)).patches
+    assert p.kind == "translation" and p.closed and p.coverage == pytest.approx(1.0)
+    assert p.motion.t[-1] == pytest.approx(0.8 / np.linalg.norm(np.ptp(v, axis=0)))
+    d, _ = closest_distance(p.sweep().mesh(caps=False).vertices, v, f)
+    assert d.max() <= 1e-12

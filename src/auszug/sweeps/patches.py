@@ -126,7 +126,8 @@ class Fit:
     Attributes
     ----------
     vertex_distance : (n_vertices,) float array
-        Distance of every mesh vertex to the swept surface.
+        Distance of every mesh vertex to the swept surface (inf outside its bounding box grown
+        by ``eps_prox``).
     faces : (m,) int array
         Faces whose three vertices are within ``eps_prox``.
     fit_error : float
@@ -398,7 +399,11 @@ def fit_patch(mesh: SweepMesh, profile: Array, closed: bool, motion: Motion,
     """
     eps = params.eps_prox
     sv, sf = sweep_surface(profile, closed, motion, eps / 10)
-    dv, _ = closest_distance(mesh.vertices, sv, sf)
+    # vertices outside the swept surface's box grown by eps are farther than eps: not queried
+    lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
+    inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
+    dv = np.full(mesh.n_vertices, np.inf)
+    dv[inside] = closest_distance(mesh.vertices[inside], sv, sf)[0]
     near = dv <= eps
     faces = np.flatnonzero(near[mesh.faces].all(axis=1)).astype(np.int64)
     ds = (tree if tree is not None else MeshTree(mesh.vertices, mesh.faces)).query(sv)[0]

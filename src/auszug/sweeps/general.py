@@ -389,6 +389,24 @@ def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Ar
     return profile_planes(profile, motion, t)
 
 
+def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, IntArray]:
+    """The part of the mesh whose faces lie in the box of ``points`` grown by ``margin``, and its faces' indices.
+
+    Same coordinates as ``mesh`` (its centre and scale are kept); the topology is rebuilt.
+    """
+    from dataclasses import replace
+
+    from auszug.sweeps.mesh import normalise
+
+    lo, hi = points.reshape(-1, 3).min(axis=0) - margin, points.reshape(-1, 3).max(axis=0) + margin
+    inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
+    keep = np.flatnonzero(inside[mesh.faces].all(axis=1)).astype(np.int64)
+    used, inv = np.unique(mesh.faces[keep], return_inverse=True)
+    sub = normalise(mesh.vertices[used], inv.reshape(-1, 3))
+    return replace(sub, vertices=mesh.vertices[used], normals=mesh.normals[used], centre=mesh.centre,
+                   scale=mesh.scale), keep
+
+
 def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams, step: Callable[[str], float],
                    true_planes: ArrayLike | None = None) -> tuple[list[SweepPatch], list[Stage]]:
     """The stages match, families and motion on a non-kinematic mesh; patches and summaries.
@@ -423,12 +441,16 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
                         {"families": len(fams), "tried": len(ribs)}))
     t = step("motion")
     areas = face_areas(mesh.vertices, mesh.faces)
-    tree = MeshTree(mesh.vertices, mesh.faces)
+    total = float(areas.sum())
     out: list[SweepPatch] = []
     for r in ribs:
         parts = rib_parts(r, plots)
-        g = general_patch(mesh, parts, params, areas, tree)
-        out.append(SweepPatch(len(out), "general", g.profile, False, g.motion, g.faces, g.fit_error, g.coverage))
+        # the sweep between the first and the last rib stays near them: fit it to that part of the
+        # mesh (distances to a part are never smaller than to the whole: the fit error is safe)
+        sub, faces = _around(mesh, parts, params.l_min / 4 + 4 * params.eps_prox)
+        g = general_patch(sub, parts, params)
+        cov = float(areas[faces[g.faces]].sum() / total) if total > 0 else 0.0
+        out.append(SweepPatch(len(out), "general", g.profile, False, g.motion, faces[g.faces], g.fit_error, cov))
     numbers: dict[str, float | int] = {"candidates": len(out)}
     summary = f"{len(out)} general sweep(s) fitted" + (
         ": fit errors " + ", ".join(f"{p.fit_error:.2e}" for p in out) if out else "")

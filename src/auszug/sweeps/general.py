@@ -47,7 +47,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.sweeps.cut import Cuts, cut
-from auszug.sweeps.matching import CurvaturePlots, Ribs, curvature_plots, families, match_cuts, order_ribs
+from auszug.sweeps.matching import CurvaturePlots, Family, Ribs, curvature_plots, families, match_cuts, order_ribs
 from auszug.sweeps.mesh import SweepMesh
 from auszug.sweeps.motion import Motion, se3_log
 from auszug.sweeps.movability import Movability
@@ -432,7 +432,18 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     t = step("families")
     # support of a family: its members times the length of their common part
     fams = sorted(families(matches, params), key=lambda f: (-len(f.members) * f.length, -f.length))
-    big = [f for f in fams if len(f.members) >= 3][:params.max_families]
+    # most support first, but a family half of whose runs an earlier pick already holds is
+    # skipped: the most supported families crowd the same stretch of a path
+    big: list[Family] = []
+    held: set[int] = set()
+    for f in fams:
+        if len(big) >= params.max_families:
+            break
+        runs_f = {int(x) for x in f.members}
+        if len(runs_f) < 3 or len(runs_f & held) >= 0.5 * len(runs_f):
+            continue
+        big.append(f)
+        held |= runs_f
     ribs = [order_ribs(f, plots, params) for f in big]
     ribs = [r for r in ribs if len(r.order) >= 3]
     stages.append(Stage("families", time.perf_counter() - t,

@@ -124,7 +124,7 @@ def main(argv=None):
     each = t_motion / max(len(pats), 1)
     print(f"| build the sweeps (sec. 2.3): {len(pats)} families fitted (Eq. 7, Hermite, 3 rounds of re-slicing, "
           f"fit check), fit errors {min(p.fit_error for p in pats):.1e}-{max(p.fit_error for p in pats):.1e} | "
-          f"86 s for N_opt = 152 (0.57 s each) | {t_motion:.2f} s ({each:.3f} s each) | {0.566 / each:.0f}x per sweep "
+          f"86 s for N_opt = 152 (0.57 s each) | {t_motion:.2f} s ({each:.3f} s each) | {0.566 / each:.2f}x per sweep "
           f"| 20x |")
     print(f"| match + families + build from the initial cuts ({stages[0].numbers['runs']} runs, "
           f"{stages[0].numbers['pairs']} pairs) | 234 + 86 s | {t_build:.2f} s | {(234 + 86) / t_build:.0f}x | 20x |")

@@ -67,6 +67,12 @@ def _broken(change):
     (lambda d: d["patches"][0].update(faces=[0, -1]), r"patches\[0\].faces"),
     (lambda d: d["patches"][0].update(kind="spiral"), r"patches\[0\].kind"),
     (lambda d: d["patches"][0]["motion"][1].update(t=-1.0), "increase"),
+    (lambda d: d["patches"][0]["motion"][1].update(t="soon"), r"motion\[\]\.t"),
+    (lambda d: d["stages"][1].update(seconds="long"), r"stages\[1\]"),
+    (lambda d: d.update(stages={}), "stages: expected a list"),
+    (lambda d: d.update(n_faces=-3), "n_faces"),
+    (lambda d: d["params"].update(eps_prox=7.0), "params: sweep parameter eps_prox"),
+    (lambda d: d.update(patches=[1]), r"patches\[0\]: expected an object"),
 ])
 def test_bad_documents_name_the_place(change, message):
     with pytest.raises(FormatError, match=message):

@@ -130,9 +130,9 @@ def test_pipeline_on_the_general_sweep(sigma):
     r = detect(fx, DEFAULT.with_(eps_prox=0.005))
     assert r.patches and all(p.kind == "general" for p in r.patches)
     assert all(p.fit_error <= 0.01 for p in r.patches)
-    assert r.coverage >= 0.5
+    assert r.coverage >= (0.75 if sigma == 0 else 0.5)     # measured 0.833 / 0.605 (targets 0.95 / 0.85)
     # plane recall of the patches' profile planes (issue target 0.95 / 0.85, not reached: measured
-    # 0.48 clean, 0.58 noisy; the refined search by gliding energy alone gave 0.05 and 0.00)
+    # 0.48 clean, 0.50 noisy; the refined search by gliding energy alone gave 0.05 and 0.00)
     from auszug.sweeps.general import motion_planes
     from auszug.sweeps.planes import plane_recall
 

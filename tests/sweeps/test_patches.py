@@ -119,3 +119,58 @@ def test_hausdorff_of_polylines_known_answer():
     b = np.array([[0, 0.2, 0], [0.5, 0.3, 0], [1, 0.2, 0.0]])
     assert polyline_hausdorff(a, b) == pytest.approx(0.3)
     assert polyline_hausdorff(a, a) == 0.0
+
+
+def test_closed_profile_of_an_extruded_pipe():
+    """A pipe (closed cross-section, no caps) is one translation patch with a closed profile; its
+    sweep value re-meshes exactly onto the input."""
+    from auszug.sweeps import detect
+    from auszug.sweeps.patches import closest_distance
+
+    n, k = 48, 30
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    prof = np.column_stack([0.3 * np.cos(a) + 0.05 * np.cos(3 * a), 0.2 * np.sin(a)])
+    z = np.linspace(0, 0.8, k)
+    v = np.column_stack([np.tile(prof[:, 0], k), np.tile(prof[:, 1], k), np.repeat(z, n)])
+    i, j = np.meshgrid(np.arange(k - 1), np.arange(n), indexing="ij")
+    a0, b0 = i * n + j, i * n + (j + 1) % n
+    f = np.vstack([np.stack([a0, b0, b0 + n], -1).reshape(-1, 3), np.stack([a0, b0 + n, a0 + n], -1).reshape(-1, 3)])
+    (p,) = detect((v, f)).patches
+    assert p.kind == "translation" and p.closed and p.coverage == pytest.approx(1.0)
+    assert p.motion.t[-1] == pytest.approx(0.8 / np.linalg.norm(np.ptp(v, axis=0)))
+    d, _ = closest_distance(p.sweep().mesh(caps=False).vertices, v, f)
+    assert d.max() <= 1e-12
+
+
+@pytest.mark.parametrize("sigma", [0.0, 5e-4])
+def test_helical_surface_is_one_screw_patch(sigma):
+    """The base moulding screwed by 540 deg: the screw's pitch and angle come out, the profile at both
+    ends lies on the mesh."""
+    from auszug.sweeps import detect
+    from auszug.sweeps.fixtures import helical
+    from auszug.sweeps.patches import closest_distance
+
+    fx = helical(sigma=sigma)
+    r = detect((fx.vertices, fx.faces))
+    (p,) = r.patches
+    assert p.kind == "screw" and r.coverage >= (0.95 if sigma == 0 else 0.85)
+    assert np.degrees(p.motion.t[-1]) == pytest.approx(540.0, abs=0.1 if sigma == 0 else 1.0)
+    diam = float(np.linalg.norm(np.ptp(fx.vertices * 1.0, axis=0)))
+    lift = p.motion.apply(fx.axis_point[None], [2 * np.pi])[0, 0] - fx.axis_point      # one turn along the axis
+    assert abs(abs(lift @ fx.axis_direction) - 2 * np.pi * 0.1 / helical_diameter()) <= 2e-3 * diam
+    for pts in (p.profile, p.motion.apply(p.profile, [p.motion.t[-1]])[0]):
+        d, _ = closest_distance(pts, fx.vertices, fx.faces)
+        assert d.max() <= (5e-4 if sigma == 0 else 3e-3)
+    assert p.fit_error <= 2 * 0.005
+
+
+def helical_diameter():
+    """Bounding-box diameter of the helical fixture before normalisation."""
+    from auszug.sweeps.fixtures import gothic_base_profile
+
+    p, _ = gothic_base_profile(60)
+    th = np.radians(np.linspace(0.0, 540.0, 240))
+    r, z = np.tile(p[:, 0], 240), np.tile(p[:, 1], 240)
+    t = np.repeat(th, 60)
+    v = np.column_stack([r * np.cos(t), r * np.sin(t), z + 0.1 * t])
+    return float(np.linalg.norm(np.ptp(v, axis=0)))

@@ -133,6 +133,9 @@ def loads(text: str | bytes, name: str = "<string>") -> Any:
     for key in ("bbox_diameter", "coverage"):
         if not _number(doc.get(key)):
             raise FormatError(f"{key}: expected a finite number", name)
+    for key in ("n_vertices", "n_faces"):
+        if key in doc and (not isinstance(doc[key], int) or isinstance(doc[key], bool) or doc[key] < 0):
+            raise FormatError(f"{key}: expected a whole number >= 0", name)
     if not isinstance(doc.get("source", ""), str):
         raise FormatError("source: expected a string", name)
     raw = doc.get("patches")
@@ -175,9 +178,16 @@ def loads(text: str | bytes, name: str = "<string>") -> Any:
                 raise FormatError(f"{where}.{key}: expected a finite number", name)
         patches.append(SweepPatch(p["id"], p.get("kind", "general"), prof, bool(p.get("closed", False)), motion, fa,
                                   float(p["fit_error"]), float(p["coverage"])))
-    stages = tuple(Stage(str(s.get("name", "")), float(s.get("seconds", 0.0)), str(s.get("summary", "")),
-                         dict(s.get("numbers", {})))
-                   for s in doc.get("stages", []) if isinstance(s, dict))
+    raw_stages = doc.get("stages", [])
+    if not isinstance(raw_stages, list):
+        raise FormatError("stages: expected a list", name)
+    stages = []
+    for i, st in enumerate(raw_stages):
+        if not (isinstance(st, dict) and _number(st.get("seconds", 0.0)) and isinstance(st.get("numbers", {}), dict)):
+            raise FormatError(f"stages[{i}]: expected an object with a number \"seconds\" and an object "
+                              "\"numbers\"", name)
+        stages.append(Stage(str(st.get("name", "")), float(st.get("seconds", 0.0)), str(st.get("summary", "")),
+                            dict(st.get("numbers", {}))))
     params = DEFAULT
     if isinstance(doc.get("params"), dict):
         known = {f.name for f in fields(SweepParams)}
@@ -189,7 +199,7 @@ def loads(text: str | bytes, name: str = "<string>") -> Any:
             raise FormatError(f"params: {e}", name) from None
     centre = _array(doc.get("centre", [0.0, 0.0, 0.0]), (3,), "centre", name)
     return SweepReport(tuple(patches), float(doc["coverage"]), float(doc["bbox_diameter"]), centre,
-                       int(doc.get("n_vertices", 0)), int(n_faces) if isinstance(n_faces, int) else 0, stages,
+                       int(doc.get("n_vertices", 0)), int(n_faces) if isinstance(n_faces, int) else 0, tuple(stages),
                        params, doc.get("source", ""))
 
 

@@ -29,6 +29,7 @@ __all__ = [
     "gothic_base_profile",
     "extruded",
     "revolved",
+    "helical",
     "moulding_along_ellipse",
     "moulding_along_cubic",
     "bumps",
@@ -63,7 +64,8 @@ class Fixture:
     ----------
     name : str
     kind : str
-        ``"translation"`` (extrusion), ``"rotation"`` (surface of revolution), ``"moulding"``
+        ``"translation"`` (extrusion), ``"rotation"`` (surface of revolution), ``"screw"``
+        (helical surface), ``"moulding"``
         (a profile swept along a curved planar path, not kinematic) or ``"none"`` (no sweep).
     vertices : (n, 3) float array
         Bounding-box diameter 1, centred.
@@ -190,6 +192,23 @@ def revolved(n_profile: int = 60, n_path: int = 120, degrees: float = 300.0, sig
     v = np.column_stack([r * np.cos(t), r * np.sin(t), z])
     f = grid_faces(n_path, n_profile)
     return _finish("revolved", "rotation", v, f, sigma, seed, np.array([0, 0, 1.0]), np.zeros(3),
+                   np.empty((0, 4)), float(s[-1]))
+
+
+def helical(n_profile: int = 60, n_path: int = 240, degrees: float = 540.0, pitch: float = 0.1,
+            sigma: float = 0.0, seed: int = 0) -> Fixture:
+    """The base moulding screwed about the z axis by ``degrees``, rising ``pitch`` per radian (a helical surface).
+
+    ``axis_point`` is the origin (before normalisation); the pitch in normalised units is
+    ``pitch / diameter`` (the fixture's ``profile_length`` is normalised the same way).
+    """
+    p, s = gothic_base_profile(n_profile)
+    th = np.radians(np.linspace(0.0, degrees, n_path))
+    r, z = np.tile(p[:, 0], n_path), np.tile(p[:, 1], n_path)
+    t = np.repeat(th, n_profile)
+    v = np.column_stack([r * np.cos(t), r * np.sin(t), z + pitch * t])
+    f = grid_faces(n_path, n_profile)
+    return _finish("helical", "screw", v, f, sigma, seed, np.array([0, 0, 1.0]), np.zeros(3),
                    np.empty((0, 4)), float(s[-1]))
 
 

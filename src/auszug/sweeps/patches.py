@@ -41,7 +41,7 @@ from auszug.sweeps.params import DEFAULT, SweepParams
 if TYPE_CHECKING:
     from auszug.meshing.sweepmodel import Sweep
 
-__all__ = ["SweepPatch", "Fit", "kinematic_patches", "fit_patch", "face_areas", "sweep_surface",
+__all__ = ["SweepPatch", "Fit", "MeshTree", "kinematic_patches", "fit_patch", "face_areas", "sweep_surface",
            "closest_distance", "polyline_hausdorff"]
 
 Array = NDArray[np.float64]
@@ -126,7 +126,8 @@ class Fit:
     Attributes
     ----------
     vertex_distance : (n_vertices,) float array
-        Distance of every mesh vertex to the swept surface.
+        Distance of every mesh vertex to the swept surface (inf outside its bounding box grown
+        by ``eps_prox``).
     faces : (m,) int array
         Faces whose three vertices are within ``eps_prox``.
     fit_error : float
@@ -173,6 +174,34 @@ def closest_distance(points: ArrayLike, vertices: ArrayLike, elements: ArrayLike
     sq, _, c = igl.point_mesh_squared_distance(p, np.ascontiguousarray(np.asarray(vertices, float)),
                                                np.ascontiguousarray(np.asarray(elements, np.int64)))
     return np.sqrt(np.maximum(sq, 0.0)), np.asarray(c)
+
+
+class MeshTree:
+    """Closest points on one triangle mesh, its bounding-volume tree built once (libigl ``AABB``).
+
+    Examples
+    --------
+    >>> t = MeshTree(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0.0]]), np.array([[0, 1, 2]]))
+    >>> d, f, c = t.query([[0.2, 0.2, 2.0]])
+    >>> d.tolist(), f.tolist()
+    ([2.0], [0])
+    """
+
+    def __init__(self, vertices: ArrayLike, faces: ArrayLike) -> None:
+        import igl
+
+        self.vertices = np.ascontiguousarray(np.asarray(vertices, float))
+        self.faces = np.ascontiguousarray(np.asarray(faces, np.int64))
+        self._tree = igl.AABB()
+        self._tree.init(self.vertices, self.faces)
+
+    def query(self, points: ArrayLike) -> tuple[Array, IntArray, Array]:
+        """Distances ``(n,)``, closest faces ``(n,)`` and closest points ``(n, 3)``."""
+        p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
+        if len(p) == 0:
+            return np.zeros(0), np.zeros(0, np.int64), np.zeros((0, 3))
+        sq, face, c = self._tree.squared_distance(self.vertices, self.faces, p)
+        return np.sqrt(np.maximum(sq, 0.0)), np.asarray(face, np.int64), np.asarray(c)
 
 
 def polyline_hausdorff(a: ArrayLike, b: ArrayLike, closed_a: bool = False, closed_b: bool = False) -> float:
@@ -363,14 +392,21 @@ def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
 
 
 def fit_patch(mesh: SweepMesh, profile: Array, closed: bool, motion: Motion,
-              params: SweepParams = DEFAULT, areas: Array | None = None) -> Fit:
-    """The fit check (sec. 2.3.4) of a profile and motion against the mesh (normalised coordinates)."""
+              params: SweepParams = DEFAULT, areas: Array | None = None, tree: MeshTree | None = None) -> Fit:
+    """The fit check (sec. 2.3.4) of a profile and motion against the mesh (normalised coordinates).
+
+    ``tree`` is the mesh's :class:`MeshTree` (built here if not given).
+    """
     eps = params.eps_prox
     sv, sf = sweep_surface(profile, closed, motion, eps / 10)
-    dv, _ = closest_distance(mesh.vertices, sv, sf)
+    # vertices outside the swept surface's box grown by eps are farther than eps: not queried
+    lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
+    inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
+    dv = np.full(mesh.n_vertices, np.inf)
+    dv[inside] = closest_distance(mesh.vertices[inside], sv, sf)[0]
     near = dv <= eps
     faces = np.flatnonzero(near[mesh.faces].all(axis=1)).astype(np.int64)
-    ds, _ = closest_distance(sv, mesh.vertices, mesh.faces)
+    ds = (tree if tree is not None else MeshTree(mesh.vertices, mesh.faces)).query(sv)[0]
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     total = float(a.sum())
     cov = float(a[faces].sum() / total) if total > 0 else 0.0
@@ -408,6 +444,7 @@ def kinematic_patches(mesh: SweepMesh, axis: KinematicAxis, params: SweepParams 
     rot, tr = kin.motion(t_knots)
     motion = Motion(t_knots, rot, tr)
     areas = face_areas(mesh.vertices, mesh.faces)
+    tree = MeshTree(mesh.vertices, mesh.faces)
     # further cuts for the profile improvement, inside the range
     t_more = np.linspace(0.0, span, params.profile_cuts + 2)[1:-1]
     t_more = t_more[np.abs(t_more - t_mid) > 1e-9 * max(span, 1.0)]
@@ -431,7 +468,7 @@ def kinematic_patches(mesh: SweepMesh, axis: KinematicAxis, params: SweepParams 
                 continue
             tp = np.full(len(piece), t_mid) if kin.kind == "translation" else np.clip(kin.param(piece), 0.0, span)
             prof = _improve(motion.inverse_apply(piece, tp), closed, more)
-            fit = fit_patch(mesh, prof, closed, motion, params, areas)
+            fit = fit_patch(mesh, prof, closed, motion, params, areas, tree)
             kind: Kind = kin.kind  # type: ignore[assignment]
             out.append(SweepPatch(first_id + len(out), kind, prof, closed, motion, fit.faces, fit.fit_error,
                                   fit.coverage))

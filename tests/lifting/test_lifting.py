@@ -8,6 +8,7 @@ import pytest
 from auszug.errors import GeometryError
 from auszug.lifting import DEFAULT, Marker, Sketch, Stroke, layer_graphs, lift, sketch_graph
 from auszug.lifting.cues import likelihood, parallel_cues
+from auszug.lifting.reconstruct import DEFAULT_CLASSES
 from tests.lifting.truth import box, depth_rmse, revolve, truth_points
 
 H = Stroke(np.array([[[-1, 0], [-0.4, 0.25], [0.4, 0.25], [1, 0]]], float), "h")
@@ -201,3 +202,37 @@ def test_parallel_resolution_follows_the_paper_on_the_vase(truth, baseline):
     assert np.array_equal(app, likelihood(ang, DEFAULT) >= 1.0)
     err, sign = depth_rmse(truth, r)
     assert sign == 1 and 0.030 <= err <= 0.032   # measured 3.07 %
+
+
+def _example_truth(name: str):
+    """The 3D truth of a bundled example sketch, projected exactly as tests/lifting/make_sketches.py does."""
+    from tests.lifting import make_sketches as ms
+    from tests.lifting.truth import Truth
+
+    chains = {"vase": ms.vase, "ogee-roof": ms.ogee_roof, "arches": ms.arches}[name]()
+    s2, view = ms.project(chains, ms.VIEWS[name], 0.0, 0)
+    diag = float(np.linalg.norm(np.ptp(np.concatenate([v.reshape(-1, 3) for v in view]), axis=0)))
+    marks = ms.spurious(s2, view, 0.02 * diag)
+    sk = Sketch(tuple(Stroke(c, f"c{i}") for i, c in enumerate(s2)),
+                tuple(Marker("occlusion", m, f"o{i}") for i, m in enumerate(marks)))
+    return Truth(sk, tuple(view))
+
+
+@pytest.mark.parametrize("name, sign, base_bound, cue_bound", [
+    ("vase", 1, 0.030, 0.033),          # measured 2.91 % baseline, 3.17 % default cues (22 of 22 parallel applied)
+    ("ogee-roof", -1, 0.035, 0.035),    # measured 3.40 %, 3.36 %; the convexity rule picks the mirror
+    ("arches", -1, 0.101, 0.093),       # measured 9.97 %, 9.16 %; the mirror too
+])
+def test_bundled_examples_against_their_truth(name, sign, base_bound, cue_bound):
+    """Depth RMSE of the three example sketches against the 3D truths they were drawn from (noise-free).
+
+    Measured on branch lifting5 (docs/lifting.md): none meets the issue's accuracy targets, and the
+    convexity rule picks the mirror image for the ogee roof and the arches (asserted as measured, so
+    that a change shows). The sketches are rebuilt from the truths (the bundled SVGs round the
+    coordinates to 0.01 px); why the arches are so far off is not investigated yet.
+    """
+    tr = _example_truth(name)
+    for classes, bound in (((), base_bound), (DEFAULT_CLASSES, cue_bound)):
+        r = lift(tr.sketch, classes=classes)
+        err, s = depth_rmse(tr, r)
+        assert r.converged and s == sign and err <= bound, (name, classes, err, s)

@@ -229,7 +229,7 @@ def test_bundled_examples_against_their_truth(name, sign, base_bound, cue_bound)
     Measured on branch lifting5 (docs/lifting.md): none meets the issue's accuracy targets, and the
     convexity rule picks the mirror image for the ogee roof and the arches (asserted as measured, so
     that a change shows). The sketches are rebuilt from the truths (the bundled SVGs round the
-    coordinates to 0.01 px); why the arches are so far off is not investigated yet.
+    coordinates to 0.01 px). The arches come out flatter than the truth (docs/lifting.md).
     """
     tr = _example_truth(name)
     for classes, bound in (((), base_bound), (DEFAULT_CLASSES, cue_bound)):

@@ -80,7 +80,7 @@ def test_revolve_baseline_recovers_the_depth(truth, baseline):
     assert all(s.converged and not s.discarded for s in baseline.stages)
     assert sum(s.iterations for s in baseline.stages) <= 50
     assert sign == 1                       # the convexity rule picks the true sign
-    assert err <= 0.015                    # measured 1.27 % of the diagonal
+    assert err <= 0.013                    # measured 1.27 % of the diagonal
     ortho = [c.angle for c in baseline.cues if c.kind == "smooth-orthogonal"]
     assert len(ortho) == 24 and max(ortho) < 1e-6
 
@@ -89,7 +89,7 @@ def test_revolve_with_the_default_cues(truth):
     r = lift(truth.sketch)
     err, sign = depth_rmse(truth, r)
     assert r.converged and sign == 1
-    assert err <= 0.04                     # measured 3.1 %: the progressive stage costs accuracy here
+    assert err <= 0.032                    # measured 3.13 %: the progressive stage costs accuracy here
     applied = [c for c in r.cues if c.applied]
     assert all(c.angle <= DEFAULT.inner_deg for c in applied if c.kind != "parallel")
     stages = [s.name for s in r.stages]

@@ -8,6 +8,7 @@ import pytest
 from auszug.errors import GeometryError
 from auszug.lifting import DEFAULT, Marker, Sketch, Stroke, layer_graphs, lift, sketch_graph
 from auszug.lifting.cues import likelihood, parallel_cues
+from auszug.lifting.reconstruct import DEFAULT_CLASSES
 from tests.lifting.truth import box, depth_rmse, revolve, truth_points
 
 H = Stroke(np.array([[[-1, 0], [-0.4, 0.25], [0.4, 0.25], [1, 0]]], float), "h")
@@ -79,7 +80,7 @@ def test_revolve_baseline_recovers_the_depth(truth, baseline):
     assert all(s.converged and not s.discarded for s in baseline.stages)
     assert sum(s.iterations for s in baseline.stages) <= 50
     assert sign == 1                       # the convexity rule picks the true sign
-    assert err <= 0.015                    # measured 1.27 % of the diagonal
+    assert err <= 0.013                    # measured 1.27 % of the diagonal
     ortho = [c.angle for c in baseline.cues if c.kind == "smooth-orthogonal"]
     assert len(ortho) == 24 and max(ortho) < 1e-6
 
@@ -88,7 +89,7 @@ def test_revolve_with_the_default_cues(truth):
     r = lift(truth.sketch)
     err, sign = depth_rmse(truth, r)
     assert r.converged and sign == 1
-    assert err <= 0.04                     # measured 3.1 %: the progressive stage costs accuracy here
+    assert err <= 0.032                    # measured 3.13 %: the progressive stage costs accuracy here
     applied = [c for c in r.cues if c.applied]
     assert all(c.angle <= DEFAULT.inner_deg for c in applied if c.kind != "parallel")
     stages = [s.name for s in r.stages]
@@ -173,3 +174,65 @@ def test_revolve_parallel_cues_against_the_truth(truth):
     assert len(applied) == len(par) == 38 and true_parallel.sum() == 23
     tp = int((applied & true_parallel).sum())
     assert tp == 23 and int(applied.sum()) == 38
+
+
+def test_parallel_resolution_follows_the_paper_on_the_vase(truth, baseline):
+    """Sec. 5.3's rounding checked step by step on the vase (lifting5 audit, docs/lifting.md).
+
+    The likelihood is taken on the 3D angles of the network each round's solve returns: a cue is
+    applied exactly when its 3D angle after the round is within I_b (L = 1). The 15 false candidates
+    (taper, 5.4-8.2 deg in the truth) are not kept soft for many rounds: 7 of them are already within
+    I_b on the baseline (2.0-4.4 deg: L = 1 before any cue round), and one round of w_c L C^2 pulls the
+    other 8 (5.3-8.3 deg) within I_b too, so all 38 are applied in round 1. Measured depth RMSE with
+    parallelism alone 3.07 % of the diagonal.
+    """
+    (_, g), = layer_graphs(truth.sketch)
+    par = parallel_cues(g, DEFAULT)
+    true_parallel = par.angles(truth_points(truth, g)) <= DEFAULT.inner_deg
+    base = np.array([c.angle for c in baseline.cues if c.kind == "parallel"])
+    assert len(base) == 38 and not any(c.applied for c in baseline.cues if c.kind == "parallel")
+    assert base[true_parallel].max() < 1.7 and base[~true_parallel].max() > 8.0
+    assert int((base[~true_parallel] <= DEFAULT.inner_deg).sum()) == 7   # L = 1 on the baseline already
+    r = lift(truth.sketch, classes=("parallel",))
+    rounds = [s for s in r.stages if s.name.startswith("parallel round")]
+    assert [(s.applied, s.rejected) for s in rounds] == [(38, 0)]
+    # nothing is solved after the last round: the reported angles are the 3D angles it was classified on
+    ang = np.array([c.angle for c in r.cues if c.kind == "parallel"])
+    app = np.array([c.applied for c in r.cues if c.kind == "parallel"])
+    assert np.array_equal(app, likelihood(ang, DEFAULT) >= 1.0)
+    err, sign = depth_rmse(truth, r)
+    assert sign == 1 and 0.030 <= err <= 0.032   # measured 3.07 %
+
+
+def _example_truth(name: str):
+    """The 3D truth of a bundled example sketch, projected exactly as tests/lifting/make_sketches.py does."""
+    from tests.lifting import make_sketches as ms
+    from tests.lifting.truth import Truth
+
+    chains = {"vase": ms.vase, "ogee-roof": ms.ogee_roof, "arches": ms.arches}[name]()
+    s2, view = ms.project(chains, ms.VIEWS[name], 0.0, 0)
+    diag = float(np.linalg.norm(np.ptp(np.concatenate([v.reshape(-1, 3) for v in view]), axis=0)))
+    marks = ms.spurious(s2, view, 0.02 * diag)
+    sk = Sketch(tuple(Stroke(c, f"c{i}") for i, c in enumerate(s2)),
+                tuple(Marker("occlusion", m, f"o{i}") for i, m in enumerate(marks)))
+    return Truth(sk, tuple(view))
+
+
+@pytest.mark.parametrize("name, sign, base_bound, cue_bound", [
+    ("vase", 1, 0.030, 0.033),          # measured 2.91 % baseline, 3.17 % default cues (22 of 22 parallel applied)
+    ("ogee-roof", -1, 0.035, 0.035),    # measured 3.40 %, 3.36 %; the convexity rule picks the mirror
+    ("arches", -1, 0.101, 0.093),       # measured 9.97 %, 9.16 %; the mirror too
+])
+def test_bundled_examples_against_their_truth(name, sign, base_bound, cue_bound):
+    """Depth RMSE of the three example sketches against the 3D truths they were drawn from (noise-free).
+
+    Measured on branch lifting5 (docs/lifting.md): none meets the issue's accuracy targets, and the
+    convexity rule picks the mirror image for the ogee roof and the arches (asserted as measured, so
+    that a change shows). The sketches are rebuilt from the truths (the bundled SVGs round the
+    coordinates to 0.01 px). The arches come out flatter than the truth (docs/lifting.md).
+    """
+    tr = _example_truth(name)
+    for classes, bound in (((), base_bound), (DEFAULT_CLASSES, cue_bound)):
+        r = lift(tr.sketch, classes=classes)
+        err, s = depth_rmse(tr, r)
+        assert r.converged and s == sign and err <= bound, (name, classes, err, s)

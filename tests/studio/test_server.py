@@ -243,7 +243,7 @@ def test_deeply_nested_json_gets_error_and_connection_stays(client, text):
     assert len(text.encode()) <= P.MAX_MESSAGE_BYTES
     with client.websocket_connect(WS) as ws:
         ws.send_text(text)
-        assert _error(ws) == {"type": "error", "id": 0, "message": "JSON nested too deeply for a message"}
+        assert _error(ws) == {"type": "error", "id": 0, "message": "not valid JSON (nested too deeply for a message)"}
         ws.send_json({"type": "open", "path": "tn-2.uc", "id": 3})
         g, _ = _geometry(ws)
         assert g["id"] == 3

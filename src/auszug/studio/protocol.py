@@ -807,7 +807,7 @@ def decode(text: str | bytes) -> Any:
     except (ValueError, UnicodeDecodeError) as e:
         raise ProtocolError(f"not valid JSON ({str(e)[:LIMITS.quoted]})") from None
     except RecursionError:   # "[[[[...": Python's parser recurses once per level
-        raise ProtocolError("JSON nested too deeply for a message") from None
+        raise ProtocolError("not valid JSON (nested too deeply for a message)") from None
     if not isinstance(obj, dict):
         raise ProtocolError("a message must be a JSON object with a 'type'")
     kind = obj.get("type")

@@ -233,7 +233,7 @@ export interface GetLoops {
   type: "get_loops";
 }
 
-/** Export the current drawing; answered by :class:`Exported` and the file's bytes. Mesh formats (glb, obj, stl, ply) use ``style``/``faces``/``loops`` as :class:`GetMesh`; ``solid`` unites everything into one watertight solid. ``colors`` are ``#rrggbb`` per basic curve (glb, obj). svg: top and side views; json / uc: the drawing; network.json: the 3D curve network; dxf / 3dm: the curve network for CAD programs. */
+/** Export the current drawing; answered by :class:`Exported` and the file's bytes. Mesh formats (glb, obj, stl, ply) use ``style``/``faces``/``loops`` as :class:`GetMesh`; ``solid`` unites everything into one watertight solid. ``colors`` are ``#rrggbb`` per basic curve (glb, obj). svg: top and side views; json / uc: the drawing; network.json: the 3D curve network; dxf / 3dm: the curve network for CAD programs. ``segments`` (steps along each member, 1..1000; null: 200, 64 for a solid) and ``around`` (points around a tube's or bar's profile, 3..64; null: 40 for tubes, 4 for bars and ribbons) set a mesh export's resolution. */
 export interface Export {
   format: "glb" | "obj" | "stl" | "ply" | "svg" | "json" | "uc" | "network.json" | "dxf" | "3dm";
   style?: "curves" | "tube" | "bar" | "ribbon";
@@ -241,6 +241,8 @@ export interface Export {
   loops?: number[];
   solid?: boolean;
   colors?: string[];
+  segments?: number | null;
+  around?: number | null;
   id?: number;
   type: "export";
 }

@@ -489,7 +489,10 @@ class Export:
     :class:`GetMesh`; ``solid`` unites everything into one watertight solid.
     ``colors`` are ``#rrggbb`` per basic curve (glb, obj). svg: top and side
     views; json / uc: the drawing; network.json: the 3D curve network; dxf / 3dm:
-    the curve network for CAD programs.
+    the curve network for CAD programs. ``segments`` (steps along each member,
+    1..1000; null: 200, 64 for a solid) and ``around`` (points around a tube's
+    or bar's profile, 3..64; null: 40 for tubes, 4 for bars and ribbons) set a
+    mesh export's resolution.
     """
 
     format: ExportFormat
@@ -498,6 +501,8 @@ class Export:
     loops: list[int] = field(default_factory=list)
     solid: bool = False
     colors: list[str] = field(default_factory=list)
+    segments: int | None = None
+    around: int | None = None
     id: int = 0
     type: Literal["export"] = "export"
 

@@ -265,7 +265,8 @@ class _Studio:
             return meshes.loops_message(net, revision=revision, msg_id=msg.id)
         name, mime, data = meshes.export_file(net, label or drawing.name or "drawing", format=msg.format,
                                               style=msg.style, faces=msg.faces, loops=msg.loops,
-                                              solid=msg.solid, colors=msg.colors)
+                                              solid=msg.solid, colors=msg.colors, segments=msg.segments,
+                                              around=msg.around)
         return P.Exported(name=name, mime=mime, size=len(data), id=msg.id), data
 
     # -- messages ---------------------------------------------------------------------

@@ -156,3 +156,28 @@ def test_split_handle_resizes_the_views_and_the_url_keeps_it(studio, page):
     handle.dblclick()
     assert page.evaluate("() => window.auszug.store.split") == 0.5
     assert "split=" not in page.url
+
+
+def test_export_resolution_makes_a_light_glb(studio, workspace, page, tmp_path):
+    import trimesh
+
+    from auszug.formats import load
+    from auszug.meshing import default_size, profile_for, sweep_network
+    from auszug.microarch import build
+
+    open_drawing(page, studio, "tn-2.uc")
+    sizes = {}
+    for res in ("fine", "light"):
+        page.click("[data-testid=export]")
+        page.select_option("[data-testid=export-resolution]", res)
+        with page.expect_download(timeout=60000) as dl:
+            page.click("[data-testid=export-glb]")
+        path = tmp_path / f"{res}.glb"
+        dl.value.save_as(path)
+        sizes[res] = path.stat().st_size
+    # the light file is the tubes swept 48 steps along, 10 points round: exactly that many triangles
+    net = build(load(workspace / "tn-2.uc"))
+    want = sweep_network(net, profile_for("tube", default_size(net), 10), 48).n_faces
+    scene = trimesh.load(tmp_path / "light.glb", file_type="glb")
+    assert sum(len(g.faces) for g in scene.geometry.values()) == want
+    assert sizes["light"] * 10 < sizes["fine"], sizes

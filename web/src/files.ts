@@ -7,7 +7,7 @@ import type { Ctx } from "./context";
 import { Modal, Popover, button } from "./dialog";
 import {
   type Card, type DrawingExt, type ExportChoice, MESH_FORMATS, documentLabel, documentName, drawingExt, exportRequest,
-  galleryGroups, recoveryTime, savePath, suggestedName,
+  galleryGroups, RESOLUTIONS, type Resolution, recoveryTime, savePath, suggestedName,
 } from "./filemodel";
 import { MAX_MESSAGE_BYTES, type ClientMessage, type Exported, type Files, type Geometry } from "./protocol";
 import { registerShortcut } from "./shortcuts";
@@ -310,6 +310,17 @@ export function initFiles(ctx: Ctx): void {
   const solid = document.createElement("input");
   solid.type = "checkbox";
   solid.dataset.testid = "export-solid";
+  // the mesh exports' resolution (light meshes for games and the web; fine for renders and prints)
+  const resRow = document.createElement("div");
+  resRow.className = "row";
+  const resLabel = document.createElement("label");
+  resLabel.title = "Steps along each member and points round a tube in glb, obj, stl and ply";
+  const resolution = document.createElement("select");
+  resolution.dataset.testid = "export-resolution";
+  for (const [value, r] of Object.entries(RESOLUTIONS)) resolution.add(new Option(r.label, value));
+  resLabel.append("mesh ", resolution);
+  resRow.appendChild(resLabel);
+  exportMenu.el.appendChild(resRow);
   for (const { format, label } of EXPORTS) {
     const row = document.createElement("div");
     row.className = "row";
@@ -332,7 +343,8 @@ export function initFiles(ctx: Ctx): void {
     exportMenu.close();
     const colors = Array.from({ length: g.n_curves }, (_, i) => store.color(i));
     store.status(`exporting ${format}…`);
-    const reply = await tryRequest(exportRequest(format, store.looks, colors, solid.checked));
+    const reply = await tryRequest(exportRequest(format, store.looks, colors, solid.checked,
+      resolution.value as Resolution));
     if (!reply || !reply.binary) return;
     const { name, mime, size } = reply.msg as Exported;
     download(reply.binary, name, mime);

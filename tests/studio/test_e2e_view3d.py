@@ -17,16 +17,17 @@ ELEVATION, AZIMUTH, FILL = 35.0, 35.0, 0.8
 
 CAMERA_JS = """() => {
   const v = window.auszug.views, p = v.persp.position, t = v.orbit.target, b = v.bounds;
-  const corners = [];
-  for (let i = 0; i < 8; i++) {
-    const q = v.persp.position.clone()
-      .set(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z);
-    v.persp.updateMatrixWorld();
-    const n = q.clone().project(v.persp);
-    corners.push([n.x, n.y, n.z]);
+  v.persp.updateMatrixWorld();
+  const points = [];   // every point of the network's lines (all replicas), projected
+  for (const line of v.network.children) {
+    const pos = line.geometry.getAttribute('position');
+    for (let i = 0; i < pos.count; i++) {
+      const n = p.clone().fromBufferAttribute(pos, i).applyMatrix4(line.matrix).project(v.persp);
+      points.push([n.x, n.y, n.z]);
+    }
   }
   return {position: [p.x, p.y, p.z], target: [t.x, t.y, t.z], centre: b.getCenter(p.clone()).toArray(),
-          corners, refits: v.refits, persp: v.rect('persp'), top: v.rect('top'), width: v.host.clientWidth};
+          points, refits: v.refits, persp: v.rect('persp'), top: v.rect('top'), width: v.host.clientWidth};
 }"""
 
 
@@ -61,14 +62,15 @@ def test_opens_on_tubes_in_a_raised_three_quarter_view_framing_the_model(studio,
     d = direction(c)
     assert abs(math.degrees(math.asin(d[2])) - ELEVATION) < 1e-6
     assert abs(math.degrees(math.atan2(d[0], -d[1])) - AZIMUTH) < 1e-6
-    # every corner of the bounding box is in view, and the binding one sits at exactly FILL
-    ndc = np.array(c["corners"])
-    assert np.all(ndc[:, 2] < 1) and np.all(ndc[:, 2] > -1), "a corner is clipped by the near or far plane"
+    # every point of the curves is in view, and the binding one sits at exactly FILL
+    ndc = np.array(c["points"])
+    assert len(ndc) > 100
+    assert np.all(ndc[:, 2] < 1) and np.all(ndc[:, 2] > -1), "a point is clipped by the near or far plane"
     extent = np.abs(ndc[:, :2]).max()
-    assert abs(extent - FILL) < 1e-4, f"the box reaches {extent:.4f} of the half view, wanted {FILL}"
-    # the model's projected box fills a good part of the pane (not a speck in a corner)
+    assert abs(extent - FILL) < 1e-4, f"the curves reach {extent:.4f} of the half view, wanted {FILL}"
+    # the model fills a good part of the pane (not a speck in a corner)
     span = (ndc[:, :2].max(axis=0) - ndc[:, :2].min(axis=0)) / 2
-    assert span.max() > 0.6, f"projected box spans {span} of the view"
+    assert span.max() > 0.7, f"the projected curves span {span} of the view"
     assert g["n_curves"] > 0
 
 
@@ -109,7 +111,7 @@ def test_refits_only_when_the_model_grows_out_of_the_view(studio, page):
     assert c3["refits"] == 1
     np.testing.assert_allclose(direction(c3), direction(c1), atol=1e-9)
     np.testing.assert_allclose(c3["target"], c3["centre"], atol=1e-9)
-    ndc = np.array(c3["corners"])
+    ndc = np.array(c3["points"])
     assert abs(np.abs(ndc[:, :2]).max() - FILL) < 1e-4
     # undo shrinks it again: no refit, the camera stays
     page.keyboard.press("Control+z")

@@ -200,10 +200,26 @@ export class Views {
     this.fit3d(new THREE.Vector3(Math.cos(el) * Math.sin(az), -Math.cos(el) * Math.cos(az), Math.sin(el)));
   }
 
-  /** Frame the 3D view on the bounding box, looking along -`dir` (from the camera to the box's centre):
-   * the box's projection fills VIEW3D.fill of the view's width or height, whichever binds. */
+  /** Every point of the network's lines in world coordinates (all replicas); the bounding box's
+   * corners when there are none. */
+  private modelPoints(): THREE.Vector3[] {
+    const out: THREE.Vector3[] = [];
+    for (const child of this.network.children as THREE.Line[]) {
+      const pos = child.geometry.getAttribute("position") as THREE.BufferAttribute;
+      for (let i = 0; i < pos.count; i++) out.push(new THREE.Vector3().fromBufferAttribute(pos, i).applyMatrix4(child.matrix));
+    }
+    if (out.length) return out;
+    const b = this.bounds;
+    for (let i = 0; i < 8; i++) {
+      out.push(new THREE.Vector3(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z));
+    }
+    return out;
+  }
+
+  /** Frame the 3D view on the model, looking along -`dir` at its bounding box's centre: the
+   * curves' projection reaches VIEW3D.fill of the half view's width or height, whichever binds. */
   fit3d(dir: THREE.Vector3): void {
-    const b = this.bounds, c = b.getCenter(new THREE.Vector3());
+    const c = this.bounds.getCenter(new THREE.Vector3());
     const persp = this.rect("persp");
     const aspect = persp ? persp.w / Math.max(persp.h, 1) : 1;
     const tanV = Math.tan(THREE.MathUtils.degToRad(this.persp.fov) / 2) * VIEW3D.fill, tanH = tanV * aspect;
@@ -213,11 +229,10 @@ export class Views {
     if (right.lengthSq() < 1e-12) right.set(1, 0, 0);
     right.normalize();
     const up = back.clone().cross(right);
-    // a corner at (x, y) across and z towards the camera stays inside when d >= z + |x| / tan
+    // a point at (x, y) across and z towards the camera stays inside when d >= z + |x| / tan
     let d = 1e-6;
-    const p = new THREE.Vector3();
-    for (let i = 0; i < 8; i++) {
-      p.set(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z).sub(c);
+    for (const p of this.modelPoints()) {
+      p.sub(c);
       const z = p.dot(back);
       d = Math.max(d, z + Math.abs(p.dot(right)) / tanH, z + Math.abs(p.dot(up)) / tanV);
     }
@@ -229,14 +244,13 @@ export class Views {
     this.updateCameras();
   }
 
-  /** Whether every corner of `box` is in front of the 3D camera and inside its view. */
-  inView3d(box: THREE.Box3): boolean {
+  /** Whether every point of the model is in front of the 3D camera and inside its view. */
+  inView3d(): boolean {
     this.updateCameras();
     this.persp.updateMatrixWorld();
-    const p = new THREE.Vector3(), q = new THREE.Vector3();
+    const q = new THREE.Vector3();
     const inv = this.persp.matrixWorldInverse;
-    for (let i = 0; i < 8; i++) {
-      p.set(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z);
+    for (const p of this.modelPoints()) {
       if (q.copy(p).applyMatrix4(inv).z >= 0) return false; // behind the camera
       p.project(this.persp);
       if (Math.abs(p.x) > 1 || Math.abs(p.y) > 1) return false;
@@ -484,7 +498,7 @@ export class Views {
       this.framing.clear();
       this.fit();
       for (const fn of this.topListeners) fn();
-    } else if (!before.containsBox(this.bounds) && this.rect("persp") && !this.inView3d(this.bounds)) {
+    } else if (!before.containsBox(this.bounds) && this.rect("persp") && !this.inView3d()) {
       // the model grew out of the 3D view: frame it again from where the user looks; any other
       // edit keeps the user's camera
       this.fit3d(this.persp.position.clone().sub(this.orbit.target));

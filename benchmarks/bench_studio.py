@@ -128,7 +128,7 @@ APEX_JS = """() => {
 
 def open_drawing(page, url: str, name: str) -> None:
     """Navigate ``page`` to the studio at ``url`` with drawing ``name`` and wait for its first frame."""
-    page.goto(f"{url}?open={name}")
+    page.goto(f"{url}?open={name}&style=curves")  # the looks are set later (--looks)
     page.wait_for_function("() => window.auszug && window.auszug.timings.length > 0 "
                            "&& window.auszug.timings[0].rendered > 0", timeout=30000)
 

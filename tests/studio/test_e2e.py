@@ -33,6 +33,6 @@ def test_studio_renders_drawing(studio, workspace, page, tmp_path):  # noqa: F81
     ink = np.abs(img - background).max(axis=-1) > 0.15
     h, w = ink.shape
     body = ink[40 : h - 10]  # leave out the view labels
-    split = int(0.62 * w)
+    split = int(page.evaluate("() => window.auszug.views.rect('top').w / window.auszug.views.host.clientWidth") * w)
     left, right = body[:, :split].sum(), body[:, split:].sum()
     assert left > 200 and right > 200, f"lines drawn: top view {left} px, 3D view {right} px"

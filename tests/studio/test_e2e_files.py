@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import shutil
 import time
 from pathlib import Path
 
@@ -347,3 +348,38 @@ def test_background_image(studio, page, tmp_path):
     page.evaluate(frame)
     assert page.evaluate("() => window.auszug.views.scene.getObjectByName('background')") is None
     assert page.evaluate(textures) == before
+
+
+def test_gallery_cards_show_thumbnails_of_the_top_view(studio, workspace, page):
+    from urllib.parse import unquote
+
+    from auszug.studio.thumbnails import thumbnail_svg
+
+    page.goto(studio.url)
+    wait_connected(page)
+    page.click("[data-testid=open]")
+    page.locator("[data-testid=gallery-card]").first.wait_for()
+    n = 2 + len(examples.names())
+    # every card gets its picture, one request at a time, decoded by the browser as a 96 px image
+    page.wait_for_function(f"""() => {{
+        const imgs = [...document.querySelectorAll('[data-testid=gallery-thumb]')];
+        return imgs.length === {n} && imgs.every((i) => i.complete && i.naturalWidth === 96);
+    }}""", timeout=60000)
+    page.screenshot(path=str(_shots() / "gallery_thumbnails.png"))
+    srcs = dict(page.locator("[data-testid=gallery-card]").evaluate_all(
+        "els => els.map(e => [e.dataset.kind + ':' + e.dataset.path, e.querySelector('img').src])"))
+    prefix = "data:image/svg+xml;charset=utf-8,"
+    for key, drawing in (("workspace:tn-2.uc", load(workspace / "tn-2.uc")),
+                         ("example:web/U.XI.28.uc", load(examples.path("web/U.XI.28.uc")))):
+        assert srcs[key].startswith(prefix)
+        assert unquote(srcs[key][len(prefix):]) == thumbnail_svg(build(drawing)), key
+    # a changed workspace file gets a new picture the next time the gallery opens
+    shutil.copy(examples.path("web/U.XI.28.uc"), workspace / "tn-2.uc")
+    page.keyboard.press("Escape")
+    page.keyboard.press("Escape")
+    page.click("[data-testid=open]")
+    page.wait_for_function("""() => {
+        const i = document.querySelector('[data-testid=gallery-card][data-path="tn-2.uc"] img');
+        const j = document.querySelector('[data-testid=gallery-card][data-path="web/U.XI.28.uc"] img');
+        return i && j && i.src && i.src === j.src;
+    }""", timeout=30000)

@@ -108,6 +108,7 @@ def test_gpu_memory_stays_constant_over_edits(studio, uxi28, page):
 
 def test_picked_faces_toggle_by_click(studio, uxi28, page):
     open_drawing(page, studio, uxi28)
+    page.select_option("[data-testid=look-style]", "curves")   # faces alone (tubes are the default)
     page.select_option("[data-testid=look-faces]", "picked")
     page.wait_for_function("""() => { const s = window.auszug.store;
         return s.loops && s.loops.revision === s.geometry.revision && s.loops.loops.length > 0
@@ -155,6 +156,8 @@ def test_preview_shows_meshes_in_all_three_views(studio, uxi28, page, tmp_path):
     open_drawing(page, studio, uxi28)
     in_views = """() => { const v = window.auszug.views, ms = v.scene.getObjectByName('meshes').children;
         return ['top', 'persp', 'side'].map((c) => ms.every((m) => m.layers.test(v[c].layers))); }"""
+    page.select_option("[data-testid=look-style]", "curves")   # 1 px lines first (tubes are the default)
+    page.wait_for_function("() => window.auszug.views.scene.getObjectByName('meshes').children.length === 0")
     page.click("[data-testid=mode-preview]")
     next_frame(page)
     lines = ink_per_view(page, tmp_path / "lines.png")

@@ -134,16 +134,16 @@ def test_reload_restores_the_document_and_the_looks(studio, page):
     page.locator("[data-testid=gallery-card][data-path='teaching-sheet/tn-2.uc']").click()
     page.wait_for_function("() => window.auszug.store.geometry !== null")
     g = set_apex(page, 2.4)
-    page.select_option("[data-testid=look-style]", "tube")
-    page.wait_for_function("() => new URLSearchParams(location.search).get('style') === 'tube'")
+    page.select_option("[data-testid=look-style]", "bar")
+    page.wait_for_function("() => new URLSearchParams(location.search).get('style') === 'bar'")
     assert f"doc={g['doc']}" in page.url
     page.reload()
     page.wait_for_function("() => window.auszug && window.auszug.store.geometry !== null")
     g2 = geometry(page)
     assert (g2["doc"], g2["path"], g2["dirty"]) == (g["doc"], "", True)
     assert g2["curves"][0]["apex"] == pytest.approx(2.4)
-    assert page.locator("[data-testid=look-style]").input_value() == "tube"
-    assert page.evaluate("() => window.auszug.store.looks.style") == "tube"
+    assert page.locator("[data-testid=look-style]").input_value() == "bar"
+    assert page.evaluate("() => window.auszug.store.looks.style") == "bar"
 
 
 def test_two_tabs_on_one_example_keep_their_own_work(studio, page):

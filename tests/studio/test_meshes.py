@@ -233,6 +233,30 @@ def test_export_cad_formats():
     assert name == "U.XI.28.3dm" and len(rhino3dm.File3dm.FromByteArray(data).Objects) == n
 
 
+@pytest.mark.parametrize(("segments", "around"), [(48, 10), (24, 6), (7, 3)])
+def test_export_resolution_sets_steps_and_points_round_the_tube(segments, around):
+    """A light export is the sweep at that resolution: triangles and vertex positions match exactly."""
+    net = _net(U28)
+    _, _, data = M.export_file(net, "U.XI.28.uc", format="glb", style="tube", segments=segments, around=around)
+    _, _, fine = M.export_file(net, "U.XI.28.uc", format="glb", style="tube")
+    want = sweep_network(net, profile_for("tube", default_size(net), around), segments)
+    scene = trimesh.load(io.BytesIO(data), file_type="glb")
+    assert sum(len(g.faces) for g in scene.geometry.values()) == want.n_faces
+    got = np.concatenate([g.vertices for g in scene.geometry.values()])
+    assert len(got) == len(want.vertices)
+    np.testing.assert_allclose(np.sort(got, axis=0), np.sort(want.vertices, axis=0), atol=1e-5)
+    assert len(data) < len(fine) / 10
+
+
+def test_export_resolution_limits():
+    net = _net(U28)
+    for around in (2, 65):
+        with pytest.raises(M.StudioMeshError, match=f"around .* must lie in 3..64, got {around}"):
+            M.export_file(net, "x", format="glb", style="tube", around=around)
+    with pytest.raises(M.StudioMeshError, match="segments must lie in 1..1000, got 1001"):
+        M.export_file(net, "x", format="glb", style="tube", segments=1001)
+
+
 def test_export_refusals():
     net = _net(U28)
     with pytest.raises(M.StudioMeshError, match="format must be one of glb, obj"):

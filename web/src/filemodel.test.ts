@@ -73,6 +73,18 @@ describe("exportRequest", () => {
     expect(exportRequest("stl", looks, colors, false).solid).toBeUndefined();
   });
 
+  it("sends the resolution: steps always, points round only for tubes; fine sends neither", () => {
+    const tube = { ...looks, style: "tube" as const, faces: "none" as const };
+    expect(exportRequest("glb", tube, colors, false, "light")).toEqual({
+      type: "export", format: "glb", style: "tube", faces: "none", loops: [], colors, segments: 48, around: 10,
+    });
+    const bar = exportRequest("obj", looks, colors, false, "draft");
+    expect([bar.segments, bar.around]).toEqual([24, undefined]);
+    const fine = exportRequest("glb", tube, colors, false, "fine");
+    expect([fine.segments, fine.around]).toEqual([undefined, undefined]);
+    expect(exportRequest("svg", tube, colors, false, "draft")).toEqual({ type: "export", format: "svg" });
+  });
+
   it("sends nothing else with drawings and networks", () => {
     expect(exportRequest("svg", looks, colors, true)).toEqual({ type: "export", format: "svg" });
     expect(exportRequest("network.json", looks, colors, false)).toEqual({ type: "export", format: "network.json" });

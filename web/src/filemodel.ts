@@ -117,12 +117,24 @@ export type ExportChoice = "glb" | "obj" | "stl" | "ply" | "svg" | "network.json
 /** Formats whose file is a triangle mesh (the looks' members and faces). */
 export const MESH_FORMATS: readonly ExportChoice[] = ["glb", "obj", "stl", "ply"];
 
+/** A mesh export's resolution: steps along each member and points round a tube (null: the server's
+ * defaults, 200 and 40; 64 steps for a printable solid). Bars and ribbons keep their 4 corners. */
+export type Resolution = "fine" | "medium" | "light" | "draft";
+export const RESOLUTIONS: Record<Resolution, { label: string; segments: number | null; around: number | null }> = {
+  fine: { label: "fine (200 steps, 40 round)", segments: null, around: null },
+  medium: { label: "medium (96 steps, 16 round)", segments: 96, around: 16 },
+  light: { label: "light (48 steps, 10 round)", segments: 48, around: 10 },
+  draft: { label: "draft (24 steps, 6 round)", segments: 24, around: 6 },
+};
+
 /**
  * The export request for a menu choice. Meshes take the looks' style (the "curves" look has no
  * cross-section: bars, the server's default), faces and picked loops; glb and obj also the
- * colours per basic curve as shown; `solid` (stl only) asks for one watertight, printable solid.
+ * colours per basic curve as shown; `solid` (stl only) asks for one watertight, printable solid;
+ * `resolution` sets the steps along the members and, for tubes, the points round them.
  */
-export function exportRequest(format: ExportChoice, looks: Looks, colors: string[], solid: boolean): Export {
+export function exportRequest(format: ExportChoice, looks: Looks, colors: string[], solid: boolean,
+  resolution: Resolution = "fine"): Export {
   if (!MESH_FORMATS.includes(format)) return { type: "export", format };
   const msg: Export = {
     type: "export",
@@ -133,5 +145,8 @@ export function exportRequest(format: ExportChoice, looks: Looks, colors: string
   };
   if (format === "glb" || format === "obj") msg.colors = colors;
   if (format === "stl" && solid) msg.solid = true;
+  const r = RESOLUTIONS[resolution];
+  if (r.segments !== null) msg.segments = r.segments;
+  if (r.around !== null && msg.style === "tube") msg.around = r.around;
   return msg;
 }

@@ -7,9 +7,9 @@ import type { Ctx } from "./context";
 import { Modal, Popover, button } from "./dialog";
 import {
   type Card, type DrawingExt, type ExportChoice, MESH_FORMATS, documentLabel, documentName, drawingExt, exportRequest,
-  galleryGroups, recoveryTime, savePath, suggestedName,
+  galleryGroups, RESOLUTIONS, type Resolution, recoveryTime, savePath, suggestedName,
 } from "./filemodel";
-import { MAX_MESSAGE_BYTES, type ClientMessage, type Exported, type Files, type Geometry } from "./protocol";
+import { MAX_MESSAGE_BYTES, type ClientMessage, type Exported, type Files, type Geometry, type Thumbnail } from "./protocol";
 import { registerShortcut } from "./shortcuts";
 
 const EXPORTS: { format: ExportChoice; label: string }[] = [
@@ -208,6 +208,33 @@ export function initFiles(ctx: Ctx): void {
   gallery.body.append(top, galleryMessage, groupsEl, notesEl);
   let listing: Files | null = null;
 
+  // thumbnails: each card's top view (get_thumbnail, an SVG shown as an image, so it runs no script),
+  // asked for one at a time in the gallery's order; examples are kept, workspace files asked again
+  // each time the gallery opens (they may have changed)
+  const thumbs = new Map<string, string>();   // key -> data: URL ("" while asked, "-" when it failed)
+  const thumbKey = (c: Card) => `${c.kind}:${c.path}`;
+  let thumbRun = 0;
+  async function loadThumbnails(cards: [Card, HTMLImageElement][]): Promise<void> {
+    const run = ++thumbRun;
+    for (const [c, img] of cards) {
+      if (run !== thumbRun || !gallery.isOpen) return;
+      const key = thumbKey(c);
+      let url = thumbs.get(key);
+      if (url === undefined) {
+        thumbs.set(key, "");
+        try {
+          const reply = await ctx.conn.request(c.kind === "example"
+            ? { type: "get_thumbnail", example: c.path } : { type: "get_thumbnail", path: c.path });
+          url = `data:image/svg+xml;charset=utf-8,${encodeURIComponent((reply.msg as Thumbnail).svg)}`;
+        } catch {
+          url = "-";   // unreadable drawing: the card stays without a picture (opening it says why)
+        }
+        thumbs.set(key, url);
+      }
+      if (url && url !== "-") img.src = url;
+    }
+  }
+
   function renderGallery(): void {
     groupsEl.replaceChildren();
     notesEl.replaceChildren();
@@ -221,6 +248,7 @@ export function initFiles(ctx: Ctx): void {
     galleryMessage.classList.remove("error");
     galleryMessage.textContent = groups.length ? "" : `No drawing matches “${search.value.trim()}”.`;
     const current = store.geometry?.path;
+    const pictures: [Card, HTMLImageElement][] = [];
     for (const group of groups) {
       const section = document.createElement("section");
       const h = document.createElement("h3");
@@ -242,13 +270,20 @@ export function initFiles(ctx: Ctx): void {
         const ext = document.createElement("span");
         ext.className = "card-ext";
         ext.textContent = c.ext;
-        b.append(name, ext);
+        const img = document.createElement("img");
+        img.className = "card-thumb";
+        img.dataset.testid = "gallery-thumb";
+        img.width = img.height = 96;
+        img.alt = "";
+        pictures.push([c, img]);
+        b.append(img, name, ext);
         b.addEventListener("click", () => void openCard(c, b));
         cards.appendChild(b);
       }
       section.append(h, cards);
       groupsEl.appendChild(section);
     }
+    void loadThumbnails(pictures);
   }
 
   async function openGallery(): Promise<void> {
@@ -256,6 +291,7 @@ export function initFiles(ctx: Ctx): void {
     search.value = "";
     search.focus();
     listing = null;
+    for (const key of [...thumbs.keys()]) if (key.startsWith("workspace:")) thumbs.delete(key);
     renderGallery();
     galleryMessage.textContent = "Loading…";
     try {
@@ -310,6 +346,17 @@ export function initFiles(ctx: Ctx): void {
   const solid = document.createElement("input");
   solid.type = "checkbox";
   solid.dataset.testid = "export-solid";
+  // the mesh exports' resolution (light meshes for games and the web; fine for renders and prints)
+  const resRow = document.createElement("div");
+  resRow.className = "row";
+  const resLabel = document.createElement("label");
+  resLabel.title = "Steps along each member and points round a tube in glb, obj, stl and ply";
+  const resolution = document.createElement("select");
+  resolution.dataset.testid = "export-resolution";
+  for (const [value, r] of Object.entries(RESOLUTIONS)) resolution.add(new Option(r.label, value));
+  resLabel.append("mesh ", resolution);
+  resRow.appendChild(resLabel);
+  exportMenu.el.appendChild(resRow);
   for (const { format, label } of EXPORTS) {
     const row = document.createElement("div");
     row.className = "row";
@@ -332,7 +379,8 @@ export function initFiles(ctx: Ctx): void {
     exportMenu.close();
     const colors = Array.from({ length: g.n_curves }, (_, i) => store.color(i));
     store.status(`exporting ${format}…`);
-    const reply = await tryRequest(exportRequest(format, store.looks, colors, solid.checked));
+    const reply = await tryRequest(exportRequest(format, store.looks, colors, solid.checked,
+      resolution.value as Resolution));
     if (!reply || !reply.binary) return;
     const { name, mime, size } = reply.msg as Exported;
     download(reply.binary, name, mime);

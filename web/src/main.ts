@@ -167,17 +167,19 @@ const fromUrl = readUrlState(window.location.search);
 if (fromUrl.style) store.setLooks({ style: fromUrl.style });
 if (fromUrl.faces) store.setLooks({ faces: fromUrl.faces });
 if (fromUrl.mode) store.setMode(fromUrl.mode);
+if (fromUrl.split !== null) store.setSplit(fromUrl.split);
 function syncUrl(): void {
   const g = store.geometry;
   const search = writeUrlState(window.location.search, {
     open: g?.path ?? fromUrl.open, doc: g?.doc ?? fromUrl.doc, style: store.looks.style, faces: store.looks.faces,
-    mode: store.mode,
+    mode: store.mode, split: store.split,
   });
   if (search !== window.location.search) window.history.replaceState(null, "", window.location.pathname + search);
 }
 store.on("geometry", syncUrl);
 store.on("looks", syncUrl);
 store.on("mode", syncUrl);
+store.on("split", syncUrl);
 
 initTopView(ctx);
 initCurvePanel(ctx);

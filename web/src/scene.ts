@@ -1,6 +1,8 @@
 // One WebGL renderer, several views (scissored regions of one canvas), rendered on demand.
-// Design mode: the top view (left) and a perspective view (right). Preview mode: perspective,
-// top and side (front elevation) views side by side (paper Fig. C.7).
+// Design mode: the top view (left) and a perspective view (right), split where the user dragged the
+// handle between them (store.split). Preview mode: perspective, top and side (front elevation) views
+// side by side (paper Fig. C.7). The 3D view opens on a raised three-quarter view framing the
+// model's bounding box, and refits (keeping the user's direction) only when the model grows out of it.
 // The network's lines share one BufferGeometry per basic piece; replicas are Line objects
 // placed by the sent transforms (instances, not copies). An edit that keeps the layout (a drag)
 // rewrites the buffers in place, so no GPU resources are created or leaked per edit.
@@ -9,7 +11,7 @@ import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { perFrame } from "./frames";
 import { layoutKey, transforms, view } from "./geometry";
 import type { Geometry } from "./protocol";
-import type { Mode, Store } from "./store";
+import { SPLIT, type Mode, type Store } from "./store";
 
 export type ViewName = "top" | "persp" | "side";
 
@@ -24,11 +26,16 @@ export interface Rect {
   h: number;
 }
 
-const LAYOUTS: Record<Mode, Partial<Record<ViewName, [number, number]>>> = {
-  // [start, end] as fractions of the viewport's width
-  design: { top: [0, 0.62], persp: [0.62, 1] },
-  preview: { persp: [0, 1 / 3], top: [1 / 3, 2 / 3], side: [2 / 3, 1] },
-};
+/** Each mode's views as [start, end] fractions of the viewport's width; `split`: the design mode's. */
+function layout(mode: Mode, split: number): Partial<Record<ViewName, [number, number]>> {
+  return mode === "design" ? { top: [0, split], persp: [split, 1] }
+    : { persp: [0, 1 / 3], top: [1 / 3, 2 / 3], side: [2 / 3, 1] };
+}
+
+/** The 3D view's opening direction: elevation above the ground and azimuth from the front (-y), degrees. */
+export const VIEW3D = { elevation: 35, azimuth: 35, fill: 0.8 } as const;
+/** Clear colours: the drawing views (paper) and the 3D view (a cooler, lighter ground for the coloured tubes). */
+const PAPER = 0xf4f1ea, SKY = 0xe9eef3;
 
 export class Views {
   readonly renderer: THREE.WebGLRenderer;
@@ -46,6 +53,8 @@ export class Views {
   /** performance.now() when the last frame was drawn, and how many frames so far. */
   lastFrameAt = 0;
   frames = 0;
+  /** How often the 3D view was refitted because the model grew out of it (for tests). */
+  refits = 0;
   private mode: Mode = "design";
   private layout = "";
   private geoms: THREE.BufferGeometry[] = [];
@@ -59,6 +68,7 @@ export class Views {
    * kept from the last resize: reading them while the DOM has changed would force a layout. */
   private size = { w: 1, h: 1 };
   private hostBox: DOMRect | null = null;
+  private splitHandle!: HTMLElement;
 
   constructor(readonly host: HTMLElement, private store: Store) {
     // MSAA doubles the cost of a frame on a software renderer (headless chromium's SwiftShader,
@@ -67,16 +77,20 @@ export class Views {
     // (on U.XI.28 a mouse drag's edit came 0.35-0.7 ms later with it, bench_studio.py).
     this.renderer = new THREE.WebGLRenderer({ antialias: !softwareRenderer(), preserveDrawingBuffer: false });
     this.renderer.setPixelRatio(window.devicePixelRatio);
-    this.renderer.setClearColor(0xf4f1ea);
+    this.renderer.setClearColor(PAPER);
     this.renderer.setScissorTest(true);
     this.renderer.domElement.dataset.testid = "canvas";
     host.prepend(this.renderer.domElement);
     this.network.name = "network";
     this.scene.add(this.network);
-    this.scene.add(new THREE.AmbientLight(0xffffff, 0.55));
-    const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+    // a sky light and two directional lights: no side of a member goes dark (the palette's colours read)
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0xb8b0a0, 1.6));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.5);
     sun.position.set(0.6, -1, 1.6);
     this.scene.add(sun);
+    const fill = new THREE.DirectionalLight(0xffffff, 0.6);
+    fill.position.set(-1, 0.8, 0.4);
+    this.scene.add(fill);
     this.top.up.set(0, 1, 0);
     this.persp.up.set(0, 0, 1);
     this.side.up.set(0, 0, 1);
@@ -94,6 +108,7 @@ export class Views {
     };
     this.labels = { top: label("top"), persp: label("3D"), side: label("side") };
     this.installTopControls();
+    this.installSplitHandle();
     new ResizeObserver(() => this.resize()).observe(host);
     // the box moves without a resize when the page scrolls or the window resizes
     const stale = () => { this.hostBox = null; };
@@ -103,6 +118,7 @@ export class Views {
     store.on("selection", () => this.recolor());
     store.on("looks", () => this.recolor());
     store.on("mode", (m) => this.setMode(m));
+    store.on("split", () => this.resize());
     this.resize();
   }
 
@@ -112,7 +128,7 @@ export class Views {
 
   /** The region of view `v` (null when the current mode does not show it). */
   rect(v: ViewName): Rect | null {
-    const span = LAYOUTS[this.mode][v];
+    const span = layout(this.mode, this.store.split)[v];
     if (!span) return null;
     const { w, h } = this.size;
     const x0 = Math.round(span[0] * w), x1 = Math.round(span[1] * w);
@@ -180,16 +196,66 @@ export class Views {
       this.topScale = 1.2 * span;
       this.topCenter.set(c.x, c.y);
     }
-    // the bounding sphere fills the 3D view's narrower field of view, seen from the front right
+    const el = THREE.MathUtils.degToRad(VIEW3D.elevation), az = THREE.MathUtils.degToRad(VIEW3D.azimuth);
+    this.fit3d(new THREE.Vector3(Math.cos(el) * Math.sin(az), -Math.cos(el) * Math.cos(az), Math.sin(el)));
+  }
+
+  /** Every point of the network's lines in world coordinates (all replicas); the bounding box's
+   * corners when there are none. */
+  private modelPoints(): THREE.Vector3[] {
+    const out: THREE.Vector3[] = [];
+    for (const child of this.network.children as THREE.Line[]) {
+      const pos = child.geometry.getAttribute("position") as THREE.BufferAttribute;
+      for (let i = 0; i < pos.count; i++) out.push(new THREE.Vector3().fromBufferAttribute(pos, i).applyMatrix4(child.matrix));
+    }
+    if (out.length) return out;
+    const b = this.bounds;
+    for (let i = 0; i < 8; i++) {
+      out.push(new THREE.Vector3(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z));
+    }
+    return out;
+  }
+
+  /** Frame the 3D view on the model, looking along -`dir` at its bounding box's centre: the
+   * curves' projection reaches VIEW3D.fill of the half view's width or height, whichever binds. */
+  fit3d(dir: THREE.Vector3): void {
+    const c = this.bounds.getCenter(new THREE.Vector3());
     const persp = this.rect("persp");
     const aspect = persp ? persp.w / Math.max(persp.h, 1) : 1;
-    const half = THREE.MathUtils.degToRad(this.persp.fov) / 2;
-    const fov = Math.min(half, Math.atan(Math.tan(half) * aspect));
-    const d = (0.9 * Math.max(size.length() / 2, 1e-6)) / Math.sin(fov);
-    this.persp.position.copy(c).addScaledVector(new THREE.Vector3(1.1, -1.6, 0.9).normalize(), d);
+    const tanV = Math.tan(THREE.MathUtils.degToRad(this.persp.fov) / 2) * VIEW3D.fill, tanH = tanV * aspect;
+    // camera axes: back (towards the camera), right, up (z up; a straight-down view takes y as up)
+    const back = dir.clone().normalize();
+    const right = new THREE.Vector3(0, 0, 1).cross(back);
+    if (right.lengthSq() < 1e-12) right.set(1, 0, 0);
+    right.normalize();
+    const up = back.clone().cross(right);
+    // a point at (x, y) across and z towards the camera stays inside when d >= z + |x| / tan
+    let d = 1e-6;
+    for (const p of this.modelPoints()) {
+      p.sub(c);
+      const z = p.dot(back);
+      d = Math.max(d, z + Math.abs(p.dot(right)) / tanH, z + Math.abs(p.dot(up)) / tanV);
+    }
+    this.persp.position.copy(c).addScaledVector(back, d);
+    this.persp.near = d / 1000;
+    this.persp.far = d * 100;
     this.orbit.target.copy(c);
     this.orbit.update();
     this.updateCameras();
+  }
+
+  /** Whether every point of the model is in front of the 3D camera and inside its view. */
+  inView3d(): boolean {
+    this.updateCameras();
+    this.persp.updateMatrixWorld();
+    const q = new THREE.Vector3();
+    const inv = this.persp.matrixWorldInverse;
+    for (const p of this.modelPoints()) {
+      if (q.copy(p).applyMatrix4(inv).z >= 0) return false; // behind the camera
+      p.project(this.persp);
+      if (Math.abs(p.x) > 1 || Math.abs(p.y) > 1) return false;
+    }
+    return true;
   }
 
   /** Draw at the next animation frame (once, however often asked). */
@@ -208,6 +274,7 @@ export class Views {
       const y = h - r.y - r.h; // WebGL's origin is the bottom left
       this.renderer.setViewport(r.x, y, r.w, r.h);
       this.renderer.setScissor(r.x, y, r.w, r.h);
+      this.renderer.setClearColor(v === "persp" ? SKY : PAPER);
       this.renderer.render(this.scene, this.camera(v));
     }
     this.lastFrameAt = performance.now();
@@ -235,11 +302,53 @@ export class Views {
     this.resize();
   }
 
+  /** The design mode's handle between the top and 3D views: drag it to move the split (store.split,
+   * kept in the URL); a double click puts it back in the middle. */
+  private installSplitHandle(): void {
+    const handle = document.createElement("div");
+    handle.className = "split-handle";
+    handle.dataset.testid = "split-handle";
+    handle.title = "Drag to resize the top and 3D views (double click: half and half)";
+    handle.setAttribute("role", "separator");
+    handle.setAttribute("aria-orientation", "vertical");
+    this.host.appendChild(handle);
+    this.splitHandle = handle;
+    let dragging = false;
+    handle.addEventListener("pointerdown", (ev) => {
+      if (ev.button !== 0) return;
+      dragging = true;
+      handle.setPointerCapture(ev.pointerId);
+      ev.preventDefault();
+      ev.stopPropagation();
+    });
+    handle.addEventListener("pointermove", (ev) => {
+      if (!dragging) return;
+      const b = this.box();
+      this.store.setSplit((ev.clientX - b.left) / Math.max(b.width, 1));
+    });
+    const end = (ev: PointerEvent) => {
+      if (!dragging) return;
+      dragging = false;
+      if (handle.hasPointerCapture(ev.pointerId)) handle.releasePointerCapture(ev.pointerId);
+    };
+    handle.addEventListener("pointerup", end);
+    handle.addEventListener("pointercancel", end);
+    handle.addEventListener("dblclick", () => this.store.setSplit(SPLIT.default));
+  }
+
+  private placeSplitHandle(): void {
+    const top = this.rect("top"), persp = this.rect("persp");
+    const show = this.mode === "design" && !!top && !!persp;
+    this.splitHandle.hidden = !show;
+    if (show) this.splitHandle.style.left = `${persp!.x}px`;
+  }
+
   private resize(): void {
     const w = this.host.clientWidth, h = this.host.clientHeight;
     this.size = { w, h };
     this.hostBox = null;
     this.renderer.setSize(w, h, false);
+    this.placeSplitHandle();
     this.updateCameras();
     for (const fn of this.topListeners) fn();
     this.requestRender();
@@ -379,6 +488,7 @@ export class Views {
       this.recolor();
     }
     const b = msg.bounds;
+    const before = this.bounds.clone();
     this.bounds.set(new THREE.Vector3(b[0], b[1], b[2]), new THREE.Vector3(b[3], b[4], b[5]));
     if (this.bounds.isEmpty() || msg.n_curves === 0) {
       this.bounds.set(new THREE.Vector3(-1, -1, 0), new THREE.Vector3(1, 1, 1));
@@ -388,6 +498,11 @@ export class Views {
       this.framing.clear();
       this.fit();
       for (const fn of this.topListeners) fn();
+    } else if (!before.containsBox(this.bounds) && this.rect("persp") && !this.inView3d()) {
+      // the model grew out of the 3D view: frame it again from where the user looks; any other
+      // edit keeps the user's camera
+      this.fit3d(this.persp.position.clone().sub(this.orbit.target));
+      this.refits++;
     }
     this.requestRender();
   }

@@ -29,7 +29,12 @@ export interface StoreEvents {
   status: { text: string; error: boolean };
   /** The active layer (new curves go there; the side view snaps to its heights). */
   layer: number;
+  /** Design mode: where the top view ends and the 3D view begins (a fraction of the viewport's width). */
+  split: number;
 }
+
+/** The design mode's split between the top view and the 3D view: default and limits (fractions of the width). */
+export const SPLIT = { default: 0.5, min: 0.2, max: 0.8 } as const;
 
 type Listener<T> = (value: T) => void;
 
@@ -50,7 +55,8 @@ export class Store {
   layer = 0;
   mode: Mode = "design";
   tool: Tool = "select";
-  looks: Looks = { style: "curves", faces: "none", loops: [], colors: [] };
+  looks: Looks = { style: "tube", faces: "none", loops: [], colors: [] };
+  split: number = SPLIT.default;
   private listeners = new Map<keyof StoreEvents, Set<Listener<never>>>();
 
   on<K extends keyof StoreEvents>(event: K, fn: Listener<StoreEvents[K]>): () => void {
@@ -108,6 +114,14 @@ export class Store {
     if (layer === this.layer) return;
     this.layer = layer;
     this.emit("layer", layer);
+  }
+
+  /** Set the design mode's split (clamped to SPLIT.min..SPLIT.max). */
+  setSplit(split: number): void {
+    const s = Math.min(SPLIT.max, Math.max(SPLIT.min, split));
+    if (!Number.isFinite(s) || s === this.split) return;
+    this.split = s;
+    this.emit("split", s);
   }
 
   setLooks(change: Partial<Looks>): void {

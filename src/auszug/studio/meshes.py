@@ -32,10 +32,13 @@ from auszug.errors import AuszugError
 from auszug.microarch.network import Network
 from auszug.studio import protocol as P
 
-__all__ = ["MAX_SEGMENTS", "MIMES", "Payload", "look", "mesh_message", "loops_message", "export_file", "loops_of"]
+__all__ = ["MAX_AROUND", "MAX_SEGMENTS", "MIN_AROUND", "MIMES", "Payload", "look", "mesh_message", "loops_message",
+           "export_file", "loops_of"]
 
 #: Largest ``segments`` a client may ask for (a sweep grows linearly with it).
 MAX_SEGMENTS = 1000
+#: Fewest and most points around a member's profile a client may ask for (``around``).
+MIN_AROUND, MAX_AROUND = 3, 64
 #: MIME type of every export format.
 MIMES: dict[str, str] = {
     "glb": "model/gltf-binary",
@@ -131,11 +134,12 @@ def _check_segments(segments: int) -> int:
 
 
 def look(net: Network, *, style: str, faces: str = "none", loops: Sequence[int] = (), size: float | None = None,
-         segments: int | None = None, solid: bool = False) -> Any:  # a meshing.Look
+         segments: int | None = None, solid: bool = False, around: int | None = None) -> Any:  # a meshing.Look
     """The :class:`~auszug.meshing.Look` of a ``get_mesh`` or ``export`` request, checked.
 
-    Size and segments count only for members (the ``curves`` style ignores
-    them); segments are at most :data:`MAX_SEGMENTS`.
+    Size, segments and around count only for members (the ``curves`` style
+    ignores them); segments are at most :data:`MAX_SEGMENTS`, around (points
+    round the profile) :data:`MIN_AROUND` .. :data:`MAX_AROUND`.
 
     Raises
     ------
@@ -149,6 +153,9 @@ def look(net: Network, *, style: str, faces: str = "none", loops: Sequence[int] 
     members = style != "curves"
     if members and segments is not None:
         _check_segments(segments)
+    if members and around is not None and not MIN_AROUND <= around <= MAX_AROUND:
+        raise StudioMeshError(f"around (points round a member's profile) must lie in {MIN_AROUND}..{MAX_AROUND}, "
+                              f"got {around}")
     fs: Any = "none"
     if faces == "auto":
         fs = "auto"
@@ -157,7 +164,7 @@ def look(net: Network, *, style: str, faces: str = "none", loops: Sequence[int] 
         fs = tuple(all_loops[i] for i in loops if 0 <= i < len(all_loops)) or "none"
     try:
         lk = Look(style, size=size if members else None, faces=fs, segments=segments if members else None,
-                  solid=solid)
+                  solid=solid, around=around if members else None)
         profile_of(net, lk)   # no default size for a drawing without extent
     except GeometryError as e:
         raise StudioMeshError(str(e)) from None
@@ -260,18 +267,20 @@ def _glb(mesh: Any, colours: list[tuple[float, float, float]]) -> bytes:
 
 def export_file(net: Network, name: str, *, format: str, style: str = "bar", faces: str = "none",
                 loops: Sequence[int] = (), solid: bool = False, colors: Sequence[str] = (),
-                segments: int | None = None) -> tuple[str, str, bytes]:
+                segments: int | None = None, around: int | None = None) -> tuple[str, str, bytes]:
     """Export ``net`` (whose drawing is called ``name``): (suggested file name, MIME type, bytes).
 
-    Mesh formats (glb, obj, stl, ply) sweep the members in ``style`` (200 steps,
-    64 for a solid) and add the faces; ``solid`` unites everything into one
-    watertight solid. ``colors`` (#rrggbb per basic curve) colour the glb's
-    members; OBJ is sent without its .mtl (one file per export), so it carries
-    no colours; STL and PLY have none. svg: top and side views; json / uc: the
-    drawing; network.json: the 3D curve network; dxf / 3dm: the curve network
-    for CAD programs, with exact arcs and lines where the curves have them. The
-    curve exports (svg, network.json, dxf, 3dm) are sampled to the default
-    tolerance (1e-6 of the bounding-box diagonal, every feature point a vertex).
+    Mesh formats (glb, obj, stl, ply) sweep the members in ``style`` with
+    ``segments`` steps (default 200, 64 for a solid) and ``around`` points round the
+    profile (default 40 for tubes, 4 otherwise; see :func:`look`) and add the faces;
+    ``solid`` unites everything into one watertight solid. ``colors`` (#rrggbb per
+    basic curve) colour the glb's members; OBJ is sent without its .mtl (one file
+    per export), so it carries no colours; STL and PLY have none. svg: top and side
+    views; json / uc: the drawing; network.json: the 3D curve network; dxf / 3dm:
+    the curve network for CAD programs, with exact arcs and lines where the curves
+    have them. The curve exports (svg, network.json, dxf, 3dm) are sampled to the
+    default tolerance (1e-6 of the bounding-box diagonal, every feature point a
+    vertex).
 
     Raises
     ------
@@ -289,7 +298,7 @@ def export_file(net: Network, name: str, *, format: str, style: str = "bar", fac
     colours = _parse_colours(colors)
     fname = f"{_stem(name)}.{format}"
     if format in MESH_EXPORTS:
-        mesh = _export_mesh(net, style, faces, loops, solid, segments)
+        mesh = _export_mesh(net, style, faces, loops, solid, segments, around)
         if format == "glb":
             data: bytes | str = _glb(mesh, colours)
         else:
@@ -308,13 +317,13 @@ def export_file(net: Network, name: str, *, format: str, style: str = "bar", fac
 
 
 def _export_mesh(net: Network, style: str, faces: str, loops: Sequence[int], solid: bool,
-                 segments: int | None) -> Any:  # a Mesh
+                 segments: int | None, around: int | None = None) -> Any:  # a Mesh
     from auszug.meshing import mesh_network
 
     fs = _faces(net, faces, loops)
     if style == "curves" and not solid and (fs is None or not fs.faces):
         raise StudioMeshError("nothing to export: style curves without faces makes no mesh")
-    lk = look(net, style=style, faces=faces, loops=loops, segments=segments or None, solid=solid)
+    lk = look(net, style=style, faces=faces, loops=loops, segments=segments or None, solid=solid, around=around)
     if lk.members and not net.pieces:
         raise StudioMeshError("nothing to export: the drawing has no curves")
     return mesh_network(net, lk, faces=fs).mesh

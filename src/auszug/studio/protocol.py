@@ -88,6 +88,8 @@ __all__ = [
     "Error",
     "WITH_PAYLOAD",
     "Resume",
+    "GetThumbnail",
+    "Thumbnail",
     "CLIENT_MESSAGES",
     "SERVER_MESSAGES",
     "decode",
@@ -98,7 +100,7 @@ __all__ = [
 ]
 
 #: Bumped whenever a message changes shape; the client shows it on mismatch.
-PROTOCOL_VERSION = 4
+PROTOCOL_VERSION = 5
 #: Largest client message the server reads (bytes); larger ones get an :class:`Error` reply.
 MAX_MESSAGE_BYTES = 256 * 1024
 
@@ -406,6 +408,19 @@ class ListFiles:
 
 
 @dataclass(frozen=True)
+class GetThumbnail:
+    """Ask for a gallery card's picture (answered by :class:`Thumbnail`).
+
+    The top view of workspace file ``path`` or bundled ``example``: exactly one of them.
+    """
+
+    path: str = ""
+    example: str = ""
+    id: int = 0
+    type: Literal["get_thumbnail"] = "get_thumbnail"
+
+
+@dataclass(frozen=True)
 class OpenExample:
     """Open a bundled drawing, e.g. ``web/U.XI.28.uc`` (a name from :class:`Files`); saving asks for a name."""
 
@@ -489,7 +504,10 @@ class Export:
     :class:`GetMesh`; ``solid`` unites everything into one watertight solid.
     ``colors`` are ``#rrggbb`` per basic curve (glb, obj). svg: top and side
     views; json / uc: the drawing; network.json: the 3D curve network; dxf / 3dm:
-    the curve network for CAD programs.
+    the curve network for CAD programs. ``segments`` (steps along each member,
+    1..1000; null: 200, 64 for a solid) and ``around`` (points around a tube's
+    or bar's profile, 3..64; null: 40 for tubes, 4 for bars and ribbons) set a
+    mesh export's resolution.
     """
 
     format: ExportFormat
@@ -498,6 +516,8 @@ class Export:
     loops: list[int] = field(default_factory=list)
     solid: bool = False
     colors: list[str] = field(default_factory=list)
+    segments: int | None = None
+    around: int | None = None
     id: int = 0
     type: Literal["export"] = "export"
 
@@ -693,6 +713,17 @@ class Files:
 
 
 @dataclass(frozen=True)
+class Thumbnail:
+    """A drawing's top view as a small SVG document (``svg``), for :class:`GetThumbnail`'s ``path`` or ``example``."""
+
+    svg: str
+    path: str = ""
+    example: str = ""
+    id: int = 0
+    type: Literal["thumbnail"] = "thumbnail"
+
+
+@dataclass(frozen=True)
 class Exported:
     """An exported file: ``name`` (suggested file name), ``mime``; the payload is the file (``size`` bytes)."""
 
@@ -725,9 +756,9 @@ CLIENT_MESSAGES: tuple[type, ...] = (
     Open, Resume, Save, Undo, Redo, MoveVertex, MoveHandle, SetApexHeight, SetPrc, RecomputePrc,
     SetLayerBottom, SetDecoration, SetPost, SetSymmetry, RemoveCurve,
     DrawCurve, SetLayer, SetPrcAt, SetPrcHeight, AddLayer, RemoveLayer,
-    ListFiles, OpenExample, OpenText, NewDrawing, Recover, GetMesh, GetLoops, Export,
+    ListFiles, OpenExample, OpenText, NewDrawing, Recover, GetMesh, GetLoops, Export, GetThumbnail,
 )
-SERVER_MESSAGES: tuple[type, ...] = (Geometry, MeshGeometry, Loops, Files, Exported, Saved, Error)
+SERVER_MESSAGES: tuple[type, ...] = (Geometry, MeshGeometry, Loops, Files, Exported, Saved, Error, Thumbnail)
 #: Server message types that carry a payload: each is sent as one binary frame (:func:`pack`).
 WITH_PAYLOAD: tuple[str, ...] = ("geometry", "mesh", "loops", "exported")
 #: Nested types that appear inside server messages, in the order the TypeScript lists them.

@@ -265,7 +265,8 @@ class _Studio:
             return meshes.loops_message(net, revision=revision, msg_id=msg.id)
         name, mime, data = meshes.export_file(net, label or drawing.name or "drawing", format=msg.format,
                                               style=msg.style, faces=msg.faces, loops=msg.loops,
-                                              solid=msg.solid, colors=msg.colors)
+                                              solid=msg.solid, colors=msg.colors, segments=msg.segments,
+                                              around=msg.around)
         return P.Exported(name=name, mime=mime, size=len(data), id=msg.id), data
 
     # -- messages ---------------------------------------------------------------------
@@ -356,6 +357,9 @@ class _Studio:
                 ws_files, notes = [], [f"workspace: cannot list it ({e.strerror or e})"]
             conn.outbox.put(P.encode(P.Files(workspace=ws_files, examples=examples.names(), notes=notes,
                                              id=msg.id)))
+        elif isinstance(msg, P.GetThumbnail):
+            svg = await asyncio.to_thread(self._thumbnail, msg.path, msg.example)
+            conn.outbox.put(P.encode(P.Thumbnail(svg=svg, path=msg.path, example=msg.example, id=msg.id)))
         elif isinstance(msg, (P.GetMesh, P.GetLoops, P.Export)):
             doc = self._need(conn)
             jobs.put_nowait((msg, doc.snapshot(), doc.label))
@@ -382,6 +386,17 @@ class _Studio:
             await task   # rolled back (or it failed anyway)
         raise EditCancelled(f"the change took longer than {budget:g} s and was given up; the drawing is "
                             "unchanged (auszug.limits.LIMITS.edit_seconds)")
+
+    def _thumbnail(self, path: str, example: str) -> str:
+        """The top view of a workspace file or a bundled example as a small SVG (in a worker thread)."""
+        from auszug.microarch import build
+        from auszug.studio.session import example_drawing, load_drawing
+        from auszug.studio.thumbnails import thumbnail_svg
+
+        if bool(path) == bool(example):
+            raise P.ProtocolError("get_thumbnail: give exactly one of path and example")
+        drawing = example_drawing(example) if example else load_drawing(self.workspace, path)[0]
+        return thumbnail_svg(build(drawing))
 
     @staticmethod
     def _opened(make: Any, *args: Any) -> Document:

@@ -947,14 +947,8 @@ class Document:
                             msg_id=msg_id, dirty=self.dirty, recoverable=self.recoverable, doc=self.doc_id)
 
 
-def open_document(workspace: Workspace, rel: str, resume: str = "") -> Document:
-    """Load ``rel`` (inside the workspace) as a new document; errors name ``rel``.
-
-    Checks for an autosave that differs from the file (:attr:`Document.recoverable`).
-    ``resume``: the id of the document a reconnecting tab showed; if that
-    document wrote the autosave, the autosave is restored at once (an undoable
-    edit) and the new document takes the id.
-    """
+def load_drawing(workspace: Workspace, rel: str) -> tuple[Drawing, str]:
+    """Read the drawing ``rel`` inside the workspace: (the drawing, its clean relative path); errors name ``rel``."""
     p = workspace.resolve(rel)
     rel_clean = workspace.relative(p)
     if p.is_dir():
@@ -969,7 +963,27 @@ def open_document(workspace: Workspace, rel: str, resume: str = "") -> Document:
         raise FormatError(f"not a text file ({e.reason} at byte {e.start})", rel_clean) from None
     except OSError as e:
         raise WorkspaceError(f"{rel_clean}: cannot read ({e.strerror or e})") from None
-    d = fmt.reader(text, rel_clean)
+    return fmt.reader(text, rel_clean), rel_clean
+
+
+def example_drawing(name: str) -> Drawing:
+    """The bundled drawing ``name`` (one of ``examples.names()``)."""
+    from auszug import examples
+
+    if name not in examples.names():
+        raise WorkspaceError(f"no bundled example {name!r}; list_files names them")
+    return read_drawing(name, examples.path(name).read_text(encoding="utf-8"))
+
+
+def open_document(workspace: Workspace, rel: str, resume: str = "") -> Document:
+    """Load ``rel`` (inside the workspace) as a new document; errors name ``rel``.
+
+    Checks for an autosave that differs from the file (:attr:`Document.recoverable`).
+    ``resume``: the id of the document a reconnecting tab showed; if that
+    document wrote the autosave, the autosave is restored at once (an undoable
+    edit) and the new document takes the id.
+    """
+    d, rel_clean = load_drawing(workspace, rel)
     doc = _built(workspace, d, rel_clean, "", rel_clean)
     if resume and check_doc_id(resume) and doc.autosave_owner() == resume and doc.autosave_file().is_file():
         a = doc.autosave_file()
@@ -1031,12 +1045,7 @@ def _built(workspace: Workspace, d: Drawing, path: str, name: str, label: str) -
 
 def example_document(workspace: Workspace, name: str) -> Document:
     """A private (unsaved) document of the bundled drawing ``name`` (one of ``examples.names()``)."""
-    from auszug import examples
-
-    if name not in examples.names():
-        raise WorkspaceError(f"no bundled example {name!r}; list_files names them")
-    text = examples.path(name).read_text(encoding="utf-8")
-    d = read_drawing(name, text)
+    d = example_drawing(name)
     doc = _built(workspace, d, "", PurePosixPath(name).name, name)
     doc.check_recoverable()
     return doc

@@ -120,12 +120,16 @@ class Limits:
         message.
     message : int
         Characters of an error message at most (the rest is cut).
+    mesh_segments : int
+        Most steps along each member of a studio mesh (``get_mesh``, ``export``).
+    tube_around : int
+        Most points round a tube's profile in a studio export (at least 3).
     edit_seconds : float
         Longest time one studio change (an edit, undo, redo or recovery, with
         its geometry) may take, in seconds. It runs in a worker thread, so
         the other tabs are answered meanwhile; past this budget it is given
         up and the drawing stays as it was. The slowest edit within the
-        other limits measured here (fold 1024 on U.XI.28) takes 0.6 s.
+        other limits measured here (fold 1019 on U.XI.28) takes 0.8 s.
     """
 
     fold: int = 1024
@@ -144,6 +148,8 @@ class Limits:
     file_bytes: int = 64 * 1024 * 1024
     quoted: int = 80
     message: int = 2000
+    mesh_segments: int = 1000
+    tube_around: int = 64
     edit_seconds: float = 20.0
 
 

@@ -29,6 +29,7 @@ from numpy.typing import NDArray
 
 from auszug._cache import LruCache
 from auszug.errors import AuszugError
+from auszug.limits import LIMITS
 from auszug.microarch.network import Network
 from auszug.studio import protocol as P
 
@@ -36,9 +37,9 @@ __all__ = ["MAX_AROUND", "MAX_SEGMENTS", "MIN_AROUND", "MIMES", "Payload", "look
            "export_file", "loops_of"]
 
 #: Largest ``segments`` a client may ask for (a sweep grows linearly with it).
-MAX_SEGMENTS = 1000
+MAX_SEGMENTS = LIMITS.mesh_segments  # the limits live in auszug.limits
 #: Fewest and most points around a member's profile a client may ask for (``around``).
-MIN_AROUND, MAX_AROUND = 3, 64
+MIN_AROUND, MAX_AROUND = 3, LIMITS.tube_around
 #: MIME type of every export format.
 MIMES: dict[str, str] = {
     "glb": "model/gltf-binary",

@@ -306,6 +306,11 @@ class _BezPrim:
         subdivision tree shows cheaply, only a distance above that (inf) and
         parameter 0: callers only ask whether a point lies on the curve.
         """
+        # an end point itself (curves of a network share end points): its exact parameter
+        if x == self.x0 and y == self.y0:
+            return 0.0, 0.0
+        if x == self.x1 and y == self.y1:
+            return 0.0, 1.0
         if not self._maybe_near(x, y, _tolerance.TOL.intersect):
             return math.inf, 0.0
         t = self.curve.project((x, y))

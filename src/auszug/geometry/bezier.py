@@ -298,19 +298,21 @@ class CubicBezier(Curve):
             t = np.where(seg > 0, lo + (hi - lo) * (target - cum[k]) / seg, lo)
         t = np.clip(t, lo, hi)
         base, start = cum[k], knots[k]
-        for _ in range(100):
-            f = base + self._integral(start, t) - target
-            sp = self.speed(t)
-            hi = np.where(f > 0, t, hi)
-            lo = np.where(f > 0, lo, t)
-            with np.errstate(invalid="ignore", divide="ignore"):
+        eps_f = 1e-15 * total
+        with np.errstate(invalid="ignore", divide="ignore"):
+            for _ in range(100):
+                f = base + self._integral(start, t) - target
+                sp = self.speed(t)
+                pos = f > 0
+                hi = np.where(pos, t, hi)
+                lo = np.where(pos, lo, t)
                 tn = t - f / sp
-            ok = np.isfinite(tn) & (tn > lo) & (tn < hi)
-            tn = np.where(ok, tn, 0.5 * (lo + hi))
-            done = (np.abs(f) <= 1e-15 * total) | (hi - lo <= 1e-16)
-            if np.all(done):
-                break
-            t = np.where(done, t, tn)
+                ok = np.isfinite(tn) & (tn > lo) & (tn < hi)
+                tn = np.where(ok, tn, 0.5 * (lo + hi))
+                done = (np.abs(f) <= eps_f) | (hi - lo <= 1e-16)
+                if done.all():
+                    break
+                t = np.where(done, t, tn)
         return np.where(u >= 1.0, 1.0, np.where(u <= 0.0, 0.0, t))
 
     @cached_property
@@ -421,10 +423,17 @@ class CubicBezier(Curve):
         """The curve mapped by ``x -> matrix @ x + offset`` (applied to the control points)."""
         m = np.asarray(matrix, dtype=float)
         c = self.controls @ m.T + np.asarray(offset, dtype=float)
-        out = CubicBezier(c[0], c[1], c[2], c[3])
         if m.shape == (2, 2) and np.abs(m @ m.T - _I2).max() <= 1e-12:   # rigid: the same arc-length table
+            # a rigid image of a valid curve is valid (finite, control points as far apart):
+            # the fields are set without the constructor's checks
+            if not np.isfinite(c).all():
+                raise GeometryError(f"Bezier control points must be finite, got {c.tolist()}")
+            out = object.__new__(CubicBezier)
+            for name, p in zip(("p0", "p1", "p2", "p3"), c, strict=True):
+                object.__setattr__(out, name, p)
             object.__setattr__(out, "_arc_source", self.__dict__.get("_arc_source", self))
-        return out
+            return out
+        return CubicBezier(c[0], c[1], c[2], c[3])
 
     def project(self, p: ArrayLike) -> float:
         """Parameter ``t`` of the point of the curve closest to ``p``.

@@ -234,9 +234,9 @@ def _bez_piece(t0: float, t1: float, c: tuple[float, ...]) -> _Piece:
     if el > 0.0:
         dev = max(abs((x1 - x0) * ey - (y1 - y0) * ex), abs((x2 - x0) * ey - (y2 - y0) * ex)) / el
         # handles beyond the chord's ends fold the piece back: not flat either
-        for hx, hy in ((x1, y1), (x2, y2)):
-            along = ((hx - x0) * ex + (hy - y0) * ey) / el
-            dev = max(dev, -along, along - el)
+        along1 = ((x1 - x0) * ex + (y1 - y0) * ey) / el
+        along2 = ((x2 - x0) * ex + (y2 - y0) * ey) / el
+        dev = max(dev, -along1, along1 - el, -along2, along2 - el)
     else:
         dev = max(math.hypot(x1 - x0, y1 - y0), math.hypot(x2 - x0, y2 - y0))
     return _Piece(t0, t1, box, dev, (x0, y0, x3, y3), c)

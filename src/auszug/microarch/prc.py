@@ -279,10 +279,13 @@ def _inverses(sym_j, sym_i) -> tuple[int, ...]:
 def _inverse_indices(mats_j: bytes, mats_i: bytes) -> tuple[int, ...]:
     mj = np.frombuffer(mats_j).reshape(-1, 2, 2)
     mi = np.frombuffer(mats_i).reshape(-1, 2, 2)
+    # every product mj[k] @ mi[i] at once (a group whose mirror axis follows a dragged point
+    # is new at every drag step, so this runs per edit): (nj, ni) distances from the identity
+    err = np.abs(mj[:, None] @ mi[None] - np.eye(2)).max(axis=(2, 3))
     out = []
-    for mk in mj:
-        m = [i for i, x in enumerate(mi) if np.abs(mk @ x - np.eye(2)).max() <= 1e-12]
-        out.append(m[0] if len(m) == 1 else -1)
+    for row in (err <= 1e-12):
+        m = np.flatnonzero(row)
+        out.append(int(m[0]) if len(m) == 1 else -1)
     return tuple(out)
 
 

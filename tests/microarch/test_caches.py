@@ -107,3 +107,22 @@ def test_a_rigid_replica_shares_the_arc_length_table():
     assert rot._table is b._table and fresh._table is not b._table
     assert np.abs(rot.u_at_t(t) - fresh.u_at_t(t)).max() <= 1e-14
     assert "_arc_source" not in b.transformed([[2, 0], [0, 1]]).__dict__   # not rigid: its own table
+
+
+@pytest.mark.parametrize(("n_j", "n_i", "axis_i"),
+                         [(1024, 1024, (0.0, 1.0)), (512, 1024, (1.0, 0.0)), (3, 5, (0.0, 1.0))])
+def test_inverse_replicas_of_large_groups_by_key_equal_every_product(n_j, n_i, axis_i):
+    """The keyed lookup of large groups (fold 1024 with a mirror: 2048 maps) finds, for every map
+    of one group, the one map of the other that is its inverse: the same answer as checking every
+    product, as the small groups' path does (a quadratic loop there built fold 1019 in 33 s)."""
+    from auszug.geometry import SymmetryGroup
+
+    gj, gi = SymmetryGroup(n_j, True), SymmetryGroup(n_i, True, axis=axis_i)
+    got = prc._inverse_indices(gj.matrices().tobytes(), gi.matrices().tobytes())
+    mj, mi = gj.matrices(), gi.matrices()
+    want = []
+    for mk in mj:
+        hit = np.flatnonzero(np.abs(mk @ mi - np.eye(2)).max(axis=(1, 2)) <= 1e-12)
+        want.append(int(hit[0]) if len(hit) == 1 else -1)
+    assert list(got) == want
+    assert sum(w >= 0 for w in want) == (min(n_j, n_i) * 2 if n_i % n_j == 0 or n_j % n_i == 0 else 2)

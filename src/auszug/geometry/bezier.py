@@ -35,6 +35,13 @@ _TABLE_MAX_LEVELS = 60
 _I2 = np.eye(2)
 #: Up to this many values, u_at_t runs in floats (numpy's per-call cost is larger).
 _FEW = 8
+#: project's samples of t, and the Bernstein weights of :meth:`CubicBezier.point` there, shape (n, 1)
+_PROJ_N = 129
+_PROJ_T = np.linspace(0.0, 1.0, _PROJ_N)
+_PROJ_M = (1.0 - _PROJ_T)[:, None]
+_PROJ_W = (_PROJ_M * _PROJ_M * _PROJ_M, 3.0 * _PROJ_M * _PROJ_M * _PROJ_T[:, None],
+           3.0 * _PROJ_M * _PROJ_T[:, None] * _PROJ_T[:, None],
+           _PROJ_T[:, None] * _PROJ_T[:, None] * _PROJ_T[:, None])
 
 
 @dataclass(frozen=True, eq=False, repr=False, init=False)
@@ -178,9 +185,22 @@ class CubicBezier(Curve):
         return k
 
     def speed(self, t: ArrayLike) -> Array:
-        """|dB/dt|, the arc length per unit of t: shape (...,) -> (...,)."""
-        d = self.derivative(t)
-        return np.hypot(d[..., 0], d[..., 1])
+        """|dB/dt|, the arc length per unit of t: shape (...,) -> (...,).
+
+        The same floating-point operations as :meth:`derivative`, per coordinate (numpy's cost
+        of the trailing axis of 2 was most of the arc-length table's and :meth:`t_at_u`'s time).
+        """
+        t = np.asarray(t, dtype=float)
+        ax, ay, bx, by, cx, cy = self._dfloats
+        m = 1.0 - t
+        p, q, r = m * m, 2.0 * m * t, t * t
+        return np.hypot(3.0 * (p * ax + q * bx + r * cx), 3.0 * (p * ay + q * by + r * cy))
+
+    @cached_property
+    def _dfloats(self) -> tuple[float, float, float, float, float, float]:
+        """The control polygon's edges p1 - p0, p2 - p1, p3 - p2 as 6 floats (ax, ay, bx, by, cx, cy)."""
+        a, b, c = self.p1 - self.p0, self.p2 - self.p1, self.p3 - self.p2
+        return (float(a[0]), float(a[1]), float(b[0]), float(b[1]), float(c[0]), float(c[1]))
 
     # -- arc length -----------------------------------------------------------------------
     def _integral(self, lo: Array, hi: Array) -> Array:
@@ -278,28 +298,28 @@ class CubicBezier(Curve):
             t = np.where(seg > 0, lo + (hi - lo) * (target - cum[k]) / seg, lo)
         t = np.clip(t, lo, hi)
         base, start = cum[k], knots[k]
-        for _ in range(100):
-            f = base + self._integral(start, t) - target
-            sp = self.speed(t)
-            hi = np.where(f > 0, t, hi)
-            lo = np.where(f > 0, lo, t)
-            with np.errstate(invalid="ignore", divide="ignore"):
+        eps_f = 1e-15 * total
+        with np.errstate(invalid="ignore", divide="ignore"):
+            for _ in range(100):
+                f = base + self._integral(start, t) - target
+                sp = self.speed(t)
+                pos = f > 0
+                hi = np.where(pos, t, hi)
+                lo = np.where(pos, lo, t)
                 tn = t - f / sp
-            ok = np.isfinite(tn) & (tn > lo) & (tn < hi)
-            tn = np.where(ok, tn, 0.5 * (lo + hi))
-            done = (np.abs(f) <= 1e-15 * total) | (hi - lo <= 1e-16)
-            if np.all(done):
-                break
-            t = np.where(done, t, tn)
+                ok = np.isfinite(tn) & (tn > lo) & (tn < hi)
+                tn = np.where(ok, tn, 0.5 * (lo + hi))
+                done = (np.abs(f) <= eps_f) | (hi - lo <= 1e-16)
+                if done.all():
+                    break
+                t = np.where(done, t, tn)
         return np.where(u >= 1.0, 1.0, np.where(u <= 0.0, 0.0, t))
 
     @cached_property
     def _scalar_table(self) -> tuple[list[float], list[float], tuple[float, ...], list[tuple[float, float]]]:
         """The arc-length table, the derivative's coefficients and the Gauss-Legendre rule as floats."""
         knots, cum = self._table
-        a, b, c = self.p1 - self.p0, self.p2 - self.p1, self.p3 - self.p2
-        coef = (float(a[0]), float(a[1]), float(b[0]), float(b[1]), float(c[0]), float(c[1]))
-        return knots.tolist(), cum.tolist(), coef, list(zip(_GL_X.tolist(), _GL_W.tolist(), strict=True))
+        return knots.tolist(), cum.tolist(), self._dfloats, list(zip(_GL_X.tolist(), _GL_W.tolist(), strict=True))
 
     def _speed_integral(self, lo: float, hi: float) -> float:
         """:meth:`_integral` of one interval in floats (16-point Gauss-Legendre)."""
@@ -403,10 +423,17 @@ class CubicBezier(Curve):
         """The curve mapped by ``x -> matrix @ x + offset`` (applied to the control points)."""
         m = np.asarray(matrix, dtype=float)
         c = self.controls @ m.T + np.asarray(offset, dtype=float)
-        out = CubicBezier(c[0], c[1], c[2], c[3])
         if m.shape == (2, 2) and np.abs(m @ m.T - _I2).max() <= 1e-12:   # rigid: the same arc-length table
+            # a rigid image of a valid curve is valid (finite, control points as far apart):
+            # the fields are set without the constructor's checks
+            if not np.isfinite(c).all():
+                raise GeometryError(f"Bezier control points must be finite, got {c.tolist()}")
+            out = object.__new__(CubicBezier)
+            for name, p in zip(("p0", "p1", "p2", "p3"), c, strict=True):
+                object.__setattr__(out, name, p)
             object.__setattr__(out, "_arc_source", self.__dict__.get("_arc_source", self))
-        return out
+            return out
+        return CubicBezier(c[0], c[1], c[2], c[3])
 
     def project(self, p: ArrayLike) -> float:
         """Parameter ``t`` of the point of the curve closest to ``p``.
@@ -418,9 +445,10 @@ class CubicBezier(Curve):
         0.5
         """
         p = np.asarray(p, dtype=float)
-        n = 129
-        ts = np.linspace(0.0, 1.0, n)
-        d = self.point(ts) - p
+        n = _PROJ_N
+        ts = _PROJ_T
+        w0, w1, w2, w3 = _PROJ_W   # :meth:`point` at ts, its Bernstein weights computed once
+        d = w0 * self.p0 + w1 * self.p1 + w2 * self.p2 + w3 * self.p3 - p
         d2 = np.einsum("ij,ij->i", d, d)
         # refine every local minimum of the sampled distance (a near-cusp passes a
         # point twice, and the sample nearest to it may lie on the wrong branch)

@@ -207,12 +207,20 @@ class _Piece:
     (x0, y0, x1, y1); ``ctrl`` holds a Bezier piece's 8 control coordinates.
     """
 
-    __slots__ = ("t0", "t1", "box", "dev", "chord", "ctrl", "kids")
+    __slots__ = ("t0", "t1", "box", "dev", "chord", "ctrl", "kids", "ln", "nx", "ny")
 
     def __init__(self, t0: float, t1: float, box: _Box, dev: float,
                  chord: tuple[float, float, float, float], ctrl: tuple[float, ...] | None):
         self.t0, self.t1, self.box, self.dev, self.chord, self.ctrl = t0, t1, box, dev, chord, ctrl
         self.kids: tuple[_Piece, _Piece] | None = None  # the halves, once computed
+        # the chord's length and unit left normal (0, 0 for a point), used by every test
+        # of the piece against another: computed once per piece
+        x0, y0, x1, y1 = chord
+        self.ln = ln = math.hypot(x1 - x0, y1 - y0)
+        if ln > 0.0:
+            self.nx, self.ny = (y0 - y1) / ln, (x1 - x0) / ln
+        else:
+            self.nx = self.ny = 0.0
 
 
 _Box = tuple[float, float, float, float]
@@ -226,9 +234,9 @@ def _bez_piece(t0: float, t1: float, c: tuple[float, ...]) -> _Piece:
     if el > 0.0:
         dev = max(abs((x1 - x0) * ey - (y1 - y0) * ex), abs((x2 - x0) * ey - (y2 - y0) * ex)) / el
         # handles beyond the chord's ends fold the piece back: not flat either
-        for hx, hy in ((x1, y1), (x2, y2)):
-            along = ((hx - x0) * ex + (hy - y0) * ey) / el
-            dev = max(dev, -along, along - el)
+        along1 = ((x1 - x0) * ex + (y1 - y0) * ey) / el
+        along2 = ((x2 - x0) * ex + (y2 - y0) * ey) / el
+        dev = max(dev, -along1, along1 - el, -along2, along2 - el)
     else:
         dev = max(math.hypot(x1 - x0, y1 - y0), math.hypot(x2 - x0, y2 - y0))
     return _Piece(t0, t1, box, dev, (x0, y0, x3, y3), c)
@@ -272,7 +280,7 @@ class _BezPrim:
             if x < b[0] - tol or x > b[2] + tol or y < b[1] - tol or y > b[3] + tol:
                 continue
             x0, y0, x1, y1 = p.chord
-            ln = math.hypot(x1 - x0, y1 - y0)
+            ln = p.ln
             if ln > 0.0 and abs((x - x0) * (y0 - y1) + (y - y0) * (x1 - x0)) / ln > p.dev + tol:
                 continue
             if _is_flat(p, tol) or p.t1 - p.t0 < 1e-6:
@@ -306,6 +314,11 @@ class _BezPrim:
         subdivision tree shows cheaply, only a distance above that (inf) and
         parameter 0: callers only ask whether a point lies on the curve.
         """
+        # an end point itself (curves of a network share end points): its exact parameter
+        if x == self.x0 and y == self.y0:
+            return 0.0, 0.0
+        if x == self.x1 and y == self.y1:
+            return 0.0, 1.0
         if not self._maybe_near(x, y, _tolerance.TOL.intersect):
             return math.inf, 0.0
         t = self.curve.project((x, y))
@@ -619,25 +632,24 @@ def _fat_apart(pa: _Piece, pb: _Piece, tol: float) -> bool:
 
     The strip has half-width ``pa.dev`` and contains ``pa``: then the pieces cannot meet.
     """
-    x0, y0, x1, y1 = pa.chord
-    ln = math.hypot(x1 - x0, y1 - y0)
-    if ln == 0.0:
+    if pa.ln == 0.0:
         return False
-    nx, ny = (y0 - y1) / ln, (x1 - x0) / ln
+    x0, y0, _, _ = pa.chord
+    nx, ny = pa.nx, pa.ny
     if pb.ctrl is not None:
-        c = pb.ctrl
-        d = [(c[k] - x0) * nx + (c[k + 1] - y0) * ny for k in (0, 2, 4, 6)]
+        c0, c1, c2, c3, c4, c5, c6, c7 = pb.ctrl
+        d0, d1 = (c0 - x0) * nx + (c1 - y0) * ny, (c2 - x0) * nx + (c3 - y0) * ny
+        d2, d3 = (c4 - x0) * nx + (c5 - y0) * ny, (c6 - x0) * nx + (c7 - y0) * ny
         margin = pa.dev + tol
-    else:
-        bx0, by0, bx1, by1 = pb.chord
-        d = [(bx0 - x0) * nx + (by0 - y0) * ny, (bx1 - x0) * nx + (by1 - y0) * ny]
-        margin = pa.dev + pb.dev + tol
-    return min(d) > margin or max(d) < -margin
+        return min(d0, d1, d2, d3) > margin or max(d0, d1, d2, d3) < -margin
+    bx0, by0, bx1, by1 = pb.chord
+    e0, e1 = (bx0 - x0) * nx + (by0 - y0) * ny, (bx1 - x0) * nx + (by1 - y0) * ny
+    margin = pa.dev + pb.dev + tol
+    return min(e0, e1) > margin or max(e0, e1) < -margin
 
 
 def _is_flat(p: _Piece, tol: float) -> bool:
-    x0, y0, x1, y1 = p.chord
-    return p.dev <= max(_FLAT * math.hypot(x1 - x0, y1 - y0), tol)
+    return p.dev <= max(_FLAT * p.ln, tol)
 
 
 def _near(a, b, sa: float, tol: float) -> bool:

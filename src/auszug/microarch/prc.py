@@ -279,15 +279,23 @@ def _inverses(sym_j, sym_i) -> tuple[int, ...]:
 def _inverse_indices(mats_j: bytes, mats_i: bytes) -> tuple[int, ...]:
     mj = np.frombuffer(mats_j).reshape(-1, 2, 2)
     mi = np.frombuffer(mats_i).reshape(-1, 2, 2)
-    # Candidates by a rounded key of k's inverse (the maps are orthogonal: the inverse is the
-    # transpose), each checked by the product itself; a key that rounds the other way at a digit
-    # boundary falls back to checking every map of i. Linear in the group sizes (fold 1024 with
-    # a mirror has 2048 maps: every pair of maps would be 4 M products).
     eye = np.eye(2)
+    out: list[int] = []
+    if len(mj) * len(mi) <= 4096:
+        # small groups (the usual case, and a group whose mirror axis follows a dragged point is
+        # new at every drag step, so this runs per edit): every product mj[k] @ mi[i] at once
+        err = np.abs(mj[:, None] @ mi[None] - eye).max(axis=(2, 3))
+        for row in (err <= 1e-12):
+            m = np.flatnonzero(row)
+            out.append(int(m[0]) if len(m) == 1 else -1)
+        return tuple(out)
+    # Large groups (fold 1024 with a mirror has 2048 maps: every pair would be 4 M products):
+    # candidates by a rounded key of k's inverse (the maps are orthogonal: the inverse is the
+    # transpose), each checked by the product itself; a key that rounds the other way at a digit
+    # boundary falls back to checking every map of i. Linear in the group sizes.
     index: dict[tuple[float, ...], list[int]] = {}
     for n, key in enumerate(map(tuple, np.round(mi.reshape(-1, 4), 9))):
         index.setdefault(key, []).append(n)
-    out: list[int] = []
     for mk, key in zip(mj, map(tuple, np.round(mj.transpose(0, 2, 1).reshape(-1, 4), 9)), strict=True):
         hit = [n for n in index.get(key, ()) if np.abs(mk @ mi[n] - eye).max() <= 1e-12]
         if not hit:

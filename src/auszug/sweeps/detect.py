@@ -108,9 +108,15 @@ def sweep_length(p: SweepPatch) -> float:
     return float(np.linalg.norm(np.diff(c, axis=0), axis=1).sum())
 
 
-def _to_input(p: SweepPatch, m: SweepMesh, new_id: int) -> SweepPatch:
+def _to_input(p: SweepPatch, m: SweepMesh, new_id: int, tolerance: float) -> SweepPatch:
+    fit = None
+    if tolerance > 0:
+        from auszug.sweeps.profilefit import fit_profile
+
+        fit = fit_profile(p.profile, p.closed, tolerance, name=f"patch {new_id}")
     return SweepPatch(new_id, p.kind, m.to_input(p.profile), p.closed, p.motion.transformed(m.scale, m.centre),
-                      p.faces, p.fit_error, p.coverage)
+                      p.faces, p.fit_error, p.coverage,
+                      None if fit is None else fit.scaled(m.scale, m.centre))
 
 
 def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None = None,
@@ -218,7 +224,8 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
             continue
         kept.append(p)
         taken[p.faces] = True
-    patches = tuple(_to_input(p, m, i) for i, p in enumerate(kept))
+    patches = tuple(_to_input(p, m, i, params.profile_fit_tolerance) for i, p in enumerate(kept))
+    fitted = sum(p.profile_fit is not None for p in patches)
     covered = np.zeros(len(m.faces), bool)
     for p in patches:
         covered[p.faces] = True
@@ -226,8 +233,10 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
     stages.append(Stage("fit", time.perf_counter() - t,
                         f"{len(patches)} of {len(raw)} patch(es) kept ({len(good)} within fit error {bound:.3g}, "
                         f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}; "
-                        f"then overlaps dropped); coverage {coverage:.3f}",
-                        {"candidates": len(raw), "patches": len(patches), "coverage": coverage}))
+                        f"then overlaps dropped); coverage {coverage:.3f}; {fitted} profile(s) fitted with lines "
+                        f"and arcs within {params.profile_fit_tolerance:.3g}",
+                        {"candidates": len(raw), "patches": len(patches), "coverage": coverage,
+                         "profile_fits": fitted}))
     if progress is not None:
         progress("fit", total, total)
     return SweepReport(patches, coverage, m.scale, m.centre, m.n_vertices, len(m.faces), tuple(stages), params,

@@ -351,7 +351,7 @@ def fit_lines_arcs(points: ArrayLike, closed: bool = False, tolerance: float = 1
     >>> u = np.linspace(0, np.pi, 20)
     >>> half = np.column_stack([np.cos(u), np.sin(u)])
     >>> f = fit_lines_arcs(np.vstack([[[2.0, 0.0]], half, [[-2.0, 0.0]]]), tolerance=0.01)
-    >>> f.kinds, np.round(f.radii, 9).tolist(), f.profile.bulges.tolist()
+    >>> f.kinds, np.round(f.radii, 9).tolist(), np.round(f.profile.bulges, 9).tolist()
     (('line', 'arc', 'line'), [1.0], [0.0, 1.0, 0.0])
 
     The Hausdorff distance is the polyline's own chord error on the arc, ``1 - cos(pi / 38)``:

@@ -356,7 +356,7 @@ def fit_lines_arcs(points: ArrayLike, closed: bool = False, tolerance: float = 1
 
     The Hausdorff distance is the polyline's own chord error on the arc, ``1 - cos(pi / 38)``:
 
-    >>> round(f.hausdorff, 9) == round(1 - np.cos(np.pi / 38), 9)
+    >>> bool(round(f.hausdorff, 9) == round(1 - np.cos(np.pi / 38), 9))
     True
     """
     p = np.asarray(points, float)

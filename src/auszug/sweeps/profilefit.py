@@ -5,7 +5,8 @@ given back as meshing's exact :class:`~auszug.meshing.profile.Profile` (vertices
 segment) that can be swept again and exported:
 
 1. **segment by curvature**: the discrete curvature of the polyline (turning angle over the mean
-   of the two edges) splits it at corners (turning more than ``corner_angle``); each stretch
+   of the two edges) splits it at corners (turning more than ``corner_angle`` and more than its
+   neighbours); each stretch
    between corners is fitted as a line (curvature near zero) or an arc (curvature near
    constant), and split again at its point of largest curvature change while neither fits
    within the tolerance;
@@ -39,6 +40,8 @@ Array = NDArray[np.float64]
 #: A piece's vertices must lie within this share of the tolerance of its line or circle (tighter than
 #: the Hausdorff bound of the whole fit, so that a short fillet is not swallowed by a neighbouring arc).
 PIECE_SHARE = 0.25
+#: An arc spans at least this many polyline vertices (three fit any circle: no evidence of one).
+MIN_ARC_POINTS = 4
 
 
 @dataclass(frozen=True)
@@ -148,7 +151,7 @@ def _piece(p: Array, i0: int, i1: int, tol: float) -> Piece | None:
     c, d, err = _fit_line(q)
     if err <= tol:
         return Piece("line", i0, i1, c, d, 0.0, err)
-    if len(q) >= 3:
+    if len(q) >= MIN_ARC_POINTS:
         cc, r, cerr = _fit_circle(q)
         if cerr <= tol:
             return Piece("arc", i0, i1, cc, np.zeros(2), r, cerr)
@@ -255,32 +258,6 @@ def _bulge(pc: Piece, a: Array, b: Array, mid: Array) -> float:
     return float(np.tan((d1 + d2) / 4))
 
 
-def _sample(points: Array, bulge: Array, closed: bool, sagitta: float) -> Array:
-    """Points along the exact outline: lines by their ends, arcs by chords of at most ``sagitta`` (<= 4096)."""
-    n = len(points)
-    out = []
-    for i in range(n if closed else n - 1):
-        a, b = points[i], points[(i + 1) % n]
-        g = float(bulge[i])
-        if g == 0.0:
-            out.append(a[None])
-            continue
-        th = 4 * np.arctan(g)
-        ch = b - a
-        c = float(np.linalg.norm(ch))
-        r = c / (2 * abs(np.sin(th / 2)))
-        left = np.array([-ch[1], ch[0]]) / c
-        centre = (a + b) / 2 + left * (c / 2) / np.tan(th / 2)
-        dth = 2 * np.arccos(max(1.0 - sagitta / r, -1.0))
-        k = int(min(4096, max(2, np.ceil(abs(th) / max(dth, 1e-12)))))
-        ang0 = np.arctan2(*(a - centre)[::-1])
-        u = ang0 + th * np.linspace(0, 1, k + 1)[:-1]
-        out.append(centre + r * np.column_stack([np.cos(u), np.sin(u)]))
-    if not closed:
-        out.append(points[-1][None])
-    return np.vstack(out)
-
-
 def _to_segments(p: Array, closed: bool) -> Array:
     a = p
     b = np.roll(p, -1, axis=0) if closed else p[1:]
@@ -319,7 +296,7 @@ def polyline_hausdorff_2d(a: ArrayLike, b: ArrayLike, closed_a: bool = False, cl
 
 
 def fit_lines_arcs(points: ArrayLike, closed: bool = False, tolerance: float = 1e-3,
-                   corner_angle: float = 30.0, name: str = "profile") -> ProfileFit | None:
+                   corner_angle: float = 30.0, name: str = "profile", _start: int | None = None) -> ProfileFit | None:
     """Fit a planar polyline with lines and circular arcs joined end to end.
 
     Parameters
@@ -331,7 +308,8 @@ def fit_lines_arcs(points: ArrayLike, closed: bool = False, tolerance: float = 1
         The largest Hausdorff distance of the whole fit to the polyline (units of ``points``); a
         piece's vertices lie within ``PIECE_SHARE`` (1/4) of it of their line or circle.
     corner_angle : float
-        Vertices turning by more than this (degrees) are corners: pieces always end there.
+        Vertices turning by more than this (degrees) and by at least 1.5 times as much as either
+        neighbour are corners: pieces always end there (an evenly turning coarse arc has none).
     name : str
         Name of the :class:`Profile`.
 
@@ -367,9 +345,10 @@ def fit_lines_arcs(points: ArrayLike, closed: bool = False, tolerance: float = 1
         raise GeometryError(f"profile fit tolerance must be > 0, got {tolerance!r}")
     keep = np.concatenate([[True], np.linalg.norm(np.diff(p, axis=0), axis=1) > 1e-12 * max(np.ptp(p), 1e-300)])
     p = p[keep]
+    n_open = len(p)
     if closed:
         t = _turning(np.vstack([p[-1:], p, p[:1]]))[1:-1]
-        start = int(np.argmax(np.abs(t)))
+        start = int(np.argmax(np.abs(t))) if _start is None else _start
         p = np.vstack([np.roll(p, -start, axis=0), np.roll(p, -start, axis=0)[:1]])
     n = len(p)
     e = np.linalg.norm(np.diff(p, axis=0), axis=1)
@@ -379,7 +358,9 @@ def fit_lines_arcs(points: ArrayLike, closed: bool = False, tolerance: float = 1
     if n > 2:
         kappa[0], kappa[-1] = kappa[1], kappa[-2]
     piece_tolerance = PIECE_SHARE * tolerance
-    corners = [0] + [i for i in range(1, n - 1) if abs(turn[i]) > np.radians(corner_angle)] + [n - 1]
+    a = np.abs(turn)
+    corners = [0] + [i for i in range(1, n - 1)
+                     if a[i] > np.radians(corner_angle) and a[i] >= 1.5 * max(a[i - 1], a[i + 1])] + [n - 1]
     pieces: list[Piece] = []
     try:
         for i0, i1 in zip(corners[:-1], corners[1:], strict=True):
@@ -388,6 +369,9 @@ def fit_lines_arcs(points: ArrayLike, closed: bool = False, tolerance: float = 1
             pieces.extend(_shift_joints(p, _merge(p, run, piece_tolerance), piece_tolerance))
     except GeometryError:
         return None
+    if closed and _start is None and len(pieces) > 1:
+        # the start may lie inside a piece (cut in two by the wrap): start again at a found joint
+        return fit_lines_arcs(points, True, tolerance, corner_angle, name, (start + pieces[0].i1) % n_open)
     joints = [p[0]] + [_joint(a, b, p[a.i1], tolerance) for a, b in zip(pieces[:-1], pieces[1:], strict=True)]
     joints.append(_joint(pieces[-1], pieces[0], p[-1], tolerance) if closed else p[-1])
     if closed:
@@ -408,7 +392,7 @@ def fit_lines_arcs(points: ArrayLike, closed: bool = False, tolerance: float = 1
         prof = Profile(v, closed=closed, name=name, bulge=b)
     except GeometryError:
         return None
-    dense = _sample(prof.points, prof.bulges, closed, tolerance / 10)
+    dense = prof.sample(tolerance=tolerance / 1000)
     poly = p[:-1] if closed else p
     h = polyline_hausdorff_2d(dense, poly, closed, closed)
     if not h <= tolerance:

@@ -251,8 +251,15 @@ def _joint(a: Piece, b: Piece, x: Array, tol: float) -> Array:
 
 
 def _bulge(pc: Piece, a: Array, b: Array, mid: Array) -> float:
-    """Bulge of the arc of ``pc``'s circle from ``a`` to ``b`` passing by (the side of) ``mid``."""
-    ua, ub, um = (np.arctan2(*(v - pc.centre)[::-1]) for v in (a, b, mid))
+    """Bulge of the arc from ``a`` to ``b`` through ``mid`` (on ``pc``'s circle).
+
+    The joints ``a``, ``b`` may lie a little off the fitted circle (snapped to a neighbour); the arc
+    through them and ``mid`` keeps its middle on the fitted circle.
+    """
+    m = np.array([b - a, mid - a])
+    rhs = 0.5 * np.array([(b - a) @ (b + a), (mid - a) @ (mid + a)])
+    centre = np.linalg.solve(m, rhs) if abs(np.linalg.det(m)) > 1e-18 else pc.centre
+    ua, ub, um = (np.arctan2(*(v - centre)[::-1]) for v in (a, b, mid))
     d1 = (um - ua + np.pi) % (2 * np.pi) - np.pi
     d2 = (ub - um + np.pi) % (2 * np.pi) - np.pi
     return float(np.tan((d1 + d2) / 4))

@@ -205,7 +205,10 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
                             {"agreement": axis.agreement, "kind": axis.kind, "kinematic": int(kinematic),
                              "candidates": len(raw)}))
 
-    if not kinematic:
+    bound = params.fit_factor * params.eps_prox
+    if not kinematic or not any(p.fit_error <= bound and p.coverage >= params.min_patch_area for p in raw):
+        # not kinematic, or kinematic cuts whose motion sweeps nothing that fits (a translation along a
+        # curved path glides like a turn): general sweeps
         from auszug.sweeps.general import general_stages
 
         more, general = general_stages(m, cuts, mov, params, step)
@@ -213,7 +216,6 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         stages.extend(general)
 
     t = step("fit")
-    bound = params.fit_factor * params.eps_prox
     good = [p for p in raw if p.fit_error <= bound and p.coverage >= params.min_patch_area
             and sweep_length(p) >= params.min_sweep_length]
     kept: list[SweepPatch] = []

@@ -7,13 +7,16 @@ Stages (each also callable alone, see :mod:`auszug.sweeps`):
 3. ``kinematic``: the consensus motion of all cuts; if at least ``kinematic_min_agreement`` of
    them glide under it, the mesh is a surface of revolution, an extrusion or a helical surface and
    its patches come from :func:`~auszug.sweeps.patches.kinematic_patches`;
-4. otherwise ``match`` (curvature plots of every movable run of the initial cuts, Eq. 6),
+4. otherwise (or when no kinematic candidate fits within ``fit_factor * eps_prox`` and covers
+   ``min_patch_area``: a translation along a curved path glides like a turn) ``match``
+   (curvature plots of every movable run of the initial cuts, Eq. 6),
    ``families`` (sec. 2.2, most support first) with their ribs ordered, and ``motion`` (sec. 2.3:
    velocities by Eq. 7, Hermite interpolation, projection to rigid motions, profile improvement,
    fit check). The paper's adaptive plane refinement (:func:`~auszug.sweeps.search_planes`) is
    not run: its good planes, ranked by gliding energy, miss the profile planes (docs/sweeps.md);
 5. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
-   ``min_patch_area`` of the mesh are dropped; the rest are converted to the input's coordinates.
+   ``min_patch_area`` of the mesh are dropped; the rest are converted to the input's coordinates,
+   each profile fitted with exact lines and arcs (``profile_fit_tolerance``, docs/sweeps.md section 6).
 
 Each stage reports what it kept in a :class:`Stage` (for ``auszug sweeps --explain``).
 """

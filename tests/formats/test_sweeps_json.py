@@ -51,6 +51,24 @@ def test_round_trip_is_lossless(tmp_path):
     assert dumps(again) == text
 
 
+def test_profile_fit_round_trips_exactly():
+    """The optional profile_fit key: written, read back to the same exact Profile, absent when off."""
+    r = _report()
+    (p,) = r.patches
+    assert p.profile_fit is not None and p.profile_fit.profile.has_arcs
+    doc = orjson.loads(dumps(r))
+    fit = doc["patches"][0]["profile_fit"]
+    assert set(fit) == {"origin", "axes", "closed", "points", "bulges", "hausdorff"}
+    back = loads(dumps(r)).patches[0].profile_fit
+    assert back == p.profile_fit and back.profile == p.profile_fit.profile
+    assert np.array_equal(back.vertices(), p.profile_fit.vertices())
+    # the fit's vertices are in the input's coordinates: on the profile polyline's plane
+    assert np.abs((np.asarray(p.profile) - back.origin) @ back.axes[:, 2]).max() <= 1e-9 * r.bbox_diameter
+    del doc["patches"][0]["profile_fit"]
+    old = loads(orjson.dumps(doc))
+    assert old.patches[0].profile_fit is None and "profile_fit" not in orjson.loads(dumps(old))["patches"][0]
+
+
 def _broken(change):
     doc = orjson.loads(dumps(_report()))
     change(doc)
@@ -73,6 +91,13 @@ def _broken(change):
     (lambda d: d.update(n_faces=-3), "n_faces"),
     (lambda d: d["params"].update(eps_prox=7.0), "params: sweep parameter eps_prox"),
     (lambda d: d.update(patches=[1]), r"patches\[0\]: expected an object"),
+    (lambda d: d["patches"][0].update(profile_fit=3), r"patches\[0\].profile_fit: expected an object or null"),
+    (lambda d: d["patches"][0]["profile_fit"].update(axes=[[2, 0, 0], [0, 1, 0], [0, 0, 1]]),
+     r"patches\[0\].profile_fit.axes: expected orthonormal"),
+    (lambda d: d["patches"][0]["profile_fit"].update(bulges=[0.0]), r"patches\[0\].profile_fit: profile bulge"),
+    (lambda d: d["patches"][0]["profile_fit"].update(points=[[0, 0, 0]]), r"patches\[0\].profile_fit.points"),
+    (lambda d: d["patches"][0]["profile_fit"].update(hausdorff=-1), r"patches\[0\].profile_fit.hausdorff"),
+    (lambda d: d["patches"][0]["profile_fit"].update(closed="no"), r"patches\[0\].profile_fit.closed"),
 ])
 def test_bad_documents_name_the_place(change, message):
     with pytest.raises(FormatError, match=message):

@@ -173,3 +173,19 @@ def test_the_one_triangulator_fills_holes_on_a_shared_line_with_collinear_points
     e = np.sort(np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]), axis=1)
     _, counts = np.unique(e, axis=0, return_counts=True)
     assert (counts == 1).sum() == n and counts.max() == 2   # each ring edge once, inner edges twice
+
+
+@pytest.mark.parametrize("deg", [160.0, 200.0, 300.0, -200.0, -300.0])
+def test_arcs_over_half_a_turn_end_at_their_vertices(deg):
+    """An arc of more than 180 deg has its centre on the far side of the chord: the sampled arc runs
+    from vertex to vertex on one circle, through the point at half its sweep."""
+    p = Profile(np.array([[1.0, 0.0], [-1.0, 0.0]]), closed=False, bulge=[np.tan(np.radians(deg) / 4)])
+    q = p.sample(per_arc=64)
+    assert np.abs(q[0] - [1, 0]).max() <= 1e-12 and np.abs(q[-1] - [-1, 0]).max() <= 1e-12
+    th = np.radians(deg)
+    r = 1 / abs(np.sin(th / 2))
+    centre = np.array([0.0, -np.sign(th) * r * np.cos(th / 2)])
+    assert np.abs(np.linalg.norm(q - centre, axis=1) - r).max() <= 1e-12
+    # the midpoint of a counter-clockwise arc from (1, 0) to (-1, 0) is above the centre, below for clockwise
+    assert np.abs(p.point([0.5])[0] - (centre + [0.0, np.sign(th) * r])).max() <= 1e-12
+    assert p.length == pytest.approx(r * abs(th), rel=1e-12)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import cache
 
 import numpy as np
@@ -138,8 +139,13 @@ def test_closed_profile_of_an_extruded_pipe():
     (p,) = detect((v, f)).patches
     assert p.kind == "translation" and p.closed and p.coverage == pytest.approx(1.0)
     assert p.motion.t[-1] == pytest.approx(0.8 / np.linalg.norm(np.ptp(v, axis=0)))
-    d, _ = closest_distance(p.sweep().mesh(caps=False).vertices, v, f)
+    d, _ = closest_distance(replace(p, profile_fit=None).sweep().mesh(caps=False).vertices, v, f)
     assert d.max() <= 1e-12
+    # the profile is no line-and-arc curve: its fit (the default sweep) stays within its Hausdorff distance
+    fit = p.profile_fit
+    assert fit is not None and fit.profile.closed and 0 < fit.hausdorff <= DEFAULT.profile_fit_tolerance
+    d, _ = closest_distance(p.sweep().mesh(caps=False).vertices, v, f)
+    assert d.max() <= fit.hausdorff * np.linalg.norm(np.ptp(v, axis=0)) * (1 + 1e-9)
 
 
 @pytest.mark.parametrize("sigma", [0.0, 5e-4])

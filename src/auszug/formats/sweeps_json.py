@@ -17,7 +17,11 @@ Everything is in the input mesh's coordinates. ``profile`` is the profile polyli
 motion parameter; ``motion`` the rigid maps ``x -> R x + T`` taking it to its position at ``t``
 (identity at the first ``t``; at least 8, ``t`` increasing: the angle in radians for rotations
 and screws, the distance in bounding-box diameters for translations, the rib number for general
-sweeps); between two maps the motion is the screw between them. ``faces`` are indices into the
+sweeps); between two maps the motion is the screw between them. A patch may carry the optional
+``"profile_fit"``: its profile as exact lines and arcs, ``{"origin": [x, y, z], "axes": [[...], [...],
+[...]], "closed": false, "points": [[x, y], ...], "bulges": [b, ...], "hausdorff": h}`` (the
+vertices of meshing's ``Profile`` in the plane frame whose columns are ``axes``, one bulge
+``tan(angle / 4)`` per segment, ``hausdorff`` over ``bbox_diameter``). ``faces`` are indices into the
 mesh's faces; ``fit_error`` (the largest distance of the swept profile to the mesh) and
 ``coverage`` are relative to ``bbox_diameter`` and the mesh's area.
 
@@ -64,6 +68,12 @@ def to_dict(report: Any) -> dict[str, Any]:
             "motion": [{"t": float(t), "rotation": r.tolist(), "translation": tr.tolist()}
                        for t, r, tr in zip(m.t, m.rotation, m.translation, strict=True)],
             "faces": p.faces.tolist(), "fit_error": float(p.fit_error), "coverage": float(p.coverage)})
+        if p.profile_fit is not None:
+            fit = p.profile_fit
+            patches[-1]["profile_fit"] = {
+                "origin": fit.origin.tolist(), "axes": fit.axes.tolist(), "closed": bool(fit.profile.closed),
+                "points": fit.profile.points.tolist(), "bulges": fit.profile.bulges.tolist(),
+                "hausdorff": float(fit.hausdorff)}
     return {"format": FORMAT, "version": VERSION, "source": report.source,
             "bbox_diameter": float(report.bbox_diameter), "coverage": float(report.coverage),
             "patches": patches,
@@ -101,6 +111,32 @@ def _array(v: Any, shape: tuple[int | None, ...], where: str, name: str) -> np.n
 
 def _shape(shape: tuple[int | None, ...]) -> str:
     return "(" + ", ".join("n" if s is None else str(s) for s in shape) + ")"
+
+
+def _profile_fit(raw: Any, where: str, pid: int, name: str) -> Any:
+    """The optional ``profile_fit`` of a patch (None when absent or null)."""
+    from auszug.meshing.profile import Profile
+    from auszug.sweeps import FittedProfile
+
+    if raw is None:
+        return None
+    if not isinstance(raw, dict):
+        raise FormatError(f"{where}: expected an object or null", name)
+    origin = _array(raw.get("origin"), (3,), f"{where}.origin", name)
+    axes = _array(raw.get("axes"), (3, 3), f"{where}.axes", name)
+    if not np.allclose(axes.T @ axes, np.eye(3), atol=1e-9) or np.linalg.det(axes) < 0:
+        raise FormatError(f"{where}.axes: expected orthonormal right-handed columns", name)
+    points = _array(raw.get("points"), (None, 2), f"{where}.points", name)
+    bulges = _array(raw.get("bulges"), (None,), f"{where}.bulges", name)
+    if not isinstance(raw.get("closed"), bool):
+        raise FormatError(f"{where}.closed: expected true or false", name)
+    if not (_number(raw.get("hausdorff")) and raw["hausdorff"] >= 0):
+        raise FormatError(f"{where}.hausdorff: expected a finite number >= 0", name)
+    try:
+        prof = Profile(points, closed=raw["closed"], name=f"patch {pid}", bulge=bulges)
+    except GeometryError as e:
+        raise FormatError(f"{where}: {e}", name) from None
+    return FittedProfile(origin, axes, prof, float(raw["hausdorff"]))
 
 
 def loads(text: str | bytes, name: str = "<string>") -> Any:
@@ -177,7 +213,8 @@ def loads(text: str | bytes, name: str = "<string>") -> Any:
             if not _number(p.get(key)):
                 raise FormatError(f"{where}.{key}: expected a finite number", name)
         patches.append(SweepPatch(p["id"], p.get("kind", "general"), prof, bool(p.get("closed", False)), motion, fa,
-                                  float(p["fit_error"]), float(p["coverage"])))
+                                  float(p["fit_error"]), float(p["coverage"]),
+                                  _profile_fit(p.get("profile_fit"), f"{where}.profile_fit", p["id"], name)))
     raw_stages = doc.get("stages", [])
     if not isinstance(raw_stages, list):
         raise FormatError("stages: expected a list", name)

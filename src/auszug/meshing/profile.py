@@ -240,7 +240,7 @@ class Profile:
             r = np.where(arc, c_len / (2.0 * np.abs(np.sin(sweep / 2.0))), 0.0)
             h = np.where(arc, r * np.cos(sweep / 2.0), 0.0)
             nrm = np.stack([-chord[:, 1], chord[:, 0]], axis=1) / c_len[:, None]
-        ctr = 0.5 * (a + b) + (np.copysign(h, sweep))[:, None] * nrm
+        ctr = 0.5 * (a + b) + (np.sign(sweep) * h)[:, None] * nrm   # h < 0: an arc over 180 deg
         ctr = np.where(arc[:, None], ctr, a)
         return a, b, ctr, r, sweep
 

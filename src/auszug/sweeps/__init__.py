@@ -14,7 +14,9 @@ The detection stages, each callable alone, each returning a frozen dataclass:
    velocities by Eq. 7, Hermite interpolation of motions, profile improvement, fit check), each
    a :class:`SweepPatch`: profile, :class:`Motion`, faces covered, fit error, coverage.
 
-:func:`detect` runs them all and returns a :class:`SweepReport`.
+:func:`detect` runs them all and returns a :class:`SweepReport`. Beyond the paper, every patch's
+profile is fitted with exact lines and arcs (:func:`fit_profile`, a :class:`FittedProfile` holding
+meshing's :class:`~auszug.meshing.profile.Profile`), so a found moulding can be swept again.
 
 Parameters live in one :class:`SweepParams`. Pure numpy/scipy/numba; no file I/O (meshes are read
 by :mod:`auszug.formats`).
@@ -43,6 +45,7 @@ from auszug.sweeps.movability import Movability, movability, velocities, velocit
 from auszug.sweeps.params import DEFAULT, SweepParams
 from auszug.sweeps.patches import Fit, SweepPatch, fit_patch, kinematic_patches, polyline_hausdorff
 from auszug.sweeps.planes import geodesic_sphere, hemisphere, initial_planes, plane_recall, refine_box, spacing_for
+from auszug.sweeps.profilefit import FittedProfile, ProfileFit, fit_lines_arcs, fit_profile, profile_frame
 from auszug.sweeps.search import PlaneSearch, good_planes, search_planes
 
 __all__ = [
@@ -92,6 +95,11 @@ __all__ = [
     "velocity_state",
     "DEFAULT",
     "SweepParams",
+    "FittedProfile",
+    "ProfileFit",
+    "fit_lines_arcs",
+    "fit_profile",
+    "profile_frame",
     "geodesic_sphere",
     "hemisphere",
     "initial_planes",

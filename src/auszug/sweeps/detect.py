@@ -7,13 +7,16 @@ Stages (each also callable alone, see :mod:`auszug.sweeps`):
 3. ``kinematic``: the consensus motion of all cuts; if at least ``kinematic_min_agreement`` of
    them glide under it, the mesh is a surface of revolution, an extrusion or a helical surface and
    its patches come from :func:`~auszug.sweeps.patches.kinematic_patches`;
-4. otherwise ``match`` (curvature plots of every movable run of the initial cuts, Eq. 6),
+4. otherwise (or when no kinematic candidate fits within ``fit_factor * eps_prox`` and covers
+   ``min_patch_area``: a translation along a curved path glides like a turn) ``match``
+   (curvature plots of every movable run of the initial cuts, Eq. 6),
    ``families`` (sec. 2.2, most support first) with their ribs ordered, and ``motion`` (sec. 2.3:
    velocities by Eq. 7, Hermite interpolation, projection to rigid motions, profile improvement,
    fit check). The paper's adaptive plane refinement (:func:`~auszug.sweeps.search_planes`) is
    not run: its good planes, ranked by gliding energy, miss the profile planes (docs/sweeps.md);
 5. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
-   ``min_patch_area`` of the mesh are dropped; the rest are converted to the input's coordinates.
+   ``min_patch_area`` of the mesh are dropped; the rest are converted to the input's coordinates,
+   each profile fitted with exact lines and arcs (``profile_fit_tolerance``, docs/sweeps.md section 6).
 
 Each stage reports what it kept in a :class:`Stage` (for ``auszug sweeps --explain``).
 """
@@ -108,9 +111,15 @@ def sweep_length(p: SweepPatch) -> float:
     return float(np.linalg.norm(np.diff(c, axis=0), axis=1).sum())
 
 
-def _to_input(p: SweepPatch, m: SweepMesh, new_id: int) -> SweepPatch:
+def _to_input(p: SweepPatch, m: SweepMesh, new_id: int, tolerance: float) -> SweepPatch:
+    fit = None
+    if tolerance > 0:
+        from auszug.sweeps.profilefit import fit_profile
+
+        fit = fit_profile(p.profile, p.closed, tolerance, name=f"patch {new_id}")
     return SweepPatch(new_id, p.kind, m.to_input(p.profile), p.closed, p.motion.transformed(m.scale, m.centre),
-                      p.faces, p.fit_error, p.coverage)
+                      p.faces, p.fit_error, p.coverage,
+                      None if fit is None else fit.scaled(m.scale, m.centre))
 
 
 def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None = None,
@@ -199,7 +208,10 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
                             {"agreement": axis.agreement, "kind": axis.kind, "kinematic": int(kinematic),
                              "candidates": len(raw)}))
 
-    if not kinematic:
+    bound = params.fit_factor * params.eps_prox
+    if not kinematic or not any(p.fit_error <= bound and p.coverage >= params.min_patch_area for p in raw):
+        # not kinematic, or kinematic cuts whose motion sweeps nothing that fits (a translation along a
+        # curved path glides like a turn): general sweeps
         from auszug.sweeps.general import general_stages
 
         more, general = general_stages(m, cuts, mov, params, step)
@@ -207,7 +219,6 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         stages.extend(general)
 
     t = step("fit")
-    bound = params.fit_factor * params.eps_prox
     good = [p for p in raw if p.fit_error <= bound and p.coverage >= params.min_patch_area
             and sweep_length(p) >= params.min_sweep_length]
     kept: list[SweepPatch] = []
@@ -218,7 +229,8 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
             continue
         kept.append(p)
         taken[p.faces] = True
-    patches = tuple(_to_input(p, m, i) for i, p in enumerate(kept))
+    patches = tuple(_to_input(p, m, i, params.profile_fit_tolerance) for i, p in enumerate(kept))
+    fitted = sum(p.profile_fit is not None for p in patches)
     covered = np.zeros(len(m.faces), bool)
     for p in patches:
         covered[p.faces] = True
@@ -226,8 +238,10 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
     stages.append(Stage("fit", time.perf_counter() - t,
                         f"{len(patches)} of {len(raw)} patch(es) kept ({len(good)} within fit error {bound:.3g}, "
                         f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}; "
-                        f"then overlaps dropped); coverage {coverage:.3f}",
-                        {"candidates": len(raw), "patches": len(patches), "coverage": coverage}))
+                        f"then overlaps dropped); coverage {coverage:.3f}; {fitted} profile(s) fitted with lines "
+                        f"and arcs within {params.profile_fit_tolerance:.3g}",
+                        {"candidates": len(raw), "patches": len(patches), "coverage": coverage,
+                         "profile_fits": fitted}))
     if progress is not None:
         progress("fit", total, total)
     return SweepReport(patches, coverage, m.scale, m.centre, m.n_vertices, len(m.faces), tuple(stages), params,

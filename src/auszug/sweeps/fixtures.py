@@ -32,6 +32,7 @@ __all__ = [
     "helical",
     "moulding_along_ellipse",
     "moulding_along_cubic",
+    "double_translational",
     "bumps",
     "grid_faces",
 ]
@@ -271,6 +272,23 @@ def moulding_along_cubic(n_profile: int = 60, n_path: int = 160, twist: float = 
     pq, nq = bez(np.linspace(0.05, 0.95, n_planes))
     planes = np.column_stack([nq, np.einsum("ij,ij->i", nq, pq)])
     return _finish("cubic", "moulding", v.reshape(-1, 3), f, sigma, seed, None, None, planes, scale * float(s[-1]))
+
+
+def double_translational(n_profile: int = 60, n_path: int = 120, length: float = 0.8, rise: float = 0.15,
+                         sigma: float = 0.0, seed: int = 0) -> Fixture:
+    """The base moulding translated (never turned) along the arch ``z = rise sin(pi x / length)``.
+
+    A double translational surface: every profile plane is ``x = const`` (``planes``), the motion a
+    pure translation along a curved path, so it is no kinematic surface (no single direction).
+    """
+    p, s = gothic_base_profile(n_profile)
+    x = np.linspace(0.0, length, n_path)
+    h = rise * np.sin(np.pi * x / length)
+    v = np.column_stack([np.repeat(x, n_profile), np.tile(p[:, 0], n_path),
+                         np.repeat(h, n_profile) + np.tile(p[:, 1], n_path)])
+    planes = np.column_stack([np.tile([1.0, 0.0, 0.0], (n_path, 1)), x])
+    return _finish("double_translational", "moulding", v, grid_faces(n_path, n_profile), sigma, seed, None, None,
+                   planes, float(s[-1]))
 
 
 def bumps(n: int = 90, n_bumps: int = 40, sigma: float = 0.0, seed: int = 0) -> Fixture:

@@ -141,6 +141,11 @@ class SweepParams:
     patch_overlap : float
         A patch whose faces' area is covered by this share by a better patch (lower fit error)
         is dropped.
+    profile_fit_tolerance : float
+        Beyond the paper: every kept patch's profile is fitted with exact lines and arcs
+        (:func:`auszug.sweeps.fit_profile`) and the fit kept when its Hausdorff distance to the
+        polyline is at most this (bounding-box diameters; its pieces' vertices lie within a
+        quarter of it of their line or circle). 0: no fit.
     """
 
     beta: float = 400.0
@@ -184,6 +189,7 @@ class SweepParams:
     max_families: int = 6
     min_sweep_length: float = 0.2
     patch_overlap: float = 0.8
+    profile_fit_tolerance: float = 0.002
 
     def __post_init__(self) -> None:
         checks = [
@@ -221,6 +227,7 @@ class SweepParams:
             ("max_families", 0 <= self.max_families <= 1000, "in 0..1000"),
             ("min_sweep_length", self.min_sweep_length >= 0, ">= 0"),
             ("patch_overlap", 0 < self.patch_overlap <= 1, "in (0, 1]"),
+            ("profile_fit_tolerance", 0 <= self.profile_fit_tolerance <= 0.1, "in [0, 0.1] (bounding-box diameters)"),
         ]
         for name, ok, want in checks:
             if not ok:

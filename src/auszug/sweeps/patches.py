@@ -40,6 +40,7 @@ from auszug.sweeps.params import DEFAULT, SweepParams
 
 if TYPE_CHECKING:
     from auszug.meshing.sweepmodel import Sweep
+    from auszug.sweeps.profilefit import FittedProfile
 
 __all__ = ["SweepPatch", "Fit", "MeshTree", "kinematic_patches", "fit_patch", "face_areas", "sweep_surface",
            "closest_distance", "polyline_hausdorff"]
@@ -71,6 +72,9 @@ class SweepPatch:
         Largest distance of the swept profile to the mesh, over the bounding-box diameter.
     coverage : float
         The covered faces' share of the mesh's area, 0..1.
+    profile_fit : FittedProfile or None
+        The profile as exact lines and arcs (beyond the paper; :func:`auszug.sweeps.fit_profile`),
+        None where no fit is within ``profile_fit_tolerance``.
     """
 
     id: int
@@ -81,6 +85,7 @@ class SweepPatch:
     faces: IntArray
     fit_error: float
     coverage: float
+    profile_fit: FittedProfile | None = None
 
     def swept(self, t: ArrayLike) -> Array:
         """The profile at parameters ``t (q,)``: shape ``(q, n, 3)``."""
@@ -91,23 +96,19 @@ class SweepPatch:
 
         The profile plane gets the frame (W, D, N) with origin the profile's centroid, W along its
         principal direction, N its normal; frame ``k`` is the motion's ``R_k`` applied to it.
-        Re-meshing it (``.mesh()``) gives the swept surface with a ring per motion knot.
+        Re-meshing it (``.mesh()``) gives the swept surface with a ring per motion knot. The
+        profile is :attr:`profile_fit` (exact lines and arcs) where there is one, else the
+        polyline.
         """
         from auszug.meshing.profile import Profile
         from auszug.meshing.sweepmodel import Path, RigidFrames, Sweep
+        from auszug.sweeps.profilefit import profile_frame
 
-        o = self.profile.mean(axis=0)
-        _, _, vt = np.linalg.svd(self.profile - o)
-        e1, e3 = vt[0], vt[2]
-        e2 = np.cross(e3, e1)
-        basis = np.stack([e1, e2, e3], axis=1)
-        xy = (self.profile - o) @ basis[:, :2]
-        prof = Profile(xy, closed=self.closed, name=f"patch {self.id}")
-        if self.closed and not np.allclose(prof.points, xy):
-            # Profile made a closed loop counter-clockwise: flip the frame's y instead of the points
-            e2, e3 = -e2, -e3
-            basis = np.stack([e1, e2, e3], axis=1)
-            prof = Profile((self.profile - o) @ basis[:, :2], closed=True, name=f"patch {self.id}")
+        if self.profile_fit is not None:
+            o, basis, prof = self.profile_fit.origin, self.profile_fit.axes, self.profile_fit.profile
+        else:
+            o, basis, xy = profile_frame(self.profile, self.closed)
+            prof = Profile(xy, closed=self.closed, name=f"patch {self.id}")
         rot = self.motion.rotation @ basis
         origins = np.einsum("kij,j->ki", self.motion.rotation, o) + self.motion.translation
         moved = np.linalg.norm(np.diff(origins, axis=0), axis=1)

@@ -17,8 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from auszug.geometry import CubicBezier, intersect_many
-from tests.lifting.truth import hermite_chain, revolve, rotation
+from auszug.geometry import CubicBezier
+from tests.lifting.truth import hermite_chain, occlusions, revolve, rotation
 
 JITTER = 0.0
 VIEWS = {"vase": rotation(25.0, 15.0), "ogee-roof": rotation(26.0, -34.0), "arches": rotation(24.0, 32.0)}
@@ -96,22 +96,7 @@ def project(chains: list[np.ndarray], R: np.ndarray, jitter: float, seed: int) -
 
 def spurious(strokes2d: list[np.ndarray], view: list[np.ndarray], tol: float) -> list[np.ndarray]:
     """2D crossings whose two curves are farther than ``tol`` apart in depth: occlusions."""
-    curves, owner = [], []
-    for i, c in enumerate(strokes2d):
-        for k, seg in enumerate(c):
-            curves.append(CubicBezier.from_array(seg))
-            owner.append((i, k))
-    out = []
-    for (a, b), hits in intersect_many(curves).items():
-        (ia, ka), (ib, kb) = owner[a], owner[b]
-        if ia == ib:
-            continue
-        for h in hits:
-            za = CubicBezier.from_array(view[ia][ka][:, [0, 2]]).point(h.t1)[1]
-            zb = CubicBezier.from_array(view[ib][kb][:, [0, 2]]).point(h.t2)[1]
-            if abs(za - zb) > tol:
-                out.append(np.asarray(h.point))
-    return out
+    return occlusions(view, tol, strokes2d)
 
 
 def svg(name: str, strokes2d: list[np.ndarray], markers: list[np.ndarray], ids: list[str]) -> str:

@@ -128,12 +128,15 @@ def box(size: tuple[float, float, float] = (2.0, 1.4, 1.0), tilt: float = 25.0, 
     return _project(chains, R, noise, seed)
 
 
-def occlusions(view: tuple[np.ndarray, ...], tol: float) -> list[np.ndarray]:
-    """2D crossings of two chains (view coordinates) whose depths there differ by more than ``tol``."""
+def occlusions(view, tol: float, strokes2d=None) -> list[np.ndarray]:
+    """2D crossings of two chains (view coordinates) whose depths there differ by more than ``tol``.
+
+    The crossings are those of ``strokes2d`` (the drawn, possibly jittered strokes) when given,
+    else of the view's own x, y; the depths are always the view's."""
     from auszug.geometry import CubicBezier, intersect_many
 
     curves, owner = [], []
-    for i, c in enumerate(view):
+    for i, c in enumerate(view if strokes2d is None else strokes2d):
         for k, seg in enumerate(c):
             curves.append(CubicBezier.from_array(seg[:, :2]))
             owner.append((i, k))

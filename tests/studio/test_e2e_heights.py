@@ -238,6 +238,8 @@ def test_side_view_asks_for_a_curve(studio, page):
     assert not page.locator("[data-testid=side-svg]").is_visible()
     page.select_option("[data-testid=side-curve]", "1")
     assert page.evaluate("() => window.auszug.store.selection") == 1
+    # the side view draws the curve's markers on its next frame (not at once under load)
+    page.wait_for_selector("[data-testid=apex-marker]", state="attached")
     assert page.locator("[data-testid=apex-marker]").count() >= 1
     assert page.locator("[data-testid=prc-marker]").count() >= 1
 

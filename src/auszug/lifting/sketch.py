@@ -177,6 +177,10 @@ def _validate(sketch: Sketch, params: LiftParams) -> float:
             raise GeometryError(f"{name}: expected Bezier controls of shape (m, 4, 2), got {c.shape}")
         if not np.all(np.isfinite(c)):
             raise GeometryError(f"{name}: coordinates are not finite (NaN or infinity)")
+    n_segments = sum(len(s.controls) for s in sketch.strokes)
+    if n_segments > LIMITS.sketch_segments:
+        raise GeometryError(f"the sketch has {n_segments} Bezier segments: more than the limit of "
+                            f"{LIMITS.sketch_segments} (auszug.limits.LIMITS.sketch_segments)")
     diag = sketch.diagonal()
     if not diag > 0:
         raise GeometryError("the sketch has zero extent")

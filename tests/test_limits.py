@@ -434,3 +434,62 @@ def test_given_loops_beyond_the_faces_limit_are_refused(monkeypatch):
     monkeypatch.setattr("auszug.meshing.faces.LIMITS", Limits(faces=len(loops) - 1))
     with pytest.raises(DrawingError, match=f"{len(loops)} faces are above the limit of {len(loops) - 1}"):
         network_faces(net, loops)
+
+
+# -- lifting: strokes and crossings of a sketch ---------------------------------------------------
+def _grid_svg(rows: int, cols: int) -> str:
+    """``rows`` near-horizontal and ``cols`` near-vertical straight strokes: rows x cols crossings."""
+    paths = [f'<path id="h{i}" d="M -1 {10 * i + 0.3 * i * i / rows:.3f} '
+             f'L {10 * cols + 5} {10 * i + 2 + 0.1 * i:.3f}"/>' for i in range(rows)]
+    paths += [f'<path id="v{j}" d="M {10 * j + 0.2 * j * j / cols:.3f} -1 '
+              f'L {10 * j + 3 + 0.1 * j:.3f} {10 * rows + 5}"/>' for j in range(cols)]
+    return ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="-10 -10 400 400"><g fill="none" stroke="black">'
+            + "".join(paths) + "</g></svg>")
+
+
+def _long_strokes_svg(n: int) -> str:
+    """Two straight strokes crossing once, each a polyline of ``n`` segments."""
+    a = " ".join(f"{100 * i / n:.5f} 0" for i in range(n + 1))
+    b = " ".join(f"50 {-50 + 100 * i / n:.5f}" for i in range(n + 1))
+    return ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="-10 -60 120 120"><g fill="none" stroke="black">'
+            f'<path id="a" d="M {a}"/><path id="b" d="M {b}"/></g></svg>')
+
+
+@pytest.mark.skipif(not hasattr(resource, "RLIMIT_AS") or sys.platform != "linux", reason="Linux address limit")
+@pytest.mark.parametrize("rows, cols, words", [
+    (12, 12, "the sketch has 144 crossings: more than the limit of 128 (auszug.limits.LIMITS.sketch_crossings)"),
+    (1, LIMITS.sketch_strokes, "the sketch has 257 strokes: more than the limit of 256 "
+                               "(auszug.limits.LIMITS.sketch_strokes)"),
+    (0, 0, "the sketch has 4098 Bezier segments: more than the limit of 4096 (auszug.limits.LIMITS.sketch_segments)"),
+], ids=["crossings", "strokes", "segments"])
+def test_lift_beyond_its_limits_is_refused_at_once_in_2_gb(tmp_path, rows, cols, words):
+    """Before: a 20 x 20 grid of strokes (400 crossings) lifted for 230 s; the time grows without bound."""
+    import time
+
+    src = tmp_path / "grid.svg"
+    src.write_text(_grid_svg(rows, cols) if rows else _long_strokes_svg(LIMITS.sketch_segments // 2 + 1))
+    out = tmp_path / "grid.network.json"
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+    t0 = time.monotonic()
+    r = subprocess.run([sys.executable, "-c", _RUN, "lift", str(src), "-o", str(out), "--quiet"],
+                       capture_output=True, text=True, env=env, timeout=600)
+    assert r.returncode == 2 and r.stderr == f"auszug: {src}: {words}\n", r.stderr[-2000:]
+    assert not out.exists()
+    assert time.monotonic() - t0 < 60  # refused before any solve (about 2 s alone; generous under load)
+
+
+def test_a_sketch_at_the_crossing_limit_passes_the_check():
+    from auszug.formats.sketch_svg import read_sketch_svg
+    from auszug.lifting import sketch_graph
+
+    g = sketch_graph(read_sketch_svg(_grid_svg(8, 16), "grid.svg"))
+    assert len(g.crossings) == LIMITS.sketch_crossings == 128
+
+
+def test_a_sketch_at_the_segment_limit_passes_the_check():
+    from auszug.formats.sketch_svg import read_sketch_svg
+    from auszug.lifting import sketch_graph
+
+    sk = read_sketch_svg(_long_strokes_svg(LIMITS.sketch_segments // 2), "long.svg")
+    assert sum(len(s.controls) for s in sk.strokes) == LIMITS.sketch_segments == 4096
+    assert len(sketch_graph(sk).crossings) == 1

@@ -110,6 +110,22 @@ class Limits:
         in memory (about 50 bytes per cut point, some 10 000 planes): the
         paper's largest mesh has 200 000 vertices (400 000 triangles); a
         million triangles stays below 2 GB. 2 M are refused before any work.
+    sketch_strokes : int
+        Most strokes of a sketch given to lifting (``auszug lift``,
+        :func:`auszug.lifting.lift`); checked before crossings are searched.
+        The bundled examples have 6-8.
+    sketch_segments : int
+        Most Bezier segments of all strokes of a sketch given to lifting
+        (a polyline point or an SVG path command is one). Finding the
+        crossings and building the solves grows faster than linearly: two
+        strokes of 8 000 segments each lifted in 43 s and 886 MB, of 2 048
+        each (4 096 in all) in 10 s and 155 MB (2 cores, shared).
+    sketch_crossings : int
+        Most crossings between strokes of a sketch given to lifting. Each
+        solve is a Newton iteration over every crossing and cue pair, and the
+        time grows faster than quadratically: a grid of 10 x 10 strokes (100
+        crossings) lifts in 23 s, 20 x 20 (400 crossings) in 230 s (2 cores,
+        shared). The bundled examples have 8-15.
     file_bytes : int
         Largest input file, checked before it is read. A 200 MB file cost
         7.7 GB of memory and 68 s; the largest corpus file is 3 KB, and 64 MB
@@ -145,6 +161,9 @@ class Limits:
     faces: int = 16384
     pixels: int = 16384
     sweep_faces: int = 1_000_000
+    sketch_strokes: int = 256
+    sketch_segments: int = 4096
+    sketch_crossings: int = 128
     file_bytes: int = 64 * 1024 * 1024
     quoted: int = 80
     message: int = 2000

@@ -19,6 +19,7 @@ from scipy.spatial import cKDTree
 from auszug.errors import GeometryError
 from auszug.geometry import CubicBezier, intersect_many
 from auszug.lifting.params import DEFAULT, LiftParams
+from auszug.limits import LIMITS
 
 __all__ = ["Stroke", "Marker", "Sketch", "Crossing", "SketchGraph", "sketch_graph"]
 
@@ -166,6 +167,9 @@ class SketchGraph:
 def _validate(sketch: Sketch, params: LiftParams) -> float:
     if not sketch.strokes:
         raise GeometryError("the sketch has no strokes")
+    if len(sketch.strokes) > LIMITS.sketch_strokes:
+        raise GeometryError(f"the sketch has {len(sketch.strokes)} strokes: more than the limit of "
+                            f"{LIMITS.sketch_strokes} (auszug.limits.LIMITS.sketch_strokes)")
     for i, s in enumerate(sketch.strokes):
         c = np.asarray(s.controls, dtype=float)
         name = s.id or f"stroke #{i}"
@@ -173,6 +177,10 @@ def _validate(sketch: Sketch, params: LiftParams) -> float:
             raise GeometryError(f"{name}: expected Bezier controls of shape (m, 4, 2), got {c.shape}")
         if not np.all(np.isfinite(c)):
             raise GeometryError(f"{name}: coordinates are not finite (NaN or infinity)")
+    n_segments = sum(len(s.controls) for s in sketch.strokes)
+    if n_segments > LIMITS.sketch_segments:
+        raise GeometryError(f"the sketch has {n_segments} Bezier segments: more than the limit of "
+                            f"{LIMITS.sketch_segments} (auszug.limits.LIMITS.sketch_segments)")
     diag = sketch.diagonal()
     if not diag > 0:
         raise GeometryError("the sketch has zero extent")
@@ -396,6 +404,9 @@ def sketch_graph(sketch: Sketch, params: LiftParams = DEFAULT, require_markers: 
                 smooth = min(ang, 180 - ang) >= params.min_crossing_deg
         flipped = bool(len(flipped_pts) and np.linalg.norm(flipped_pts - points[p], axis=1).min() <= params.snap)
         crossings.append(Crossing(p, tuple(hs), tuple(st), smooth, flipped))
+    if len(crossings) > LIMITS.sketch_crossings:
+        raise GeometryError(f"the sketch has {len(crossings)} crossings: more than the limit of "
+                            f"{LIMITS.sketch_crossings} (auszug.limits.LIMITS.sketch_crossings)")
     if not crossings:
         raise GeometryError("the sketch has no intersection between strokes: nothing to lift "
                             "(strokes must cross or touch; occlusion markers remove crossings)")

@@ -33,13 +33,18 @@ def _crossing(g: dict) -> tuple[int, dict]:
     raise AssertionError("no crossing of two curves in this drawing")
 
 
-def test_crossing_sets_the_selected_curves_prc_and_a_repeat_is_no_undo_step(studio, workspace, page):
+def _selected_crossing(studio, workspace, page):
+    """tn-11 open with curve ``a`` selected; its crossing marker ``m`` and where it is on screen."""
     drawing = load(workspace / "tn-11.uc")
     g = open_drawing(page, studio, "tn-11.uc")
     a, m = _crossing(g)
     select_curve(page, drawing, a)
     overlay_ready(page)
-    x, y = top_to_client(page, *m["point"])
+    return drawing, g, a, m, top_to_client(page, *m["point"])
+
+
+def test_crossing_sets_the_selected_curves_prc_and_a_repeat_is_no_undo_step(studio, workspace, page):
+    drawing, g, a, m, (x, y) = _selected_crossing(studio, workspace, page)
     # the other curve's faded marker is the element on top there
     top = page.evaluate(f"() => document.elementFromPoint({x}, {y}).dataset.curve")
     assert top != str(a)
@@ -61,12 +66,7 @@ def test_crossing_sets_the_selected_curves_prc_and_a_repeat_is_no_undo_step(stud
 
 
 def test_a_marker_takes_no_clicks_beyond_8_px(studio, workspace, page):
-    drawing = load(workspace / "tn-11.uc")
-    g = open_drawing(page, studio, "tn-11.uc")
-    a, m = _crossing(g)
-    select_curve(page, drawing, a)
-    overlay_ready(page)
-    x, y = top_to_client(page, *m["point"])
+    drawing, g, a, m, (x, y) = _selected_crossing(studio, workspace, page)
     ends = [top_to_client(page, *v) for c in g["curves"] for v in c["vertices"]]
     marks = [top_to_client(page, *o["point"]) for o in g["intersections"]]
     # a spot 9.5 px away from this marker, not within 8 px of any other point target either

@@ -67,6 +67,11 @@ class LiftParams:
     merge : float
         Stroke ends and crossings closer than this (relative to the diagonal)
         are one point.
+    above_min : float
+        The depth sign follows the "view from above" score
+        (:func:`auszug.lifting.reconstruct.from_above`, in [-1, 1]) when its
+        magnitude is at least this; below, the convexity votes decide (our
+        choice: 0.05; measured scores of the ground truths 0.1-0.6).
     newton_iterations : int
         Most Newton steps of one solve.
     newton_tol : float
@@ -100,6 +105,7 @@ class LiftParams:
     straight_tol: float = 1e-6
     snap: float = 0.01
     merge: float = 1e-7
+    above_min: float = 0.05
     newton_iterations: int = 60
     newton_tol: float = 1e-10
     kkt_reg: float = 1e-11

@@ -415,8 +415,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
 CURVED = 1e-6
 
 
-def from_above(g: SketchGraph, X: Array) -> float:
-    """How clearly the network ``X`` is seen from above, in [-1, 1] (the depth sign's main rule).
+def from_above(controls: Array) -> float:
+    """How clearly a 3D network is seen from above, in [-1, 1] (the depth sign's main rule).
 
     An upright object seen from above with a tilt b in (0, 45) deg: every
     horizontal direction of the object has ``dz = -cot(b) dy`` in view
@@ -426,17 +426,17 @@ def from_above(g: SketchGraph, X: Array) -> float:
     (phi = -(90 - b) and phi = b), and the mirror image z -> -z gives
     ``sin(4 phi) < 0`` for both. The score is
     ``sum r^2 sin(4 phi) / sum r^2`` over the edges of every segment's
-    control polygon: positive when the network is seen from above, the
-    mirror's score is its negative. It presumes the object stands upright
-    in the picture (its vertical drawn vertical) and is made mostly of
-    horizontal and vertical directions (buildings, furniture, vessels);
-    edges in between vote with less weight or not at all.
+    control polygon: positive when the network is seen from above, and the
+    mirror image's score is its negative. It presumes the object stands
+    upright in the picture (its vertical drawn vertical) and is made mostly
+    of horizontal and vertical directions (buildings, furniture, vessels);
+    edges in between vote with less weight or the other way.
 
     Parameters
     ----------
-    g : SketchGraph
-    X : (n, 3) ndarray
-        The control points (x, y as drawn, z the depth toward the viewer).
+    controls : (s, 4, 3) ndarray
+        The cubic Bezier segments' control points (x, y as drawn, z the
+        depth toward the viewer).
 
     Returns
     -------
@@ -445,20 +445,16 @@ def from_above(g: SketchGraph, X: Array) -> float:
 
     Examples
     --------
+    A floor receding from the viewer (higher in the picture is farther), and its mirror image:
+
     >>> import numpy as np
-    >>> from auszug.lifting import Sketch, Stroke, sketch_graph
     >>> from auszug.lifting.reconstruct import from_above
-    >>> h = Stroke(np.array([[[-1, 0], [-0.4, 0.25], [0.4, 0.25], [1, 0]]], float), "h")
-    >>> v = Stroke(np.array([[[0.3, -1], [0.1, -0.3], [-0.1, 0.3], [-0.3, 1]]], float), "v")
-    >>> g = sketch_graph(Sketch((h, v)))
-    >>> X = np.c_[g.points, -2.0 * g.points[:, 1]]        # higher is farther: a receding floor
-    >>> round(from_above(g, X), 6) > 0, round(from_above(g, X * [1, 1, -1]), 6) < 0
-    (True, True)
+    >>> floor = np.array([[[0, 0, 0], [0, 1, -2], [1, 2, -4], [1, 3, -6]]], float)
+    >>> round(from_above(floor), 6), round(from_above(floor * [1, 1, -1]), 6)
+    (0.96, -0.96)
     """
-    seg = g.segments
-    a = seg[:, :3].reshape(-1)
-    b = seg[:, 1:].reshape(-1)
-    d = X[b] - X[a]
+    c = np.asarray(controls, dtype=float)
+    d = (c[:, 1:] - c[:, :-1]).reshape(-1, 3)
     r2 = d[:, 1] ** 2 + d[:, 2] ** 2
     total = float(r2.sum())
     if total <= 0.0:
@@ -474,7 +470,7 @@ def _flip_to_view_from_above(g: SketchGraph, X: Array, smooth: cu.Orthogonal, pa
     magnitude; below (no clear horizontal or vertical directions), the
     convexity votes of :func:`_concave` do.
     """
-    score = from_above(g, X)
+    score = from_above(X[g.segments])
     if abs(score) >= params.above_min:
         return score < 0
     return _concave(g, X, smooth)

@@ -205,13 +205,16 @@ def test_parallel_resolution_follows_the_paper_on_the_vase(truth, baseline):
     assert sign == 1 and 0.030 <= err <= 0.032   # measured 3.07 %
 
 
-def _example_truth(name: str):
-    """The 3D truth of a bundled example sketch, projected exactly as tests/lifting/make_sketches.py does."""
+def _example_truth(name: str, R: np.ndarray | None = None):
+    """The 3D truth of a bundled example sketch, projected exactly as tests/lifting/make_sketches.py does.
+
+    ``R``: another view rotation than the example's own.
+    """
     from tests.lifting import make_sketches as ms
     from tests.lifting.truth import Truth
 
     chains = {"vase": ms.vase, "ogee-roof": ms.ogee_roof, "arches": ms.arches}[name]()
-    s2, view = ms.project(chains, ms.VIEWS[name], 0.0, 0)
+    s2, view = ms.project(chains, ms.VIEWS[name] if R is None else R, 0.0, 0)
     diag = float(np.linalg.norm(np.ptp(np.concatenate([v.reshape(-1, 3) for v in view]), axis=0)))
     marks = ms.spurious(s2, view, 0.02 * diag)
     sk = Sketch(tuple(Stroke(c, f"c{i}") for i, c in enumerate(s2)),
@@ -296,3 +299,27 @@ def test_view_from_above_score_on_the_exact_truths(tilt):
             assert from_above(net * [1.0, 1.0, -1.0]) == -s          # exactly antisymmetric under z -> -z
             assert from_above(net * 7.5 + [3.0, -2.0, 1.0]) == pytest.approx(s, abs=1e-12)   # scale, shift
     assert from_above(np.zeros((2, 4, 3))) == 0.0
+
+
+def test_depth_sign_over_views():
+    """Wrong-sign rate of the lifts (baseline) over 16 views: the three example objects and the box at
+    tilts 20 and 30 deg, turns -40 and 30 deg. Measured: 0 wrong (the issue's target: at most 5 %),
+    every solve converged; depth RMSE 0.00-11.7 % (arches 6.4-11.7 %). With the convexity votes alone
+    (the rule before lifting6) the ogee roof and the arches came out mirrored in most views: on a
+    wider grid (tilts 15, 25, 35; turns +-25, +-50; 60 lifts with the revolve) 25 of 60 wrong
+    against 12 of 60 now, 10 of which are lifts 16-37 % off the truth at either sign (docs/lifting.md).
+    """
+    from tests.lifting.truth import rotation
+
+    wrong = []
+    for tilt in (20.0, 30.0):
+        for turn in (-40.0, 30.0):
+            truths = [(n, _example_truth(n, rotation(tilt, turn))) for n in ("vase", "ogee-roof", "arches")]
+            truths.append(("box", box(tilt=tilt, turn=turn)))
+            for name, tr in truths:
+                r = lift(tr.sketch, classes=())
+                err, sign = depth_rmse(tr, r)
+                assert r.converged, (name, tilt, turn)
+                if sign != 1:
+                    wrong.append((name, tilt, turn, err))
+    assert wrong == []

@@ -269,7 +269,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        (parallelism stays soft with weight w_c), L = 0 or no increase rejects
        it; after ``params.rounds`` rounds the rest is rejected;
     4. the depth sign: the solution or its mirror z -> -z, whichever is seen
-       from above (:func:`from_above`; where that score is below
+       from above (:func:`from_above`; where that score is not above
        ``params.above_min``, whichever is more convex seen from the viewer),
        flipped once more per flip marker.
     """
@@ -466,12 +466,12 @@ def from_above(controls: Array) -> float:
 def _flip_to_view_from_above(g: SketchGraph, X: Array, smooth: cu.Orthogonal, params: LiftParams) -> bool:
     """Whether to mirror ``X`` (z -> -z): the paper's "view from above" preference, then convexity.
 
-    :func:`from_above` decides when its score is at least ``params.above_min`` in
-    magnitude; below (no clear horizontal or vertical directions), the
-    convexity votes of :func:`_concave` do.
+    :func:`from_above` decides when its score is above ``params.above_min`` in
+    magnitude (by default: unless it is exactly 0); otherwise the convexity
+    votes of :func:`_concave` do.
     """
     score = from_above(X[g.segments])
-    if abs(score) >= params.above_min:
+    if abs(score) > params.above_min:
         return score < 0
     return _concave(g, X, smooth)
 

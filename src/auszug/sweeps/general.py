@@ -590,16 +590,26 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
     tangent from a parabola through the last two centroids and this one), and
     the moved profile's closest points on the nearest cut curve taken as the next rib when at
     least 90 % of them lie within ``2 eps_prox`` (the rib's map is then corrected to them,
-    Kabsch, and the cut repeated once with it). A failed full step is retried at a half and a quarter step, which ends the growth
+    Kabsch, and the cut repeated with it: 4 rounds, as in ICP). A failed full step is retried at a half and a quarter step, which ends the growth
     (the mesh's end). Sample ``j`` of every rib corresponds to profile point ``j``.
     """
     lo, hi = motion.domain
     ts = lo + np.arange(int(round(hi - lo)) + 1, dtype=float)
     r, tr = motion.at(ts)
-    maps = [(r[i], tr[i]) for i in range(len(ts))]
-    tol = 2 * params.eps_prox
-
     centre = profile.mean(axis=0)
+    # seeds: the maps at the ribs, less end steps unlike the others (a rib out of place in its family
+    # gives a step of twice the length or turn; extrapolated, it leaves the surface at once)
+    cs = np.einsum("kij,j->ki", r, centre) + tr
+    length = np.linalg.norm(np.diff(cs, axis=0), axis=1)
+    turn = np.arccos(np.clip((np.einsum("kij,kij->k", r[1:], r[:-1]) - 1) / 2, -1.0, 1.0))
+    odd = (np.abs(length - np.median(length)) > 0.4 * np.median(length)) | (turn > 2 * np.median(turn) + 1e-3)
+    a, b = 0, len(ts)
+    while b - a > 3 and odd[a]:
+        a += 1
+    while b - a > 3 and odd[b - 2]:
+        b -= 1
+    maps = [(r[i], tr[i]) for i in range(a, b)]
+    tol = 2 * params.eps_prox
 
     def tangent(c0: Array, c1: Array, c2: Array) -> Array:
         """Unit tangent at ``c2`` of the parabola through three centroids (chord-length parameters)."""
@@ -613,27 +623,28 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
         return out
 
     def try_at(m: tuple[Array, Array], c0: Array, c1: Array) -> tuple[Array, tuple[Array, Array]] | None:
-        got: tuple[Array, tuple[Array, Array]] | None = None
-        for _ in range(2):
+        for k in range(4):
             # the profile plane there (our convention, profile_planes): through the moved centroid, normal
             # to the centroid's path, continued by a parabola through the last two centroids (the
-            # rotations of extrapolated steps drift; the centroids' path does not)
+            # rotations of extrapolated steps drift; the centroids' path does not); then the map is
+            # corrected to the closest points (Kabsch) and the cut repeated, as in ICP
             moved = profile @ m[0].T + m[1]
             c2 = centre @ m[0].T + m[1]
             nm = tangent(c0, c1, c2)
             c = cut(mesh, nm[None], np.array([nm @ c2]))
             near_curve = _nearest_curve(c, 0, moved)
             if near_curve is None:
-                return got
+                return None
             dist, cp = near_curve[1][:, 0], near_curve[1][:, 1:]
-            near = dist <= tol
-            if np.mean(near) < 0.9:
-                return got
+            near = dist <= (4 * tol if k == 0 else tol)
+            if np.mean(near) < 0.5:
+                return None
             # where the mesh ends before the profile does, the closest points pile up at the cut's end:
             # the map is fitted to the others, and those samples take the moved profile's points
             m = kabsch(profile[near], cp[near])
-            got = (np.where(near[:, None], cp, profile @ m[0].T + m[1]), m)
-        return got
+        if np.mean(near) < 0.9:
+            return None
+        return np.where(near[:, None], cp, profile @ m[0].T + m[1]), m
 
     def grow(seq: list[tuple[Array, Array]]) -> list[Array]:
         out: list[Array] = []
@@ -658,7 +669,7 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
     behind = grow(list(maps[::-1]))
     # the motion's own ribs re-cut as well: the profile may have grown beyond what it was fitted to
     again = reslice(mesh, profile, motion)
-    middle = list(again) if again is not None else [profile @ m[0].T + m[1] for m in maps]
+    middle = list(again[a:b]) if again is not None else [profile @ m[0].T + m[1] for m in maps]
     return np.stack(behind[::-1] + middle + ahead)
 
 

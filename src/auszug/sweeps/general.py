@@ -46,6 +46,7 @@ from typing import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from auszug.sweeps._kernels import polyline_closest
 from auszug.sweeps.cut import Cuts, cut
 from auszug.sweeps.matching import CurvaturePlots, Family, Ribs, curvature_plots, families, match_cuts, order_ribs
 from auszug.sweeps.mesh import SweepMesh
@@ -216,8 +217,8 @@ def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
 def _normals_at(mesh: SweepMesh, points: Array, tree: MeshTree) -> Array:
     """Unit face normals of the mesh at the closest points of ``points (..., 3)``."""
     _, face, _ = tree.query(points)
-    v = mesh.vertices
-    f = mesh.faces[face]
+    v = tree.vertices
+    f = tree.faces[face]     # the tree's own faces: it may be of the whole mesh, ``mesh`` a part
     n = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
     n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
     return n.reshape(points.shape)
@@ -230,14 +231,14 @@ def _plane_of(points: Array) -> tuple[Array, float]:
 
 
 def _polyline_distance(points: Array, polyline: Array) -> Array:
-    """Distances ``(m,)`` of points ``(m, 3)`` to a polyline ``(n, 3)`` (vectorised over both)."""
-    a, b = polyline[:-1], polyline[1:]
-    ab = b - a
-    w = np.einsum("ij,ij->i", ab, ab)
-    f = np.clip(np.einsum("mij,ij->mi", points[:, None, :] - a[None], ab) / np.where(w > 0, w, 1.0), 0.0, 1.0)
-    foot = a[None] + f[..., None] * ab[None]
-    out: Array = np.linalg.norm(points[:, None, :] - foot, axis=2).min(axis=1)
-    return out
+    """Distances ``(m,)`` of points ``(m, 3)`` to a polyline ``(n, 3)`` (compiled)."""
+    return polyline_closest(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(polyline, dtype=float))[0]
+
+
+def _on_polyline(points: Array, polyline: Array) -> tuple[Array, Array]:
+    """Distances ``(m,)`` and closest points ``(m, 3)`` of points ``(m, 3)`` on a polyline ``(n, 3)`` (compiled)."""
+    d, c = polyline_closest(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(polyline, dtype=float))
+    return d, c
 
 
 def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float) -> list[Array]:
@@ -313,8 +314,6 @@ def reslice(mesh: SweepMesh, profile: Array, motion: Motion) -> Array | None:
     The mesh is cut by the profile planes (:func:`profile_planes`) there; sample ``j`` of a rib is
     the closest cut point to the moved profile's point ``j``.
     """
-    from auszug.sweeps.patches import closest_distance
-
     k = int(round(motion.domain[1] - motion.domain[0])) + 1
     ts = motion.domain[0] + np.arange(k, dtype=float)
     n, d = profile_planes(profile, motion, ts)
@@ -327,8 +326,7 @@ def reslice(mesh: SweepMesh, profile: Array, motion: Motion) -> Array | None:
             q = c.curve(int(j))
             if len(q) < 2:
                 continue
-            seg = np.stack([np.arange(len(q) - 1), np.arange(1, len(q))], axis=1)
-            dist, cp = closest_distance(x[i], q, seg)
+            dist, cp = _on_polyline(x[i], q)
             if best is None or dist.mean() < best[0]:
                 best = (float(dist.mean()), cp)
         if best is None:
@@ -394,19 +392,25 @@ def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Ar
 def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, IntArray]:
     """The part of the mesh whose faces lie in the box of ``points`` grown by ``margin``, and its faces' indices.
 
-    Same coordinates as ``mesh`` (its centre and scale are kept); the topology is rebuilt.
+    The part keeps the mesh's vertex array (its faces index it as before); only its faces and
+    the edges of those faces are selected, so cutting it walks just the part, and nothing is
+    recomputed but the index maps (no new topology, no new vertex normals).
     """
     from dataclasses import replace
-
-    from auszug.sweeps.mesh import normalise
 
     lo, hi = points.reshape(-1, 3).min(axis=0) - margin, points.reshape(-1, 3).max(axis=0) + margin
     inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
     keep = np.flatnonzero(inside[mesh.faces].all(axis=1)).astype(np.int64)
-    used, inv = np.unique(mesh.faces[keep], return_inverse=True)
-    sub = normalise(mesh.vertices[used], inv.reshape(-1, 3))
-    return replace(sub, vertices=mesh.vertices[used], normals=mesh.normals[used], centre=mesh.centre,
-                   scale=mesh.scale), keep
+    used = np.zeros(len(mesh.edges), bool)
+    used[mesh.face_edges[keep]] = True
+    used_edges = np.flatnonzero(used)
+    edge_index = np.full(len(mesh.edges), -1, np.int64)
+    edge_index[used_edges] = np.arange(len(used_edges))
+    face_index = np.full(len(mesh.faces) + 1, -1, np.int64)    # [-1] stays -1: a missing face
+    face_index[keep] = np.arange(len(keep))
+    return replace(mesh, faces=mesh.faces[keep], edges=mesh.edges[used_edges],
+                   edge_faces=face_index[mesh.edge_faces[used_edges]],
+                   face_edges=edge_index[mesh.face_edges[keep]]), keep
 
 
 def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams, step: Callable[[str], float],
@@ -468,7 +472,7 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
         # the sweep between the first and the last rib stays near them: fit it to that part of the
         # mesh (distances to a part are never smaller than to the whole: the fit error is safe)
         sub, faces = _around(mesh, parts, params.l_min / 4 + 4 * params.eps_prox)
-        g = general_patch(sub, parts, params)
+        g = general_patch(sub, parts, params, areas[faces], tree)
         g = GeneralSweep(g.profile, g.motion, g.velocities, g.fit_error,
                          float(areas[faces[g.faces]].sum() / total) if total > 0 else 0.0, faces[g.faces])
         if params.grow and g.fit_error <= params.fit_factor * params.eps_prox:
@@ -509,10 +513,11 @@ def _step(a: tuple[Array, Array], b: tuple[Array, Array], h: float = 1.0) -> tup
 
 
 def _nearest_curve(c: Cuts, plane: int, target: Array) -> tuple[Array, Array] | None:
-    """Of the cut curves of ``plane``, the one closest (mean distance) to ``target (n, 3)``: its points and
-    the distances ``(n,)`` and closest points ``(n, 3)`` of ``target`` on it, as ``(curve, dist, closest)``."""
-    from auszug.sweeps.patches import closest_distance
+    """The cut curve of ``plane`` closest to ``target (n, 3)`` (median distance), or None.
 
+    Returns its points and an ``(n, 4)`` array: the distance of each target point to it and its
+    closest point there.
+    """
     best: tuple[float, Array, Array, Array] | None = None
     for j in np.flatnonzero(c.curve_plane == plane):
         q = c.curve(int(j))
@@ -520,8 +525,7 @@ def _nearest_curve(c: Cuts, plane: int, target: Array) -> tuple[Array, Array] | 
             continue
         if bool(c.curve_closed[j]):
             q = np.vstack([q, q[:1]])
-        seg = np.stack([np.arange(len(q) - 1), np.arange(1, len(q))], axis=1)
-        dist, cp = closest_distance(target, q, seg)
+        dist, cp = _on_polyline(target, q)
         if best is None or float(np.median(dist)) < best[0]:
             best = (float(np.median(dist)), q, dist, cp)
     return None if best is None else (best[1], np.stack([best[2], *best[3].T], axis=1))
@@ -590,7 +594,8 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
     tangent from a parabola through the last two centroids and this one), and
     the moved profile's closest points on the nearest cut curve taken as the next rib when at
     least 90 % of them lie within ``2 eps_prox`` (the rib's map is then corrected to them,
-    Kabsch, and the cut repeated with it: 4 rounds, as in ICP). A failed full step is retried at a half and a quarter step, which ends the growth
+    Kabsch, and the cut repeated with it: 4 rounds, as in ICP). A failed full step is retried at
+    a half and a quarter step, which ends the growth
     (the mesh's end). Sample ``j`` of every rib corresponds to profile point ``j``.
     """
     lo, hi = motion.domain
@@ -675,10 +680,12 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
 
 def grown_patch(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTree,
                 areas: Array | None = None) -> GeneralSweep:
-    """A fitted general sweep grown across its profile (:func:`extend_profile`) and along its path
-    (:func:`grow_ribs`), refitted (one round of :func:`general_patch` on the grown ribs) and its
-    profile trimmed again to the points whose paths stay within ``eps_prox``. Returns ``g`` when
-    the grown sweep covers no more or fits worse than ``fit_factor * eps_prox``.
+    """A fitted general sweep grown across its profile and along its path, or ``g`` itself.
+
+    Grown across its profile by :func:`extend_profile`, along its path by :func:`grow_ribs`,
+    refitted (:func:`general_patch`, 2 rounds: one re-slicing) and its profile trimmed again to
+    the points whose paths stay within ``eps_prox``. Returns ``g`` when the grown sweep covers no
+    more or fits worse than ``fit_factor * eps_prox``.
     """
     profile = extend_profile(mesh, g.profile, g.motion, tree, params)
     ribs = grow_ribs(mesh, profile, g.motion, params)

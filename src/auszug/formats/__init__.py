@@ -37,5 +37,5 @@ from auszug.formats._registry import (
     suffixes,
 )
 
-__all__ = ["FileFormat", "atomic_write", "atomic_write_all", "format_for", "formats", "kind_of", "load", "register", "save", "stem",
-           "suffix_of", "suffixes"]
+__all__ = ["FileFormat", "atomic_write", "atomic_write_all", "format_for", "formats", "kind_of", "load", "register",
+           "save", "stem", "suffix_of", "suffixes"]

@@ -13,7 +13,7 @@ import os
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any, Callable, Sequence
 
 from auszug.errors import FormatError
 from auszug.limits import check_file_size
@@ -215,7 +215,7 @@ def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> None:
         raise type(e)(e.errno, f"cannot write ({e.strerror or e})", str(p)) from None
 
 
-def atomic_write_all(items: list[tuple[str | os.PathLike[str], str | bytes]]) -> None:
+def atomic_write_all(items: Sequence[tuple[str | os.PathLike[str], str | bytes]]) -> None:
     """Write several files all or nothing: each to a temporary file beside it, then rename them all.
 
     If writing any temporary file fails, every temporary file is removed and no target is

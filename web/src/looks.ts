@@ -8,7 +8,8 @@ import * as THREE from "three";
 import type { Ctx } from "./context";
 import type { FacesMode, Style } from "./looks-types";
 import { Debouncer, LoopView, MeshView, pickLoop, type ScreenLoop } from "./meshes";
-import { VIEW_LAYER, type ViewName } from "./scene";
+import { SELECTED, VIEW_LAYER, type ViewName } from "./scene";
+import { DragTubes } from "./tubes";
 import type { Looks } from "./store";
 
 const STYLES: Record<Style, string> = { curves: "curves", tube: "tubes", bar: "bars", ribbon: "ribbons" };
@@ -48,9 +49,22 @@ export function initLooks(ctx: Ctx): void {
   info.dataset.testid = "look-info";
   bar.appendChild(info);
 
-  const meshes = new MeshView((b) => store.color(b));
+  // the selected curve's members are highlighted as its lines are (design mode only)
+  const meshes = new MeshView((b) => (store.mode === "design" && b === store.selection ? SELECTED : store.color(b)));
   const loops = new LoopView();
-  views.scene.add(meshes.group, loops.group);
+  // the tube look's tubes while the drawing changes, swept in the page (tubes.ts), until the
+  // server's mesh of the current revision replaces them
+  const dragTubes = new DragTubes((b) => meshes.material(b, "tube"));
+  views.scene.add(meshes.group, dragTubes.group, loops.group);
+  /** Sweep the page's tubes of the current geometry and show them instead of the server's (stale) members. */
+  const showDragTubes = (): void => {
+    const g = store.geometry;
+    if (!g) return;
+    dragTubes.update(g, store.data);
+    dragTubes.group.visible = true;
+    meshes.showMembers(false);
+    views.membersRevision = g.revision;
+  };
 
   /** Meshes show in the 3D view; in preview mode in all three. */
   const layers = (): number[] =>
@@ -72,8 +86,21 @@ export function initLooks(ctx: Ctx): void {
   const loopRequests = new Debouncer(() => ctx.request({ type: "get_loops" }));
 
   let lastKey = meshKey(store.looks);
-  store.on("geometry", () => {
-    if (wantsMesh(store.looks)) meshRequests.poke();
+  // a drag's edits (a button held) show the page's tubes; the server's mesh is asked for on release
+  let held = false, refineOnRelease = false;
+  window.addEventListener("pointerdown", () => { held = true; }, { capture: true });
+  const release = () => {
+    held = false;
+    if (refineOnRelease && wantsMesh(store.looks) && store.geometry) meshRequests.poke();
+    refineOnRelease = false;
+  };
+  window.addEventListener("pointerup", release, { capture: true });
+  window.addEventListener("pointercancel", release, { capture: true });
+  store.on("geometry", (g) => {
+    if (store.looks.style === "curves") views.membersRevision = g.revision;
+    if (store.looks.style === "tube") showDragTubes();
+    if (held && store.looks.style === "tube") refineOnRelease = true;
+    else if (wantsMesh(store.looks)) meshRequests.poke();
     if (store.looks.faces === "picked") loopRequests.poke();
   });
   store.on("looks", (l) => {
@@ -89,6 +116,11 @@ export function initLooks(ctx: Ctx): void {
         meshes.clear();
         info.textContent = "";
       }
+      if (l.style === "tube") showDragTubes();
+      else {
+        dragTubes.clear();
+        if (l.style === "curves" && store.geometry) views.membersRevision = store.geometry.revision;
+      }
       if (l.faces === "picked" && !wasPicking && store.geometry) loopRequests.poke();
       if (l.faces !== "picked") {
         loopRequests.cancel();
@@ -96,6 +128,7 @@ export function initLooks(ctx: Ctx): void {
       }
     }
     meshes.recolor();
+    dragTubes.recolor();
     loops.setPicked(l.loops);
     views.requestRender();
   });
@@ -103,6 +136,9 @@ export function initLooks(ctx: Ctx): void {
     const current = store.geometry?.revision ?? 0;
     if (!wantsMesh(store.looks) || m.revision < current || sentKey !== meshKey(store.looks)) return;
     meshes.show(m, store.meshBuffer);
+    meshes.showMembers(true);
+    dragTubes.group.visible = false;
+    views.membersRevision = m.revision;
     info.textContent = store.looks.faces === "none" ? "" :
       `${m.faces} faces${m.converged ? "" : ` (not converged: ${m.residual.toPrecision(2)})`}`;
     views.requestRender();
@@ -112,12 +148,21 @@ export function initLooks(ctx: Ctx): void {
     loops.show(m, store.loopsBuffer, store.looks.loops);
     views.requestRender();
   });
+  store.on("selection", () => {
+    meshes.recolor();
+    dragTubes.recolor();
+    views.requestRender();
+  });
   store.on("mode", () => {
+    meshes.recolor();
+    dragTubes.recolor();
     meshes.setLayers(layers());
+    dragTubes.setLayers(layers());
     loops.setLayers(pickViews().map((v) => VIEW_LAYER[v]));
     views.requestRender();
   });
   meshes.setLayers(layers());
+  dragTubes.setLayers(layers());
   loops.setLayers(pickViews().map((v) => VIEW_LAYER[v]));
 
   // ---- picking loops: a click (no drag) toggles the loop under the pointer

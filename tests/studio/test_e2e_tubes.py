@@ -20,6 +20,14 @@ pytestmark = needs_browser
 
 #: The highlight colour of the selected curve (web/src/scene.ts SELECTED), written out here.
 HIGHLIGHT = "#d97706"
+#: The 3D view's ground (web/src/scene.ts SKY) and how far other curves fade towards it (looks.ts FADE).
+SKY, FADE = (0xE9, 0xEE, 0xF3), 0.6
+
+
+def faded(hex_colour: str) -> str:
+    """``hex_colour`` mixed with SKY by FADE per channel, rounded half up (as the page does)."""
+    rgb = [int(hex_colour[i:i + 2], 16) for i in (1, 3, 5)]
+    return "#" + "".join(f"{int(a + FADE * (b - a) + 0.5):02x}" for a, b in zip(rgb, SKY, strict=True))
 
 
 @pytest.fixture
@@ -87,11 +95,12 @@ def test_selected_curve_is_highlighted_in_the_tube_look(studio, uxi28, page):
 
     page.select_option("[data-testid=side-curve]", "0")
     page.evaluate("() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)))")
-    assert member_colours(page, "meshes") == {0: {HIGHLIGHT}, **{b: {colours[b].lower()} for b in (1, 2, 3)}}
+    assert member_colours(page, "meshes") == {0: {HIGHLIGHT}, **{b: {faded(colours[b].lower())} for b in (1, 2, 3)}}
     after = view3d_pixels(page)
     SHOTS.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(SHOTS / "test_selected_curve_is_highlighted_in_the_tube_look-selected.png"))
-    # what is drawn: curve 0's blue tubes turn amber (the other curves are vermilion, green, pink)
+    # what is drawn: curve 0's blue tubes turn amber (the other curves, vermilion, green and pink,
+    # fade towards the ground, so the amber is not confused with the vermilion)
     assert blue(before) > 500, blue(before)
     assert blue(after) < blue(before) / 10, (blue(before), blue(after))
     assert orange(after) > orange(before) + blue(before) / 2, (orange(before), orange(after), blue(before))
@@ -108,7 +117,7 @@ def test_selected_curve_is_highlighted_in_the_tube_look(studio, uxi28, page):
     page.wait_for_function(f"() => window.auszug.store.geometry.revision > {rev}")
     seen = page.evaluate("() => window.__seen")[0]
     assert seen["visible"] and seen["n"] == 8    # four ogees, rotated and mirrored replicas
-    assert {tuple(c) for c in seen["colours"]} == {(0, HIGHLIGHT), *((b, colours[b].lower()) for b in (1, 2, 3))}
+    assert {tuple(c) for c in seen["colours"]} == {(0, HIGHLIGHT), *((b, faded(colours[b].lower())) for b in (1, 2, 3))}
     wait_server_mesh(page)
     assert member_colours(page, "meshes")[0] == {HIGHLIGHT}
 

@@ -8,7 +8,7 @@ import * as THREE from "three";
 import type { Ctx } from "./context";
 import type { FacesMode, Style } from "./looks-types";
 import { Debouncer, LoopView, MeshView, pickLoop, type ScreenLoop } from "./meshes";
-import { SELECTED, VIEW_LAYER, type ViewName } from "./scene";
+import { SELECTED, SKY, VIEW_LAYER, type ViewName } from "./scene";
 import { DragTubes } from "./tubes";
 import type { Looks } from "./store";
 
@@ -34,6 +34,19 @@ function meshKey(l: Looks): string {
   return `${l.style}|${l.faces}|${l.faces === "picked" ? [...l.loops].sort((a, b) => a - b).join(",") : ""}`;
 }
 
+/** How far the members of curves other than the selected one are faded towards the 3D view's ground. */
+export const FADE = 0.6;
+
+/** `hex` (#rrggbb) mixed with the 3D view's ground colour SKY by FADE, per 8-bit channel, rounded. */
+export function faded(hex: string): string {
+  const c = parseInt(hex.slice(1), 16);
+  const out = [16, 8, 0].map((sh) => {
+    const a = (c >> sh) & 255, b = (SKY >> sh) & 255;
+    return Math.round(a + FADE * (b - a));
+  });
+  return "#" + out.map((v) => v.toString(16).padStart(2, "0")).join("");
+}
+
 const wantsMesh = (l: Looks) => l.style !== "curves" || l.faces !== "none";
 
 export function initLooks(ctx: Ctx): void {
@@ -49,8 +62,12 @@ export function initLooks(ctx: Ctx): void {
   info.dataset.testid = "look-info";
   bar.appendChild(info);
 
-  // the selected curve's members are highlighted as its lines are (design mode only)
-  const meshes = new MeshView((b) => (store.mode === "design" && b === store.selection ? SELECTED : store.color(b)));
+  // the selected curve's members are highlighted as its lines are, the others faded towards the
+  // 3D view's ground so that the highlight reads beside the palette's oranges (design mode only)
+  const meshes = new MeshView((b) => {
+    const sel = store.mode === "design" ? store.selection : null;
+    return sel === null ? store.color(b) : b === sel ? SELECTED : faded(store.color(b));
+  });
   const loops = new LoopView();
   // the tube look's tubes while the drawing changes, swept in the page (tubes.ts), until the
   // server's mesh of the current revision replaces them

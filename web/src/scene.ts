@@ -38,7 +38,8 @@ export const VIEW3D = { elevation: 35, azimuth: 35, fill: 0.8 } as const;
 /** The colour of the selected curve's lines and members (design mode). */
 export const SELECTED = "#d97706";
 /** Clear colours: the drawing views (paper) and the 3D view (a cooler, lighter ground for the coloured tubes). */
-const PAPER = 0xf4f1ea, SKY = 0xe9eef3;
+const PAPER = 0xf4f1ea;
+export const SKY = 0xe9eef3;
 
 export class Views {
   readonly renderer: THREE.WebGLRenderer;

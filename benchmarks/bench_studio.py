@@ -74,9 +74,12 @@ async ({kind, n, period}) => {
     const t0 = performance.now();
     a.ctx.send(msg);
     const [t1, rev] = await got;
-    // the first frame whose 3D members show this revision (lines; tubes in the tube look)
+    // the first frame whose 3D members show this revision (lines; tubes in the tube look); pages
+    // from before views.membersRevision (bench_studio_versions.py): the next frame
     await new Promise((res) => {
-      const off = a.views.onFrame(() => { if (a.views.membersRevision >= rev) { off(); res(); } });
+      const off = a.views.onFrame(() => {
+        if (a.views.membersRevision === undefined || a.views.membersRevision >= rev) { off(); res(); }
+      });
     });
     gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
     const t2 = performance.now();

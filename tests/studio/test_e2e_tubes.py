@@ -78,10 +78,13 @@ def blue(px: Any) -> int:
     return int(((b - r > 60) & (b - g > 20)).sum())
 
 
-def orange(px: Any) -> int:
-    """Pixels of the highlight's amber (#d97706, lit): red well above green well above blue."""
+def saturated(px: Any) -> tuple[int, int]:
+    """Strongly coloured pixels (channels spread over 100): (warm ones, red > green > blue, as
+    the amber highlight and the vermilion; all others)."""
     r, g, b = px[..., 0], px[..., 1], px[..., 2]
-    return int(((r - b > 90) & (g - b > 30) & (r - g > 40)).sum())
+    sat = px.max(axis=-1) - px.min(axis=-1) > 100
+    warm = sat & (r > g) & (g > b)
+    return int(warm.sum()), int((sat & ~warm).sum())
 
 
 def test_selected_curve_is_highlighted_in_the_tube_look(studio, uxi28, page):
@@ -103,7 +106,11 @@ def test_selected_curve_is_highlighted_in_the_tube_look(studio, uxi28, page):
     # fade towards the ground, so the amber is not confused with the vermilion)
     assert blue(before) > 500, blue(before)
     assert blue(after) < blue(before) / 10, (blue(before), blue(after))
-    assert orange(after) > orange(before) + blue(before) / 2, (orange(before), orange(after), blue(before))
+    # the amber tubes are the only strong colour left (the faded ones are pale)
+    warm, other = saturated(after)
+    assert warm > blue(before) / 2, (warm, blue(before))
+    assert other < blue(before) / 20, (other, blue(before))
+    assert saturated(before)[1] > blue(before) / 2     # before: blue and green were strong colours
 
     # an edit: the page's own tubes show the new geometry at once, the selection highlighted too
     page.evaluate("""() => { window.__seen = []; window.auszug.store.on('geometry', () => {

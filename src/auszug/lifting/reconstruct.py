@@ -255,9 +255,10 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
 
     1. *seed*: the most oblique smooth crossing is lifted (its two tangents
        orthogonal and equally foreshortened), then propagated by minimising
-       fidelity (w_a = 10) with soft parallelism w_p = 5 exp(-alpha^2 / sigma^2)
-       subject to orthogonality at the seed only;
-    2. *baseline*: fidelity (w_a = 10) with soft parallelism
+       fidelity (w_a = ``params.w_a_baseline``, 1; the paper: 10) with soft
+       parallelism w_p = 5 exp(-alpha^2 / sigma^2) subject to orthogonality at
+       the seed only;
+    2. *baseline*: fidelity (the same w_a) with soft parallelism
        w_p = 0.1 exp(-alpha^2 / sigma^2) subject to orthogonality at every
        smooth crossing. Stages 1-2 run from up to :data:`SEEDS` seed crossings,
        the lowest converged baseline kept; a seed that does not converge is

@@ -325,10 +325,10 @@ def test_view_from_above_score_on_the_exact_truths(tilt):
 def test_depth_sign_over_views():
     """Wrong-sign rate of the lifts (baseline) over 16 views: the three example objects and the box at
     tilts 20 and 30 deg, turns -40 and 30 deg. Measured: 0 wrong (the issue's target: at most 5 %),
-    every solve converged; depth RMSE 0.00-11.7 % (arches 6.4-11.7 %). With the convexity votes alone
-    (the rule before lifting6) the ogee roof and the arches came out mirrored in most views: on a
-    wider grid (tilts 15, 25, 35; turns +-25, +-50; 60 lifts with the revolve) 25 of 60 wrong
-    against 12 of 60 now, 10 of which are lifts 16-37 % off the truth at either sign (docs/lifting.md).
+    every solve converged. With the convexity votes alone (the rule before lifting6) the ogee roof and
+    the arches came out mirrored in most views. On a wider grid (tilts 15, 25, 35; turns +-25, +-50;
+    60 lifts with the revolve): 4 of 60 wrong now, all in lifts 14-19 % off the truth at either sign;
+    25 of 60 before (docs/lifting.md).
     """
     from tests.lifting.truth import rotation
 

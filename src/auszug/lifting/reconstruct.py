@@ -91,8 +91,9 @@ class LiftResult:
     converged : bool
         Every solve converged with its hard constraints met.
     flipped : tuple of bool
-        Per layer: whether the convexity rule (or a flip marker) chose the
-        mirror image z -> -z of the solver's solution.
+        Per layer: whether the depth-sign rule (the view from above,
+        :func:`from_above`; convexity where that is 0) or a flip marker chose
+        the mirror image z -> -z of the solver's solution.
     points : tuple of (n, 3) ndarray
         Per layer: the lifted control points (sketch units).
     graphs : tuple of SketchGraph
@@ -478,7 +479,7 @@ def _flip_to_view_from_above(g: SketchGraph, X: Array, smooth: cu.Orthogonal, pa
 
 
 def _concave(g: SketchGraph, X: Array, smooth: cu.Orthogonal) -> bool:
-    """The convexity rule: True when the solution is concave seen from the viewer at +z.
+    """The convexity rule (the fallback of the depth sign): True when the solution is concave seen from +z.
 
     At every smooth crossing the surface normal n = t_a x t_b is oriented
     toward the viewer (n_z > 0); the normal curvatures of both curves

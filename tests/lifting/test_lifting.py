@@ -72,24 +72,29 @@ def baseline(truth):
     return lift(truth.sketch, classes=())
 
 
+@pytest.fixture(scope="module")
+def default_lift(truth):
+    return lift(truth.sketch)
+
+
 def test_revolve_baseline_recovers_the_depth(truth, baseline):
     """Meridians and parallels of a vase: fidelity + hard orthogonality at the smooth crossings."""
     err, sign = depth_rmse(truth, baseline)
     assert baseline.converged
-    # every solve converged (KKT residual), none from a discarded seed; measured 4 solves, 35 Newton steps
+    # every solve converged (KKT residual), none from a discarded seed; measured 4 solves, 31 Newton steps
     assert all(s.converged and not s.discarded for s in baseline.stages)
     assert sum(s.iterations for s in baseline.stages) <= 50
-    assert sign == 1                       # the convexity rule picks the true sign
-    assert err <= 0.013                    # measured 1.27 % of the diagonal
+    assert sign == 1                       # the view from above picks the true sign
+    assert err <= 0.018                    # measured 1.78 % of the diagonal (1.27 % with the paper's w_a = 10)
     ortho = [c.angle for c in baseline.cues if c.kind == "smooth-orthogonal"]
     assert len(ortho) == 24 and max(ortho) < 1e-6
 
 
-def test_revolve_with_the_default_cues(truth):
-    r = lift(truth.sketch)
+def test_revolve_with_the_default_cues(truth, default_lift):
+    r = default_lift
     err, sign = depth_rmse(truth, r)
     assert r.converged and sign == 1
-    assert err <= 0.032                    # measured 3.13 %: the progressive stage costs accuracy here
+    assert err <= 0.032                    # measured 3.11 %: the progressive stage costs accuracy here
     applied = [c for c in r.cues if c.applied]
     assert all(c.angle <= DEFAULT.inner_deg for c in applied if c.kind != "parallel")
     stages = [s.name for s in r.stages]
@@ -111,11 +116,12 @@ def test_network_is_the_lift_and_lies_on_the_sketch(truth, baseline):
         assert max(dist) < 0.02 * d
 
 
-@pytest.mark.parametrize("classes, bound", [((), 1e-5), (("parallel", "orthogonal", "planar"), 5e-5)])
+@pytest.mark.parametrize("classes, bound", [((), 3e-5), (("parallel", "orthogonal", "planar"), 5e-5)])
 def test_box_of_straight_strokes_lifts(classes, bound):
     """Nine edges and six face sections, all straight: every crossing orthogonal in 3D.
 
-    Measured: depth RMSE 3.5e-6 (baseline) and 1.7e-5 (default cues) of the diagonal, the residue of
+    Measured: depth RMSE 2.5e-5 (baseline; 3.5e-6 with the paper's baseline w_a = 10) and 1.7e-5
+    (default cues) of the diagonal, the residue of
     the foreshortening term; all solves converged; the hard orthogonality met to 1e-11 deg.
     """
     tr = box()
@@ -131,19 +137,34 @@ def test_box_of_straight_strokes_lifts(classes, bound):
     assert all(c.angle < 1e-3 for c in applied)
 
 
-@pytest.mark.parametrize("seed", range(3))
-def test_revolve_baseline_with_half_a_percent_of_noise(seed):
-    """2D noise of 0.5 % of the diagonal (a smooth random displacement field, truth.py) on the vase.
+@pytest.mark.parametrize("noise, seed", [(0.005, 0), (0.005, 1), (0.005, 2), (0.01, 0), (0.01, 1), (0.01, 2)])
+def test_revolve_baseline_with_noise(truth, baseline, noise, seed):
+    """2D noise of 0.5 % and 1 % of the diagonal (a smooth random displacement field, truth.py) on the vase.
 
-    Measured: 1.37, 1.47, 1.64 % depth RMSE for seeds 0-2 against 1.27 % noise-free (within the
-    issue's "at most twice the noise-free error"); every solve converges. With 1 % noise the same
-    seeds give 4.8, 1.5, 6.2 %: that target is not met (docs/lifting.md).
+    The issue's target: at most twice the noise-free error. Measured (baseline w_a = 1): 1.82, 1.61,
+    1.74 % at 0.5 % and 2.38, 1.79, 2.29 % at 1 % for seeds 0-2, against 1.78 % noise-free; every
+    solve converges. With the paper's baseline w_a = 10: 1.37, 1.47, 1.63 % and 4.78, 1.51, 6.18 %
+    against 1.27 %, so 1 % noise missed the target (docs/lifting.md).
     """
-    tr = revolve(noise=0.005, seed=seed)
+    err0, _ = depth_rmse(truth, baseline)
+    tr = revolve(noise=noise, seed=seed)
     r = lift(tr.sketch, classes=())
     err, sign = depth_rmse(tr, r)
     assert r.converged and sign == 1
-    assert err <= 2 * 0.0127
+    assert err <= 2 * err0, (err, err0)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_revolve_default_cues_with_one_percent_noise(truth, default_lift, seed):
+    """The default cues on the vase with 1 % noise: within twice the noise-free error (measured 3.08, 3.09,
+    4.57 % against 3.11 %; with the paper's baseline w_a = 10: 2.62, 8.61, 4.58 % against 3.13 %). Seeds
+    0 and 2 have a solve that does not converge (asserted as measured, so that a change shows)."""
+    err0, _ = depth_rmse(truth, default_lift)
+    tr = revolve(noise=0.01, seed=seed)
+    r = lift(tr.sketch)
+    err, sign = depth_rmse(tr, r)
+    assert sign == 1 and r.converged == (seed == 1)
+    assert err <= 2 * err0, (err, err0)
 
 
 @pytest.mark.parametrize("seed", range(3))
@@ -182,18 +203,18 @@ def test_parallel_resolution_follows_the_paper_on_the_vase(truth, baseline):
 
     The likelihood is taken on the 3D angles of the network each round's solve returns: a cue is
     applied exactly when its 3D angle after the round is within I_b (L = 1). The 15 false candidates
-    (taper, 5.4-8.2 deg in the truth) are not kept soft for many rounds: 7 of them are already within
-    I_b on the baseline (2.0-4.4 deg: L = 1 before any cue round), and one round of w_c L C^2 pulls the
-    other 8 (5.3-8.3 deg) within I_b too, so all 38 are applied in round 1. Measured depth RMSE with
-    parallelism alone 3.07 % of the diagonal.
+    (taper, 5.4-8.2 deg in the truth) are not kept soft for many rounds: 12 of them are already within
+    I_b on the baseline (1.3-4.2 deg: L = 1 before any cue round; 7 with the paper's baseline
+    w_a = 10), and one round of w_c L C^2 pulls the other 3 (5.3-6.6 deg) within I_b too, so all 38
+    are applied in round 1. Measured depth RMSE with parallelism alone 3.08 % of the diagonal.
     """
     (_, g), = layer_graphs(truth.sketch)
     par = parallel_cues(g, DEFAULT)
     true_parallel = par.angles(truth_points(truth, g)) <= DEFAULT.inner_deg
     base = np.array([c.angle for c in baseline.cues if c.kind == "parallel"])
     assert len(base) == 38 and not any(c.applied for c in baseline.cues if c.kind == "parallel")
-    assert base[true_parallel].max() < 1.7 and base[~true_parallel].max() > 8.0
-    assert int((base[~true_parallel] <= DEFAULT.inner_deg).sum()) == 7   # L = 1 on the baseline already
+    assert base[true_parallel].max() < 1.7 and base[~true_parallel].max() > 6.5
+    assert int((base[~true_parallel] <= DEFAULT.inner_deg).sum()) == 12  # L = 1 on the baseline already
     r = lift(truth.sketch, classes=("parallel",))
     rounds = [s for s in r.stages if s.name.startswith("parallel round")]
     assert [(s.applied, s.rejected) for s in rounds] == [(38, 0)]
@@ -202,7 +223,7 @@ def test_parallel_resolution_follows_the_paper_on_the_vase(truth, baseline):
     app = np.array([c.applied for c in r.cues if c.kind == "parallel"])
     assert np.array_equal(app, likelihood(ang, DEFAULT) >= 1.0)
     err, sign = depth_rmse(truth, r)
-    assert sign == 1 and 0.030 <= err <= 0.032   # measured 3.07 %
+    assert sign == 1 and 0.030 <= err <= 0.032   # measured 3.08 %
 
 
 def _example_truth(name: str, R: np.ndarray | None = None):
@@ -223,14 +244,14 @@ def _example_truth(name: str, R: np.ndarray | None = None):
 
 
 @pytest.mark.parametrize("name, sign, base_bound, cue_bound", [
-    ("vase", 1, 0.030, 0.033),          # measured 2.91 % baseline, 3.17 % default cues (22 of 22 parallel applied)
-    ("ogee-roof", 1, 0.035, 0.035),     # measured 3.40 %, 3.36 %
-    ("arches", 1, 0.101, 0.093),        # measured 9.97 %, 9.16 %
+    ("vase", 1, 0.020, 0.031),          # measured 1.96 % baseline, 3.00 % default cues
+    ("ogee-roof", 1, 0.035, 0.035),     # measured 3.48 %, 3.36 %
+    ("arches", 1, 0.100, 0.092),        # measured 9.96 %, 9.16 %
 ])
 def test_bundled_examples_against_their_truth(name, sign, base_bound, cue_bound):
     """Depth RMSE and depth sign of the three example sketches against the 3D truths they were drawn from.
 
-    Measured on branch lifting5 (docs/lifting.md): none meets the issue's accuracy targets. The sign is
+    Measured on branch lifting6 (docs/lifting.md): none meets the issue's accuracy targets. The sign is
     right for all three since lifting6 (the view-from-above rule, ``from_above``); the convexity votes
     alone picked the mirror image for the ogee roof and the arches. The sketches are rebuilt from the
     truths (noise-free; the bundled SVGs round the coordinates to 0.01 px). The arches come out flatter
@@ -243,14 +264,14 @@ def test_bundled_examples_against_their_truth(name, sign, base_bound, cue_bound)
         assert r.converged and s == sign and err <= bound, (name, classes, err, s)
 
 
-@pytest.mark.parametrize("name, bound", [("vase", 0.033), ("ogee-roof", 0.036), ("arches", 0.097)])
+@pytest.mark.parametrize("name, bound", [("vase", 0.031), ("ogee-roof", 0.036), ("arches", 0.097)])
 def test_shipped_example_svgs_lift_with_the_true_depth_sign(name, bound):
     """The bundled SVG files themselves (as a user opens them) against their 3D truths: right sign.
 
     make_sketches.svg maps a truth's view coordinates to SVG pixels by a uniform scale, a shift and
     the y flip that the reader undoes, so the truth in the reader's coordinates is the view scaled by
-    the same factor. Measured depth RMSE (default cues): 3.17, 3.50, 9.56 % (the rebuilt sketches
-    above: 3.17, 3.36, 9.16 %; the difference is the SVG's rounding); the sign was wrong for the ogee
+    the same factor. Measured depth RMSE (default cues): 3.00, 3.50, 9.56 % (the rebuilt sketches
+    above: 3.00, 3.36, 9.16 %; the difference is the SVG's rounding); the sign was wrong for the ogee
     roof and the arches before lifting6.
     """
     from auszug import examples
@@ -304,10 +325,10 @@ def test_view_from_above_score_on_the_exact_truths(tilt):
 def test_depth_sign_over_views():
     """Wrong-sign rate of the lifts (baseline) over 16 views: the three example objects and the box at
     tilts 20 and 30 deg, turns -40 and 30 deg. Measured: 0 wrong (the issue's target: at most 5 %),
-    every solve converged; depth RMSE 0.00-11.7 % (arches 6.4-11.7 %). With the convexity votes alone
-    (the rule before lifting6) the ogee roof and the arches came out mirrored in most views: on a
-    wider grid (tilts 15, 25, 35; turns +-25, +-50; 60 lifts with the revolve) 25 of 60 wrong
-    against 12 of 60 now, 10 of which are lifts 16-37 % off the truth at either sign (docs/lifting.md).
+    every solve converged. With the convexity votes alone (the rule before lifting6) the ogee roof and
+    the arches came out mirrored in most views. On a wider grid (tilts 15, 25, 35; turns +-25, +-50;
+    60 lifts with the revolve): 4 of 60 wrong now, all in lifts 14-19 % off the truth at either sign;
+    25 of 60 before (docs/lifting.md).
     """
     from tests.lifting.truth import rotation
 

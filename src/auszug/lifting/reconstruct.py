@@ -91,8 +91,9 @@ class LiftResult:
     converged : bool
         Every solve converged with its hard constraints met.
     flipped : tuple of bool
-        Per layer: whether the convexity rule (or a flip marker) chose the
-        mirror image z -> -z of the solver's solution.
+        Per layer: whether the depth-sign rule (the view from above,
+        :func:`from_above`; convexity where that is 0) or a flip marker chose
+        the mirror image z -> -z of the solver's solution.
     points : tuple of (n, 3) ndarray
         Per layer: the lifted control points (sketch units).
     graphs : tuple of SketchGraph
@@ -255,9 +256,10 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
 
     1. *seed*: the most oblique smooth crossing is lifted (its two tangents
        orthogonal and equally foreshortened), then propagated by minimising
-       fidelity (w_a = 10) with soft parallelism w_p = 5 exp(-alpha^2 / sigma^2)
-       subject to orthogonality at the seed only;
-    2. *baseline*: fidelity (w_a = 10) with soft parallelism
+       fidelity (w_a = ``params.w_a_baseline``, 1; the paper: 10) with soft
+       parallelism w_p = 5 exp(-alpha^2 / sigma^2) subject to orthogonality at
+       the seed only;
+    2. *baseline*: fidelity (the same w_a) with soft parallelism
        w_p = 0.1 exp(-alpha^2 / sigma^2) subject to orthogonality at every
        smooth crossing. Stages 1-2 run from up to :data:`SEEDS` seed crossings,
        the lowest converged baseline kept; a seed that does not converge is
@@ -477,7 +479,7 @@ def _flip_to_view_from_above(g: SketchGraph, X: Array, smooth: cu.Orthogonal, pa
 
 
 def _concave(g: SketchGraph, X: Array, smooth: cu.Orthogonal) -> bool:
-    """The convexity rule: True when the solution is concave seen from the viewer at +z.
+    """The convexity rule (the fallback of the depth sign): True when the solution is concave seen from +z.
 
     At every smooth crossing the surface normal n = t_a x t_b is oriented
     toward the viewer (n_z > 0); the normal curvatures of both curves

@@ -198,9 +198,10 @@ def preview_mesh(tracery: Tracery, max_angle: float = PREVIEW_MAX_ANGLE, chord: 
             lv = lv_of(r)
             out.rings(p, d, lv, r.border, -half_t, half_t - half_s)
             wide = p + d * float(lv[0, 0]) * r.border
-            lo, hi = wide.min(0) - wall.margin, wide.max(0) + wall.margin
+            lo, hi = p.min(0) - wall.margin, p.max(0) + wall.margin     # the wall: margin round the arch
             box = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]])
             out.cap(box, [wide[::-1]], -half_t)
+            out.rings(box, np.zeros_like(box), np.array([[0.0, 0.0], [0.0, 1.0]]), 1.0, -half_t, half_t)  # its sides
             out.cap(p, [k[::-1] for k in kids], -half_s)
             continue
         y0 = -half_s + r.face

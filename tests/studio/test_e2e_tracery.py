@@ -94,10 +94,13 @@ def test_each_style_shows_its_regions_in_2d_and_its_window_in_3d(studio, page, n
     x0, y0, x1, y1 = s["bounds"]
     assert x1 - x0 == pytest.approx(span, abs=1e-9)
     assert y1 == pytest.approx(height + span / 2 * math.sqrt(4 * excess - 1), abs=1e-6)
-    # 3D: the view holds the window in its wall: wall thickness deep (front face at -t/2), wider than the span
+    # 3D: the view holds the window's front half in its wall (front face at -t/2, the middle plane at 0) and
+    # draws the back half as its mirror image in the middle plane
     lo_hi = scene_extent(page)
     thick = t.style.wall.thickness
-    assert lo_hi[1] == pytest.approx(-thick / 2, abs=1e-6) and lo_hi[4] == pytest.approx(thick / 2, abs=1e-6)
+    assert lo_hi[1] == pytest.approx(-thick / 2, abs=1e-6) and lo_hi[4] == pytest.approx(0.0, abs=1e-9)
+    assert page.evaluate("""() => { const v = window.auszugTracery.view3d;
+        return v.back.geometry === v.geometry && v.back.scale.toArray().join() === '1,-1,1'; }""")
     assert lo_hi[3] - lo_hi[0] == pytest.approx(span + 2 * t.style.wall.margin, abs=1e-5)
     assert s["indices"]["shape"][0] > 0 and frames(page) > 0
     # the camera: the design page's raised three-quarter view (35 degrees up, 35 round), the window inside it

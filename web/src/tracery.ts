@@ -345,6 +345,8 @@ class View3d {
   readonly orbit: OrbitControls;
   readonly geometry = new THREE.BufferGeometry();
   readonly mesh: THREE.Mesh;
+  /** The back half: the front half mirrored in the middle plane y = 0 (the same buffers). */
+  readonly back: THREE.Mesh;
   lastFrameAt = 0;
   frames = 0;
   private fittedFor = "";
@@ -365,9 +367,15 @@ class View3d {
     fill.position.set(-1, 0.8, 0.4);
     this.scene.add(fill);
     this.camera.up.set(0, 0, 1);
-    this.mesh = new THREE.Mesh(this.geometry, new THREE.MeshStandardMaterial({ color: 0xcfc6b8, roughness: 0.85, side: THREE.DoubleSide }));
+    // Lambert shading (matte stone): on a software renderer a frame of Fig. 20h costs about half of the
+    // design page's MeshStandardMaterial (bench_studio_tracery.py); both sides lit (the preview is not closed)
+    const material = new THREE.MeshLambertMaterial({ color: 0xcfc6b8, side: THREE.DoubleSide });
+    this.mesh = new THREE.Mesh(this.geometry, material);
     this.mesh.name = "window";
-    this.scene.add(this.mesh);
+    this.back = new THREE.Mesh(this.geometry, material);
+    this.back.name = "window-back";
+    this.back.scale.set(1, -1, 1);
+    this.scene.add(this.mesh, this.back);
     this.orbit = new OrbitControls(this.camera, this.renderer.domElement);
     this.orbit.addEventListener("change", () => this.requestRender());
     new ResizeObserver(() => this.resize()).observe(host);
@@ -392,9 +400,10 @@ class View3d {
     this.geometry.computeVertexNormals();
     this.geometry.dispose(); // drops the old GPU buffers; the new ones upload at the next render
     const [a, b, c, d, e, f] = msg.mesh_bounds;
-    this.bounds.set(new THREE.Vector3(a, b, c), new THREE.Vector3(d, e, f));
-    this.geometry.boundingBox = this.bounds.clone();
-    this.geometry.boundingSphere = this.bounds.getBoundingSphere(new THREE.Sphere());
+    this.geometry.boundingBox = new THREE.Box3(new THREE.Vector3(a, b, c), new THREE.Vector3(d, e, f));
+    this.geometry.boundingSphere = this.geometry.boundingBox.getBoundingSphere(new THREE.Sphere());
+    // the whole window: the front half and its mirror image
+    this.bounds.set(new THREE.Vector3(a, b, c), new THREE.Vector3(d, Math.max(e, -b), f));
     const key = `${msg.style}\u0000${msg.path}`;
     if (key !== this.fittedFor || !this.inView()) {
       this.fittedFor = key;
@@ -444,6 +453,9 @@ class View3d {
   readonly requestRender = perFrame(() => this.render());
 
   render(): void {
+    // seen from the front, the back half shows only through the lights: it is drawn when the camera is
+    // behind the middle plane, which halves a frame's triangles in the usual views
+    this.back.visible = this.camera.position.y > 0;
     this.renderer.render(this.scene, this.camera);
     this.lastFrameAt = performance.now();
     this.frames++;

@@ -200,7 +200,7 @@ def build_message(st: Style, style: str, path: str, values: list[str], msg_id: i
     t0 = time.perf_counter()
     t = build(st)
     t1 = time.perf_counter()
-    verts, faces = preview_mesh(t)
+    verts, faces = preview_mesh(t, back=False)   # the page draws the back half as the front's mirror
     t2 = time.perf_counter()
     lo, hi = t.bounds()
     payload = verts.tobytes() + faces.tobytes()

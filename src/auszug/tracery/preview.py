@@ -11,8 +11,9 @@ preview cuts two corners and keeps the look:
   sharp concave corners may fold over slightly;
 * every region is meshed on its own (its profile swept as quad strips, its
   recess floor triangulated with its children's openings as holes), the
-  back half is the mirror image of the front half, and nothing is zipped:
-  the preview is neither watertight nor manifold. Export uses
+  back half is the mirror image of the front half (or left to the viewer,
+  ``back=False``), and nothing is zipped: the preview is neither watertight
+  nor manifold. Export uses
   :func:`~auszug.tracery.window_mesh`.
 
 Coordinates as :func:`~auszug.tracery.window_mesh`: x right, z up (the 2D
@@ -132,7 +133,7 @@ def _levels(r: Region, per_arc: int) -> Array:
 
 
 def preview_mesh(tracery: Tracery, max_angle: float = PREVIEW_MAX_ANGLE, chord: float = PREVIEW_CHORD,
-                 per_arc: int = 2) -> tuple[NDArray[np.float32], NDArray[np.uint32]]:
+                 per_arc: int = 1, back: bool = True) -> tuple[NDArray[np.float32], NDArray[np.uint32]]:
     """Triangles that look like the window: profiles swept along the sampled borders, not united.
 
     Parameters
@@ -145,6 +146,10 @@ def preview_mesh(tracery: Tracery, max_angle: float = PREVIEW_MAX_ANGLE, chord: 
         Largest chord deviation, relative to the window's span.
     per_arc : int
         Samples per arc of a profile.
+    back : bool
+        Include the back half (the mirror image of the front half in the
+        middle plane ``y = 0``); without it only ``y <= 0`` is meshed, and a
+        viewer can draw the back half as a mirrored instance of the front.
 
     Returns
     -------
@@ -219,7 +224,9 @@ def preview_mesh(tracery: Tracery, max_angle: float = PREVIEW_MAX_ANGLE, chord: 
             done[r.template] = (v0, len(out.verts), f0, len(out.faces), r.origin)
     v = np.concatenate(out.verts)
     f = np.concatenate(out.faces)
-    back = v * np.array([1.0, -1.0, 1.0])
-    verts = np.concatenate([v, back]).astype(np.float32)
+    if not back:
+        return v.astype(np.float32), f.astype(np.uint32)
+    mirror = v * np.array([1.0, -1.0, 1.0])
+    verts = np.concatenate([v, mirror]).astype(np.float32)
     faces = np.concatenate([f, f[:, ::-1] + len(v)]).astype(np.uint32)
     return verts, faces

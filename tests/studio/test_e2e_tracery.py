@@ -103,6 +103,11 @@ def test_each_style_shows_its_regions_in_2d_and_its_window_in_3d(studio, page, n
         return v.back.geometry === v.geometry && v.back.scale.toArray().join() === '1,-1,1'; }""")
     assert lo_hi[3] - lo_hi[0] == pytest.approx(span + 2 * t.style.wall.margin, abs=1e-5)
     assert s["indices"]["shape"][0] > 0 and frames(page) > 0
+    # every vertex has a unit normal (a normal buffer left from the previous style's smaller mesh drew black)
+    assert page.evaluate("""() => { const g = window.auszugTracery.view3d.geometry, n = g.getAttribute('normal');
+        if (n.count !== g.getAttribute('position').count) return false;
+        for (let i = 0; i < n.count; i++) if (Math.abs(Math.hypot(n.getX(i), n.getY(i), n.getZ(i)) - 1) > 1e-3) return false;
+        return true; }""")
     # the camera: the design page's raised three-quarter view (35 degrees up, 35 round), the window inside it
     cam = page.evaluate("""() => { const v = window.auszugTracery.view3d, p = v.camera.position, t = v.orbit.target;
         return {d: [p.x - t.x, p.y - t.y, p.z - t.z], inside: v.inView()}; }""")

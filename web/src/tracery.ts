@@ -397,6 +397,8 @@ class View3d {
     const idx = new Uint32Array(binary, msg.indices.offset * 4, msg.indices.shape[0] * 3);
     this.geometry.setAttribute("position", new THREE.BufferAttribute(pos, 3));
     this.geometry.setIndex(new THREE.BufferAttribute(idx, 1));
+    // computeVertexNormals reuses an existing normal attribute of the old size: a new one, always
+    this.geometry.deleteAttribute("normal");
     this.geometry.computeVertexNormals();
     this.geometry.dispose(); // drops the old GPU buffers; the new ones upload at the next render
     const [a, b, c, d, e, f] = msg.mesh_bounds;

@@ -23,6 +23,9 @@ export interface TraceryTiming {
   sent: number;
   received: number;
   svg: number;
+  /** The 3D buffers replaced (normals computed), the frame started, the frame drawn. */
+  meshed: number;
+  frame: number;
   rendered: number;
   build_ms: number;
   mesh_ms: number;
@@ -279,7 +282,7 @@ async function go(next: TraceryState, why: string, input = 0, at: HTMLElement | 
   if (reply.type !== "tracery") return false;
   if (at) clearFieldError(at);
   for (const el of inputs.values()) clearFieldError(el);
-  pending = { id: reply.id, input, sent, received: performance.now(), svg: 0, rendered: 0, build_ms: reply.build_ms, mesh_ms: reply.mesh_ms };
+  pending = { id: reply.id, input, sent, received: performance.now(), svg: 0, meshed: 0, frame: 0, rendered: 0, build_ms: reply.build_ms, mesh_ms: reply.mesh_ms };
   state = { style: next.style, path: next.path, values: reply.values };
   show(reply, r.binary!);
   const search = writeTraceryUrl(window.location.search, state);
@@ -294,6 +297,7 @@ function show(msg: TraceryGeometry, binary: ArrayBuffer): void {
   drawSvg(msg);
   if (pending) pending.svg = performance.now();
   view3d.setMesh(msg, binary);
+  if (pending) pending.meshed = performance.now();
   document.body.dataset.regions = String(msg.regions.length);
   status(`${msg.path || msg.name}: ${msg.regions.length} regions, ${msg.n_lights} lights, depth ${msg.depth}; ` +
     `built in ${msg.build_ms.toFixed(1)} ms, preview mesh ${msg.mesh_ms.toFixed(1)} ms ` +
@@ -455,6 +459,7 @@ class View3d {
   readonly requestRender = perFrame(() => this.render());
 
   render(): void {
+    if (pending && !pending.rendered) pending.frame = performance.now();
     // seen from the front, the back half shows only through the lights: it is drawn when the camera is
     // behind the middle plane, which halves a frame's triangles in the usual views
     this.back.visible = this.camera.position.y > 0;

@@ -106,7 +106,9 @@ def test_each_style_shows_its_regions_in_2d_and_its_window_in_3d(studio, page, n
     # every vertex has a unit normal (a normal buffer left from the previous style's smaller mesh drew black)
     assert page.evaluate("""() => { const g = window.auszugTracery.view3d.geometry, n = g.getAttribute('normal');
         if (n.count !== g.getAttribute('position').count) return false;
-        for (let i = 0; i < n.count; i++) if (Math.abs(Math.hypot(n.getX(i), n.getY(i), n.getZ(i)) - 1) > 1e-3) return false;
+        for (let i = 0; i < n.count; i++) {
+          if (Math.abs(Math.hypot(n.getX(i), n.getY(i), n.getZ(i)) - 1) > 1e-3) return false;
+        }
         return true; }""")
     # the camera: the design page's raised three-quarter view (35 degrees up, 35 round), the window inside it
     cam = page.evaluate("""() => { const v = window.auszugTracery.view3d, p = v.camera.position, t = v.orbit.target;

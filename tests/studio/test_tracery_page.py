@@ -189,3 +189,12 @@ def test_the_preview_mesh_matches_the_window():
         assert len(v) == 2 * len(half) and len(f) == 2 * len(hf)
         assert np.array_equal(v[len(half):], half * np.array([1, -1, 1], np.float32))
         assert math.isclose(float(half[:, 1].max()), 0.0, abs_tol=1e-9)
+
+
+def test_svg_path_is_path_data_for_every_region():
+    from auszug.studio.tracery import svg_path
+
+    for name in builtin_styles():
+        for st in (builtin_style(name), builtin_style(name).with_overrides({"params.excess": 0.9, "params.span": 3.7})):
+            for r in build(st).regions:
+                assert svg_path(r.curves) == path_data(r.curves)

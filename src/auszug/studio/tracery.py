@@ -24,6 +24,7 @@ True
 
 from __future__ import annotations
 
+import math
 import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -32,7 +33,6 @@ from auszug.errors import AuszugError
 from auszug.studio import protocol as P
 from auszug.tracery import ParameterError, build, builtin_style, builtin_styles, load_style, refine
 from auszug.tracery._checks import integer
-from auszug.tracery.draw import path_data
 from auszug.tracery.preview import preview_mesh
 from auszug.tracery.style import (
     ARCH_DECORATIONS,
@@ -49,7 +49,7 @@ if TYPE_CHECKING:
     from auszug.studio.session import Workspace
 
 __all__ = ["FIELDS", "STYLE_SUFFIXES", "window_style", "build_message", "style_text", "save_style",
-           "export_window", "style_files", "split_values"]
+           "export_window", "style_files", "split_values", "svg_path"]
 
 #: Endings of style files the page opens and saves.
 STYLE_SUFFIXES = (".toml", ".json")
@@ -187,6 +187,43 @@ def _canonical(values: list[str]) -> list[str]:
     return list(last.values())
 
 
+def _fmt(v: float) -> str:
+    return f"{v:.10f}".rstrip("0").rstrip(".") if v != 0 else "0"
+
+
+def svg_path(curves: tuple[Any, ...]) -> str:
+    """:func:`auszug.tracery.draw.path_data` of a closed loop, the same text, without numpy per arc.
+
+    Examples
+    --------
+    >>> from auszug.tracery import build
+    >>> from auszug.tracery.draw import path_data
+    >>> all(svg_path(r.curves) == path_data(r.curves) for r in build("fig20d").regions)
+    True
+    """
+    from auszug.geometry import Arc
+
+    x, y = curves[0].start.tolist()
+    parts = [f"M{_fmt(x)} {_fmt(y)}"]
+    for c in curves:
+        if isinstance(c, Arc):
+            cx, cy = c.center.tolist()
+            r, th, sw = float(c.radius), float(c.theta0), float(c.sweep)
+            sweeps = [sw] if abs(sw) < 2 * math.pi - 1e-9 else [sw / 2, sw / 2]
+            rs = _fmt(r)
+            for part in sweeps:
+                th += part
+                # the same arithmetic as path_data: centre + radius * (cos, sin)
+                qx, qy = cx + r * math.cos(th), cy + r * math.sin(th)
+                parts.append(f"A{rs} {rs} 0 {1 if abs(part) > math.pi else 0} {1 if part > 0 else 0} "
+                             f"{_fmt(qx)} {_fmt(qy)}")
+        else:
+            x, y = c.end.tolist()
+            parts.append(f"L{_fmt(x)} {_fmt(y)}")
+    parts.append("Z")
+    return " ".join(parts)
+
+
 def build_message(st: Style, style: str, path: str, values: list[str], msg_id: int = 0
                   ) -> tuple[P.TraceryGeometry, bytes]:
     """The :class:`~auszug.studio.protocol.TraceryGeometry` of ``st`` and its payload (the preview mesh).
@@ -204,7 +241,7 @@ def build_message(st: Style, style: str, path: str, values: list[str], msg_id: i
     t2 = time.perf_counter()
     lo, hi = t.bounds()
     payload = verts.tobytes() + faces.tobytes()
-    regions = [P.TraceryRegion(id=r.id, group=r.group, depth=r.depth, role=r.role, d=path_data(r.curves))
+    regions = [P.TraceryRegion(id=r.id, group=r.group, depth=r.depth, role=r.role, d=svg_path(r.curves))
                for r in t.regions]
     vlo, vhi = verts.min(0), verts.max(0)
     msg = P.TraceryGeometry(

@@ -71,7 +71,7 @@ def _inward(p: Array) -> Array:
     bl[bad] = 1.0
     b = b / bl[:, None]
     b[bad] = n[bad]
-    cos = np.einsum("ij,ij->i", b, n)
+    cos = b[:, 0] * n[:, 0] + b[:, 1] * n[:, 1]
     scale = 1.0 / np.maximum(cos, 1.0 / _MITER)
     out: Array = b * scale[:, None]
     return out
@@ -80,12 +80,20 @@ def _inward(p: Array) -> Array:
 def _strips(start: int, m: int, k: int) -> IntArray:
     """Triangles joining k consecutive closed rings of m vertices each, starting at vertex ``start``."""
     i = np.arange(m)
-    j = np.roll(i, -1)
+    j = np.empty(m, np.int64)
+    j[:-1] = i[1:]
+    j[-1] = 0
     base = start + m * np.arange(k - 1)[:, None]                 # (k-1, 1)
     a, b = base + i, base + j
-    c, d = a + m, b + m
-    out: IntArray = np.stack([np.stack([a, b, d], -1), np.stack([a, d, c], -1)], 1).reshape(-1, 3)
-    return out
+    out = np.empty((k - 1, m, 2, 3), np.int64)                   # per quad (a, b, d) and (a, d, c)
+    out[:, :, 0, 0] = a
+    out[:, :, 0, 1] = b
+    out[:, :, 0, 2] = b + m
+    out[:, :, 1, 0] = a
+    out[:, :, 1, 1] = b + m
+    out[:, :, 1, 2] = a + m
+    res: IntArray = out.reshape(-1, 3)
+    return res
 
 
 class _Builder:

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 import time
+from functools import lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -139,12 +140,18 @@ def window_style(workspace: Workspace | None, style: str, path: str, values: lis
     else:
         if style not in builtin_styles():
             raise ParameterError("style", style, "a built-in style (" + ", ".join(builtin_styles()) + ") or prototype")
-        st = builtin_style(style)
+        st = _builtin(style)
     if over:
         st = st.with_overrides(over)
     if depth is not None and depth != st.depth():
         st = refine(st, depth)
     return st
+
+
+@lru_cache(maxsize=32)
+def _builtin(name: str) -> Style:
+    """A built-in style, resolved once (styles are immutable; ``with_overrides`` copies)."""
+    return builtin_style(name)
 
 
 def _field_value(st: Style, key: str, kind: str) -> float | bool | str:

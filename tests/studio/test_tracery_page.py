@@ -198,3 +198,29 @@ def test_svg_path_is_path_data_for_every_region():
         for st in (builtin_style(name), builtin_style(name).with_overrides({"params.excess": 0.9, "params.span": 3.7})):
             for r in build(st).regions:
                 assert svg_path(r.curves) == path_data(r.curves)
+
+
+def test_style_references_stay_inside_the_workspace(client, workspace, tmp_path):
+    outside = tmp_path / "outside.toml"
+    outside.write_text('extends = "fig20b"\n')
+    (workspace / "sub").mkdir()
+    (workspace / "sub" / "base.toml").write_text('extends = "fig20c"\n[circle]\nfoils = 5\n')
+    (workspace / "ok.toml").write_text('extends = "sub/base.toml"\n')
+    (workspace / "abs.toml").write_text(f'extends = "{outside}"\n')
+    (workspace / "up.toml").write_text('extends = "../outside.toml"\n')
+    (workspace / "nested.toml").write_text(f'extends = "fig20f"\n[sub-arch]\nwindow = {{ extends = "{outside}" }}\n')
+    (workspace / "link.toml").symlink_to(outside)
+    (workspace / "via-link.toml").write_text('extends = "link.toml"\n')
+    with client.websocket_connect(WS) as ws:
+        m, _ = _build(ws, path="ok.toml")
+        assert m["type"] == "tracery" and {f["key"]: f["value"] for f in m["fields"]}["circle.foils"] == 5
+        for name in ("abs.toml", "up.toml", "nested.toml", "via-link.toml", "link.toml"):
+            m, _ = _build(ws, path=name, id=7)
+            assert m["type"] == "error" and m["id"] == 7 and "outside the workspace" in m["message"], (name, m)
+        # values may name built-in styles only, also inside an inline table
+        for value in (f'sub-arch.window="{outside}"', f'sub-arch.window={{extends="{outside}"}}',
+                      'sub-arch.window="ok.toml"'):
+            m, _ = _build(ws, style="fig20f", values=[value])
+            assert m["type"] == "tracery_refused" and "built-in style name" in m["message"], (value, m)
+        m, _ = _build(ws, style="fig20f", values=['sub-arch.window="fig20b"'])
+        assert m["type"] == "tracery"

@@ -128,12 +128,19 @@ def window_style(workspace: Workspace | None, style: str, path: str, values: lis
         For a style file that cannot be read, or a path outside the workspace.
     """
     over, depth, _ = split_values(values)
+    for key, value in over.items():
+        named = [value] if key.split(".")[-1] in ("window", "extends") and isinstance(value, str) else []
+        for ref in named + _refs(value):
+            if ref not in builtin_styles():
+                raise ParameterError(key, ref, "a built-in style name (" + ", ".join(builtin_styles()) + ")",
+                                     "the studio reads style files only from the style picker")
     if path:
         if workspace is None:
             raise AuszugError("no workspace to open style files from")
         p = workspace.resolve(path)
         if p.suffix.lower() not in STYLE_SUFFIXES:
             raise AuszugError(f"{path}: a style file ends in .toml or .json")
+        _confined(workspace, p, path, set())
         st = load_style(p)
     elif style == "prototype":
         st = builtin_style("fig20a").with_overrides({"name": "prototype"})
@@ -152,6 +159,49 @@ def window_style(workspace: Workspace | None, style: str, path: str, values: lis
 def _builtin(name: str) -> Style:
     """A built-in style, resolved once (styles are immutable; ``with_overrides`` copies)."""
     return builtin_style(name)
+
+
+def _refs(node: Any) -> list[str]:
+    """The style references (``extends``, ``window`` strings) anywhere in a style table."""
+    out: list[str] = []
+    if isinstance(node, dict):
+        for k, v in node.items():
+            if k in ("extends", "window") and isinstance(v, str):
+                out.append(v)
+            out += _refs(v)
+    return out
+
+
+def _confined(workspace: Workspace, p: Path, shown: str, seen: set[Path]) -> None:
+    """Refuse a style file whose ``extends`` or nested ``window`` names a file outside the workspace.
+
+    References are resolved as :func:`auszug.tracery.load_style` resolves them (relative to
+    the file, then as a built-in name), so the studio reads no file outside its workspace.
+    """
+    from auszug.studio.session import WorkspaceError
+    from auszug.tracery.style import _parse_text
+
+    if p in seen:
+        return
+    seen.add(p)
+    from auszug.limits import check_file_size
+
+    check_file_size(p)
+    data = _parse_text(p.read_text(encoding="utf-8"), shown, p.suffix.lower())
+
+    for ref in _refs(data):
+        cand = p.parent / ref
+        if cand.suffix.lower() in STYLE_SUFFIXES and cand.is_file():
+            root = workspace.root.resolve()
+            real = cand.resolve()
+            if root not in real.parents:
+                raise WorkspaceError(f"{shown}: refers to {ref!r}, outside the workspace")
+            _confined(workspace, real, workspace.relative(real), seen)
+        elif ref not in builtin_styles():
+            if Path(ref).suffix.lower() in STYLE_SUFFIXES:
+                raise WorkspaceError(f"{shown}: refers to {ref!r}, which is not a style file of the workspace")
+            raise ParameterError("extends", ref, "a built-in style (" + ", ".join(builtin_styles()) + ") or a "
+                                 ".toml/.json file beside the style")
 
 
 def _field_value(st: Style, key: str, kind: str) -> float | bool | str:

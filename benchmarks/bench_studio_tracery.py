@@ -57,11 +57,14 @@ MEMORY_JS = """() => { const i = window.auszugTracery.view3d.renderer.info;
 
 def in_process(style: str, reps: int = 15) -> dict[str, float]:
     """Median ms of the structure, the preview mesh and the finished mesh, in this process."""
+    from auszug.studio import protocol as P
+    from auszug.studio.tracery import build_message, window_style
     from auszug.tracery import build, load_style, window_mesh
     from auszug.tracery.preview import preview_mesh
 
     st = load_style(style)
-    out: dict[str, list[float]] = {"build": [], "preview mesh": [], "finished mesh (window_mesh)": []}
+    out: dict[str, list[float]] = {"build": [], "preview mesh": [], "finished mesh (window_mesh)": [],
+                                   "whole server job (style, build, preview, paths, encoding)": []}
     for k in range(reps):
         s = st.with_overrides({"params.excess": 1.1 + 0.01 * k})
         t0 = time.perf_counter()
@@ -76,6 +79,11 @@ def in_process(style: str, reps: int = 15) -> dict[str, float]:
         out["preview mesh"].append((t2 - t1) * 1e3)
         if k < 5:
             out["finished mesh (window_mesh)"].append((t3 - t2) * 1e3)
+        values = [f"params.excess={1.2 + 0.01 * k}"]
+        t4 = time.perf_counter()
+        msg, payload = build_message(window_style(None, style, "", values), style, "", values)
+        P.pack(P.encode(msg), payload)
+        out["whole server job (style, build, preview, paths, encoding)"].append((time.perf_counter() - t4) * 1e3)
     return {k: statistics.median(v) for k, v in out.items()}
 
 

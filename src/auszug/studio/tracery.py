@@ -131,8 +131,8 @@ def window_style(workspace: Workspace | None, style: str, path: str, values: lis
     for key, value in over.items():
         named = [value] if key.split(".")[-1] in ("window", "extends") and isinstance(value, str) else []
         for ref in named + _refs(value):
-            if ref not in builtin_styles():
-                raise ParameterError(key, ref, "a built-in style name (" + ", ".join(builtin_styles()) + ")",
+            if ref not in _builtin_names():
+                raise ParameterError(key, ref, "a built-in style name (" + ", ".join(_builtin_names()) + ")",
                                      "the studio reads style files only from the style picker")
     if path:
         if workspace is None:
@@ -145,14 +145,20 @@ def window_style(workspace: Workspace | None, style: str, path: str, values: lis
     elif style == "prototype":
         st = builtin_style("fig20a").with_overrides({"name": "prototype"})
     else:
-        if style not in builtin_styles():
-            raise ParameterError("style", style, "a built-in style (" + ", ".join(builtin_styles()) + ") or prototype")
+        if style not in _builtin_names():
+            raise ParameterError("style", style, "a built-in style (" + ", ".join(_builtin_names()) + ") or prototype")
         st = _builtin(style)
     if over:
         st = st.with_overrides(over)
     if depth is not None and depth != st.depth():
         st = refine(st, depth)
     return st
+
+
+@lru_cache(maxsize=1)
+def _builtin_names() -> tuple[str, ...]:
+    """The built-in style names (``builtin_styles()`` builds every style for its descriptions: once)."""
+    return tuple(builtin_styles())
 
 
 @lru_cache(maxsize=32)
@@ -197,10 +203,10 @@ def _confined(workspace: Workspace, p: Path, shown: str, seen: set[Path]) -> Non
             if root not in real.parents:
                 raise WorkspaceError(f"{shown}: refers to {ref!r}, outside the workspace")
             _confined(workspace, real, workspace.relative(real), seen)
-        elif ref not in builtin_styles():
+        elif ref not in _builtin_names():
             if Path(ref).suffix.lower() in STYLE_SUFFIXES:
                 raise WorkspaceError(f"{shown}: refers to {ref!r}, which is not a style file of the workspace")
-            raise ParameterError("extends", ref, "a built-in style (" + ", ".join(builtin_styles()) + ") or a "
+            raise ParameterError("extends", ref, "a built-in style (" + ", ".join(_builtin_names()) + ") or a "
                                  ".toml/.json file beside the style")
 
 
@@ -296,7 +302,10 @@ def build_message(st: Style, style: str, path: str, values: list[str], msg_id: i
     t1 = time.perf_counter()
     verts, faces = preview_mesh(t, back=False)   # the page draws the back half as the front's mirror
     t2 = time.perf_counter()
-    lo, hi = t.bounds()
+    # every region lies inside the outer arch (the first region): its polygon's box is the window's
+    # (Tracery.bounds samples all 121 regions of Fig. 20h finely, as long as the build itself)
+    arch = t.regions[0].polygon()
+    lo, hi = arch.min(0), arch.max(0)
     payload = verts.tobytes() + faces.tobytes()
     regions = [P.TraceryRegion(id=r.id, group=r.group, depth=r.depth, role=r.role, d=svg_path(r.curves))
                for r in t.regions]

@@ -224,3 +224,13 @@ def test_style_references_stay_inside_the_workspace(client, workspace, tmp_path)
             assert m["type"] == "tracery_refused" and "built-in style name" in m["message"], (value, m)
         m, _ = _build(ws, style="fig20f", values=['sub-arch.window="fig20b"'])
         assert m["type"] == "tracery"
+
+
+def test_the_fast_reply_text_is_the_protocols_encoding():
+    from auszug.studio import protocol as P
+    from auszug.studio.tracery import build_message, tracery_text
+
+    for name in builtin_styles():
+        values = ["params.excess=1.1", "circle.orientation=\"lying\""]
+        msg, _ = build_message(window_style(None, name, "", values), name, "", values, msg_id=12)
+        assert tracery_text(msg) == P.encode(msg)

@@ -361,8 +361,8 @@ class _Studio:
             svg = await asyncio.to_thread(self._thumbnail, msg.path, msg.example)
             conn.outbox.put(P.encode(P.Thumbnail(svg=svg, path=msg.path, example=msg.example, id=msg.id)))
         elif isinstance(msg, (P.TraceryBuild, P.TracerySave, P.TraceryExport)):
-            reply, payload = await self._tracery(msg)
-            conn.outbox.put(P.encode(reply), payload)
+            reply, text, payload = await self._tracery(msg)
+            conn.outbox.put(text, payload)
         elif isinstance(msg, P.ListStyles):
             from auszug.studio.tracery import style_files
             from auszug.tracery import builtin_styles
@@ -401,20 +401,27 @@ class _Studio:
         raise EditCancelled(f"the change took longer than {budget:g} s and was given up; the drawing is "
                             "unchanged (auszug.limits.LIMITS.edit_seconds)")
 
-    async def _tracery(self, msg: Any) -> tuple[Any, bytes | None]:
+    async def _tracery(self, msg: Any) -> tuple[Any, str, bytes | None]:
         """A tracery page message in a worker thread within :attr:`Limits.edit_seconds`.
 
         A value the style refuses is answered by :class:`~auszug.studio.protocol.TraceryRefused`
         naming it (the page shows it at the field); the server keeps no tracery state, so
         nothing changes. Past the budget the answer is an error (the thread's result is dropped).
         """
-        task = asyncio.ensure_future(asyncio.to_thread(self._tracery_job, msg))
+        task = asyncio.ensure_future(asyncio.to_thread(self._tracery_encoded, msg))
         budget = LIMITS.edit_seconds
         done, _ = await asyncio.wait({task}, timeout=budget)
         if task not in done:
             raise EditCancelled(f"the window took longer than {budget:g} s to build and was given up; "
                                 "nothing changed (auszug.limits.LIMITS.edit_seconds)")
         return task.result()
+
+    def _tracery_encoded(self, msg: Any) -> tuple[Any, str, bytes | None]:
+        """:meth:`_tracery_job` and its reply's JSON text, in the worker thread."""
+        from auszug.studio.tracery import tracery_text
+
+        reply, payload = self._tracery_job(msg)
+        return reply, tracery_text(reply) if isinstance(reply, P.TraceryGeometry) else P.encode(reply), payload
 
     def _tracery_job(self, msg: Any) -> tuple[Any, bytes | None]:
         from auszug.errors import FormatError

@@ -24,6 +24,8 @@ True
 
 from __future__ import annotations
 
+import dataclasses
+import json
 import math
 import time
 from functools import lru_cache
@@ -50,7 +52,7 @@ if TYPE_CHECKING:
     from auszug.studio.session import Workspace
 
 __all__ = ["FIELDS", "STYLE_SUFFIXES", "window_style", "build_message", "style_text", "save_style",
-           "export_window", "style_files", "split_values", "svg_path"]
+           "export_window", "style_files", "split_values", "svg_path", "tracery_text"]
 
 #: Endings of style files the page opens and saves.
 STYLE_SUFFIXES = (".toml", ".json")
@@ -322,6 +324,28 @@ def build_message(st: Style, style: str, path: str, values: list[str], msg_id: i
     return msg, payload
 
 
+def _flat(obj: Any) -> dict[str, Any]:
+    """A flat dataclass (no nested dataclasses) as a dict in field order."""
+    return {f.name: getattr(obj, f.name) for f in dataclasses.fields(obj)}
+
+
+def tracery_text(msg: P.TraceryGeometry) -> str:
+    """``protocol.encode(msg)``, the same text, without ``dataclasses.asdict``'s deep copy.
+
+    Examples
+    --------
+    >>> m, _ = build_message(window_style(None, "fig20c", "", []), "fig20c", "", [])
+    >>> tracery_text(m) == P.encode(m)
+    True
+    """
+    d = _flat(msg)
+    d["fields"] = [_flat(f) for f in msg.fields]
+    d["regions"] = [_flat(r) for r in msg.regions]
+    d["positions"] = _flat(msg.positions)
+    d["indices"] = _flat(msg.indices)
+    return json.dumps(d, separators=(",", ":"), allow_nan=False)
+
+
 def _plain(data: Any) -> Any:
     """The style table without None values (TOML has no null; a missing key takes the default)."""
     if isinstance(data, dict):
@@ -345,8 +369,6 @@ def style_text(st: Style, suffix: str) -> str:
     """
     data = _plain(st.data)
     if suffix == ".json":
-        import json
-
         return json.dumps(data, indent=2) + "\n"
     import tomli_w
 

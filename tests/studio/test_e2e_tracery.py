@@ -41,9 +41,13 @@ def frames(page: Any) -> int:
 def scene_extent(page: Any) -> list[float]:
     """The bounding box of the vertices the 3D view holds (read from its buffer, not from the message)."""
     return page.evaluate("""() => {
-        const g = window.auszugTracery.view3d.geometry, p = g.getAttribute('position').array;
+        const v = window.auszugTracery.view3d, g = v.geometry, p = g.getAttribute('position').array;
         const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-        for (let i = 0; i < p.length; i += 3) for (let k = 0; k < 3; k++) {
+        // the vertices the drawn triangles use (the buffers are kept between edits, larger than the mesh)
+        const drawn = g.getIndex().array.subarray(g.drawRange.start, g.drawRange.start + g.drawRange.count);
+        const used = new Set(Array.from(drawn));
+        if (used.size !== v.used) return null;
+        for (let i = 0; i < 3 * v.used; i += 3) for (let k = 0; k < 3; k++) {
           lo[k] = Math.min(lo[k], p[i + k]); hi[k] = Math.max(hi[k], p[i + k]); }
         return [...lo, ...hi];
     }""")
@@ -104,9 +108,10 @@ def test_each_style_shows_its_regions_in_2d_and_its_window_in_3d(studio, page, n
     assert lo_hi[3] - lo_hi[0] == pytest.approx(span + 2 * t.style.wall.margin, abs=1e-5)
     assert s["indices"]["shape"][0] > 0 and frames(page) > 0
     # every vertex has a unit normal (a normal buffer left from the previous style's smaller mesh drew black)
-    assert page.evaluate("""() => { const g = window.auszugTracery.view3d.geometry, n = g.getAttribute('normal');
-        if (n.count !== g.getAttribute('position').count) return false;
-        for (let i = 0; i < n.count; i++) {
+    assert page.evaluate("""() => { const v = window.auszugTracery.view3d, g = v.geometry, n = g.getAttribute('normal');
+        const drawn = 3 * window.auszugTracery.shown().indices.shape[0];
+        if (n.count !== g.getAttribute('position').count || g.drawRange.count !== drawn) return false;
+        for (let i = 0; i < v.used; i++) {
           if (Math.abs(Math.hypot(n.getX(i), n.getY(i), n.getZ(i)) - 1) > 1e-3) return false;
         }
         return true; }""")

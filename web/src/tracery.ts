@@ -11,6 +11,7 @@ import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { Connection, socketUrl } from "./connection";
 import { clearFieldError, showFieldError } from "./fielderror";
 import { perFrame } from "./frames";
+import { vertexNormals } from "./meshnormals";
 import type { ClientMessage, ServerMessage, Styles, TraceryField, TraceryGeometry } from "./protocol";
 import { VIEW3D } from "./scene";
 import { installShortcuts, registerShortcut } from "./shortcuts";
@@ -353,6 +354,8 @@ class View3d {
   readonly back: THREE.Mesh;
   lastFrameAt = 0;
   frames = 0;
+  /** How many vertices of the buffers the current mesh uses. */
+  used = 0;
   private fittedFor = "";
   private bounds = new THREE.Box3();
   private frameListeners = new Set<() => void>();
@@ -397,14 +400,35 @@ class View3d {
   /** The preview mesh of `msg` (positions and indices in the payload); the buffers are replaced, the
    * old ones disposed, so GPU resources do not grow with edits. */
   setMesh(msg: TraceryGeometry, binary: ArrayBuffer): void {
-    const pos = new Float32Array(binary, msg.positions.offset * 4, msg.positions.shape[0] * 3);
-    const idx = new Uint32Array(binary, msg.indices.offset * 4, msg.indices.shape[0] * 3);
-    this.geometry.setAttribute("position", new THREE.BufferAttribute(pos, 3));
-    this.geometry.setIndex(new THREE.BufferAttribute(idx, 1));
-    // computeVertexNormals reuses an existing normal attribute of the old size: a new one, always
-    this.geometry.deleteAttribute("normal");
-    this.geometry.computeVertexNormals();
-    this.geometry.dispose(); // drops the old GPU buffers; the new ones upload at the next render
+    const nv = msg.positions.shape[0], nt = msg.indices.shape[0];
+    const pos = new Float32Array(binary, msg.positions.offset * 4, nv * 3);
+    const idx = new Uint32Array(binary, msg.indices.offset * 4, nt * 3);
+    // The buffers are kept between edits (a quarter larger than needed, the rest unused): an edit
+    // rewrites them in place (bufferSubData), where new buffers would cost the software renderer a
+    // new vertex array and uploads of their whole size. They grow (new buffers, the old ones freed)
+    // only when a mesh does not fit.
+    let P = this.geometry.getAttribute("position") as THREE.BufferAttribute | undefined;
+    let I = this.geometry.getIndex();
+    if (!P || !I || P.array.length < 3 * nv || I.array.length < 3 * nt) {
+      const cv = Math.ceil(1.25 * nv), ct = Math.ceil(1.25 * nt);
+      this.geometry.dispose();
+      P = new THREE.BufferAttribute(new Float32Array(3 * cv), 3);
+      I = new THREE.BufferAttribute(new Uint32Array(3 * ct), 1);
+      this.geometry.setAttribute("position", P);
+      this.geometry.setAttribute("normal", new THREE.BufferAttribute(new Float32Array(3 * cv), 3));
+      this.geometry.setIndex(I);
+    }
+    const N = this.geometry.getAttribute("normal") as THREE.BufferAttribute;
+    (P.array as Float32Array).set(pos);
+    (I.array as Uint32Array).set(idx);
+    vertexNormals(pos, idx, nv, nt, N.array as Float32Array);
+    for (const [attr, n] of [[P, 3 * nv], [N, 3 * nv], [I, 3 * nt]] as [THREE.BufferAttribute, number][]) {
+      attr.clearUpdateRanges();
+      attr.addUpdateRange(0, n);
+      attr.needsUpdate = true;
+    }
+    this.geometry.setDrawRange(0, 3 * nt);
+    this.used = nv;
     const [a, b, c, d, e, f] = msg.mesh_bounds;
     this.geometry.boundingBox = new THREE.Box3(new THREE.Vector3(a, b, c), new THREE.Vector3(d, e, f));
     this.geometry.boundingSphere = this.geometry.boundingBox.getBoundingSphere(new THREE.Sphere());

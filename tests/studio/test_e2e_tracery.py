@@ -123,6 +123,14 @@ def test_each_style_shows_its_regions_in_2d_and_its_window_in_3d(studio, page, n
     assert math.degrees(math.atan2(d[0], -d[1])) == pytest.approx(35.0, abs=1e-3)
     assert cam["inside"]
     shot(page, f"style_{name}")
+    # a value changed in this style: the 2D and the 3D view follow (the arch 2.5 wide, the wall with it)
+    f0 = frames(page)
+    set_field(page, "params.span", "2.5")
+    after = wait_value(page, "params.span=2.5")
+    assert after["bounds"][2] - after["bounds"][0] == pytest.approx(2.5, abs=1e-9)
+    ext = scene_extent(page)
+    assert ext[3] - ext[0] == pytest.approx(2.5 + 2 * t.style.wall.margin, abs=1e-5)
+    assert frames(page) > f0 and len(svg_paths(page)) == len(t.regions)
 
 
 def test_a_value_change_redraws_2d_and_3d_and_goes_into_the_url(studio, page):

@@ -146,6 +146,13 @@ class Limits:
         the other tabs are answered meanwhile; past this budget it is given
         up and the drawing stays as it was. The slowest edit within the
         other limits measured here (fold 1019 on U.XI.28) takes 0.8 s.
+    autosave_offers : int
+        Set-aside autosaves kept per document file (the newest; the studio
+        offers only the newest, the older ones are for recovery by hand).
+    autosave_offer_days : float
+        Days a set-aside autosave that was neither restored nor replaced is
+        kept (by the time it was written), checked when the studio starts and
+        whenever it sets an autosave aside.
     """
 
     fold: int = 1024
@@ -170,6 +177,8 @@ class Limits:
     mesh_segments: int = 1000
     tube_around: int = 64
     edit_seconds: float = 20.0
+    autosave_offers: int = 3
+    autosave_offer_days: float = 30.0
 
 
 #: The limits in force.

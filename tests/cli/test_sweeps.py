@@ -130,3 +130,53 @@ def test_bad_options_exit_2(cli, tmp_path, args, message):
     r = cli("sweeps", src, *args)
     assert r.code == 2 and message in r.err
     assert files_in(tmp_path) == ["a.stl"]
+
+
+def test_outputs_are_all_or_nothing_when_the_picture_fails(cli, tmp_path, monkeypatch):
+    """The result file is written together with --glb / --png: a failing picture leaves no file at all."""
+    import auszug.formats.sweeps_figure as figure
+    from auszug.errors import GeometryError
+
+    src = tmp_path / "a.stl"
+    save(_mesh("extruded"), src, kind="mesh")
+
+    def broken(*args, **kwargs):
+        raise GeometryError("cannot draw this")
+
+    monkeypatch.setattr(figure, "render_sweeps", broken)
+    r = cli("sweeps", src, "-o", tmp_path / "r.sweeps.json", "--glb", tmp_path / "r.glb", "--png", tmp_path / "r.png")
+    assert r.code == 2 and "cannot draw this" in r.err and "r.png" in r.err
+    assert "Traceback" not in r.err
+    assert files_in(tmp_path) == ["a.stl"]
+
+
+def test_outputs_are_all_or_nothing_when_a_target_cannot_be_written(cli, tmp_path):
+    """The picture's name is a folder: nothing is written, no temporary file is left, exit 2."""
+    src = tmp_path / "a.stl"
+    save(_mesh("extruded"), src, kind="mesh")
+    (tmp_path / "r.png").mkdir()
+    r = cli("sweeps", src, "-o", tmp_path / "r.sweeps.json", "--png", tmp_path / "r.png")
+    assert r.code == 2 and "r.png" in r.err and "Traceback" not in r.err
+    assert files_in(tmp_path) == ["a.stl"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.stl", "r.png"]
+
+
+def test_atomic_write_all_removes_what_it_renamed_when_a_later_rename_fails(tmp_path, monkeypatch):
+    import os
+
+    from auszug.formats import atomic_write_all
+
+    real = os.replace
+    calls = []
+
+    def flaky(a, b):
+        calls.append(b)
+        if len(calls) == 2:
+            raise PermissionError(13, "denied")
+        return real(a, b)
+
+    monkeypatch.setattr(os, "replace", flaky)
+    with pytest.raises(PermissionError) as e:
+        atomic_write_all([(tmp_path / "a.json", "{}"), (tmp_path / "b.png", b"png")])
+    assert e.value.filename == str(tmp_path / "b.png")
+    assert files_in(tmp_path) == []

@@ -149,14 +149,15 @@ def test_revolve_baseline_with_half_a_percent_of_noise(seed):
 @pytest.mark.parametrize("seed", range(3))
 def test_box_with_half_a_percent_of_noise_and_the_cues(seed):
     """The box with 0.5 % noise: the cues pull it back (measured 0.50, 0.71, 0.99 % with the default
-    cues against 1.36, 1.13, 0.71 % for the baseline); the sign of seed 1 is wrong (measured), since a
-    noisy straight stroke's curvature votes at random in the convexity rule."""
+    cues against 1.36, 1.13, 0.71 % for the baseline). The sign is right for every seed: the view from
+    above decides it (``from_above``); the convexity votes alone picked the mirror for seed 1, since a
+    noisy straight stroke's curvature votes at random."""
     tr = box(noise=0.005, seed=seed)
     r = lift(tr.sketch)
     err, sign = depth_rmse(tr, r)
     assert r.converged
     assert err <= 0.011
-    assert sign == (-1 if seed == 1 else 1)
+    assert sign == 1
 
 
 def test_revolve_parallel_cues_against_the_truth(truth):
@@ -204,13 +205,16 @@ def test_parallel_resolution_follows_the_paper_on_the_vase(truth, baseline):
     assert sign == 1 and 0.030 <= err <= 0.032   # measured 3.07 %
 
 
-def _example_truth(name: str):
-    """The 3D truth of a bundled example sketch, projected exactly as tests/lifting/make_sketches.py does."""
+def _example_truth(name: str, R: np.ndarray | None = None):
+    """The 3D truth of a bundled example sketch, projected exactly as tests/lifting/make_sketches.py does.
+
+    ``R``: another view rotation than the example's own.
+    """
     from tests.lifting import make_sketches as ms
     from tests.lifting.truth import Truth
 
     chains = {"vase": ms.vase, "ogee-roof": ms.ogee_roof, "arches": ms.arches}[name]()
-    s2, view = ms.project(chains, ms.VIEWS[name], 0.0, 0)
+    s2, view = ms.project(chains, ms.VIEWS[name] if R is None else R, 0.0, 0)
     diag = float(np.linalg.norm(np.ptp(np.concatenate([v.reshape(-1, 3) for v in view]), axis=0)))
     marks = ms.spurious(s2, view, 0.02 * diag)
     sk = Sketch(tuple(Stroke(c, f"c{i}") for i, c in enumerate(s2)),
@@ -220,19 +224,102 @@ def _example_truth(name: str):
 
 @pytest.mark.parametrize("name, sign, base_bound, cue_bound", [
     ("vase", 1, 0.030, 0.033),          # measured 2.91 % baseline, 3.17 % default cues (22 of 22 parallel applied)
-    ("ogee-roof", -1, 0.035, 0.035),    # measured 3.40 %, 3.36 %; the convexity rule picks the mirror
-    ("arches", -1, 0.101, 0.093),       # measured 9.97 %, 9.16 %; the mirror too
+    ("ogee-roof", 1, 0.035, 0.035),     # measured 3.40 %, 3.36 %
+    ("arches", 1, 0.101, 0.093),        # measured 9.97 %, 9.16 %
 ])
 def test_bundled_examples_against_their_truth(name, sign, base_bound, cue_bound):
-    """Depth RMSE of the three example sketches against the 3D truths they were drawn from (noise-free).
+    """Depth RMSE and depth sign of the three example sketches against the 3D truths they were drawn from.
 
-    Measured on branch lifting5 (docs/lifting.md): none meets the issue's accuracy targets, and the
-    convexity rule picks the mirror image for the ogee roof and the arches (asserted as measured, so
-    that a change shows). The sketches are rebuilt from the truths (the bundled SVGs round the
-    coordinates to 0.01 px). The arches come out flatter than the truth (docs/lifting.md).
+    Measured on branch lifting5 (docs/lifting.md): none meets the issue's accuracy targets. The sign is
+    right for all three since lifting6 (the view-from-above rule, ``from_above``); the convexity votes
+    alone picked the mirror image for the ogee roof and the arches. The sketches are rebuilt from the
+    truths (noise-free; the bundled SVGs round the coordinates to 0.01 px). The arches come out flatter
+    than the truth (docs/lifting.md).
     """
     tr = _example_truth(name)
     for classes, bound in (((), base_bound), (DEFAULT_CLASSES, cue_bound)):
         r = lift(tr.sketch, classes=classes)
         err, s = depth_rmse(tr, r)
         assert r.converged and s == sign and err <= bound, (name, classes, err, s)
+
+
+@pytest.mark.parametrize("name, bound", [("vase", 0.033), ("ogee-roof", 0.036), ("arches", 0.097)])
+def test_shipped_example_svgs_lift_with_the_true_depth_sign(name, bound):
+    """The bundled SVG files themselves (as a user opens them) against their 3D truths: right sign.
+
+    make_sketches.svg maps a truth's view coordinates to SVG pixels by a uniform scale, a shift and
+    the y flip that the reader undoes, so the truth in the reader's coordinates is the view scaled by
+    the same factor. Measured depth RMSE (default cues): 3.17, 3.50, 9.56 % (the rebuilt sketches
+    above: 3.17, 3.36, 9.16 %; the difference is the SVG's rounding); the sign was wrong for the ogee
+    roof and the arches before lifting6.
+    """
+    from auszug import examples
+    from auszug.formats import load
+    from tests.lifting import make_sketches as ms
+    from tests.lifting.truth import Truth
+
+    chains = {"vase": ms.vase, "ogee-roof": ms.ogee_roof, "arches": ms.arches}[name]()
+    s2, view = ms.project(chains, ms.VIEWS[name], 0.0, 0)
+    pts = np.concatenate([s.reshape(-1, 2) for s in s2])
+    lo, hi = pts.min(0), pts.max(0)
+    scale = 520.0 / float(max(hi - lo))
+    shift = np.array([40.0 - lo[0] * scale, -hi[1] * scale - 40.0, 0.0])
+    sketch = load(examples.path(f"sketches/{name}.svg"), kind="sketch")
+    assert [s.id for s in sketch.strokes] and len(sketch.strokes) == len(view)
+    tr = Truth(sketch, tuple(v * scale + shift for v in view))
+    # the reader's strokes are the truth's projection (to the SVG's 0.01 px rounding)
+    for s, v in zip(sketch.strokes, tr.chains3d, strict=True):
+        assert np.abs(s.controls - v[:, :, :2]).max() <= 0.006
+    r = lift(sketch)
+    err, sign = depth_rmse(tr, r)
+    assert r.converged and sign == 1 and err <= bound, (err, sign)
+
+
+@pytest.mark.parametrize("tilt", [5.0, 10.0, 20.0, 30.0])
+def test_view_from_above_score_on_the_exact_truths(tilt):
+    """``from_above`` on the true 3D networks (no lift): positive seen from above, the mirror's is its negative.
+
+    Five objects (the three example objects, the box, the revolve), 7 turns from -80 to 70 deg at each
+    tilt: measured minimum scores 0.12 (tilt 5) to 0.28 (tilt 30). The rule assumes a tilt below 45 deg:
+    at tilt 40 the revolve's score is already negative (measured -0.13 to -0.24 for turns -35..40).
+    """
+    from auszug.lifting import from_above
+    from tests.lifting import make_sketches as ms
+    from tests.lifting.truth import rotation
+
+    objects = [ms.vase(), ms.ogee_roof(), ms.arches()]
+    for turn in (-80.0, -60.0, -35.0, -10.0, 15.0, 40.0, 70.0):
+        R = rotation(tilt, turn)
+        nets = [np.concatenate([c @ R.T for c in chains]) for chains in objects]
+        nets += [np.concatenate(box(tilt=tilt, turn=turn).chains3d),
+                 np.concatenate(revolve(tilt=tilt, turn=turn).chains3d)]
+        for k, net in enumerate(nets):
+            s = from_above(net)
+            assert s > 0.1, (k, turn, s)
+            assert from_above(net * [1.0, 1.0, -1.0]) == -s          # exactly antisymmetric under z -> -z
+            assert from_above(net * 7.5 + [3.0, -2.0, 1.0]) == pytest.approx(s, abs=1e-12)   # scale, shift
+    assert from_above(np.zeros((2, 4, 3))) == 0.0
+
+
+def test_depth_sign_over_views():
+    """Wrong-sign rate of the lifts (baseline) over 16 views: the three example objects and the box at
+    tilts 20 and 30 deg, turns -40 and 30 deg. Measured: 0 wrong (the issue's target: at most 5 %),
+    every solve converged; depth RMSE 0.00-11.7 % (arches 6.4-11.7 %). With the convexity votes alone
+    (the rule before lifting6) the ogee roof and the arches came out mirrored in most views: on a
+    wider grid (tilts 15, 25, 35; turns +-25, +-50; 60 lifts with the revolve) 25 of 60 wrong
+    against 12 of 60 now, 10 of which are lifts 16-37 % off the truth at either sign (docs/lifting.md).
+    """
+    from tests.lifting.truth import rotation
+
+    wrong = []
+    for tilt in (20.0, 30.0):
+        for turn in (-40.0, 30.0):
+            truths = [(n, _example_truth(n, rotation(tilt, turn))) for n in ("vase", "ogee-roof", "arches")]
+            truths.append(("box", box(tilt=tilt, turn=turn)))
+            for name, tr in truths:
+                r = lift(tr.sketch, classes=())
+                err, sign = depth_rmse(tr, r)
+                assert r.converged, (name, tilt, turn)
+                if sign != 1:
+                    wrong.append((name, tilt, turn, err))
+    assert wrong == []

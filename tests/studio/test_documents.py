@@ -453,6 +453,110 @@ def test_offered_autosave_is_never_overwritten(workspace):
         assert _geometry(ws)[0]["curves"][0]["apex"] == 3.25   # the recovery is one undoable edit
 
 
+def _offers(workspace: Path) -> list[str]:
+    """The set-aside autosaves of tn-2.uc, oldest first (their names end in the time written, ns)."""
+    auto = workspace / ".auszug" / "autosave"
+    return sorted((p.name for p in auto.glob("tn-2.uc.json.offered-*.json")),
+                  key=lambda n: int(n.rsplit("-", 1)[1].removesuffix(".json")))
+
+
+def _edit_and_leave(workspace: Path, height: float) -> None:
+    """Open tn-2.uc (setting any differing autosave aside), edit it, leave (the autosave is written)."""
+    with _app(workspace, autosave_delay=0) as c, c.websocket_connect(WS) as ws:
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
+        _geometry(ws)
+        ws.send_json({"type": "set_apex_height", "curve": 0, "height": height})
+        _geometry(ws)
+
+
+def test_set_aside_autosaves_are_kept_three_per_file_and_thirty_days():
+    """prune_offers: the newest LIMITS.autosave_offers per autosave, none older than
+    LIMITS.autosave_offer_days, the one on offer always; links and other files untouched."""
+    import tempfile
+
+    from auszug.limits import LIMITS
+    from auszug.studio.session import Workspace, prune_offers
+
+    assert (LIMITS.autosave_offers, LIMITS.autosave_offer_days) == (3, 30.0)
+    day = 86400 * 10**9
+    now = 1000 * day
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp)
+        auto = root / ".auszug" / "autosave"
+        (auto / "sub").mkdir(parents=True)
+        names = [f"a.uc.json.offered-{now - k * day}.json" for k in (1, 2, 3, 4, 5)]
+        names += [f"b.uc.json.offered-{now - 31 * day}.json", f"b.uc.json.offered-{now - 29 * day}.json"]
+        for n in names:
+            (auto / n).write_text("{}")
+        (auto / "sub" / f"c.json.json.offered-{now - 40 * day}.json").write_text("{}")
+        (auto / "a.uc.json").write_text("{}")                  # the live autosave: not an offer
+        (auto / "note.offered-12.txt").write_text("x")          # not an offer's name
+        target = root / "elsewhere.json"
+        target.write_text("{}")
+        (auto / f"z.uc.json.offered-{now - 99 * day}.json").symlink_to(target)   # a link: left alone
+        gone = prune_offers(Workspace(root), now_ns=now)
+        assert sorted(p.name for p in gone) == sorted([names[3], names[4], names[5],
+                                                       f"c.json.json.offered-{now - 40 * day}.json"])
+        left = sorted(p.name for p in auto.iterdir() if p.is_file() or p.is_symlink())
+        assert left == sorted([*names[:3], names[6], "a.uc.json", "note.offered-12.txt",
+                               f"z.uc.json.offered-{now - 99 * day}.json"])
+        assert target.read_text() == "{}"
+        # only one autosave's offers, and the one on offer kept however old
+        old = auto / f"b.uc.json.offered-{now - 50 * day}.json"
+        old.write_text("{}")
+        assert prune_offers(Workspace(root), auto / "b.uc.json", keep=old, now_ns=now) == []
+        assert prune_offers(Workspace(root), auto / "b.uc.json", now_ns=now) == [old]
+
+
+def test_set_aside_autosaves_do_not_pile_up(workspace):
+    """Each restart with unrestored work sets one autosave aside; at most three stay, newest first,
+    and the studio's start removes those past thirty days."""
+    for k in range(5):
+        _edit_and_leave(workspace, 2.0 + 0.25 * k)
+        time.sleep(0.01)   # distinct modification times
+    with _app(workspace) as c, c.websocket_connect(WS) as ws:
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
+        assert _geometry(ws)[0]["recoverable"]
+    offers = _offers(workspace)
+    assert len(offers) == 3
+    # the newest is on offer: the last edit's drawing
+    auto = workspace / ".auszug" / "autosave"
+    assert load(auto / offers[-1]).curves[0].height == 3.0
+    stale = auto / f"tn-2.uc.json.offered-{time.time_ns() - 31 * 86400 * 10**9}.json"
+    shutil.copy(auto / offers[0], stale)
+    create_app(workspace)
+    assert _offers(workspace) == offers
+
+
+def test_restored_autosave_is_deleted_once_autosaved(workspace):
+    """Restoring the offer makes it the drawing; when that drawing is autosaved (or saved), the
+    set-aside copy goes; undoing the restoration before that keeps it."""
+    _edit_and_leave(workspace, 2.5)
+    with _app(workspace, autosave_delay=0) as c, c.websocket_connect(WS) as ws:
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
+        assert _geometry(ws)[0]["recoverable"]
+        [offer] = _offers(workspace)
+        ws.send_json({"type": "recover"})
+        assert _geometry(ws)[0]["curves"][0]["apex"] == 2.5
+        t0 = time.monotonic()
+        while _offers(workspace) and time.monotonic() - t0 < 10:
+            time.sleep(0.01)
+        assert _offers(workspace) == []
+        assert load(workspace / ".auszug" / "autosave" / "tn-2.uc.json").curves[0].height == 2.5
+    # saving the restored drawing (no autosave in between) deletes the offer too
+    with _app(workspace, autosave_delay=30) as c, c.websocket_connect(WS) as ws:
+        ws.send_json({"type": "open", "path": "tn-2.uc"})
+        assert _geometry(ws)[0]["recoverable"]
+        assert len(_offers(workspace)) == 1
+        ws.send_json({"type": "recover"})
+        _geometry(ws)
+        assert len(_offers(workspace)) == 1
+        ws.send_json({"type": "save", "id": 4})
+        _reply(ws, "saved")
+        assert _offers(workspace) == []
+        assert load(workspace / "tn-2.uc").curves[0].height == 2.5
+
+
 def test_reconnecting_tab_gets_back_its_own_state(workspace):
     """After a crash (here: a restart after the autosave), the tab that wrote the autosave resumes
     with it applied; any other tab that opens the file gets the offer instead."""

@@ -124,18 +124,39 @@ def test_fit_to_true_ribs_sweeps_the_mesh(sigma):
     assert np.abs(moved[0] - g.profile).max() <= 1e-12
 
 
+@cache
+def _pipeline(sigma):
+    fx = moulding_along_cubic(sigma=sigma)
+    return fx, detect(fx, DEFAULT.with_(eps_prox=0.005))
+
+
 @pytest.mark.parametrize("sigma", [0.0, 5e-4])
 def test_pipeline_on_the_general_sweep(sigma):
-    fx = moulding_along_cubic(sigma=sigma)
-    r = detect(fx, DEFAULT.with_(eps_prox=0.005))
+    """Issue targets: coverage >= 0.95 clean / 0.85 noisy, plane recall >= 0.95 / 0.85, fit <= 2 eps_prox.
+    Measured (grown patches): coverage 0.982 / 0.964, recall 1.00 / 0.88, fit error 4.7e-4 / 2.8e-3."""
+    fx, r = _pipeline(sigma)
     assert r.patches and all(p.kind == "general" for p in r.patches)
-    assert all(p.fit_error <= 0.01 for p in r.patches)
-    assert r.coverage >= (0.75 if sigma == 0 else 0.5)     # measured 0.833 / 0.605 (targets 0.95 / 0.85)
-    # plane recall of the patches' profile planes (issue target 0.95 / 0.85, not reached: measured
-    # 0.48 clean, 0.50 noisy; the refined search by gliding energy alone gave 0.05 and 0.00)
+    assert all(p.fit_error <= (1e-3 if sigma == 0 else 0.005) for p in r.patches)
+    assert r.coverage >= (0.95 if sigma == 0 else 0.85)
     from auszug.sweeps.general import motion_planes
     from auszug.sweeps.planes import plane_recall
 
     planes = [motion_planes(p.profile, p.motion, 8) for p in r.patches]
-    assert plane_recall(fx.planes, np.vstack([n for n, _ in planes]), np.concatenate([d for _, d in planes])) >= 0.4
+    recall = plane_recall(fx.planes, np.vstack([n for n, _ in planes]), np.concatenate([d for _, d in planes]))
+    assert recall >= (0.95 if sigma == 0 else 0.85)
     assert [s.name for s in r.stages] == ["normalise", "cut", "kinematic", "match", "families", "motion", "fit"]
+
+
+@pytest.mark.parametrize("sigma", [0.0, 5e-4])
+def test_grown_general_sweep_profile_is_the_whole_moulding(sigma):
+    """Grown across its profile, the patch's profile is the whole base moulding (74 samples 0.005 apart
+    of the 0.368 long profile), and each profile point's path stays on the mesh."""
+    from auszug.sweeps.general import trajectory_error
+    from auszug.sweeps.patches import MeshTree
+
+    fx, r = _pipeline(sigma)
+    best = max(r.patches, key=lambda p: p.coverage)
+    length = np.linalg.norm(np.diff(best.profile, axis=0), axis=1).sum()
+    assert length >= 0.95 * fx.profile_length
+    err = trajectory_error(best.profile, best.motion, MeshTree(fx.vertices, fx.faces))
+    assert err.max() <= (1e-3 if sigma == 0 else 0.005)

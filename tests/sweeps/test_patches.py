@@ -84,6 +84,19 @@ def test_noisy_kinematic_patch(name, sigma):
     assert _profile_error(name, p) <= 4 * sigma
 
 
+@pytest.mark.parametrize("sigma", [0.0, 5e-4, 1e-3])
+def test_revolved_motion_keeps_the_true_axis_point_within_1e_3(sigma):
+    """Issue target: translation error of the motion, median <= 1e-3. The true axis point, in the
+    coordinates the motion is in (the noisy mesh normalises to a slightly shifted centre and scale:
+    3.8e-4 and 1.0018 at sigma 5e-4, which alone moved the point by 1.2e-3 in an earlier measurement),
+    stays put: measured median / max 7.6e-5 / 9.9e-5, 3.2e-4 / 4.2e-4, 1.8e-4 / 2.3e-4."""
+    fx, m, k, (p,) = _patches("revolved", sigma)
+    point = (fx.axis_point - m.centre) / m.scale
+    r, tr = p.motion.at(np.linspace(*p.motion.domain, 31))
+    move = np.linalg.norm(np.einsum("kij,j->ki", r, point) + tr - point, axis=1)
+    assert np.median(move) <= 1e-3 and move.max() <= 1e-3
+
+
 def test_profile_improvement_reduces_noise():
     """Sec. 2.3.3: averaging intermediate cuts mapped back by the motion beats the single cut."""
     fx = revolved(sigma=1e-3)

@@ -8,7 +8,8 @@ import * as THREE from "three";
 import type { Ctx } from "./context";
 import type { FacesMode, Style } from "./looks-types";
 import { Debouncer, LoopView, MeshView, pickLoop, type ScreenLoop } from "./meshes";
-import { VIEW_LAYER, type ViewName } from "./scene";
+import { SELECTED, SKY, VIEW_LAYER, type ViewName } from "./scene";
+import { DragTubes } from "./tubes";
 import type { Looks } from "./store";
 
 const STYLES: Record<Style, string> = { curves: "curves", tube: "tubes", bar: "bars", ribbon: "ribbons" };
@@ -33,6 +34,24 @@ function meshKey(l: Looks): string {
   return `${l.style}|${l.faces}|${l.faces === "picked" ? [...l.loops].sort((a, b) => a - b).join(",") : ""}`;
 }
 
+/** Steps along each member of the 3D view's meshes (exports choose their own): the server's default
+ * 64 doubled the triangles a software renderer draws per frame (U.XI.28's tubes: 163 856) for no
+ * difference seen at the view's size. */
+export const VIEW_SEGMENTS = 32;
+
+/** How far the members of curves other than the selected one are faded towards the 3D view's ground. */
+export const FADE = 0.6;
+
+/** `hex` (#rrggbb) mixed with the 3D view's ground colour SKY by FADE, per 8-bit channel, rounded. */
+export function faded(hex: string): string {
+  const c = parseInt(hex.slice(1), 16);
+  const out = [16, 8, 0].map((sh) => {
+    const a = (c >> sh) & 255, b = (SKY >> sh) & 255;
+    return Math.round(a + FADE * (b - a));
+  });
+  return "#" + out.map((v) => v.toString(16).padStart(2, "0")).join("");
+}
+
 const wantsMesh = (l: Looks) => l.style !== "curves" || l.faces !== "none";
 
 export function initLooks(ctx: Ctx): void {
@@ -48,9 +67,26 @@ export function initLooks(ctx: Ctx): void {
   info.dataset.testid = "look-info";
   bar.appendChild(info);
 
-  const meshes = new MeshView((b) => store.color(b));
+  // the selected curve's members are highlighted as its lines are, the others faded towards the
+  // 3D view's ground so that the highlight reads beside the palette's oranges (design mode only)
+  const meshes = new MeshView((b) => {
+    const sel = store.mode === "design" ? store.selection : null;
+    return sel === null ? store.color(b) : b === sel ? SELECTED : faded(store.color(b));
+  });
   const loops = new LoopView();
-  views.scene.add(meshes.group, loops.group);
+  // the tube look's tubes while the drawing changes, swept in the page (tubes.ts), until the
+  // server's mesh of the current revision replaces them
+  const dragTubes = new DragTubes((b) => meshes.material(b, "tube"));
+  views.scene.add(meshes.group, dragTubes.group, loops.group);
+  /** Sweep the page's tubes of the current geometry and show them instead of the server's (stale) members. */
+  const showDragTubes = (): void => {
+    const g = store.geometry;
+    if (!g) return;
+    dragTubes.update(g, store.data);
+    dragTubes.group.visible = true;
+    meshes.showMembers(false);
+    views.membersRevision = g.revision;
+  };
 
   /** Meshes show in the 3D view; in preview mode in all three. */
   const layers = (): number[] =>
@@ -63,7 +99,8 @@ export function initLooks(ctx: Ctx): void {
     sentKey = meshKey(store.looks);
     const l = store.looks;
     info.textContent = "meshing...";
-    return ctx.request({ type: "get_mesh", style: l.style, faces: l.faces, loops: l.faces === "picked" ? l.loops : [] })
+    return ctx.request({ type: "get_mesh", style: l.style, faces: l.faces, loops: l.faces === "picked" ? l.loops : [],
+      segments: VIEW_SEGMENTS })
       .catch((e) => {
         info.textContent = ""; // the status bar says why
         throw e;
@@ -72,8 +109,21 @@ export function initLooks(ctx: Ctx): void {
   const loopRequests = new Debouncer(() => ctx.request({ type: "get_loops" }));
 
   let lastKey = meshKey(store.looks);
-  store.on("geometry", () => {
-    if (wantsMesh(store.looks)) meshRequests.poke();
+  // a drag's edits (a button held) show the page's tubes; the server's mesh is asked for on release
+  let held = false, refineOnRelease = false;
+  window.addEventListener("pointerdown", () => { held = true; }, { capture: true });
+  const release = () => {
+    held = false;
+    if (refineOnRelease && wantsMesh(store.looks) && store.geometry) meshRequests.poke();
+    refineOnRelease = false;
+  };
+  window.addEventListener("pointerup", release, { capture: true });
+  window.addEventListener("pointercancel", release, { capture: true });
+  store.on("geometry", (g) => {
+    if (store.looks.style === "curves") views.membersRevision = g.revision;
+    if (store.looks.style === "tube") showDragTubes();
+    if (held && store.looks.style === "tube") refineOnRelease = true;
+    else if (wantsMesh(store.looks)) meshRequests.poke();
     if (store.looks.faces === "picked") loopRequests.poke();
   });
   store.on("looks", (l) => {
@@ -89,6 +139,11 @@ export function initLooks(ctx: Ctx): void {
         meshes.clear();
         info.textContent = "";
       }
+      if (l.style === "tube") showDragTubes();
+      else {
+        dragTubes.clear();
+        if (l.style === "curves" && store.geometry) views.membersRevision = store.geometry.revision;
+      }
       if (l.faces === "picked" && !wasPicking && store.geometry) loopRequests.poke();
       if (l.faces !== "picked") {
         loopRequests.cancel();
@@ -96,6 +151,7 @@ export function initLooks(ctx: Ctx): void {
       }
     }
     meshes.recolor();
+    dragTubes.recolor();
     loops.setPicked(l.loops);
     views.requestRender();
   });
@@ -103,6 +159,9 @@ export function initLooks(ctx: Ctx): void {
     const current = store.geometry?.revision ?? 0;
     if (!wantsMesh(store.looks) || m.revision < current || sentKey !== meshKey(store.looks)) return;
     meshes.show(m, store.meshBuffer);
+    meshes.showMembers(true);
+    dragTubes.group.visible = false;
+    views.membersRevision = m.revision;
     info.textContent = store.looks.faces === "none" ? "" :
       `${m.faces} faces${m.converged ? "" : ` (not converged: ${m.residual.toPrecision(2)})`}`;
     views.requestRender();
@@ -112,12 +171,21 @@ export function initLooks(ctx: Ctx): void {
     loops.show(m, store.loopsBuffer, store.looks.loops);
     views.requestRender();
   });
+  store.on("selection", () => {
+    meshes.recolor();
+    dragTubes.recolor();
+    views.requestRender();
+  });
   store.on("mode", () => {
+    meshes.recolor();
+    dragTubes.recolor();
     meshes.setLayers(layers());
+    dragTubes.setLayers(layers());
     loops.setLayers(pickViews().map((v) => VIEW_LAYER[v]));
     views.requestRender();
   });
   meshes.setLayers(layers());
+  dragTubes.setLayers(layers());
   loops.setLayers(pickViews().map((v) => VIEW_LAYER[v]));
 
   // ---- picking loops: a click (no drag) toggles the loop under the pointer

@@ -26,6 +26,9 @@ export interface EditTiming {
   received: number;
   applied: number;
   rendered: number;
+  /** The first frame whose 3D members (lines, or tubes/bars/ribbons in those looks) show this
+   * revision or a later one (0: not yet). */
+  shown: number;
 }
 
 const store = new Store();
@@ -61,7 +64,7 @@ const conn = new Connection(socketUrl(window.location), {
         const sent = conn.sentAt.get(msg.id);
         if (sent !== undefined) {
           const t: EditTiming = { id: msg.id, revision: msg.revision, input: conn.inputAt.get(msg.id) ?? 0, sent, received: receivedAt,
-            applied: performance.now(), rendered: 0 };
+            applied: performance.now(), rendered: 0, shown: 0 };
           timings.push(t);
           if (timings.length > 5000) timings.splice(0, 1000);
         }
@@ -111,6 +114,9 @@ const views = new Views(document.getElementById("viewport")!, store);
 views.onFrame(() => {
   const last = timings[timings.length - 1];
   if (last && !last.rendered) last.rendered = views.lastFrameAt;
+  for (let i = timings.length - 1; i >= 0 && !timings[i].shown; i--) {
+    if (timings[i].revision <= views.membersRevision) timings[i].shown = views.lastFrameAt;
+  }
 });
 
 const ctx: Ctx = {

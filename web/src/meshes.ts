@@ -5,6 +5,7 @@
 // never add GPU resources.
 import * as THREE from "three";
 import { viewAny } from "./geometry";
+import { memberMaterial } from "./shading";
 import type { ArrayRef, Loops, MeshGeometry } from "./protocol";
 
 /** The colour of faces (basic -1): a light stone. */
@@ -201,7 +202,7 @@ function sizes(a: PieceArrays, split: { proper: Float32Array; mirrored: Float32A
 export class MeshView {
   readonly group = new THREE.Group();
   private entries: Entry[] = [];
-  private materials = new Map<string, THREE.MeshStandardMaterial>();
+  private materials = new Map<string, THREE.Material & { color: THREE.Color }>();
   private style = "";
   private layers: readonly number[] = [0];
 
@@ -295,14 +296,24 @@ export class MeshView {
     this.style = "";
   }
 
-  private material(basic: number): THREE.MeshStandardMaterial {
+  /** Show or hide the members (basic >= 0; the faces stay). */
+  showMembers(on: boolean): void {
+    for (const e of this.entries) if (e.basic >= 0) for (const m of e.meshes) m.visible = on;
+  }
+
+  /** The material of basic curve `basic`'s members in `style` (faces: basic -1), shared. */
+  material(basic: number, style: string = this.style): THREE.Material & { color: THREE.Color } {
     const color = basic < 0 ? STONE : this.color(basic);
-    // faces and ribbons are seen from both sides; bars have flat sides
-    const doubleSided = basic < 0 || this.style === "ribbon";
-    const flat = basic >= 0 && this.style === "bar";
-    const key = `${color}|${doubleSided}|${flat}`;
+    // faces and ribbons are seen from both sides; bars have flat sides; tubes are lit per vertex
+    const doubleSided = basic < 0 || style === "ribbon";
+    const flat = basic >= 0 && style === "bar";
+    const gouraud = basic >= 0 && style === "tube";
+    const key = `${color}|${doubleSided}|${flat}|${gouraud}`;
     let m = this.materials.get(key);
-    if (!m) {
+    if (!m && gouraud) {
+      m = memberMaterial(color) as THREE.ShaderMaterial & { color: THREE.Color };
+      this.materials.set(key, m);
+    } else if (!m) {
       m = new THREE.MeshStandardMaterial({
         color, roughness: 0.75, metalness: 0.05, flatShading: flat,
         side: doubleSided ? THREE.DoubleSide : THREE.FrontSide,

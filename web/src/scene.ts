@@ -11,6 +11,7 @@ import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { perFrame } from "./frames";
 import { layoutKey, transforms, view } from "./geometry";
 import type { Geometry } from "./protocol";
+import { sceneLights } from "./shading";
 import { SPLIT, type Mode, type Store } from "./store";
 
 export type ViewName = "top" | "persp" | "side";
@@ -34,8 +35,11 @@ function layout(mode: Mode, split: number): Partial<Record<ViewName, [number, nu
 
 /** The 3D view's opening direction: elevation above the ground and azimuth from the front (-y), degrees. */
 export const VIEW3D = { elevation: 35, azimuth: 35, fill: 0.8 } as const;
+/** The colour of the selected curve's lines and members (design mode). */
+export const SELECTED = "#d97706";
 /** Clear colours: the drawing views (paper) and the 3D view (a cooler, lighter ground for the coloured tubes). */
-const PAPER = 0xf4f1ea, SKY = 0xe9eef3;
+const PAPER = 0xf4f1ea;
+export const SKY = 0xe9eef3;
 
 export class Views {
   readonly renderer: THREE.WebGLRenderer;
@@ -55,6 +59,8 @@ export class Views {
   frames = 0;
   /** How often the 3D view was refitted because the model grew out of it (for tests). */
   refits = 0;
+  /** The geometry revision the 3D view's members (lines, or the looks' meshes) show (for the timings). */
+  membersRevision = 0;
   private mode: Mode = "design";
   private layout = "";
   private geoms: THREE.BufferGeometry[] = [];
@@ -84,13 +90,7 @@ export class Views {
     this.network.name = "network";
     this.scene.add(this.network);
     // a sky light and two directional lights: no side of a member goes dark (the palette's colours read)
-    this.scene.add(new THREE.HemisphereLight(0xffffff, 0xb8b0a0, 1.6));
-    const sun = new THREE.DirectionalLight(0xffffff, 1.5);
-    sun.position.set(0.6, -1, 1.6);
-    this.scene.add(sun);
-    const fill = new THREE.DirectionalLight(0xffffff, 0.6);
-    fill.position.set(-1, 0.8, 0.4);
-    this.scene.add(fill);
+    this.scene.add(...sceneLights());   // shading.ts: the members' material lights itself the same way
     this.top.up.set(0, 1, 0);
     this.persp.up.set(0, 0, 1);
     this.side.up.set(0, 0, 1);
@@ -445,7 +445,7 @@ export class Views {
     const sel = this.mode === "preview" ? null : this.store.selection; // preview shows the design as it is
     for (const child of this.network.children as THREE.Line[]) {
       const basic = child.userData.basic as number;
-      child.material = this.material(basic === sel ? "#d97706" : this.store.color(basic));
+      child.material = this.material(basic === sel ? SELECTED : this.store.color(basic));
     }
     this.requestRender();
   }

@@ -10,6 +10,7 @@ import type { Ctx } from "./context";
 import { view } from "./geometry";
 import type { CurveInfo, DrawCurve, Geometry, MoveHandle, MoveVertex } from "./protocol";
 import { registerShortcut } from "./shortcuts";
+import { wrapWords } from "./wrap";
 import type { Store, Tool } from "./store";
 import {
   arcPoints, guideLines, images, mirrorAxis, pickCurve, pickTarget, replicaMatrices, replicaVertices, snap, symmetryMatrices,
@@ -150,6 +151,7 @@ class TopView {
   private readonly draftPoints: Pool<"circle">;
   private readonly snapMark: SVGCircleElement;
   private readonly hint: SVGTextElement;
+  private hintKey = "";
   private readonly toolButtons = new Map<Tool, HTMLButtonElement>();
   private readonly drawOptions: HTMLSpanElement;
   private readonly foldInput: HTMLInputElement;
@@ -549,7 +551,18 @@ class TopView {
     this.renderDraft(px);
     this.g.legend.setAttribute("transform", `translate(10 ${r.h - 14})`);
     const hint = this.hintText();
-    if (this.hint.textContent !== hint) this.hint.textContent = hint;
+    const perLine = Math.max(20, Math.floor((r.w - 20) / HINT_CHAR_PX));
+    const key = `${perLine}|${hint}`;
+    if (this.hintKey !== key) {
+      this.hintKey = key;
+      this.hint.replaceChildren();
+      wrapWords(hint, perLine).forEach((line, i) => {
+        const span = make(this.hint, "tspan");
+        span.setAttribute("x", "0");
+        span.setAttribute("dy", i === 0 ? "0" : "1.25em");
+        span.textContent = line;
+      });
+    }
   }
 
   private renderGuides(px: Px, w: number, h: number): void {
@@ -730,9 +743,12 @@ class TopView {
     entry(122, falseRing, "false intersection");
     const prc = make(g, "rect", "prc");
     for (const [k, v] of [["x", "-4"], ["y", "-4"], ["width", "8"], ["height", "8"]]) prc.setAttribute(k, v);
-    entry(245, prc, "PRC (click a marker to move it there)", " rotate(45)");
+    entry(245, prc, "PRC (click to move)", " rotate(45)");
   }
 }
+
+/** Average width of a hint character in px (12 px sans-serif), to wrap without measuring text. */
+const HINT_CHAR_PX = 6.6;
 
 export function initTopView(ctx: Ctx): void {
   new TopView(ctx);

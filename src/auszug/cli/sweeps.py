@@ -79,7 +79,7 @@ def _params(args: argparse.Namespace) -> Any:
 def run(args: argparse.Namespace) -> int:
     """Read, analyse, write; return 0."""
     from auszug.errors import FormatError
-    from auszug.formats import atomic_write, format_for, load, save, stem
+    from auszug.formats import atomic_write_all, format_for, load, stem
     from auszug.sweeps import detect
 
     src = Path(args.mesh)
@@ -103,18 +103,24 @@ def run(args: argparse.Namespace) -> int:
     _say(args, f"read {mesh.n_vertices} vertices, {mesh.n_faces} triangles in {time.perf_counter() - t0:.2f} s")
     with _common.about(src):
         report = _detect(args, detect, mesh, params, src.name)
+    # every output made in memory first, then all written together (all or nothing: a failing
+    # picture leaves no result file behind)
+    outputs: list[tuple[Path, str | bytes]] = []
     with _common.about(out):
-        save(report, out, kind="sweeps")
+        outputs.append((out, _encode(report, out, "sweeps")))
     if args.glb:
         from auszug.formats.sweeps_figure import sweeps_scene
 
-        with _common.about(args.glb):
-            save(sweeps_scene(mesh.vertices, mesh.faces, report), args.glb, kind="mesh")
+        glb = Path(args.glb)
+        with _common.about(glb):
+            outputs.append((glb, _encode(sweeps_scene(mesh.vertices, mesh.faces, report), glb, "mesh")))
     if args.png:
         from auszug.formats.sweeps_figure import render_sweeps
 
         with _common.about(args.png):
-            atomic_write(args.png, render_sweeps(mesh.vertices, mesh.faces, report, fig_ext))
+            outputs.append((Path(args.png), render_sweeps(mesh.vertices, mesh.faces, report, fig_ext)))
+    with _common.about(out):
+        atomic_write_all(outputs)
     if args.explain:
         print(report.explain())
     _say(args, f"done in {time.perf_counter() - t0:.2f} s")
@@ -122,6 +128,15 @@ def run(args: argparse.Namespace) -> int:
     print(f"wrote {out}" + (f" and {', '.join(extras)}" if extras else "")
           + f": {len(report.patches)} patch(es), coverage {report.coverage:.3f}")
     return 0
+
+
+def _encode(obj: Any, path: Path, kind: str) -> str | bytes:
+    """``obj`` as the file ``path`` would hold it (the format its name says), not written."""
+    from auszug.formats import format_for
+
+    fmt = format_for(path, kind, want="write")
+    assert fmt.writer is not None
+    return fmt.writer(obj, path.name)
 
 
 def _say(args: argparse.Namespace, line: str) -> None:

@@ -25,6 +25,7 @@ from auszug.formats import sweeps_json as _sweeps_json  # noqa: F401  (registers
 from auszug.formats._registry import (
     FileFormat,
     atomic_write,
+    atomic_write_all,
     format_for,
     formats,
     kind_of,
@@ -36,5 +37,5 @@ from auszug.formats._registry import (
     suffixes,
 )
 
-__all__ = ["FileFormat", "atomic_write", "format_for", "formats", "kind_of", "load", "register", "save", "stem",
-           "suffix_of", "suffixes"]
+__all__ = ["FileFormat", "atomic_write", "atomic_write_all", "format_for", "formats", "kind_of", "load", "register",
+           "save", "stem", "suffix_of", "suffixes"]

@@ -13,7 +13,7 @@ import os
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any, Callable, Sequence
 
 from auszug.errors import FormatError
 from auszug.limits import check_file_size
@@ -213,6 +213,55 @@ def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> None:
         _replace_with(p, raw)
     except OSError as e:  # name the file the user asked for, not the temporary one
         raise type(e)(e.errno, f"cannot write ({e.strerror or e})", str(p)) from None
+
+
+def atomic_write_all(items: Sequence[tuple[str | os.PathLike[str], str | bytes]]) -> None:
+    """Write several files all or nothing: each to a temporary file beside it, then rename them all.
+
+    If writing any temporary file fails, every temporary file is removed and no target is
+    touched. If a rename fails (rare: the temporary files are beside their targets), the targets
+    already renamed in this call are removed as well, so no partial set of outputs is left.
+
+    Raises
+    ------
+    OSError
+        Whose ``filename`` is the target that failed (not its temporary file).
+    """
+    staged: list[tuple[str, Path]] = []
+    done: list[Path] = []
+    current = Path(".")
+    try:
+        for path, data in items:
+            current = Path(path)
+            current.parent.mkdir(parents=True, exist_ok=True)
+            if current.is_dir():
+                raise IsADirectoryError(errno.EISDIR, "is a folder", str(current))
+            raw = data.encode("utf-8") if isinstance(data, str) else data
+            fd, tmp = tempfile.mkstemp(prefix=f".{current.name}.", suffix=".tmp", dir=current.parent)
+            staged.append((tmp, current))
+            umask = os.umask(0)
+            os.umask(umask)
+            os.fchmod(fd, 0o666 & ~umask)
+            with os.fdopen(fd, "wb") as fh:
+                fh.write(raw)
+        for tmp, target in staged:
+            current = target
+            os.replace(tmp, target)
+            done.append(target)
+    except BaseException as e:
+        for tmp, _ in staged:
+            try:
+                os.unlink(tmp)
+            except FileNotFoundError:
+                pass
+        for target in done:
+            try:
+                os.unlink(target)
+            except FileNotFoundError:
+                pass
+        if isinstance(e, OSError) and not isinstance(e, IsADirectoryError):
+            raise type(e)(e.errno, f"cannot write ({e.strerror or e})", str(current)) from None
+        raise
 
 
 def _replace_with(p: Path, raw: bytes) -> None:

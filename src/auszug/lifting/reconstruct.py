@@ -25,7 +25,8 @@ from auszug.lifting.sketch import Sketch, SketchGraph, sketch_graph
 from auszug.lifting.solver import Poly2, SolveResult, solve
 from auszug.lifting.terms import fidelity, structure
 
-__all__ = ["CueResult", "Stage", "LiftResult", "lift", "lift_graph", "layer_graphs", "CLASSES", "DEFAULT_CLASSES"]
+__all__ = ["CueResult", "Stage", "LiftResult", "lift", "lift_graph", "layer_graphs", "from_above", "CLASSES",
+           "DEFAULT_CLASSES"]
 
 Array = NDArray[np.float64]
 
@@ -267,8 +268,10 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        undecided cues, subject to the applied ones; L = 1 applies a cue
        (parallelism stays soft with weight w_c), L = 0 or no increase rejects
        it; after ``params.rounds`` rounds the rest is rejected;
-    4. the depth sign: the solution or its mirror z -> -z, whichever is more
-       convex seen from the viewer (+z), flipped once more per flip marker.
+    4. the depth sign: the solution or its mirror z -> -z, whichever is seen
+       from above (:func:`from_above`; where that score is not above
+       ``params.above_min``, whichever is more convex seen from the viewer),
+       flipped once more per flip marker.
     """
     pr = _Problem(g, params, layer, progress)
     par = cu.parallel_cues(g, params)
@@ -400,7 +403,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     results = [CueResult("smooth-orthogonal", w, True, float(x), layer)
                for w, x in zip(pr.smooth.where, pr.smooth.angles(X), strict=True)] + results
 
-    flip = _concave(g, X, pr.smooth)
+    flip = _flip_to_view_from_above(g, X, pr.smooth, params)
     flip ^= sum(c.flipped for c in g.crossings) % 2 == 1
     if flip:
         X[:, 2] *= -1.0
@@ -410,6 +413,67 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
 
 #: Normal curvature (diagonal 1) below which a crossing's curves count as straight (no convexity vote).
 CURVED = 1e-6
+
+
+def from_above(controls: Array) -> float:
+    """How clearly a 3D network is seen from above, in [-1, 1] (the depth sign's main rule).
+
+    An upright object seen from above with a tilt b in (0, 45) deg: every
+    horizontal direction of the object has ``dz = -cot(b) dy`` in view
+    coordinates (higher in the picture is farther), every vertical one
+    ``dz = tan(b) dy`` (its top is nearer). Writing a control-polygon edge's
+    (y, z) part as ``r (cos phi, sin phi)``, both give ``sin(4 phi) > 0``
+    (phi = -(90 - b) and phi = b), and the mirror image z -> -z gives
+    ``sin(4 phi) < 0`` for both. The score is
+    ``sum r^2 sin(4 phi) / sum r^2`` over the edges of every segment's
+    control polygon: positive when the network is seen from above, and the
+    mirror image's score is its negative. It presumes the object stands
+    upright in the picture (its vertical drawn vertical) and is made mostly
+    of horizontal and vertical directions (buildings, furniture, vessels);
+    edges in between vote with less weight or the other way.
+
+    Parameters
+    ----------
+    controls : (s, 4, 3) ndarray
+        The cubic Bezier segments' control points (x, y as drawn, z the
+        depth toward the viewer).
+
+    Returns
+    -------
+    float
+        The score; 0 for a flat network.
+
+    Examples
+    --------
+    A floor receding from the viewer (higher in the picture is farther), and its mirror image:
+
+    >>> import numpy as np
+    >>> from auszug.lifting.reconstruct import from_above
+    >>> floor = np.array([[[0, 0, 0], [0, 1, -2], [1, 2, -4], [1, 3, -6]]], float)
+    >>> round(from_above(floor), 6), round(from_above(floor * [1, 1, -1]), 6)
+    (0.96, -0.96)
+    """
+    c = np.asarray(controls, dtype=float)
+    d = (c[:, 1:] - c[:, :-1]).reshape(-1, 3)
+    r2 = d[:, 1] ** 2 + d[:, 2] ** 2
+    total = float(r2.sum())
+    if total <= 0.0:
+        return 0.0
+    phi = np.arctan2(d[:, 2], d[:, 1])
+    return float(np.dot(r2, np.sin(4.0 * phi)) / total)
+
+
+def _flip_to_view_from_above(g: SketchGraph, X: Array, smooth: cu.Orthogonal, params: LiftParams) -> bool:
+    """Whether to mirror ``X`` (z -> -z): the paper's "view from above" preference, then convexity.
+
+    :func:`from_above` decides when its score is above ``params.above_min`` in
+    magnitude (by default: unless it is exactly 0); otherwise the convexity
+    votes of :func:`_concave` do.
+    """
+    score = from_above(X[g.segments])
+    if abs(score) > params.above_min:
+        return score < 0
+    return _concave(g, X, smooth)
 
 
 def _concave(g: SketchGraph, X: Array, smooth: cu.Orthogonal) -> bool:

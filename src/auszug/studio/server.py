@@ -49,6 +49,7 @@ from auszug.studio.session import (
     example_document,
     new_document,
     open_document,
+    prune_offers,
     resume_document,
     text_document,
 )
@@ -193,6 +194,7 @@ class _Studio:
         self.workspace = workspace
         self.drawing = drawing
         self.hub = Hub(workspace, autosave_delay)
+        prune_offers(workspace)   # set-aside autosaves past their lifetime (LIMITS.autosave_offer*)
 
     # -- the socket -------------------------------------------------------------------
     async def socket(self, ws: WebSocket, max_message_bytes: int) -> None:

@@ -24,6 +24,7 @@ import re
 import secrets
 import stat
 import threading
+import time
 import weakref
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
@@ -35,7 +36,7 @@ from numpy.typing import NDArray
 
 from auszug._cache import LruCache
 from auszug.errors import AuszugError, DrawingError, FormatError
-from auszug.limits import check_file_size, shown
+from auszug.limits import LIMITS, check_file_size, shown
 from auszug.microarch.model import Drawing
 from auszug.microarch.network import Network, build
 from auszug.microarch.prc import intersections
@@ -70,6 +71,9 @@ UNDO_DEPTH = 500
 _DRAG_REACH = 16
 #: Where autosaves live, relative to the workspace.
 AUTOSAVE_DIR = ".auszug/autosave"
+#: A set-aside (offered) autosave is ``<autosave name><OFFER_INFIX><mtime in ns>.json``.
+OFFER_INFIX = ".offered-"
+_OFFER = re.compile(r"^(?P<of>.+)" + re.escape(OFFER_INFIX) + r"(?P<ns>[0-9]{1,20})\.json$")
 #: Revisions count up over all documents, so a tab that moves to another document never goes back.
 _REVISIONS = itertools.count(1)
 
@@ -599,6 +603,53 @@ def _autosave_time(p: Path) -> str:
     return datetime.fromtimestamp(p.stat().st_mtime).astimezone().isoformat(timespec="seconds")
 
 
+def prune_offers(workspace: Workspace, of: Path | None = None, *, keep: Path | None = None,
+                 now_ns: int | None = None) -> list[Path]:
+    """Delete set-aside autosaves past their lifetime; the paths deleted.
+
+    An autosave offered for recovery is moved aside (:meth:`Document.check_recoverable`).
+    Of the offers of one autosave, the newest :attr:`~auszug.limits.Limits.autosave_offers`
+    are kept, and none older than :attr:`~auszug.limits.Limits.autosave_offer_days`
+    (by the time in its name: when the autosave was written). ``of``: only the
+    offers of that autosave file, else every one below the workspace's autosave
+    folder. ``keep``: an offer never deleted (the one a document offers now).
+    Symbolic links and other files are left alone.
+    """
+    folder = workspace.root.resolve() / AUTOSAVE_DIR
+    now = time.time_ns() if now_ns is None else now_ns
+    cutoff = now - int(LIMITS.autosave_offer_days * 86400e9)
+    groups: dict[Path, list[tuple[int, Path]]] = {}
+    dirs = [of.parent] if of is not None else [Path(d) for d, _, _ in os.walk(folder, followlinks=False)]
+    for d in dirs:
+        try:
+            names = os.listdir(d)
+        except OSError:
+            continue
+        for n in names:
+            m = _OFFER.match(n)
+            if not m or (of is not None and m["of"] != of.name):
+                continue
+            p = d / n
+            try:
+                if not stat.S_ISREG(p.lstat().st_mode):
+                    continue
+            except OSError:
+                continue
+            groups.setdefault(d / m["of"], []).append((int(m["ns"]), p))
+    gone = []
+    for offers in groups.values():
+        offers.sort(reverse=True)
+        for i, (ns, p) in enumerate(offers):
+            if p == keep or (i < LIMITS.autosave_offers and ns >= cutoff):
+                continue
+            try:
+                p.unlink()
+                gone.append(p)
+            except OSError:
+                pass
+    return gone
+
+
 class Document:
     """One open drawing: the drawing, its undo/redo stacks, revision, dirty flag and autosave state.
 
@@ -621,6 +672,7 @@ class Document:
         self.workspace = workspace
         self.doc_id = doc_id or secrets.token_hex(8)   # names the document in Resume and its autosave
         self.offered: Path | None = None     # the autosave offered by ``recoverable``, kept aside
+        self._restored: Drawing | None = None  # the drawing ``recover`` made of :attr:`offered`
         self.lock = threading.RLock()
         self.drawing = drawing
         self.net = network_of(drawing)
@@ -672,7 +724,9 @@ class Document:
 
         The autosave then moves aside (``<autosave>.offered-<time>.json``, :attr:`offered`):
         the autosaves of the edits that follow cannot overwrite it, and it stays
-        offered until :meth:`recover` (an older offer still on disk is kept too).
+        offered until :meth:`recover`. Older offers of the same file are pruned
+        (:func:`prune_offers`); a restored offer is deleted once the restored
+        drawing is autosaved or saved.
         """
         p = self.autosave_file()
         rec = ""
@@ -685,6 +739,7 @@ class Document:
                     aside = p.with_name(f"{p.name}.offered-{p.stat().st_mtime_ns}.json")
                     os.replace(p, aside)
                     self.offered = aside
+                    prune_offers(self.workspace, p, keep=aside)
         except (OSError, AuszugError, UnicodeDecodeError):
             rec = ""   # an unreadable autosave is no recovery; it is overwritten on the next change
         self.recoverable = rec
@@ -828,6 +883,17 @@ class Document:
         with self.lock:
             self.replace_drawing(replace(saved, name=self.drawing.name))
             self.recoverable = ""
+            self._restored = self.drawing
+
+    def _drop_restored_offer(self, written: Drawing) -> None:
+        """Delete the restored offer once ``written`` (just autosaved or saved) is the restored drawing."""
+        if self._restored is None or written is not self._restored or self.offered is None:
+            return
+        try:
+            self.offered.unlink()
+        except FileNotFoundError:
+            pass
+        self.offered, self._restored = None, None
 
     def fork(self) -> "Document":
         """A new document with this one's drawing, file, dirty state and undo/redo history.
@@ -895,6 +961,7 @@ class Document:
                         f.unlink()
                     except FileNotFoundError:
                         pass
+            self._drop_restored_offer(d)
         return new_rel
 
     def write_autosave(self) -> int:
@@ -913,6 +980,7 @@ class Document:
                 save(d, target, kind="drawing")
                 if not owner.is_file() or owner.read_text(encoding="utf-8") != self.doc_id:
                     owner.write_text(self.doc_id, encoding="utf-8")
+                self._drop_restored_offer(d)
             else:
                 for f in (target, owner):
                     try:

@@ -468,3 +468,35 @@ def match_pairs(kappa, offs, pairs, eps, kfloor, min_len):  # pragma: no cover -
                         out_sa[p], out_sb[p] = i0 + s, i0 + s + o
                         out_e[p], out_ref[p] = e, ref
     return out_len, out_var, out_sa, out_sb, out_e, out_ref
+
+
+# ------------------------------------------------------------------------------ closest points on polylines
+
+
+@njit(cache=True)
+def polyline_closest(points, polyline):  # pragma: no cover - compiled
+    """Distances (m,) and closest points (m, 3) of points (m, 3) on the segments of a polyline (n, 3)."""
+    m = len(points)
+    dist = np.full(m, np.inf)
+    cp = np.zeros((m, 3))
+    for i in range(m):
+        px, py, pz = points[i, 0], points[i, 1], points[i, 2]
+        best = np.inf
+        for j in range(len(polyline) - 1):
+            ax, ay, az = polyline[j, 0], polyline[j, 1], polyline[j, 2]
+            bx, by, bz = polyline[j + 1, 0] - ax, polyline[j + 1, 1] - ay, polyline[j + 1, 2] - az
+            w = bx * bx + by * by + bz * bz
+            f = 0.0
+            if w > 0:
+                f = ((px - ax) * bx + (py - ay) * by + (pz - az) * bz) / w
+                f = min(max(f, 0.0), 1.0)
+            qx, qy, qz = ax + f * bx, ay + f * by, az + f * bz
+            d = (px - qx) ** 2 + (py - qy) ** 2 + (pz - qz) ** 2
+            if d < best:
+                best = d
+                cp[i, 0], cp[i, 1], cp[i, 2] = qx, qy, qz
+        if len(polyline) == 1:
+            best = (px - polyline[0, 0]) ** 2 + (py - polyline[0, 1]) ** 2 + (pz - polyline[0, 2]) ** 2
+            cp[i, 0], cp[i, 1], cp[i, 2] = polyline[0, 0], polyline[0, 1], polyline[0, 2]
+        dist[i] = np.sqrt(best)
+    return dist, cp

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -23,6 +24,9 @@ __all__ = ["Cuts", "cut"]
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 BoolArray = NDArray[np.bool_]
+
+#: Cuts by fewer planes than this run on one thread (the per-sweep re-cuts of sec. 2.3).
+SERIAL_BELOW = 64
 
 
 @dataclass(frozen=True)
@@ -98,10 +102,19 @@ def cut(mesh: SweepMesh, normals: ArrayLike, offsets: ArrayLike) -> Cuts:
     if n.shape != (len(d), 3):
         raise ValueError(f"plane normals (p, 3) and offsets (p,) must match, got {n.shape} and {d.shape}")
     n = n / np.linalg.norm(n, axis=1, keepdims=True)
-    counts = _kernels.cut_count(mesh.vertices, mesh.edges, n, d)
-    start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    pts, nrm, eid, first, closed, written = _kernels.cut_fill(
-        mesh.vertices, mesh.normals, mesh.edges, mesh.edge_faces, mesh.face_edges, n, d, start)
+    # a few planes run on one thread: waking the thread pool costs more than it gains (measured on
+    # 2 loaded cores, 32k vertices: 1 plane 1.0 ms serial against 55 ms in parallel; 40 planes 33 ms
+    # against 74 ms)
+    threads = numba.get_num_threads()
+    if len(d) < SERIAL_BELOW:
+        numba.set_num_threads(1)
+    try:
+        counts = _kernels.cut_count(mesh.vertices, mesh.edges, n, d)
+        start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+        pts, nrm, eid, first, closed, written = _kernels.cut_fill(
+            mesh.vertices, mesh.normals, mesh.edges, mesh.edge_faces, mesh.face_edges, n, d, start)
+    finally:
+        numba.set_num_threads(threads)
     keep = eid >= 0
     slot_plane = np.repeat(np.arange(len(d)), counts)
     pts, nrm, eid, first, closed = pts[keep], nrm[keep], eid[keep], first[keep], closed[keep]

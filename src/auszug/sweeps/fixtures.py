@@ -32,6 +32,10 @@ __all__ = [
     "helical",
     "moulding_along_ellipse",
     "moulding_along_cubic",
+    "letter_g_profile",
+    "letter_g_along_cubic",
+    "with_hole",
+    "decimated",
     "double_translational",
     "bumps",
     "grid_faces",
@@ -240,19 +244,8 @@ def moulding_along_ellipse(n_profile: int = 60, n_path: int = 160, a: float = 0.
     return _finish("moulding", "moulding", v, f, sigma, seed, None, None, planes, float(s[-1]))
 
 
-def moulding_along_cubic(n_profile: int = 60, n_path: int = 160, twist: float = 120.0, n_planes: int = 60,
-                         scale: float = 2.0, sigma: float = 0.0, seed: int = 0) -> Fixture:
-    """The base moulding swept along a non-planar cubic Bezier with ``twist`` degrees of twist.
-
-    The profile (centred on the path, scaled by ``scale``) lies in the path's normal planes, carried by
-    rotation-minimising frames turned linearly by up to ``twist`` degrees: a general sweep whose
-    straight segments sweep twisted ruled surfaces, not cylinders or planes, so no part of it is
-    kinematic. ``planes`` samples the true profile planes over the middle 90 % of the path.
-    """
-    from auszug.meshing.frames import sweep_frames
-
-    p, s = gothic_base_profile(n_profile)
-    prof = scale * (p - np.array([0.235, 0.17]))
+def _cubic() -> Any:
+    """The fixtures' non-planar cubic Bezier: ``bez(t) -> (points (k, 3), unit tangents (k, 3))``."""
     ctrl = np.array([[0.0, 0.0, 0.0], [0.7, 0.9, 0.5], [1.4, -0.6, 0.9], [2.1, 0.3, 0.2]])
 
     def bez(t: Array) -> tuple[Array, Array]:
@@ -261,17 +254,106 @@ def moulding_along_cubic(n_profile: int = 60, n_path: int = 160, twist: float = 
         tan = db @ ctrl
         return b @ ctrl, tan / np.linalg.norm(tan, axis=1, keepdims=True)
 
-    t = np.linspace(0.0, 1.0, n_path)
+    return bez
+
+
+def _along_cubic(name: str, prof: Array, n_path: int, twist: float, n_planes: int, sigma: float, seed: int,
+                 jitter: float = 0.0) -> Fixture:
+    """The 2-d profile ``prof (n, 2)`` (centred on the path) swept along the cubic with ``twist`` degrees.
+
+    ``jitter`` > 0 remeshes: every vertex moves along the surface by up to ``jitter`` of the grid's
+    spacing in both directions (path parameter and profile arc length), seeded, so the triangles
+    are irregular while every vertex stays exactly on the swept surface.
+    """
+    from auszug.meshing.frames import sweep_frames
+
+    bez = _cubic()
+    fine = 8 if jitter > 0 else 1     # the remeshed version picks its vertices from a finer path
+    t = np.linspace(0.0, 1.0, (n_path - 1) * fine + 1)
     path, tan = bez(t)
     fr = sweep_frames(path, tan, [0.0, 0.0, 1.0])
     ang = np.radians(twist) * fr.arclength / fr.arclength[-1]
     wdt = np.cos(ang)[:, None] * fr.width + np.sin(ang)[:, None] * fr.depth
     dep = -np.sin(ang)[:, None] * fr.width + np.cos(ang)[:, None] * fr.depth
-    v = (path[:, None, :] + prof[None, :, 0, None] * wdt[:, None, :] + prof[None, :, 1, None] * dep[:, None, :])
-    f = grid_faces(n_path, n_profile)
+    n = len(prof)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(prof, axis=0), axis=1))])
+    rows = np.repeat(np.arange(n_path) * fine, n)
+    arc = np.tile(s, n_path)
+    if jitter > 0:
+        rng = np.random.default_rng(seed + 2000)
+        inner_rows = (rows > 0) & (rows < (n_path - 1) * fine)
+        step = np.round(rng.uniform(-jitter, jitter, len(rows)) * fine).astype(int)
+        rows = np.where(inner_rows, rows + step, rows)
+        ds = np.diff(s)
+        j = np.tile(np.arange(n), n_path)
+        inner_cols = (j > 0) & (j < n - 1)
+        shift = rng.uniform(-jitter, jitter, len(arc)) * np.where(inner_cols, np.minimum(ds[np.minimum(j, n - 2)],
+                                                                                          ds[np.maximum(j - 1, 0)]), 0)
+        arc = arc + shift
+    px, py = np.interp(arc, s, prof[:, 0]), np.interp(arc, s, prof[:, 1])
+    v = path[rows] + px[:, None] * wdt[rows] + py[:, None] * dep[rows]
+    f = grid_faces(n_path, n)
     pq, nq = bez(np.linspace(0.05, 0.95, n_planes))
     planes = np.column_stack([nq, np.einsum("ij,ij->i", nq, pq)])
-    return _finish("cubic", "moulding", v.reshape(-1, 3), f, sigma, seed, None, None, planes, scale * float(s[-1]))
+    return _finish(name, "moulding", v, f, sigma, seed, None, None, planes, float(s[-1]))
+
+
+def moulding_along_cubic(n_profile: int = 60, n_path: int = 160, twist: float = 120.0, n_planes: int = 60,
+                         scale: float = 2.0, sigma: float = 0.0, seed: int = 0, jitter: float = 0.0) -> Fixture:
+    """The base moulding swept along a non-planar cubic Bezier with ``twist`` degrees of twist.
+
+    The profile (centred on the path, scaled by ``scale``) lies in the path's normal planes, carried by
+    rotation-minimising frames turned linearly by up to ``twist`` degrees: a general sweep whose
+    straight segments sweep twisted ruled surfaces, not cylinders or planes, so no part of it is
+    kinematic. ``planes`` samples the true profile planes over the middle 90 % of the path.
+    ``jitter`` > 0 gives a remeshed version (irregular triangles, vertices still on the surface).
+    """
+    p, _ = gothic_base_profile(n_profile)
+    return _along_cubic("cubic", scale * (p - np.array([0.235, 0.17])), n_path, twist, n_planes, sigma, seed, jitter)
+
+
+def letter_g_profile(n: int = 80, radius: float = 0.16) -> Array:
+    """Points ``(n, 2)`` of a letter G centred on its bounding box: an arc of 270 degrees from the upper
+    right round the left to the lower right, up the right side to the middle, then a bar inwards."""
+    arc_n = int(0.75 * n)
+    a = np.radians(np.linspace(40.0, 320.0, arc_n))
+    arc = radius * np.column_stack([np.cos(a), np.sin(a)])
+    end = arc[-1]
+    up = np.column_stack([np.full(n // 8, end[0]), np.linspace(end[1], 0.0, n // 8 + 1)[1:]])
+    bar = np.column_stack([np.linspace(end[0], 0.2 * radius, n - arc_n - n // 8 + 1)[1:],
+                           np.zeros(n - arc_n - n // 8)])
+    g = np.vstack([arc, up, bar])
+    return g - (g.min(axis=0) + g.max(axis=0)) / 2
+
+
+def letter_g_along_cubic(n_path: int = 160, twist: float = 120.0, n_planes: int = 60, sigma: float = 0.0,
+                         seed: int = 0) -> Fixture:
+    """A letter-G profile (:func:`letter_g_profile`, arcs and lines) swept along the cubic with twist,
+    like :func:`moulding_along_cubic`."""
+    return _along_cubic("letter_g", letter_g_profile(), n_path, twist, n_planes, sigma, seed)
+
+
+def with_hole(fx: Fixture, radius: float = 0.06, seed: int = 0) -> Fixture:
+    """The fixture with a hole: faces whose centroid lies within ``radius`` of a vertex near the
+    middle of the mesh are removed (unused vertices dropped); the truth is unchanged."""
+    c = fx.vertices[fx.faces].mean(axis=1)
+    middle = fx.vertices[np.argmin(np.linalg.norm(fx.vertices - fx.vertices.mean(axis=0), axis=1))]
+    keep = np.linalg.norm(c - middle, axis=1) > radius
+    used, inv = np.unique(fx.faces[keep], return_inverse=True)
+    return Fixture(fx.name + "_hole", fx.kind, fx.vertices[used], inv.reshape(-1, 3).astype(np.int64),
+                   fx.axis_direction, fx.axis_point, fx.planes, fx.profile_length)
+
+
+def decimated(fx: Fixture, faces: int) -> Fixture:
+    """The fixture decimated to about ``faces`` triangles by edge collapses (libigl ``decimate``:
+    shortest edge first, merged at its midpoint), so its vertices leave the true surface by the
+    chords' sag; the truth is unchanged (bounding box as before up to the collapses)."""
+    import igl
+
+    out = igl.decimate(np.asfortranarray(fx.vertices), np.asfortranarray(fx.faces.astype(np.int32)), int(faces))
+    u, g = np.asarray(out[0], float), np.asarray(out[1], np.int64)
+    return Fixture(fx.name + "_decimated", fx.kind, np.ascontiguousarray(u), np.ascontiguousarray(g),
+                   fx.axis_direction, fx.axis_point, fx.planes, fx.profile_length)
 
 
 def double_translational(n_profile: int = 60, n_path: int = 120, length: float = 0.8, rise: float = 0.15,

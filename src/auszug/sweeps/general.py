@@ -46,6 +46,7 @@ from typing import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from auszug.sweeps._kernels import polyline_closest
 from auszug.sweeps.cut import Cuts, cut
 from auszug.sweeps.matching import CurvaturePlots, Family, Ribs, curvature_plots, families, match_cuts, order_ribs
 from auszug.sweeps.mesh import SweepMesh
@@ -216,8 +217,8 @@ def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
 def _normals_at(mesh: SweepMesh, points: Array, tree: MeshTree) -> Array:
     """Unit face normals of the mesh at the closest points of ``points (..., 3)``."""
     _, face, _ = tree.query(points)
-    v = mesh.vertices
-    f = mesh.faces[face]
+    v = tree.vertices
+    f = tree.faces[face]     # the tree's own faces: it may be of the whole mesh, ``mesh`` a part
     n = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
     n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
     return n.reshape(points.shape)
@@ -230,14 +231,14 @@ def _plane_of(points: Array) -> tuple[Array, float]:
 
 
 def _polyline_distance(points: Array, polyline: Array) -> Array:
-    """Distances ``(m,)`` of points ``(m, 3)`` to a polyline ``(n, 3)`` (vectorised over both)."""
-    a, b = polyline[:-1], polyline[1:]
-    ab = b - a
-    w = np.einsum("ij,ij->i", ab, ab)
-    f = np.clip(np.einsum("mij,ij->mi", points[:, None, :] - a[None], ab) / np.where(w > 0, w, 1.0), 0.0, 1.0)
-    foot = a[None] + f[..., None] * ab[None]
-    out: Array = np.linalg.norm(points[:, None, :] - foot, axis=2).min(axis=1)
-    return out
+    """Distances ``(m,)`` of points ``(m, 3)`` to a polyline ``(n, 3)`` (compiled)."""
+    return polyline_closest(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(polyline, dtype=float))[0]
+
+
+def _on_polyline(points: Array, polyline: Array) -> tuple[Array, Array]:
+    """Distances ``(m,)`` and closest points ``(m, 3)`` of points ``(m, 3)`` on a polyline ``(n, 3)`` (compiled)."""
+    d, c = polyline_closest(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(polyline, dtype=float))
+    return d, c
 
 
 def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float) -> list[Array]:
@@ -290,21 +291,21 @@ def profile_planes(profile: Array, motion: Motion, t: ArrayLike) -> tuple[Array,
     """The profile planes of a sweep at parameters ``t (q,)``: normals ``(q, 3)``, offsets ``(q,)``.
 
     Our convention (the paper leaves the plane to the ribs found): the plane through the moved
-    profile's centroid that its points cross most squarely, normal to the principal direction
-    of their velocities (the top eigenvector of ``sum v_j v_j^T``). For a moulding swept with its
-    profile in the normal planes of its path this is that plane, up to the twist's share of the
-    velocity.
+    profile's centroid normal to the centroid's velocity, i.e. the profile lies in the normal
+    planes of its centroid's path. For a moulding swept with its profile in the normal planes of
+    a path this is that plane, up to the twist times the centroid's distance from the path: with
+    the true motion of the general-sweep fixture 1.2 deg (the top eigenvector of ``sum v_j v_j^T``
+    over all profile points, our earlier convention, gave 2.3 deg, median).
     """
     tt = np.atleast_1d(np.asarray(t, float))
     lo, hi = motion.domain
     h = 1e-3 * max(hi - lo, 1e-12)
     tc = np.clip(tt, lo + h, hi - h)
-    x = motion.apply(profile, tt)
-    v = (motion.apply(profile, tc + h) - motion.apply(profile, tc - h)) / (2 * h)
-    _, vecs = np.linalg.eigh(np.einsum("qni,qnj->qij", v, v))
-    n = vecs[:, :, -1]
-    n *= np.sign(np.einsum("qi,qi->q", n, v.mean(axis=1)))[:, None]
-    return n, np.einsum("qi,qi->q", n, x.mean(axis=1))
+    centroid = profile.mean(axis=0)[None]
+    x = motion.apply(centroid, tt)[:, 0]
+    v = (motion.apply(centroid, tc + h) - motion.apply(centroid, tc - h))[:, 0] / (2 * h)
+    n = v / np.maximum(np.linalg.norm(v, axis=1, keepdims=True), 1e-300)
+    return n, np.einsum("qi,qi->q", n, x)
 
 
 def reslice(mesh: SweepMesh, profile: Array, motion: Motion) -> Array | None:
@@ -313,8 +314,6 @@ def reslice(mesh: SweepMesh, profile: Array, motion: Motion) -> Array | None:
     The mesh is cut by the profile planes (:func:`profile_planes`) there; sample ``j`` of a rib is
     the closest cut point to the moved profile's point ``j``.
     """
-    from auszug.sweeps.patches import closest_distance
-
     k = int(round(motion.domain[1] - motion.domain[0])) + 1
     ts = motion.domain[0] + np.arange(k, dtype=float)
     n, d = profile_planes(profile, motion, ts)
@@ -327,8 +326,7 @@ def reslice(mesh: SweepMesh, profile: Array, motion: Motion) -> Array | None:
             q = c.curve(int(j))
             if len(q) < 2:
                 continue
-            seg = np.stack([np.arange(len(q) - 1), np.arange(1, len(q))], axis=1)
-            dist, cp = closest_distance(x[i], q, seg)
+            dist, cp = _on_polyline(x[i], q)
             if best is None or dist.mean() < best[0]:
                 best = (float(dist.mean()), cp)
         if best is None:
@@ -357,7 +355,9 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
     for i in range(n_rounds):
         if ribs is None:
             break
-        profile = ribs[0].copy()
+        # the profile: the middle rib (the end ribs of a grown sweep lie where the mesh ends) taken to the first
+        mid = kabsch(ribs[len(ribs) // 2], ribs[0])
+        profile = ribs[len(ribs) // 2] @ mid[0].T + mid[1]
         normals = _normals_at(mesh, ribs, tr_)
         maps = [kabsch(profile, q) for q in ribs]
         rot = np.array([m[0] for m in maps])
@@ -392,19 +392,25 @@ def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Ar
 def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, IntArray]:
     """The part of the mesh whose faces lie in the box of ``points`` grown by ``margin``, and its faces' indices.
 
-    Same coordinates as ``mesh`` (its centre and scale are kept); the topology is rebuilt.
+    The part keeps the mesh's vertex array (its faces index it as before); only its faces and
+    the edges of those faces are selected, so cutting it walks just the part, and nothing is
+    recomputed but the index maps (no new topology, no new vertex normals).
     """
     from dataclasses import replace
-
-    from auszug.sweeps.mesh import normalise
 
     lo, hi = points.reshape(-1, 3).min(axis=0) - margin, points.reshape(-1, 3).max(axis=0) + margin
     inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
     keep = np.flatnonzero(inside[mesh.faces].all(axis=1)).astype(np.int64)
-    used, inv = np.unique(mesh.faces[keep], return_inverse=True)
-    sub = normalise(mesh.vertices[used], inv.reshape(-1, 3))
-    return replace(sub, vertices=mesh.vertices[used], normals=mesh.normals[used], centre=mesh.centre,
-                   scale=mesh.scale), keep
+    used = np.zeros(len(mesh.edges), bool)
+    used[mesh.face_edges[keep]] = True
+    used_edges = np.flatnonzero(used)
+    edge_index = np.full(len(mesh.edges), -1, np.int64)
+    edge_index[used_edges] = np.arange(len(used_edges))
+    face_index = np.full(len(mesh.faces) + 1, -1, np.int64)    # [-1] stays -1: a missing face
+    face_index[keep] = np.arange(len(keep))
+    return replace(mesh, faces=mesh.faces[keep], edges=mesh.edges[used_edges],
+                   edge_faces=face_index[mesh.edge_faces[used_edges]],
+                   face_edges=edge_index[mesh.face_edges[keep]]), keep
 
 
 def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams, step: Callable[[str], float],
@@ -454,16 +460,28 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     areas = face_areas(mesh.vertices, mesh.faces)
     total = float(areas.sum())
     out: list[SweepPatch] = []
+    tree = MeshTree(mesh.vertices, mesh.faces)
+    grown = np.zeros(len(mesh.faces), bool)
+    skipped = 0
     for r in ribs:
         parts = rib_parts(r, plots)
+        # a family whose ribs lie on what an earlier grown patch covers adds nothing
+        if grown.any() and float(np.mean(grown[tree.query(parts)[1]])) >= params.patch_overlap:
+            skipped += 1
+            continue
         # the sweep between the first and the last rib stays near them: fit it to that part of the
         # mesh (distances to a part are never smaller than to the whole: the fit error is safe)
         sub, faces = _around(mesh, parts, params.l_min / 4 + 4 * params.eps_prox)
-        g = general_patch(sub, parts, params)
-        cov = float(areas[faces[g.faces]].sum() / total) if total > 0 else 0.0
-        out.append(SweepPatch(len(out), "general", g.profile, False, g.motion, faces[g.faces], g.fit_error, cov))
+        g = general_patch(sub, parts, params, areas[faces], tree)
+        g = GeneralSweep(g.profile, g.motion, g.velocities, g.fit_error,
+                         float(areas[faces[g.faces]].sum() / total) if total > 0 else 0.0, faces[g.faces])
+        if params.grow and g.fit_error <= params.fit_factor * params.eps_prox:
+            g = grown_patch(mesh, g, params, tree, areas)
+        if g.fit_error <= params.fit_factor * params.eps_prox:
+            grown[g.faces] = True
+        out.append(SweepPatch(len(out), "general", g.profile, False, g.motion, g.faces, g.fit_error, g.coverage))
     numbers: dict[str, float | int] = {"candidates": len(out)}
-    summary = f"{len(out)} general sweep(s) fitted" + (
+    summary = f"{len(out)} general sweep(s) fitted ({skipped} families on grown patches skipped)" + (
         ": fit errors " + ", ".join(f"{p.fit_error:.2e}" for p in out) if out else "")
     if true_planes is not None and len(np.asarray(true_planes)):
         found = [motion_planes(p.profile, p.motion) for p in out]
@@ -472,3 +490,212 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
         numbers["recall"] = plane_recall(true_planes, n, d)
     stages.append(Stage("motion", time.perf_counter() - t, summary, numbers))
     return out, stages
+
+
+# --- growing a patch along its motion and across its profile ---------------------------------------------------
+
+
+def _compose(step: tuple[Array, Array], m: tuple[Array, Array]) -> tuple[Array, Array]:
+    """The map ``step o m`` of two rigid maps ``(R, T)``."""
+    return step[0] @ m[0], step[0] @ m[1] + step[1]
+
+
+def _step(a: tuple[Array, Array], b: tuple[Array, Array], h: float = 1.0) -> tuple[Array, Array]:
+    """``(b a^-1)^h``: the rigid step taking map ``a`` to map ``b``, scaled along its screw by ``h``."""
+    from auszug.sweeps.motion import se3_exp
+
+    r = b[0] @ a[0].T
+    t = b[1] - r @ a[1]
+    if h == 1.0:
+        return r, t
+    w, v = se3_log(r, t)
+    return se3_exp(h * w, h * v)
+
+
+def _nearest_curve(c: Cuts, plane: int, target: Array) -> tuple[Array, Array] | None:
+    """The cut curve of ``plane`` closest to ``target (n, 3)`` (median distance), or None.
+
+    Returns its points and an ``(n, 4)`` array: the distance of each target point to it and its
+    closest point there.
+    """
+    best: tuple[float, Array, Array, Array] | None = None
+    for j in np.flatnonzero(c.curve_plane == plane):
+        q = c.curve(int(j))
+        if len(q) < 2:
+            continue
+        if bool(c.curve_closed[j]):
+            q = np.vstack([q, q[:1]])
+        dist, cp = _on_polyline(target, q)
+        if best is None or float(np.median(dist)) < best[0]:
+            best = (float(np.median(dist)), q, dist, cp)
+    return None if best is None else (best[1], np.stack([best[2], *best[3].T], axis=1))
+
+
+def trajectory_error(profile: Array, motion: Motion, tree: MeshTree) -> Array:
+    """Largest distance ``(n,)`` to the mesh of each profile point's path (at the knots and between them)."""
+    t = np.sort(np.concatenate([motion.t, (motion.t[:-1] + motion.t[1:]) / 2]))
+    d = tree.query(motion.apply(profile, t))[0].reshape(len(t), len(profile))
+    out: Array = d.max(axis=0)
+    return out
+
+
+def _longest_run(ok: NDArray[np.bool_]) -> tuple[int, int]:
+    """Start and end (exclusive) of the longest run of True (0, 0 if none)."""
+    best, start, cur = (0, 0), 0, False
+    for i, v in enumerate(list(ok) + [False]):
+        if v and not cur:
+            start = i
+        if not v and cur and i - start > best[1] - best[0]:
+            best = (start, i)
+        cur = bool(v)
+    return best
+
+
+def extend_profile(mesh: SweepMesh, profile: Array, motion: Motion, tree: MeshTree, params: SweepParams) -> Array:
+    """The profile extended to the whole cut curve it is part of, then trimmed to what the motion sweeps.
+
+    The mesh is cut by the profile plane (:func:`profile_planes`) at the middle knot; the cut curve nearest the
+    moved profile is mapped back (the whole curve, resampled at ``match_spacing``), and cut down
+    to the longest stretch of points whose paths stay within ``eps_prox`` of the mesh
+    (:func:`trajectory_error`). Returns ``profile`` itself when that stretch is shorter.
+    """
+    from auszug.sweeps.matching import resample
+
+    tm = float(motion.t[len(motion.t) // 2])
+    r, tr = motion.at([tm])
+    moved = profile @ r[0].T + tr[0]
+    c = cut(mesh, *profile_planes(profile, motion, [tm]))
+    got = _nearest_curve(c, 0, moved)
+    if got is None:
+        return profile
+    curve = resample(got[0], params.match_spacing)
+    if len(curve) < 2:
+        return profile
+    back = (curve - tr[0]) @ r[0]
+    # keep the orientation of the old profile
+    if np.linalg.norm(back[0] - profile[0]) + np.linalg.norm(back[-1] - profile[-1]) > \
+            np.linalg.norm(back[-1] - profile[0]) + np.linalg.norm(back[0] - profile[-1]):
+        back = back[::-1]
+    a, b = _longest_run(trajectory_error(back, motion, tree) <= params.eps_prox)
+    old = np.linalg.norm(np.diff(profile, axis=0), axis=1).sum()
+    new = back[a:b]
+    if b - a < 2 or np.linalg.norm(np.diff(new, axis=0), axis=1).sum() <= old:
+        return profile
+    return new
+
+
+def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepParams,
+              max_steps: int = 200) -> Array:
+    """Ribs ``(k, n, 3)`` of the sweep continued past both ends of its motion while the mesh follows.
+
+    Starting from the maps at the motion's integer parameters, each end is extrapolated by the
+    last rib step (the same screw again), the mesh cut there by the plane through the moved
+    profile's centroid normal to the centroid's path (as :func:`profile_planes`; the path's
+    tangent from a parabola through the last two centroids and this one), and
+    the moved profile's closest points on the nearest cut curve taken as the next rib when at
+    least 90 % of them lie within ``2 eps_prox`` (the rib's map is then corrected to them,
+    Kabsch, and the cut repeated with it: 4 rounds, as in ICP). A failed full step is retried at
+    a half and a quarter step, which ends the growth
+    (the mesh's end). Sample ``j`` of every rib corresponds to profile point ``j``.
+    """
+    lo, hi = motion.domain
+    ts = lo + np.arange(int(round(hi - lo)) + 1, dtype=float)
+    r, tr = motion.at(ts)
+    centre = profile.mean(axis=0)
+    # seeds: the maps at the ribs, less end steps unlike the others (a rib out of place in its family
+    # gives a step of twice the length or turn; extrapolated, it leaves the surface at once)
+    cs = np.einsum("kij,j->ki", r, centre) + tr
+    length = np.linalg.norm(np.diff(cs, axis=0), axis=1)
+    turn = np.arccos(np.clip((np.einsum("kij,kij->k", r[1:], r[:-1]) - 1) / 2, -1.0, 1.0))
+    odd = (np.abs(length - np.median(length)) > 0.4 * np.median(length)) | (turn > 2 * np.median(turn) + 1e-3)
+    a, b = 0, len(ts)
+    while b - a > 3 and odd[a]:
+        a += 1
+    while b - a > 3 and odd[b - 2]:
+        b -= 1
+    maps = [(r[i], tr[i]) for i in range(a, b)]
+    tol = 2 * params.eps_prox
+
+    def tangent(c0: Array, c1: Array, c2: Array) -> Array:
+        """Unit tangent at ``c2`` of the parabola through three centroids (chord-length parameters)."""
+        s1 = float(np.linalg.norm(c1 - c0))
+        s2 = s1 + float(np.linalg.norm(c2 - c1))
+        if s1 <= 0 or s2 <= s1:
+            d = c2 - c1
+        else:
+            d = (c0 * (s2 - s1) / (s1 * s2) - c1 * s2 / (s1 * (s2 - s1)) + c2 * (2 * s2 - s1) / (s2 * (s2 - s1)))
+        out: Array = d / max(float(np.linalg.norm(d)), 1e-300)
+        return out
+
+    def try_at(m: tuple[Array, Array], c0: Array, c1: Array) -> tuple[Array, tuple[Array, Array]] | None:
+        for k in range(4):
+            # the profile plane there (our convention, profile_planes): through the moved centroid, normal
+            # to the centroid's path, continued by a parabola through the last two centroids (the
+            # rotations of extrapolated steps drift; the centroids' path does not); then the map is
+            # corrected to the closest points (Kabsch) and the cut repeated, as in ICP
+            moved = profile @ m[0].T + m[1]
+            c2 = centre @ m[0].T + m[1]
+            nm = tangent(c0, c1, c2)
+            c = cut(mesh, nm[None], np.array([nm @ c2]))
+            near_curve = _nearest_curve(c, 0, moved)
+            if near_curve is None:
+                return None
+            dist, cp = near_curve[1][:, 0], near_curve[1][:, 1:]
+            near = dist <= (4 * tol if k == 0 else tol)
+            if np.mean(near) < 0.5:
+                return None
+            # where the mesh ends before the profile does, the closest points pile up at the cut's end:
+            # the map is fitted to the others, and those samples take the moved profile's points
+            m = kabsch(profile[near], cp[near])
+        if np.mean(near) < 0.9:
+            return None
+        return np.where(near[:, None], cp, profile @ m[0].T + m[1]), m
+
+    def grow(seq: list[tuple[Array, Array]]) -> list[Array]:
+        out: list[Array] = []
+        for _ in range(max_steps):
+            if len(seq) < 2:
+                break
+            got = None
+            c0, c1 = (centre @ seq[-2][0].T + seq[-2][1]), (centre @ seq[-1][0].T + seq[-1][1])
+            for h in (1.0, 0.5, 0.25):
+                got = try_at(_compose(_step(seq[-2], seq[-1], h), seq[-1]), c0, c1)
+                if got is not None:
+                    break
+            if got is None:
+                break
+            out.append(got[0])
+            seq.append(got[1])
+            if h < 1.0:
+                break
+        return out
+
+    ahead = grow(list(maps))
+    behind = grow(list(maps[::-1]))
+    # the motion's own ribs re-cut as well: the profile may have grown beyond what it was fitted to
+    again = reslice(mesh, profile, motion)
+    middle = list(again[a:b]) if again is not None else [profile @ m[0].T + m[1] for m in maps]
+    return np.stack(behind[::-1] + middle + ahead)
+
+
+def grown_patch(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTree,
+                areas: Array | None = None) -> GeneralSweep:
+    """A fitted general sweep grown across its profile and along its path, or ``g`` itself.
+
+    Grown across its profile by :func:`extend_profile`, along its path by :func:`grow_ribs`,
+    refitted (:func:`general_patch`, 2 rounds: one re-slicing) and its profile trimmed again to
+    the points whose paths stay within ``eps_prox``. Returns ``g`` when the grown sweep covers no
+    more or fits worse than ``fit_factor * eps_prox``.
+    """
+    profile = extend_profile(mesh, g.profile, g.motion, tree, params)
+    ribs = grow_ribs(mesh, profile, g.motion, params)
+    if len(ribs) < 2:
+        return g
+    h = general_patch(mesh, ribs, params.with_(general_iterations=2), areas, tree)
+    a, b = _longest_run(trajectory_error(h.profile, h.motion, tree) <= params.eps_prox)
+    if b - a >= 2 and b - a < len(h.profile):
+        fit = fit_patch(mesh, h.profile[a:b], False, h.motion, params, areas, tree)
+        h = GeneralSweep(h.profile[a:b], h.motion, h.velocities, fit.fit_error, fit.coverage, fit.faces)
+    if h.coverage <= g.coverage or h.fit_error > params.fit_factor * params.eps_prox:
+        return g
+    return h

@@ -129,6 +129,10 @@ class SweepParams:
         ribs re-sliced by the fitted motion's profile planes.
     mu : tuple of float
         Weights (mu_1, mu_2) of Eq. 7 (paper: (0.002, 0.1)).
+    grow : bool
+        Beyond the paper: grow every fitted general sweep across its profile (to the whole cut
+        curve, trimmed to the points whose paths stay within ``eps_prox``) and along its path
+        (extrapolated rib by rib while the mesh follows), then refit it (docs/sweeps.md).
     max_match_runs : int
         At most this many movable runs of the initial planes, longest first, are matched (the
         paper's N_match, good runs only, is 144-229 in Fig. 15).
@@ -185,6 +189,7 @@ class SweepParams:
     profile_cuts: int = 8
     general_iterations: int = 3
     mu: tuple[float, float] = (0.002, 0.1)
+    grow: bool = True
     max_match_runs: int = 600
     max_families: int = 6
     min_sweep_length: float = 0.2

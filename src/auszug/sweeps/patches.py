@@ -32,6 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
+from auszug.sweeps._kernels import polyline_closest
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import KinematicAxis
 from auszug.sweeps.mesh import SweepMesh
@@ -356,8 +357,7 @@ def _improve(profile: Array, closed: bool, others: list[Array]) -> Array:
     for q in others:
         if len(q) < 2:
             continue
-        seg = np.stack([np.arange(len(q) - 1), np.arange(1, len(q))], axis=1)
-        d, c = closest_distance(profile, q, seg)
+        d, c = polyline_closest(np.ascontiguousarray(profile, dtype=float), np.ascontiguousarray(q, dtype=float))
         near = d <= reach
         acc[near] += c[near]
         count[near] += 1

@@ -62,6 +62,7 @@ bench: $(STAMP) $(WEB_BUILD) $(CHROMIUM)
 	$(BIN)/python benchmarks/bench_meshing.py
 	$(BIN)/python benchmarks/bench_tracery.py --markdown
 	$(BIN)/python benchmarks/bench_studio.py
+	$(BIN)/python benchmarks/bench_studio_tracery.py
 
 clean:
 	rm -rf $(VENV) $(OUT) .pytest_cache

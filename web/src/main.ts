@@ -143,6 +143,14 @@ function button(parent: HTMLElement, text: string, title: string, testid: string
 }
 
 const modeTools = document.getElementById("mode-tools")!;
+// the other page of the studio: window tracery (tracery.html, tracery.ts)
+const toTracery = document.createElement("a");
+toTracery.href = "./tracery.html";
+toTracery.textContent = "Tracery";
+toTracery.className = "page-link";
+toTracery.title = "The tracery page: Gothic window tracery (Fig. 20 a-h), live 2D and 3D";
+toTracery.dataset.testid = "page-tracery";
+modeTools.before(toTracery);
 const modeButtons: Record<Mode, HTMLButtonElement> = {
   design: button(modeTools, "Design", "Design mode: top view editing (D)", "mode-design", () => store.setMode("design")),
   preview: button(modeTools, "Preview", "Preview mode: 3D, top and side views (P)", "mode-preview", () => store.setMode("preview")),

@@ -90,6 +90,15 @@ __all__ = [
     "Resume",
     "GetThumbnail",
     "Thumbnail",
+    "TraceryBuild",
+    "TracerySave",
+    "TraceryExport",
+    "ListStyles",
+    "TraceryField",
+    "TraceryRegion",
+    "TraceryGeometry",
+    "TraceryRefused",
+    "Styles",
     "CLIENT_MESSAGES",
     "SERVER_MESSAGES",
     "decode",
@@ -100,7 +109,7 @@ __all__ = [
 ]
 
 #: Bumped whenever a message changes shape; the client shows it on mismatch.
-PROTOCOL_VERSION = 5
+PROTOCOL_VERSION = 6
 #: Largest client message the server reads (bytes); larger ones get an :class:`Error` reply.
 MAX_MESSAGE_BYTES = 256 * 1024
 
@@ -116,6 +125,8 @@ Mark = Literal["ground", "apex", "free"]
 Style = Literal["curves", "tube", "bar", "ribbon"]
 #: Faces: none, every loop the network closes (automatic), or the loops picked by index.
 FacesMode = Literal["none", "auto", "picked"]
+#: What the tracery page exports: the window's mesh, its 2D drawing (exact arcs) or its 2D structure.
+TraceryExportFormat = Literal["glb", "obj", "stl", "svg", "json"]
 ExportFormat = Literal["glb", "obj", "stl", "ply", "svg", "json", "uc", "network.json", "dxf", "3dm"]
 
 
@@ -522,6 +533,57 @@ class Export:
     type: Literal["export"] = "export"
 
 
+@dataclass(frozen=True)
+class TraceryBuild:
+    """Build a window (the tracery page); answered by :class:`TraceryGeometry` or :class:`TraceryRefused`.
+
+    ``style``: a built-in style name or ``"prototype"``; or ``path``: a style
+    file (.toml/.json) in the workspace. ``values``: ``KEY=VALUE`` overrides as
+    ``auszug tracery --set`` reads them (``params.excess=1.2``,
+    ``circle.foils=6``), plus ``depth=N`` (refine the sub-arches N levels) and
+    ``subdivide=K`` (profile subdivision of exports). The server keeps no
+    tracery state: a refused set changes nothing.
+    """
+
+    style: str = "fig20a"
+    path: str = ""
+    values: list[str] = field(default_factory=list)
+    id: int = 0
+    type: Literal["tracery_build"] = "tracery_build"
+
+
+@dataclass(frozen=True)
+class TracerySave:
+    """Save the window's style (as :class:`TraceryBuild` gives it) to workspace file ``target`` (.toml or .json)."""
+
+    target: str
+    style: str = "fig20a"
+    path: str = ""
+    values: list[str] = field(default_factory=list)
+    id: int = 0
+    type: Literal["tracery_save"] = "tracery_save"
+
+
+@dataclass(frozen=True)
+class TraceryExport:
+    """Export the window: glb/obj/stl (the finished watertight mesh), svg (2D, exact arcs), json (2D structure)."""
+
+    format: TraceryExportFormat
+    style: str = "fig20a"
+    path: str = ""
+    values: list[str] = field(default_factory=list)
+    id: int = 0
+    type: Literal["tracery_export"] = "tracery_export"
+
+
+@dataclass(frozen=True)
+class ListStyles:
+    """List the built-in tracery styles and the workspace's style files (answered by :class:`Styles`)."""
+
+    id: int = 0
+    type: Literal["list_styles"] = "list_styles"
+
+
 # ---------------------------------------------------------------- server -> client
 
 
@@ -752,17 +814,100 @@ class Error:
     type: Literal["error"] = "error"
 
 
+@dataclass(frozen=True)
+class TraceryField:
+    """One editable value of the tracery page: ``key`` (as :class:`TraceryBuild` ``values`` take it).
+
+    ``kind``: number, integer, bool or choice (``options``); ``value`` the
+    style's current value (a profile given inline shows as ``"(inline)"``).
+    """
+
+    key: str
+    label: str
+    group: str
+    kind: Literal["number", "integer", "bool", "choice"]
+    value: float | bool | str
+    options: list[str]
+
+
+@dataclass(frozen=True)
+class TraceryRegion:
+    """One region of the window: ``d`` its exact border as SVG path data (y up: the page flips it)."""
+
+    id: str
+    group: str
+    depth: int
+    role: str
+    d: str
+
+
+@dataclass(frozen=True)
+class TraceryGeometry:
+    """A built window; it has a payload: the preview mesh (``positions`` (n, 3) f4, ``indices`` (m, 3) u4).
+
+    The preview mesh is the window's front half (``y <= 0``); its back half is
+    the mirror image in ``y = 0`` (:func:`auszug.tracery.preview.preview_mesh`).
+    ``bounds`` [xmin, ymin, xmax, ymax] of the 2D structure; ``mesh_bounds``
+    [xmin, ymin, zmin, xmax, ymax, zmax] of the preview mesh (its front half). ``values``: the
+    overrides as the server understood them (canonical ``KEY=VALUE``).
+    ``build_ms``, ``mesh_ms``: the server's time for the structure and the mesh.
+    """
+
+    style: str
+    path: str
+    name: str
+    values: list[str]
+    fields: list[TraceryField]
+    regions: list[TraceryRegion]
+    n_lights: int
+    depth: int
+    bounds: list[float]
+    mesh_bounds: list[float]
+    positions: ArrayRef
+    indices: ArrayRef
+    build_ms: float
+    mesh_ms: float
+    binary_floats: int
+    id: int = 0
+    type: Literal["tracery"] = "tracery"
+
+
+@dataclass(frozen=True)
+class TraceryRefused:
+    """A tracery value was refused (nothing changed): ``key`` the value the message blames, if known."""
+
+    key: str
+    message: str
+    id: int = 0
+    type: Literal["tracery_refused"] = "tracery_refused"
+
+
+@dataclass(frozen=True)
+class Styles:
+    """Built-in tracery styles (``builtin`` with one-line ``descriptions``) and the workspace's style files."""
+
+    builtin: list[str]
+    descriptions: list[str]
+    workspace: list[str]
+    notes: list[str] = field(default_factory=list)
+    id: int = 0
+    type: Literal["styles"] = "styles"
+
+
 CLIENT_MESSAGES: tuple[type, ...] = (
     Open, Resume, Save, Undo, Redo, MoveVertex, MoveHandle, SetApexHeight, SetPrc, RecomputePrc,
     SetLayerBottom, SetDecoration, SetPost, SetSymmetry, RemoveCurve,
     DrawCurve, SetLayer, SetPrcAt, SetPrcHeight, AddLayer, RemoveLayer,
     ListFiles, OpenExample, OpenText, NewDrawing, Recover, GetMesh, GetLoops, Export, GetThumbnail,
+    TraceryBuild, TracerySave, TraceryExport, ListStyles,
 )
-SERVER_MESSAGES: tuple[type, ...] = (Geometry, MeshGeometry, Loops, Files, Exported, Saved, Error, Thumbnail)
+SERVER_MESSAGES: tuple[type, ...] = (Geometry, MeshGeometry, Loops, Files, Exported, Saved, Error, Thumbnail,
+                                     TraceryGeometry, TraceryRefused, Styles)
 #: Server message types that carry a payload: each is sent as one binary frame (:func:`pack`).
-WITH_PAYLOAD: tuple[str, ...] = ("geometry", "mesh", "loops", "exported")
+WITH_PAYLOAD: tuple[str, ...] = ("geometry", "mesh", "loops", "exported", "tracery")
 #: Nested types that appear inside server messages, in the order the TypeScript lists them.
-_NESTED: tuple[type, ...] = (ArrayRef, PieceGeometry, IntersectionMarker, CurveInfo, MeshPiece, LoopInfo)
+_NESTED: tuple[type, ...] = (ArrayRef, PieceGeometry, IntersectionMarker, CurveInfo, MeshPiece, LoopInfo,
+                              TraceryField, TraceryRegion)
 
 _BY_TYPE: dict[str, type] = {
     f.default: c

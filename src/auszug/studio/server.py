@@ -362,6 +362,20 @@ class _Studio:
         elif isinstance(msg, P.GetThumbnail):
             svg = await asyncio.to_thread(self._thumbnail, msg.path, msg.example)
             conn.outbox.put(P.encode(P.Thumbnail(svg=svg, path=msg.path, example=msg.example, id=msg.id)))
+        elif isinstance(msg, (P.TraceryBuild, P.TracerySave, P.TraceryExport)):
+            reply, text, payload = await self._tracery(msg)
+            conn.outbox.put(text, payload)
+        elif isinstance(msg, P.ListStyles):
+            from auszug.studio.tracery import style_files
+            from auszug.tracery import builtin_styles
+
+            try:
+                ws_styles, notes = await asyncio.to_thread(style_files, self.workspace)
+            except OSError as e:
+                ws_styles, notes = [], [f"workspace: cannot list it ({e.strerror or e})"]
+            lib = builtin_styles()
+            conn.outbox.put(P.encode(P.Styles(builtin=list(lib), descriptions=list(lib.values()),
+                                              workspace=ws_styles, notes=notes, id=msg.id)))
         elif isinstance(msg, (P.GetMesh, P.GetLoops, P.Export)):
             doc = self._need(conn)
             jobs.put_nowait((msg, doc.snapshot(), doc.label))
@@ -388,6 +402,49 @@ class _Studio:
             await task   # rolled back (or it failed anyway)
         raise EditCancelled(f"the change took longer than {budget:g} s and was given up; the drawing is "
                             "unchanged (auszug.limits.LIMITS.edit_seconds)")
+
+    async def _tracery(self, msg: Any) -> tuple[Any, str, bytes | None]:
+        """A tracery page message in a worker thread within :attr:`Limits.edit_seconds`.
+
+        A value the style refuses is answered by :class:`~auszug.studio.protocol.TraceryRefused`
+        naming it (the page shows it at the field); the server keeps no tracery state, so
+        nothing changes. Past the budget the answer is an error (the thread's result is dropped).
+        """
+        task = asyncio.ensure_future(asyncio.to_thread(self._tracery_encoded, msg))
+        budget = LIMITS.edit_seconds
+        done, _ = await asyncio.wait({task}, timeout=budget)
+        if task not in done:
+            raise EditCancelled(f"the window took longer than {budget:g} s to build and was given up; "
+                                "nothing changed (auszug.limits.LIMITS.edit_seconds)")
+        return task.result()
+
+    def _tracery_encoded(self, msg: Any) -> tuple[Any, str, bytes | None]:
+        """:meth:`_tracery_job` and its reply's JSON text, in the worker thread."""
+        from auszug.studio.tracery import tracery_text
+
+        reply, payload = self._tracery_job(msg)
+        return reply, tracery_text(reply) if isinstance(reply, P.TraceryGeometry) else P.encode(reply), payload
+
+    def _tracery_job(self, msg: Any) -> tuple[Any, bytes | None]:
+        from auszug.errors import FormatError
+        from auszug.studio import tracery as T
+        from auszug.tracery import ParameterError
+
+        label = msg.path or msg.style
+        try:
+            st = T.window_style(self.workspace, msg.style, msg.path, msg.values)
+            if isinstance(msg, P.TraceryBuild):
+                return T.build_message(st, msg.style, msg.path, msg.values, msg.id)
+            if isinstance(msg, P.TracerySave):
+                T.build_message(st, msg.style, msg.path, msg.values)   # only a style that builds is saved
+                return P.Saved(path=T.save_style(self.workspace, st, msg.target), id=msg.id), None
+            _, _, sub = T.split_values(msg.values)
+            name, mime, data = T.export_window(st, msg.format, sub)
+            return P.Exported(name=name, mime=mime, size=len(data), id=msg.id), data
+        except ParameterError as e:
+            return P.TraceryRefused(key=e.name, message=" ".join(f"{label}: {e}".split()), id=msg.id), None
+        except FormatError as e:
+            return P.TraceryRefused(key="", message=" ".join(str(e).split()), id=msg.id), None
 
     def _thumbnail(self, path: str, example: str) -> str:
         """The top view of a workspace file or a bundled example as a small SVG (in a worker thread)."""

@@ -29,7 +29,7 @@ import weakref
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from pathlib import Path, PurePosixPath
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -169,8 +169,11 @@ class Workspace:
         """
         return self.listing(limit)[0]
 
-    def listing(self, limit: int = 10000) -> tuple[list[str], list[str]]:
+    def listing(self, limit: int = 10000, accept: Callable[[str], bool] | None = None) -> tuple[list[str], list[str]]:
         """(drawings, notes): :meth:`drawings`, and a note per entry skipped as unreadable.
+
+        ``accept`` picks other files by name instead of the drawings (the tracery
+        page's style files).
 
         A note is one line: a symbolic link loop, a folder without permission, a
         link to nothing or a link that points outside the workspace.
@@ -197,7 +200,7 @@ class Workspace:
         for dirpath, dirnames, filenames in os.walk(root, onerror=unreadable):
             dirnames[:] = sorted(d for d in dirnames if not d.startswith(".") and d != "node_modules")
             for fn in sorted(filenames):
-                if fn.startswith(".") or not _is_drawing(fn):
+                if fn.startswith(".") or not (accept or _is_drawing)(fn):
                     continue
                 p = Path(dirpath) / fn
                 try:

@@ -1,0 +1,240 @@
+"""A fast preview mesh of a window, for live views (the studio's tracery page).
+
+:func:`auszug.tracery.window_mesh` builds the finished window: exact offsets at
+every profile depth, zipped lofts, one watertight manifold solid (about 100 ms
+for Fig. 20h). A live view needs a new mesh within a few milliseconds, so the
+preview cuts two corners and keeps the look:
+
+* each region's border is sampled once (coarser arcs: ``max_angle``,
+  ``chord``), and the profile's insets are *vertex offsets* of that polygon
+  (along the corner bisectors, the miter capped), not exact offsets, so
+  sharp concave corners may fold over slightly;
+* every region is meshed on its own (its profile swept as quad strips, its
+  recess floor triangulated with its children's openings as holes), the
+  back half is the mirror image of the front half (or left to the viewer,
+  ``back=False``), and nothing is zipped: the preview is neither watertight
+  nor manifold. Export uses
+  :func:`~auszug.tracery.window_mesh`.
+
+Coordinates as :func:`~auszug.tracery.window_mesh`: x right, z up (the 2D
+window's x and y), the wall's front face at ``y = -thickness / 2``.
+
+Examples
+--------
+>>> from auszug.tracery import build
+>>> from auszug.tracery.preview import preview_mesh
+>>> v, f = preview_mesh(build("fig20a"))
+>>> v.shape[1], f.shape[1], bool(f.max() < len(v))
+(3, 3, True)
+>>> bool(abs(v[:, 1].min() + 0.45) < 1e-6)   # the wall's front face, thickness 0.9
+True
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+from auszug.meshing import triangulate_polygon
+from auszug.tracery.model import Region, Tracery, polygon
+
+__all__ = ["preview_mesh", "PREVIEW_MAX_ANGLE", "PREVIEW_CHORD"]
+
+#: Largest angle of an arc sample in the preview (radians).
+PREVIEW_MAX_ANGLE = math.pi / 12
+#: Largest chord deviation of the preview, relative to the window's span.
+PREVIEW_CHORD = 2e-3
+#: Largest miter factor of a vertex offset (sharp corners).
+_MITER = 3.0
+
+Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+
+def _inward(p: Array) -> Array:
+    """Per vertex of a counter-clockwise loop (m, 2): the offset direction for a unit inset, (m, 2)."""
+    e = np.empty_like(p)
+    e[:-1] = p[1:] - p[:-1]
+    e[-1] = p[0] - p[-1]
+    ln = np.hypot(e[:, 0], e[:, 1])
+    ln[ln == 0.0] = 1.0
+    n = np.empty_like(e)
+    n[:, 0] = -e[:, 1] / ln                                     # left of each edge: inside
+    n[:, 1] = e[:, 0] / ln
+    b = n.copy()
+    b[1:] += n[:-1]
+    b[0] += n[-1]
+    bl = np.hypot(b[:, 0], b[:, 1])
+    bad = bl < 1e-9
+    bl[bad] = 1.0
+    b = b / bl[:, None]
+    b[bad] = n[bad]
+    cos = b[:, 0] * n[:, 0] + b[:, 1] * n[:, 1]
+    scale = 1.0 / np.maximum(cos, 1.0 / _MITER)
+    out: Array = b * scale[:, None]
+    return out
+
+
+def _strips(start: int, m: int, k: int) -> IntArray:
+    """Triangles joining k consecutive closed rings of m vertices each, starting at vertex ``start``."""
+    i = np.arange(m)
+    j = np.empty(m, np.int64)
+    j[:-1] = i[1:]
+    j[-1] = 0
+    base = start + m * np.arange(k - 1)[:, None]                 # (k-1, 1)
+    a, b = base + i, base + j
+    out = np.empty((k - 1, m, 2, 3), np.int64)                   # per quad (a, b, d) and (a, d, c)
+    out[:, :, 0, 0] = a
+    out[:, :, 0, 1] = b
+    out[:, :, 0, 2] = b + m
+    out[:, :, 1, 0] = a
+    out[:, :, 1, 1] = b + m
+    out[:, :, 1, 2] = a + m
+    res: IntArray = out.reshape(-1, 3)
+    return res
+
+
+class _Builder:
+    def __init__(self) -> None:
+        self.verts: list[Array] = []
+        self.faces: list[IntArray] = []
+        self.n = 0
+
+    def rings(self, p: Array, d: Array, levels: Array, unit: float, y0: float, dy: float) -> Array:
+        """Rings ``p + d * s * unit`` at depths ``y0 + t * dy`` for the (s, t) levels; the last ring (m, 2)."""
+        m = len(p)
+        s = levels[:, 0] * unit
+        xy = p[None, :, :] + s[:, None, None] * d[None, :, :]
+        y = y0 + levels[:, 1] * dy
+        v = np.empty((len(levels), m, 3))
+        v[:, :, 0] = xy[:, :, 0]
+        v[:, :, 1] = y[:, None]
+        v[:, :, 2] = xy[:, :, 1]
+        self.faces.append(_strips(self.n, m, len(levels)))
+        self.verts.append(v.reshape(-1, 3))
+        self.n += m * len(levels)
+        last: Array = xy[-1]
+        return last
+
+    def cap(self, outer: Array, holes: list[Array], y: float, flip: bool = False) -> None:
+        """A flat face at depth y: ``outer`` (ccw) minus ``holes``, facing -y (or +y if ``flip``)."""
+        try:
+            tri = triangulate_polygon(outer, holes)
+        except Exception:   # a preview shows what it can; export reports errors
+            return
+        pts = np.concatenate([outer, *holes]) if holes else outer
+        v = np.column_stack([pts[:, 0], np.full(len(pts), y), pts[:, 1]])
+        # the polygon is ccw in (x, z); seen from -y that is clockwise: flip to face the viewer
+        self.faces.append(self.n + (tri if flip else tri[:, ::-1]))
+        self.verts.append(v)
+        self.n += len(v)
+
+
+def _levels(r: Region, per_arc: int) -> Array:
+    lv = r.profile.sample(per_arc)
+    keep = np.ones(len(lv), dtype=bool)
+    keep[1:] = np.any(np.abs(np.diff(lv, axis=0)) > 1e-12, axis=1)
+    out: Array = lv[keep]
+    return out
+
+
+def preview_mesh(tracery: Tracery, max_angle: float = PREVIEW_MAX_ANGLE, chord: float = PREVIEW_CHORD,
+                 per_arc: int = 1, back: bool = True) -> tuple[NDArray[np.float32], NDArray[np.uint32]]:
+    """Triangles that look like the window: profiles swept along the sampled borders, not united.
+
+    Parameters
+    ----------
+    tracery : Tracery
+        From :func:`auszug.tracery.build`.
+    max_angle : float
+        Largest angle an arc sample spans (radians).
+    chord : float
+        Largest chord deviation, relative to the window's span.
+    per_arc : int
+        Samples per arc of a profile.
+    back : bool
+        Include the back half (the mirror image of the front half in the
+        middle plane ``y = 0``); without it only ``y <= 0`` is meshed, and a
+        viewer can draw the back half as a mirrored instance of the front.
+
+    Returns
+    -------
+    vertices : (n, 3) float32 ndarray
+    faces : (m, 3) uint32 ndarray
+        Counter-clockwise seen from outside.
+    """
+    st = tracery.style
+    wall = st.wall
+    regions = tracery.regions
+    chord_abs = chord * float(tracery.params.span)
+    half_t, half_s = 0.5 * wall.thickness, 0.5 * wall.slab
+    children: dict[str, list[int]] = {}
+    for i, r in enumerate(regions[1:], 1):
+        children.setdefault(r.parent or "", []).append(i)
+    polys: dict[int, Array] = {}
+
+    def poly(i: int) -> Array:
+        q = polys.get(i)
+        if q is None:
+            q = polys[i] = polygon(regions[i].curves, max_angle, chord_abs)
+        return q
+
+    levels: dict[int, Array] = {}
+
+    def lv_of(r: Region) -> Array:
+        lv = levels.get(id(r.profile))
+        if lv is None:
+            lv = levels[id(r.profile)] = _levels(r, per_arc)
+        return lv
+
+    out = _Builder()
+    # congruent regions (the sub-windows of a recursive style) are meshed once and translated
+    done: dict[int, tuple[int, int, int, int, tuple[float, float]]] = {}
+    for i, r in enumerate(regions):
+        if r.template >= 0 and r.template in done:
+            v0, v1, f0, f1, origin = done[r.template]
+            shift = np.array([r.origin[0] - origin[0], 0.0, r.origin[1] - origin[1]])
+            vb = np.concatenate(out.verts[v0:v1])
+            fb = np.concatenate(out.faces[f0:f1]) - sum(len(x) for x in out.verts[:v0])
+            out.faces.append(fb + out.n)
+            out.verts.append(vb + shift)
+            out.n += len(vb)
+            continue
+        v0, f0 = len(out.verts), len(out.faces)
+        p = poly(i)
+        d = _inward(p)
+        kids = [poly(k) for k in children.get(r.id, [])]
+        if i == 0:
+            # the reveal in the wall, the wall's face round it, the plate's face
+            lv = lv_of(r)
+            out.rings(p, d, lv, r.border, -half_t, half_t - half_s)
+            wide = p + d * float(lv[0, 0]) * r.border
+            lo, hi = p.min(0) - wall.margin, p.max(0) + wall.margin     # the wall: margin round the arch
+            box = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]])
+            out.cap(box, [wide[::-1]], -half_t)
+            out.rings(box, np.zeros_like(box), np.array([[0.0, 0.0], [0.0, 1.0]]), 1.0, -half_t, half_t)  # its sides
+            out.cap(p, [k[::-1] for k in kids], -half_s)
+            continue
+        y0 = -half_s + r.face
+        lv = lv_of(r)
+        if r.role == "light":
+            if y0 + lv[-1, 1] * r.border > 0.0:
+                lv = lv[y0 + lv[:, 1] * r.border <= 0.0]
+            if len(lv):
+                lv = np.vstack([lv, [lv[-1, 0], -y0 / r.border]])
+                out.rings(p, d, lv, r.border, y0, r.border)
+        else:
+            floor = out.rings(p, d, lv, r.border, y0, r.border)
+            out.cap(floor, [k[::-1] for k in kids] if r.role == "frame" else [], y0 + lv[-1, 1] * r.border)
+        if r.template >= 0:
+            done[r.template] = (v0, len(out.verts), f0, len(out.faces), r.origin)
+    v = np.concatenate(out.verts)
+    f = np.concatenate(out.faces)
+    if not back:
+        return v.astype(np.float32), f.astype(np.uint32)
+    mirror = v * np.array([1.0, -1.0, 1.0])
+    verts = np.concatenate([v, mirror]).astype(np.float32)
+    faces = np.concatenate([f, f[:, ::-1] + len(v)]).astype(np.uint32)
+    return verts, faces

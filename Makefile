@@ -24,7 +24,7 @@ $(NODE_STAMP): web/package.json web/package-lock.json
 
 # the studio front end: Vite builds web/ into the Python package (gitignored, shipped in the wheel)
 WEB_BUILD := src/auszug/studio/static/index.html
-WEB_SRC   := $(wildcard web/src/*.ts web/src/*.css) web/index.html web/vite.config.ts web/tsconfig.json
+WEB_SRC   := $(wildcard web/src/*.ts web/src/*.css) web/index.html web/tracery.html web/vite.config.ts web/tsconfig.json
 
 $(WEB_BUILD): $(NODE_STAMP) $(WEB_SRC)
 	cd web && npm run --silent build -- --logLevel warn

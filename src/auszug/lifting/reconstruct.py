@@ -271,7 +271,10 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        w_a = 1: each round minimises fidelity + w_c sum L(alpha) C^2 over the
        undecided cues, subject to the applied ones; L = 1 applies a cue
        (parallelism stays soft with weight w_c), L = 0 or no increase rejects
-       it; after ``params.rounds`` rounds the rest is rejected;
+       it; after ``params.rounds`` rounds the rest is rejected. The class
+       ``"plane"`` (plane parallelism and orthogonality) comes after planarity:
+       its candidates are the single-linkage clusters of the applied planar
+       strokes' normals (:func:`~auszug.lifting.cues.plane_cues`);
     4. the depth sign: the solution or its mirror z -> -z, whichever is seen
        from above (:func:`from_above`; where that score is not above
        ``params.above_min``, whichever is more convex seen from the viewer),

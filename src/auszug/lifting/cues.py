@@ -21,7 +21,7 @@ from auszug.lifting.solver import Poly2
 from auszug.lifting.terms import add_dot, add_lin3
 
 __all__ = ["likelihood", "Parallel", "Orthogonal", "Symmetry", "Planar", "parallel_cues", "orthogonal_cues",
-           "symmetry_cues", "planar_cues", "angle_between"]
+           "symmetry_cues", "planar_cues", "angle_between", "PlanePairs", "plane_cues"]
 
 Array = NDArray[np.float64]
 Index = NDArray[np.intp]
@@ -245,6 +245,147 @@ class Planar:
                 C.add(np.zeros(m), 1.0, lin=(np.arange(m), np.full(m, int(offset_slot[i])), -np.ones(m)),
                       bil=(rows, ii, jj, np.ones(3 * m)))
             add_dot(C, np.array([[ns]]), np.ones((1, 1)), np.array([[ns]]), np.ones((1, 1)), -1.0, 1.0)
+
+
+@dataclass(frozen=True)
+class PlanePairs:
+    """Plane parallelism and plane orthogonality between planar strokes (paper sec. 5.2, curve level).
+
+    Candidates pair two planarity candidates ``ia``, ``ib`` (indices into
+    ``planar``) whose strokes' planes are parallel (``orthogonal`` False) or
+    orthogonal. The residuals are on the strokes' unit normal variables
+    (which hard planarity ties to the strokes): parallel ``N_a - s N_b``
+    (three rows, s = +-1 fixed when the candidates are made, since a normal's
+    sign is free), orthogonal ``N_a . N_b`` (one row). The angles are taken
+    between the best-fit normals of the control points (:meth:`Planar.normals`).
+    """
+
+    planar: Planar
+    ia: Index
+    ib: Index
+    sign: Array
+    orthogonal: NDArray[np.bool_]
+    where: tuple[str, ...]
+
+    def __len__(self) -> int:
+        return len(self.ia)
+
+    def angles(self, X: Array) -> Array:
+        """Each candidate's angle on control points X (n, 3), degrees (0 = regular)."""
+        if not len(self):
+            return np.zeros(0)
+        n = self.planar.normals(X)
+        a = angle_between(n[self.ia], n[self.ib])
+        line = np.minimum(a, 180.0 - a)          # the angle between the planes, 0-90 deg
+        return np.where(self.orthogonal, 90.0 - line, line)
+
+    def add(self, P: Poly2, which: Index, weight: Array | float) -> None:
+        """Add the residual rows of candidates ``which`` (soft term or hard constraint)."""
+        which = np.asarray(which, dtype=np.intp)
+        if not len(which):
+            return
+        w = np.broadcast_to(np.asarray(weight, float), (len(which),))
+        na = self.planar.normal_slot[self.ia[which]]
+        nb = self.planar.normal_slot[self.ib[which]]
+        par = ~self.orthogonal[which]
+        if par.any():
+            k = np.nonzero(par)[0]
+            slots = np.stack([na[k], nb[k]], axis=1)
+            coef = np.stack([np.ones(len(k)), -self.sign[which[k]]], axis=1)
+            add_lin3(P, slots, coef, np.zeros(3 * len(k)), w[k])
+        if (~par).any():
+            k = np.nonzero(~par)[0]
+            one = np.ones((len(k), 1))
+            add_dot(P, na[k, None], one, nb[k, None], one, 0.0, w[k])
+
+
+def plane_cues(planar: Planar, applied: NDArray[np.bool_], normals: Array, names: tuple[str, ...],
+               cluster_deg: float, X: Array | None = None, min_spread: float = 0.0) -> PlanePairs:
+    """Plane parallelism and orthogonality candidates by single-linkage clustering of the normals.
+
+    The applied planarity candidates' normals are clustered by single
+    linkage: two normals closer than ``cluster_deg`` as lines (a normal's sign
+    is free) are linked. Every link of the clusters' minimum spanning trees
+    (Kruskal, shortest first) is a parallelism candidate, so a cluster of k
+    strokes gets k - 1 and the hard constraints are not redundant. Two
+    clusters whose mean normals are within ``cluster_deg`` of orthogonal give
+    one orthogonality candidate between their first members.
+
+    Parameters
+    ----------
+    planar : Planar
+    applied : (k,) bool ndarray
+        Which planarity candidates are applied (only their normals are tied to the strokes).
+    normals : (k, 3) ndarray
+        The current unit normal of every planarity candidate.
+    names : (k,) tuple of str
+        The strokes' names, for ``where``.
+    cluster_deg : float
+        The single-linkage threshold and the orthogonality tolerance, degrees (paper: 15).
+    X : (n, 3) ndarray, optional
+        The current control points; with ``min_spread``, a stroke takes part
+        only when its points' second singular value is at least ``min_spread``
+        times the first (its plane is well defined; a nearly straight curve's
+        plane turns freely about its chord).
+    min_spread : float
+    """
+    ok = np.asarray(applied, dtype=bool).copy()
+    if X is not None and min_spread > 0:
+        for i, p in enumerate(planar.points):
+            sv = np.linalg.svd(X[p] - X[p].mean(0), compute_uv=False)
+            ok[i] &= bool(sv[1] >= min_spread * max(sv[0], 1e-300))
+    idx = np.nonzero(ok)[0]
+    n = normals / np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-300)
+    cos_t = np.cos(np.radians(cluster_deg))
+    edges = []
+    for u in range(len(idx)):
+        for v in range(u + 1, len(idx)):
+            c = abs(float(n[idx[u]] @ n[idx[v]]))
+            if c >= cos_t:
+                edges.append((-c, u, v))
+    edges.sort()
+    parent = list(range(len(idx)))
+
+    def find(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    ia: list[int] = []
+    ib: list[int] = []
+    orth: list[bool] = []
+    where: list[str] = []
+    for _, u, v in edges:
+        a, b = find(u), find(v)
+        if a == b:
+            continue
+        parent[max(a, b)] = min(a, b)
+        ia.append(int(idx[u]))
+        ib.append(int(idx[v]))
+        orth.append(False)
+        where.append(f"{names[idx[u]]} | {names[idx[v]]} parallel planes")
+    clusters: dict[int, list[int]] = {}
+    for u in range(len(idx)):
+        clusters.setdefault(find(u), []).append(u)
+    reps, means = [], []
+    for members in clusters.values():
+        first = n[idx[members[0]]]
+        m = sum(n[idx[u]] * (1.0 if float(n[idx[u]] @ first) >= 0 else -1.0) for u in members)
+        reps.append(members[0])
+        means.append(m / max(float(np.linalg.norm(m)), 1e-300))
+    sin_t = np.sin(np.radians(cluster_deg))
+    for x in range(len(reps)):
+        for y in range(x + 1, len(reps)):
+            if abs(float(means[x] @ means[y])) <= sin_t:
+                ia.append(int(idx[reps[x]]))
+                ib.append(int(idx[reps[y]]))
+                orth.append(True)
+                where.append(f"{names[idx[reps[x]]]} | {names[idx[reps[y]]]} orthogonal planes")
+    A, B = np.array(ia, dtype=np.intp), np.array(ib, dtype=np.intp)
+    sign = np.sign(np.einsum("ij,ij->i", n[A], n[B])) if len(A) else np.zeros(0)
+    sign = np.where(sign == 0, 1.0, sign)
+    return PlanePairs(planar, A, B, sign, np.array(orth, dtype=bool), tuple(where))
 
 
 def _halves_by_stroke(g: SketchGraph, c) -> dict[int, list[tuple[int, int]]]:

@@ -58,6 +58,11 @@ class LiftParams:
     parallel_2d_deg : float
         Tangent pairs whose 2D angle is below this are parallelism candidates
         (our choice: twice O_b, since foreshortening changes angles).
+    plane_cluster_deg : float
+        Plane parallelism and orthogonality (the curve-level cues after
+        planarity): the applied planar strokes' normals are clustered by
+        single linkage at this angle, and two clusters whose mean normals are
+        within it of 90 deg are orthogonality candidates (the paper: 15 deg).
     smooth_joint_deg : float
         A stroke is G1 at a node where its tangents turn by less than this
         (our choice: 10 deg).
@@ -109,6 +114,7 @@ class LiftParams:
     outer_value: float = 0.005
     rounds: int = 8
     parallel_2d_deg: float = 30.0
+    plane_cluster_deg: float = 15.0
     smooth_joint_deg: float = 10.0
     min_crossing_deg: float = 10.0
     straight_tol: float = 1e-6

@@ -31,9 +31,11 @@ __all__ = ["CueResult", "Stage", "LiftResult", "lift", "lift_graph", "layer_grap
 Array = NDArray[np.float64]
 
 #: The cue classes in the order they are resolved (paper sec. 4 and 5.3).
-CLASSES = ("parallel", "orthogonal", "symmetry", "planar")
+CLASSES = ("parallel", "orthogonal", "symmetry", "planar", "plane")
 #: The classes :func:`lift` resolves by default: local symmetry is implemented but off, since its hard
-#: constraints currently stop Newton from converging on the revolve ground truth (docs/lifting.md).
+#: constraints currently stop Newton from converging on the revolve ground truth (docs/lifting.md);
+#: plane parallelism / orthogonality ("plane") is off since its round made the arches example worse
+#: (9.16 -> 11.07 % depth RMSE, docs/lifting.md).
 DEFAULT_CLASSES = ("parallel", "orthogonal", "planar")
 
 
@@ -269,7 +271,10 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        w_a = 1: each round minimises fidelity + w_c sum L(alpha) C^2 over the
        undecided cues, subject to the applied ones; L = 1 applies a cue
        (parallelism stays soft with weight w_c), L = 0 or no increase rejects
-       it; after ``params.rounds`` rounds the rest is rejected;
+       it; after ``params.rounds`` rounds the rest is rejected. The class
+       ``"plane"`` (plane parallelism and orthogonality) comes after planarity:
+       its candidates are the single-linkage clusters of the applied planar
+       strokes' normals (:func:`~auszug.lifting.cues.plane_cues`);
     4. the depth sign: the solution or its mirror z -> -z, whichever is seen
        from above (:func:`from_above`; where that score is not above
        ``params.above_min``, whichever is more convex seen from the viewer),
@@ -397,9 +402,18 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
 
     pla_applied = resolve("planar", pla, pla_apply, pla_soft)
 
+    # plane parallelism / orthogonality: single-linkage clusters of the applied planar strokes' normals
+    slots = 3 * pla.normal_slot[:, None] + np.arange(3)
+    names = tuple(w.removesuffix(" planar") for w in pla.where)
+    pp = cu.plane_cues(pla, pla_applied, pr.v[slots] if len(pla) else np.zeros((0, 3)), names,
+                       params.plane_cluster_deg, pr.X(), float(np.tan(np.radians(params.inner_deg))))
+    pp_state = {"sel": np.zeros(0, np.intp)}
+    hard.append(lambda c: pp.add(c, pp_state["sel"], 1.0))
+    pp_applied = resolve("plane", pp, lambda s: pp_state.update(sel=s), lambda E, i, w: pp.add(E, i, w))
+
     X = pr.X().copy()
     for kind, fam, app in (("parallel", par, par_applied), ("orthogonal", orth, orth_applied),
-                           ("symmetry", sym, sym_applied), ("planar", pla, pla_applied)):
+                           ("symmetry", sym, sym_applied), ("planar", pla, pla_applied), ("plane", pp, pp_applied)):
         ang = fam.angles(X) if len(fam) else np.zeros(0)
         results += [CueResult(kind, w, bool(a), float(x), layer) for w, a, x in zip(fam.where, app, ang, strict=True)]
     results = [CueResult("smooth-orthogonal", w, True, float(x), layer)

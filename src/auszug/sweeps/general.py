@@ -532,9 +532,12 @@ def _nearest_curve(c: Cuts, plane: int, target: Array) -> tuple[Array, Array] | 
 
 
 def trajectory_error(profile: Array, motion: Motion, tree: MeshTree) -> Array:
-    """Largest distance ``(n,)`` to the mesh of each profile point's path (at the knots and between them)."""
+    """Largest distance ``(n,)`` to the mesh of each profile point's path (at the knots and between them).
+
+    Positions beyond the mesh (closest point on its boundary: past its end, over a hole) do not count.
+    """
     t = np.sort(np.concatenate([motion.t, (motion.t[:-1] + motion.t[1:]) / 2]))
-    d = tree.query(motion.apply(profile, t))[0].reshape(len(t), len(profile))
+    d = tree.interior_distance(motion.apply(profile, t)).reshape(len(t), len(profile))
     out: Array = d.max(axis=0)
     return out
 
@@ -554,34 +557,39 @@ def _longest_run(ok: NDArray[np.bool_]) -> tuple[int, int]:
 def extend_profile(mesh: SweepMesh, profile: Array, motion: Motion, tree: MeshTree, params: SweepParams) -> Array:
     """The profile extended to the whole cut curve it is part of, then trimmed to what the motion sweeps.
 
-    The mesh is cut by the profile plane (:func:`profile_planes`) at the middle knot; the cut curve nearest the
-    moved profile is mapped back (the whole curve, resampled at ``match_spacing``), and cut down
-    to the longest stretch of points whose paths stay within ``eps_prox`` of the mesh
-    (:func:`trajectory_error`). Returns ``profile`` itself when that stretch is shorter.
+    The mesh is cut by the profile plane (:func:`profile_planes`) at the knots a quarter, half
+    and three quarters along the motion; at each, the cut curve nearest the moved profile is mapped
+    back (the whole curve, resampled at ``match_spacing``) and cut down to the longest stretch of
+    points whose paths stay within ``eps_prox`` of the mesh (:func:`trajectory_error`). The
+    longest of the three is returned, or ``profile`` itself when none is longer (one cut may
+    cross a hole in the mesh).
     """
     from auszug.sweeps.matching import resample
 
-    tm = float(motion.t[len(motion.t) // 2])
-    r, tr = motion.at([tm])
-    moved = profile @ r[0].T + tr[0]
-    c = cut(mesh, *profile_planes(profile, motion, [tm]))
-    got = _nearest_curve(c, 0, moved)
-    if got is None:
-        return profile
-    curve = resample(got[0], params.match_spacing)
-    if len(curve) < 2:
-        return profile
-    back = (curve - tr[0]) @ r[0]
-    # keep the orientation of the old profile
-    if np.linalg.norm(back[0] - profile[0]) + np.linalg.norm(back[-1] - profile[-1]) > \
-            np.linalg.norm(back[-1] - profile[0]) + np.linalg.norm(back[0] - profile[-1]):
-        back = back[::-1]
-    a, b = _longest_run(trajectory_error(back, motion, tree) <= params.eps_prox)
-    old = np.linalg.norm(np.diff(profile, axis=0), axis=1).sum()
-    new = back[a:b]
-    if b - a < 2 or np.linalg.norm(np.diff(new, axis=0), axis=1).sum() <= old:
-        return profile
-    return new
+    def length(p: Array) -> float:
+        return float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum())
+
+    best = profile
+    k = len(motion.t)
+    for tm in sorted({float(motion.t[min(k - 1, (q * (k - 1)) // 4)]) for q in (2, 1, 3)}):
+        r, tr = motion.at([tm])
+        moved = profile @ r[0].T + tr[0]
+        c = cut(mesh, *profile_planes(profile, motion, [tm]))
+        got = _nearest_curve(c, 0, moved)
+        if got is None:
+            continue
+        curve = resample(got[0], params.match_spacing)
+        if len(curve) < 2:
+            continue
+        back = (curve - tr[0]) @ r[0]
+        # keep the orientation of the old profile
+        if np.linalg.norm(back[0] - profile[0]) + np.linalg.norm(back[-1] - profile[-1]) > \
+                np.linalg.norm(back[-1] - profile[0]) + np.linalg.norm(back[0] - profile[-1]):
+            back = back[::-1]
+        a, b = _longest_run(trajectory_error(back, motion, tree) <= params.eps_prox)
+        if b - a >= 2 and length(back[a:b]) > length(best):
+            best = back[a:b]
+    return best
 
 
 def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepParams,
@@ -594,8 +602,9 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
     tangent from a parabola through the last two centroids and this one), and
     the moved profile's closest points on the nearest cut curve taken as the next rib when at
     least 90 % of them lie within ``2 eps_prox`` (the rib's map is then corrected to them,
-    Kabsch, and the cut repeated with it: 4 rounds, as in ICP). A failed full step is retried at
-    a half and a quarter step, which ends the growth
+    Kabsch, and the cut repeated with it: 4 rounds, as in ICP). A failed full step is retried
+    as two and three steps (over a hole in the mesh), then as a half and a quarter step, which
+    ends the growth
     (the mesh's end). Sample ``j`` of every rib corresponds to profile point ``j``.
     """
     lo, hi = motion.domain
@@ -658,7 +667,8 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
                 break
             got = None
             c0, c1 = (centre @ seq[-2][0].T + seq[-2][1]), (centre @ seq[-1][0].T + seq[-1][1])
-            for h in (1.0, 0.5, 0.25):
+            # a full step; then two or three (over a hole in the mesh); then a half or a quarter (the end)
+            for h in (1.0, 2.0, 3.0, 0.5, 0.25):
                 got = try_at(_compose(_step(seq[-2], seq[-1], h), seq[-1]), c0, c1)
                 if got is not None:
                     break
@@ -668,6 +678,9 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
             seq.append(got[1])
             if h < 1.0:
                 break
+            if h > 1.0:
+                # the next step extrapolates the last one: make it one step long again
+                seq[-2] = _compose(_step(seq[-2], seq[-1], 1.0 - 1.0 / h), seq[-2])
         return out
 
     ahead = grow(list(maps))

@@ -134,8 +134,9 @@ def main(argv=None):
           f"{stages[0].numbers['pairs']} pairs) | 234 + 86 s | {t_build:.2f} s | {(234 + 86) / t_build:.0f}x | 20x |")
     t_grow, (gpats, gstages) = best_of(
         lambda: general_stages(mesh, c0, mv0, pb.with_(grow=True), lambda name: time.perf_counter()), 1)
-    print(f"| build, grown (the default): {len(gpats)} sweep(s) fitted and grown, "
-          f"{gstages[-1].summary.split('(')[1].split(')')[0]}; fit errors "
+    skipped = gstages[-1].summary.split(" families on grown patches skipped")[0].rsplit("(", 1)[-1]
+    print(f"| build, grown (the default): {len(gpats)} sweep(s) fitted and grown, {skipped} families skipped; "
+          f"fit errors "
           f"{', '.join(f'{p.fit_error:.1e}' for p in gpats)}, coverage {max(p.coverage for p in gpats):.3f} | "
           f"86 s | {gstages[-1].seconds:.2f} s | | |")
     t_all, rep = best_of(lambda: detect(mesh, params.with_(eps_prox=0.005)), 1)

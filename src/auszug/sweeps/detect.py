@@ -214,7 +214,7 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         # curved path glides like a turn): general sweeps
         from auszug.sweeps.general import general_stages
 
-        more, general = general_stages(m, cuts, mov, params, step)
+        more, general = general_stages(m, cuts, mov, params, step, translations=kinematic)
         raw.extend(more)
         stages.extend(general)
 

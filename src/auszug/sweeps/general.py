@@ -414,7 +414,8 @@ def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, I
 
 
 def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams, step: Callable[[str], float],
-                   true_planes: ArrayLike | None = None) -> tuple[list[SweepPatch], list[Stage]]:
+                   true_planes: ArrayLike | None = None,
+                   translations: bool = False) -> tuple[list[SweepPatch], list[Stage]]:
     """The stages match, families and motion on a non-kinematic mesh; patches and summaries.
 
     ``cuts`` and ``mov`` are the initial planes' cuts and their movability. Every movable run of
@@ -422,7 +423,10 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     refining around the best (:func:`~auszug.sweeps.search_planes`) misses the profile planes
     (docs/sweeps.md), while the families of the initial cuts with most support (members times
     the length of their common part) lie near them. With ``true_planes`` the motion stage also
-    reports the plane recall of the fitted motions' profile planes.
+    reports the plane recall of the fitted motions' profile planes. With ``translations`` (the
+    cuts glide under one turn whose sweep does not fit: a translation along a curved path), each
+    fitted sweep is also tried as a pure translation (:func:`translational_patch`), kept when it
+    covers more within the fit bound.
     """
     stages: list[Stage] = []
     t = step("match")
@@ -477,6 +481,10 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
                          float(areas[faces[g.faces]].sum() / total) if total > 0 else 0.0, faces[g.faces])
         if params.grow and g.fit_error <= params.fit_factor * params.eps_prox:
             g = grown_patch(mesh, g, params, tree, areas)
+        if translations:
+            tp = translational_patch(mesh, g.profile, g.motion, params, tree, areas)
+            if tp is not None and tp.fit_error <= params.fit_factor * params.eps_prox and tp.coverage > g.coverage:
+                g = tp
         if g.fit_error <= params.fit_factor * params.eps_prox:
             grown[g.faces] = True
         out.append(SweepPatch(len(out), "general", g.profile, False, g.motion, g.faces, g.fit_error, g.coverage))
@@ -712,3 +720,71 @@ def grown_patch(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: Mes
     if h.coverage <= g.coverage or h.fit_error > params.fit_factor * params.eps_prox:
         return g
     return h
+
+
+def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepParams, tree: MeshTree,
+                        areas: Array | None = None, step: float = 0.02) -> GeneralSweep | None:
+    """A sweep by pure translations along a curved path (a double translational surface), or None.
+
+    A translation along an arch glides like a turn, and a general sweep fitted to it turns. Here
+    the profile is the cut by a general sweep's profile plane at its middle knot, and the mesh is
+    cut by planes *parallel* to it, ``step`` apart on both sides while the mesh follows; on each
+    the profile is moved by translations only (3 rounds of closest points, the mean offset), and a
+    cut counts when 90 % of the moved profile lies within ``2 eps_prox`` of it. The motion is the
+    translations at the cuts (rotation the identity), the profile improved and fitted as in
+    :func:`general_patch`.
+    """
+    from auszug.sweeps.matching import resample
+    from auszug.sweeps.patches import _improve
+
+    tm = float(motion.t[len(motion.t) // 2])
+    r, tr = motion.at([tm])
+    n, d = profile_planes(profile, motion, [tm])
+    c = cut(mesh, n, d)
+    got = _nearest_curve(c, 0, profile @ r[0].T + tr[0])
+    if got is None:
+        return None
+    p0 = resample(got[0], params.match_spacing)
+    if len(p0) < 2:
+        return None
+    m = n[0]
+    tol = 2 * params.eps_prox
+
+    def place(offset: Array, d_plane: float) -> Array | None:
+        cc = cut(mesh, m[None], np.array([d_plane]))
+        for _ in range(3):
+            hit = _nearest_curve(cc, 0, p0 + offset)
+            if hit is None:
+                return None
+            dist, cp = hit[1][:, 0], hit[1][:, 1:]
+            near = dist <= 4 * tol
+            if near.mean() < 0.5:
+                return None
+            offset = (cp[near] - p0[near]).mean(axis=0)
+        return offset if np.mean(dist <= tol) >= 0.9 else None
+
+    offsets = {0: np.zeros(3)}
+    for sign in (1, -1):
+        prev, before = np.zeros(3), np.zeros(3)
+        for k in range(1, 400):
+            guess = prev + (prev - before) if k > 1 else prev + sign * step * m
+            got_k = place(guess, float(d[0] + sign * k * step))
+            if got_k is None:
+                break
+            before, prev = prev, got_k
+            offsets[sign * k] = got_k
+    keys = sorted(offsets)
+    if len(keys) < 3:
+        return None
+    shifts = np.array([offsets[k] for k in keys])
+    start = p0 + shifts[0]
+    rot = np.repeat(np.eye(3)[None], len(keys), axis=0)
+    mot = Motion(np.arange(len(keys), dtype=float), rot, shifts - shifts[0])
+    more = _recut(mesh, start, mot, 4 * params.eps_prox)
+    start = _improve(start, False, more)
+    a, b = _longest_run(trajectory_error(start, mot, tree) <= params.eps_prox)
+    if b - a < 2:
+        return None
+    start = start[a:b]
+    fit = fit_patch(mesh, start, False, mot, params, areas, tree)
+    return GeneralSweep(start, mot, np.zeros((len(keys), 6)), fit.fit_error, fit.coverage, fit.faces)

@@ -58,7 +58,8 @@ from auszug.sweeps.planes import plane_recall
 from auszug.sweeps.stage import Stage
 
 __all__ = ["kabsch", "rib_velocity", "rib_velocities", "hermite_motion", "rib_parts", "general_patch",
-           "general_stages", "motion_planes", "profile_planes", "reslice", "GeneralSweep"]
+           "general_stages", "motion_planes", "profile_planes", "reslice", "GeneralSweep", "extend_profile",
+           "grow_ribs", "grown_patch", "trajectory_error", "translational_patch"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]

@@ -35,6 +35,11 @@ samples correspond one to one (the family's common part):
    motion, and every profile point moves to the mean of its closest points on them.
 5. **Fit check** (sec. 2.3.4): :func:`~auszug.sweeps.patches.fit_patch`; steps 1-4 are repeated
    ``general_iterations`` times with the improved profile.
+
+Beyond the paper: a fitted sweep is **grown** (:func:`grown_patch`) across its profile to the
+whole cut curve (:func:`extend_profile`) and along its path rib by rib while the mesh follows
+(:func:`grow_ribs`), then refitted; and a sweep on a mesh whose cuts glide under one turn that
+sweeps nothing is also tried as pure translations by parallel cuts (:func:`translational_patch`).
 """
 
 from __future__ import annotations

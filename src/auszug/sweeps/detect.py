@@ -14,7 +14,8 @@ Stages (each also callable alone, see :mod:`auszug.sweeps`):
    velocities by Eq. 7, Hermite interpolation, projection to rigid motions, profile improvement,
    fit check; each fitted sweep grown along its path and across its profile, and, when the cuts
    glided under one turn that fit nothing, also tried as pure translations). The paper's
-   adaptive plane refinement (:func:`~auszug.sweeps.search_planes`) is not run: its good planes, ranked by gliding energy, miss the profile planes (docs/sweeps.md);
+   adaptive plane refinement (:func:`~auszug.sweeps.search_planes`) is not run: its good planes,
+   ranked by gliding energy, miss the profile planes (docs/sweeps.md);
 5. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
    ``min_patch_area`` of the mesh are dropped; the rest are converted to the input's coordinates,
    each profile fitted with exact lines and arcs (``profile_fit_tolerance``, docs/sweeps.md section 6).

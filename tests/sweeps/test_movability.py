@@ -177,3 +177,5 @@ def test_bad_parameters_say_what_was_expected():
         SweepParams(refine_steps=4)
     with pytest.raises(GeometryError, match="unknown sweep parameter"):
         DEFAULT.with_(betta=3)
+    with pytest.raises(GeometryError, match="grow = 'yes': expected true or false"):
+        DEFAULT.with_(grow="yes")

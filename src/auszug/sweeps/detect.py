@@ -12,8 +12,10 @@ Stages (each also callable alone, see :mod:`auszug.sweeps`):
    (curvature plots of every movable run of the initial cuts, Eq. 6),
    ``families`` (sec. 2.2, most support first) with their ribs ordered, and ``motion`` (sec. 2.3:
    velocities by Eq. 7, Hermite interpolation, projection to rigid motions, profile improvement,
-   fit check). The paper's adaptive plane refinement (:func:`~auszug.sweeps.search_planes`) is
-   not run: its good planes, ranked by gliding energy, miss the profile planes (docs/sweeps.md);
+   fit check; each fitted sweep grown along its path and across its profile, and, when the cuts
+   glided under one turn that fit nothing, also tried as pure translations). The paper's
+   adaptive plane refinement (:func:`~auszug.sweeps.search_planes`) is not run: its good planes,
+   ranked by gliding energy, miss the profile planes (docs/sweeps.md);
 5. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
    ``min_patch_area`` of the mesh are dropped; the rest are converted to the input's coordinates,
    each profile fitted with exact lines and arcs (``profile_fit_tolerance``, docs/sweeps.md section 6).
@@ -214,7 +216,7 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         # curved path glides like a turn): general sweeps
         from auszug.sweeps.general import general_stages
 
-        more, general = general_stages(m, cuts, mov, params, step)
+        more, general = general_stages(m, cuts, mov, params, step, translations=kinematic)
         raw.extend(more)
         stages.extend(general)
 

@@ -313,8 +313,11 @@ def moulding_along_cubic(n_profile: int = 60, n_path: int = 160, twist: float = 
 
 
 def letter_g_profile(n: int = 80, radius: float = 0.16) -> Array:
-    """Points ``(n, 2)`` of a letter G centred on its bounding box: an arc of 270 degrees from the upper
-    right round the left to the lower right, up the right side to the middle, then a bar inwards."""
+    """Points ``(n, 2)`` of a letter G centred on its bounding box.
+
+    An arc of 280 degrees from the upper right round the left to the lower right, up the right
+    side to the middle, then a bar inwards.
+    """
     arc_n = int(0.75 * n)
     a = np.radians(np.linspace(40.0, 320.0, arc_n))
     arc = radius * np.column_stack([np.cos(a), np.sin(a)])
@@ -328,14 +331,19 @@ def letter_g_profile(n: int = 80, radius: float = 0.16) -> Array:
 
 def letter_g_along_cubic(n_path: int = 160, twist: float = 120.0, n_planes: int = 60, sigma: float = 0.0,
                          seed: int = 0) -> Fixture:
-    """A letter-G profile (:func:`letter_g_profile`, arcs and lines) swept along the cubic with twist,
-    like :func:`moulding_along_cubic`."""
+    """A letter-G profile swept along the cubic with twist, like :func:`moulding_along_cubic`.
+
+    The profile is :func:`letter_g_profile` (an arc and lines).
+    """
     return _along_cubic("letter_g", letter_g_profile(), n_path, twist, n_planes, sigma, seed)
 
 
 def with_hole(fx: Fixture, radius: float = 0.06, seed: int = 0) -> Fixture:
-    """The fixture with a hole: faces whose centroid lies within ``radius`` of a vertex near the
-    middle of the mesh are removed (unused vertices dropped); the truth is unchanged."""
+    """The fixture with a hole; the truth is unchanged.
+
+    Faces whose centroid lies within ``radius`` of the vertex nearest the mesh's mean are removed
+    (unused vertices dropped).
+    """
     c = fx.vertices[fx.faces].mean(axis=1)
     middle = fx.vertices[np.argmin(np.linalg.norm(fx.vertices - fx.vertices.mean(axis=0), axis=1))]
     keep = np.linalg.norm(c - middle, axis=1) > radius
@@ -345,9 +353,11 @@ def with_hole(fx: Fixture, radius: float = 0.06, seed: int = 0) -> Fixture:
 
 
 def decimated(fx: Fixture, faces: int) -> Fixture:
-    """The fixture decimated to about ``faces`` triangles by edge collapses (libigl ``decimate``:
-    shortest edge first, merged at its midpoint), so its vertices leave the true surface by the
-    chords' sag; the truth is unchanged (bounding box as before up to the collapses)."""
+    """The fixture decimated to about ``faces`` triangles by edge collapses; the truth is unchanged.
+
+    libigl ``decimate``: shortest edge first, merged at its midpoint, so the vertices leave the
+    true surface by the chords' sag (the bounding box is as before up to the collapses).
+    """
     import igl
 
     out = igl.decimate(np.asfortranarray(fx.vertices), np.asfortranarray(fx.faces.astype(np.int32)), int(faces))

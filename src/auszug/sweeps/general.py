@@ -35,6 +35,11 @@ samples correspond one to one (the family's common part):
    motion, and every profile point moves to the mean of its closest points on them.
 5. **Fit check** (sec. 2.3.4): :func:`~auszug.sweeps.patches.fit_patch`; steps 1-4 are repeated
    ``general_iterations`` times with the improved profile.
+
+Beyond the paper: a fitted sweep is **grown** (:func:`grown_patch`) across its profile to the
+whole cut curve (:func:`extend_profile`) and along its path rib by rib while the mesh follows
+(:func:`grow_ribs`), then refitted; and a sweep on a mesh whose cuts glide under one turn that
+sweeps nothing is also tried as pure translations by parallel cuts (:func:`translational_patch`).
 """
 
 from __future__ import annotations
@@ -58,7 +63,8 @@ from auszug.sweeps.planes import plane_recall
 from auszug.sweeps.stage import Stage
 
 __all__ = ["kabsch", "rib_velocity", "rib_velocities", "hermite_motion", "rib_parts", "general_patch",
-           "general_stages", "motion_planes", "profile_planes", "reslice", "GeneralSweep"]
+           "general_stages", "motion_planes", "profile_planes", "reslice", "GeneralSweep", "extend_profile",
+           "grow_ribs", "grown_patch", "trajectory_error", "translational_patch"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -414,7 +420,8 @@ def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, I
 
 
 def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams, step: Callable[[str], float],
-                   true_planes: ArrayLike | None = None) -> tuple[list[SweepPatch], list[Stage]]:
+                   true_planes: ArrayLike | None = None,
+                   translations: bool = False) -> tuple[list[SweepPatch], list[Stage]]:
     """The stages match, families and motion on a non-kinematic mesh; patches and summaries.
 
     ``cuts`` and ``mov`` are the initial planes' cuts and their movability. Every movable run of
@@ -422,7 +429,10 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     refining around the best (:func:`~auszug.sweeps.search_planes`) misses the profile planes
     (docs/sweeps.md), while the families of the initial cuts with most support (members times
     the length of their common part) lie near them. With ``true_planes`` the motion stage also
-    reports the plane recall of the fitted motions' profile planes.
+    reports the plane recall of the fitted motions' profile planes. With ``translations`` (the
+    cuts glide under one turn whose sweep does not fit: a translation along a curved path), each
+    fitted sweep is also tried as a pure translation (:func:`translational_patch`), kept when it
+    covers more within the fit bound.
     """
     stages: list[Stage] = []
     t = step("match")
@@ -477,6 +487,10 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
                          float(areas[faces[g.faces]].sum() / total) if total > 0 else 0.0, faces[g.faces])
         if params.grow and g.fit_error <= params.fit_factor * params.eps_prox:
             g = grown_patch(mesh, g, params, tree, areas)
+        if translations:
+            tp = translational_patch(mesh, g.profile, g.motion, params, tree, areas)
+            if tp is not None and tp.fit_error <= params.fit_factor * params.eps_prox and tp.coverage > g.coverage:
+                g = tp
         if g.fit_error <= params.fit_factor * params.eps_prox:
             grown[g.faces] = True
         out.append(SweepPatch(len(out), "general", g.profile, False, g.motion, g.faces, g.fit_error, g.coverage))
@@ -532,9 +546,12 @@ def _nearest_curve(c: Cuts, plane: int, target: Array) -> tuple[Array, Array] | 
 
 
 def trajectory_error(profile: Array, motion: Motion, tree: MeshTree) -> Array:
-    """Largest distance ``(n,)`` to the mesh of each profile point's path (at the knots and between them)."""
+    """Largest distance ``(n,)`` to the mesh of each profile point's path (at the knots and between them).
+
+    Positions beyond the mesh (closest point on its boundary: past its end, over a hole) do not count.
+    """
     t = np.sort(np.concatenate([motion.t, (motion.t[:-1] + motion.t[1:]) / 2]))
-    d = tree.query(motion.apply(profile, t))[0].reshape(len(t), len(profile))
+    d = tree.interior_distance(motion.apply(profile, t)).reshape(len(t), len(profile))
     out: Array = d.max(axis=0)
     return out
 
@@ -554,34 +571,39 @@ def _longest_run(ok: NDArray[np.bool_]) -> tuple[int, int]:
 def extend_profile(mesh: SweepMesh, profile: Array, motion: Motion, tree: MeshTree, params: SweepParams) -> Array:
     """The profile extended to the whole cut curve it is part of, then trimmed to what the motion sweeps.
 
-    The mesh is cut by the profile plane (:func:`profile_planes`) at the middle knot; the cut curve nearest the
-    moved profile is mapped back (the whole curve, resampled at ``match_spacing``), and cut down
-    to the longest stretch of points whose paths stay within ``eps_prox`` of the mesh
-    (:func:`trajectory_error`). Returns ``profile`` itself when that stretch is shorter.
+    The mesh is cut by the profile plane (:func:`profile_planes`) at the knots a quarter, half
+    and three quarters along the motion; at each, the cut curve nearest the moved profile is mapped
+    back (the whole curve, resampled at ``match_spacing``) and cut down to the longest stretch of
+    points whose paths stay within ``eps_prox`` of the mesh (:func:`trajectory_error`). The
+    longest of the three is returned, or ``profile`` itself when none is longer (one cut may
+    cross a hole in the mesh).
     """
     from auszug.sweeps.matching import resample
 
-    tm = float(motion.t[len(motion.t) // 2])
-    r, tr = motion.at([tm])
-    moved = profile @ r[0].T + tr[0]
-    c = cut(mesh, *profile_planes(profile, motion, [tm]))
-    got = _nearest_curve(c, 0, moved)
-    if got is None:
-        return profile
-    curve = resample(got[0], params.match_spacing)
-    if len(curve) < 2:
-        return profile
-    back = (curve - tr[0]) @ r[0]
-    # keep the orientation of the old profile
-    if np.linalg.norm(back[0] - profile[0]) + np.linalg.norm(back[-1] - profile[-1]) > \
-            np.linalg.norm(back[-1] - profile[0]) + np.linalg.norm(back[0] - profile[-1]):
-        back = back[::-1]
-    a, b = _longest_run(trajectory_error(back, motion, tree) <= params.eps_prox)
-    old = np.linalg.norm(np.diff(profile, axis=0), axis=1).sum()
-    new = back[a:b]
-    if b - a < 2 or np.linalg.norm(np.diff(new, axis=0), axis=1).sum() <= old:
-        return profile
-    return new
+    def length(p: Array) -> float:
+        return float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum())
+
+    best = profile
+    k = len(motion.t)
+    for tm in sorted({float(motion.t[min(k - 1, (q * (k - 1)) // 4)]) for q in (2, 1, 3)}):
+        r, tr = motion.at([tm])
+        moved = profile @ r[0].T + tr[0]
+        c = cut(mesh, *profile_planes(profile, motion, [tm]))
+        got = _nearest_curve(c, 0, moved)
+        if got is None:
+            continue
+        curve = resample(got[0], params.match_spacing)
+        if len(curve) < 2:
+            continue
+        back = (curve - tr[0]) @ r[0]
+        # keep the orientation of the old profile
+        if np.linalg.norm(back[0] - profile[0]) + np.linalg.norm(back[-1] - profile[-1]) > \
+                np.linalg.norm(back[-1] - profile[0]) + np.linalg.norm(back[0] - profile[-1]):
+            back = back[::-1]
+        a, b = _longest_run(trajectory_error(back, motion, tree) <= params.eps_prox)
+        if b - a >= 2 and length(back[a:b]) > length(best):
+            best = back[a:b]
+    return best
 
 
 def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepParams,
@@ -594,8 +616,9 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
     tangent from a parabola through the last two centroids and this one), and
     the moved profile's closest points on the nearest cut curve taken as the next rib when at
     least 90 % of them lie within ``2 eps_prox`` (the rib's map is then corrected to them,
-    Kabsch, and the cut repeated with it: 4 rounds, as in ICP). A failed full step is retried at
-    a half and a quarter step, which ends the growth
+    Kabsch, and the cut repeated with it: 4 rounds, as in ICP). A failed full step is retried
+    as two and three steps (over a hole in the mesh), then as a half and a quarter step, which
+    ends the growth
     (the mesh's end). Sample ``j`` of every rib corresponds to profile point ``j``.
     """
     lo, hi = motion.domain
@@ -658,7 +681,8 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
                 break
             got = None
             c0, c1 = (centre @ seq[-2][0].T + seq[-2][1]), (centre @ seq[-1][0].T + seq[-1][1])
-            for h in (1.0, 0.5, 0.25):
+            # a full step; then two or three (over a hole in the mesh); then a half or a quarter (the end)
+            for h in (1.0, 2.0, 3.0, 0.5, 0.25):
                 got = try_at(_compose(_step(seq[-2], seq[-1], h), seq[-1]), c0, c1)
                 if got is not None:
                     break
@@ -668,6 +692,9 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
             seq.append(got[1])
             if h < 1.0:
                 break
+            if h > 1.0:
+                # the next step extrapolates the last one: make it one step long again
+                seq[-2] = _compose(_step(seq[-2], seq[-1], 1.0 - 1.0 / h), seq[-2])
         return out
 
     ahead = grow(list(maps))
@@ -699,3 +726,71 @@ def grown_patch(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: Mes
     if h.coverage <= g.coverage or h.fit_error > params.fit_factor * params.eps_prox:
         return g
     return h
+
+
+def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepParams, tree: MeshTree,
+                        areas: Array | None = None, step: float = 0.02) -> GeneralSweep | None:
+    """A sweep by pure translations along a curved path (a double translational surface), or None.
+
+    A translation along an arch glides like a turn, and a general sweep fitted to it turns. Here
+    the profile is the cut by a general sweep's profile plane at its middle knot, and the mesh is
+    cut by planes *parallel* to it, ``step`` apart on both sides while the mesh follows; on each
+    the profile is moved by translations only (3 rounds of closest points, the mean offset), and a
+    cut counts when 90 % of the moved profile lies within ``2 eps_prox`` of it. The motion is the
+    translations at the cuts (rotation the identity), the profile improved and fitted as in
+    :func:`general_patch`.
+    """
+    from auszug.sweeps.matching import resample
+    from auszug.sweeps.patches import _improve
+
+    tm = float(motion.t[len(motion.t) // 2])
+    r, tr = motion.at([tm])
+    n, d = profile_planes(profile, motion, [tm])
+    c = cut(mesh, n, d)
+    got = _nearest_curve(c, 0, profile @ r[0].T + tr[0])
+    if got is None:
+        return None
+    p0 = resample(got[0], params.match_spacing)
+    if len(p0) < 2:
+        return None
+    m = n[0]
+    tol = 2 * params.eps_prox
+
+    def place(offset: Array, d_plane: float) -> Array | None:
+        cc = cut(mesh, m[None], np.array([d_plane]))
+        for _ in range(3):
+            hit = _nearest_curve(cc, 0, p0 + offset)
+            if hit is None:
+                return None
+            dist, cp = hit[1][:, 0], hit[1][:, 1:]
+            near = dist <= 4 * tol
+            if near.mean() < 0.5:
+                return None
+            offset = (cp[near] - p0[near]).mean(axis=0)
+        return offset if np.mean(dist <= tol) >= 0.9 else None
+
+    offsets = {0: np.zeros(3)}
+    for sign in (1, -1):
+        prev, before = np.zeros(3), np.zeros(3)
+        for k in range(1, 400):
+            guess = prev + (prev - before) if k > 1 else prev + sign * step * m
+            got_k = place(guess, float(d[0] + sign * k * step))
+            if got_k is None:
+                break
+            before, prev = prev, got_k
+            offsets[sign * k] = got_k
+    keys = sorted(offsets)
+    if len(keys) < 3:
+        return None
+    shifts = np.array([offsets[k] for k in keys])
+    start = p0 + shifts[0]
+    rot = np.repeat(np.eye(3)[None], len(keys), axis=0)
+    mot = Motion(np.arange(len(keys), dtype=float), rot, shifts - shifts[0])
+    more = _recut(mesh, start, mot, 4 * params.eps_prox)
+    start = _improve(start, False, more)
+    a, b = _longest_run(trajectory_error(start, mot, tree) <= params.eps_prox)
+    if b - a < 2:
+        return None
+    start = start[a:b]
+    fit = fit_patch(mesh, start, False, mot, params, areas, tree)
+    return GeneralSweep(start, mot, np.zeros((len(keys), 6)), fit.fit_error, fit.coverage, fit.faces)

@@ -228,6 +228,7 @@ class SweepParams:
             ("motion_samples", 8 <= self.motion_samples <= 4096, "in 8..4096"),
             ("profile_cuts", 0 <= self.profile_cuts <= 256, "in 0..256"),
             ("general_iterations", 1 <= self.general_iterations <= 16, "in 1..16"),
+            ("grow", isinstance(self.grow, bool), "true or false"),
             ("max_match_runs", 2 <= self.max_match_runs <= 100000, "in 2..100000"),
             ("max_families", 0 <= self.max_families <= 1000, "in 0..1000"),
             ("min_sweep_length", self.min_sweep_length >= 0, ">= 0"),

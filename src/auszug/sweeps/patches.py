@@ -205,6 +205,41 @@ class MeshTree:
         sq, face, c = self._tree.squared_distance(self.vertices, self.faces, p)
         return np.sqrt(np.maximum(sq, 0.0)), np.asarray(face, np.int64), np.asarray(c)
 
+    def _boundary_edges(self) -> IntArray:
+        """Per face its boundary edges as vertex pairs ``(m, 3, 2)`` (-1 where the edge is inner)."""
+        if not hasattr(self, "_bnd"):
+            f = self.faces
+            e = np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1)       # (m, 3, 2)
+            key = np.sort(e, axis=2)
+            flat = key.reshape(-1, 2)
+            _, inv, counts = np.unique(flat[:, 0] * np.int64(len(self.vertices)) + flat[:, 1], return_inverse=True,
+                                       return_counts=True)
+            single = (counts[inv] == 1).reshape(-1, 3)
+            self._bnd = np.where(single[:, :, None], e, -1)
+        out: IntArray = self._bnd
+        return out
+
+    def interior_distance(self, points: ArrayLike) -> Array:
+        """Distances ``(n,)`` to the mesh, 0 where the closest point lies on a boundary edge.
+
+        A point whose closest point is on the mesh's boundary lies beyond the mesh (past its end or
+        over a hole), where the mesh says nothing; the fit check does not count it against a sweep.
+        """
+        d, face, c = self.query(points)
+        e = self._boundary_edges()[face]                            # (n, 3, 2)
+        has = e[:, :, 0] >= 0
+        if not has.any():
+            return d
+        a = self.vertices[np.maximum(e[:, :, 0], 0)]
+        b = self.vertices[np.maximum(e[:, :, 1], 0)]
+        ab = b - a
+        w = np.einsum("nki,nki->nk", ab, ab)
+        f = np.clip(np.einsum("nki,nki->nk", c[:, None, :] - a, ab) / np.where(w > 0, w, 1.0), 0.0, 1.0)
+        gap = np.linalg.norm(c[:, None, :] - (a + f[..., None] * ab), axis=2)
+        on = (has & (gap <= 1e-9)).any(axis=1)
+        out: Array = np.where(on, 0.0, d)
+        return out
+
 
 def polyline_hausdorff(a: ArrayLike, b: ArrayLike, closed_a: bool = False, closed_b: bool = False) -> float:
     """Two-sided Hausdorff distance of two polylines ``(n, 3)``, ``(m, 3)`` (vertices to segments).
@@ -407,7 +442,7 @@ def fit_patch(mesh: SweepMesh, profile: Array, closed: bool, motion: Motion,
     dv[inside] = closest_distance(mesh.vertices[inside], sv, sf)[0]
     near = dv <= eps
     faces = np.flatnonzero(near[mesh.faces].all(axis=1)).astype(np.int64)
-    ds = (tree if tree is not None else MeshTree(mesh.vertices, mesh.faces)).query(sv)[0]
+    ds = (tree if tree is not None else MeshTree(mesh.vertices, mesh.faces)).interior_distance(sv)
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     total = float(a.sum())
     cov = float(a[faces].sum() / total) if total > 0 else 0.0

@@ -1,0 +1,62 @@
+"""More general-sweep fixtures (issue 11, section 3): a letter G along the cubic, a remeshed, a holed
+and a decimated version of the moulding along the cubic. Targets: coverage >= 0.95 and plane recall
+>= 0.95 on clean fixtures; what is missed is asserted as measured (docs/sweeps.md, Numbers)."""
+
+from __future__ import annotations
+
+from functools import cache
+
+import numpy as np
+import pytest
+
+from auszug.sweeps import DEFAULT, detect
+from auszug.sweeps.fixtures import decimated, letter_g_along_cubic, letter_g_profile, moulding_along_cubic, with_hole
+from auszug.sweeps.general import motion_planes
+from auszug.sweeps.planes import plane_recall
+
+
+@cache
+def _run(name):
+    fx = {"letter_g": letter_g_along_cubic, "remeshed": lambda: moulding_along_cubic(jitter=0.4),
+          "hole": lambda: with_hole(moulding_along_cubic()),
+          "decimated": lambda: decimated(moulding_along_cubic(), 6000)}[name]()
+    r = detect((fx.vertices, fx.faces), DEFAULT.with_(eps_prox=0.005))
+    planes = [motion_planes(p.profile, p.motion, 8) for p in r.patches]
+    recall = plane_recall(fx.planes, np.vstack([n for n, _ in planes]), np.concatenate([d for _, d in planes]))
+    return fx, r, recall
+
+
+def test_letter_g_profile_is_an_open_g():
+    g = letter_g_profile(80)
+    assert g.shape == (80, 2)
+    assert np.allclose(g.min(axis=0), -g.max(axis=0))                  # centred on its box
+    assert np.linalg.norm(g[0] - g[-1]) > 0.1                           # open
+    step = np.linalg.norm(np.diff(g, axis=0), axis=1)
+    assert step.min() > 0
+
+
+@pytest.mark.parametrize("name, coverage, recall", [
+    ("letter_g", 0.95, 0.95),      # measured 0.960, 1.00 (targets met)
+    ("remeshed", 0.95, 0.95),      # measured 0.967, 1.00 (targets met)
+    ("hole", 0.7, 0.3),            # measured 0.776, 0.37: missed (the growth stops at the hole)
+    ("decimated", 0.6, 0.6),       # measured 0.685, 0.68: missed
+])
+def test_general_sweep_fixture(name, coverage, recall):
+    fx, r, rec = _run(name)
+    assert r.patches and all(p.kind == "general" for p in r.patches)
+    assert all(p.fit_error <= DEFAULT.fit_factor * 0.005 for p in r.patches)
+    assert r.coverage >= coverage
+    assert rec >= recall
+
+
+def test_hole_and_decimation_keep_the_truth():
+    base = moulding_along_cubic()
+    h = with_hole(base)
+    assert len(h.faces) < len(base.faces) and np.array_equal(h.planes, base.planes)
+    # every vertex of the holed mesh is a vertex of the base mesh, and the hole is one
+    from scipy.spatial import cKDTree
+
+    assert cKDTree(base.vertices).query(h.vertices)[0].max() == 0.0
+    assert len(base.vertices) - len(h.vertices) >= 100
+    d = decimated(base, 6000)
+    assert len(d.faces) <= 6000 and np.array_equal(d.planes, base.planes)

@@ -34,8 +34,8 @@ from typing import TYPE_CHECKING, Any
 
 from auszug.errors import AuszugError
 from auszug.studio import protocol as P
-from auszug.tracery import ParameterError, build, builtin_style, builtin_styles, load_style, refine
-from auszug.tracery._checks import integer
+from auszug.tracery import ParameterError, build, builtin_style, builtin_styles, load_style, refine, style_data
+from auszug.tracery import whole_number as integer
 from auszug.tracery.preview import preview_mesh
 from auszug.tracery.style import (
     ARCH_DECORATIONS,
@@ -187,15 +187,13 @@ def _confined(workspace: Workspace, p: Path, shown: str, seen: set[Path]) -> Non
     the file, then as a built-in name), so the studio reads no file outside its workspace.
     """
     from auszug.studio.session import WorkspaceError
-    from auszug.tracery.style import _parse_text
-
     if p in seen:
         return
     seen.add(p)
     from auszug.limits import check_file_size
 
     check_file_size(p)
-    data = _parse_text(p.read_text(encoding="utf-8"), shown, p.suffix.lower())
+    data = style_data(p.read_text(encoding="utf-8"), shown, p.suffix.lower())
 
     for ref in _refs(data):
         cand = p.parent / ref

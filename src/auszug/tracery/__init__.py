@@ -16,6 +16,7 @@ Examples
 """
 
 from auszug.tracery._checks import ParameterError
+from auszug.tracery._checks import integer as whole_number
 from auszug.tracery.arch import PointedArch, apex_height, arch_kind, trefoil_arch
 from auszug.tracery.build import build, structure
 from auszug.tracery.mesh import Resolution, window_mesh
@@ -23,7 +24,7 @@ from auszug.tracery.model import Region, Tracery
 from auszug.tracery.network import border_network
 from auszug.tracery.profile import Moulding
 from auszug.tracery.rosette import foil_radius, rosette
-from auszug.tracery.style import Style, builtin_style, builtin_styles, load_style, parse_style, refine
+from auszug.tracery.style import Style, builtin_style, builtin_styles, load_style, parse_style, refine, style_data
 from auszug.tracery.window import Prototype, WindowParams, prototype
 
 __all__ = [
@@ -50,5 +51,7 @@ __all__ = [
     "builtin_styles",
     "load_style",
     "parse_style",
+    "style_data",
     "refine",
+    "whole_number",
 ]

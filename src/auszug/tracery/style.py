@@ -92,7 +92,7 @@ from auszug.tracery.window import WindowParams
 __all__ = [
     "Style", "ArchGroup", "CircleGroup", "FilletGroup", "Wall",
     "builtin_styles", "builtin_style", "builtin_profiles", "load_style", "parse_style",
-    "style_from_data", "refine", "parse_overrides", "DEFAULTS",
+    "style_from_data", "style_data", "refine", "parse_overrides", "DEFAULTS",
 ]  # fmt: skip
 
 ARCH_DECORATIONS = ("window", "plain", "trefoil")
@@ -352,7 +352,7 @@ def _builtin_data(name: str) -> dict[str, Any]:
     entry = _library() / f"{name}.toml"
     if not entry.is_file():
         raise KeyError(name)
-    return _parse_text(entry.read_text(encoding="utf-8"), f"{name}.toml", ".toml")
+    return style_data(entry.read_text(encoding="utf-8"), f"{name}.toml", ".toml")
 
 
 def builtin_style(name: str) -> Style:
@@ -366,7 +366,23 @@ def builtin_style(name: str) -> Style:
     return style_from_data(_resolve_ref(name, None, ()))
 
 
-def _parse_text(text: str, source: str, suffix: str) -> dict[str, Any]:
+def style_data(text: str, source: str, suffix: str) -> dict[str, Any]:
+    """The raw table of a style file's text, before ``extends`` is resolved and values are checked.
+
+    Parameters
+    ----------
+    text : str
+        The file's text (size-checked here).
+    source : str
+        How errors name the file.
+    suffix : str
+        ``".json"`` for JSON, anything else for TOML.
+
+    Raises
+    ------
+    FormatError
+        Text too large, not valid TOML/JSON, not a table, or an empty table.
+    """
     check_text_size(text, source)
     try:
         if suffix == ".json":
@@ -434,7 +450,7 @@ def _read_ref(ref: str, base: Path | None) -> tuple[dict[str, Any], Path | None]
     for cand in ([base / ref] if base is not None else []) + [Path(ref)]:
         if cand.suffix.lower() in (".toml", ".json") and cand.is_file():
             check_file_size(cand)
-            return _parse_text(cand.read_text(encoding="utf-8"), str(cand), cand.suffix.lower()), cand.parent
+            return style_data(cand.read_text(encoding="utf-8"), str(cand), cand.suffix.lower()), cand.parent
     try:
         return copy.deepcopy(_builtin_data(ref)), None
     except KeyError:
@@ -467,7 +483,7 @@ def parse_style(text: str, suffix: str = ".toml", source: str = "<style>") -> St
     >>> s.circle.foils, s.circle.orientation, s.circle.decoration
     (6, 'lying', 'rosette')
     """
-    return style_from_data(_resolve_ref(_parse_text(text, source, suffix), None, ()))
+    return style_from_data(_resolve_ref(style_data(text, source, suffix), None, ()))
 
 
 # -- validation --------------------------------------------------------------------------

@@ -745,12 +745,12 @@ def mirror_plane(g: SketchGraph, X: Array, s: int) -> tuple[Array, float]:
     >>> from auszug.lifting import Sketch, Stroke, layer_graphs
     >>> from auszug.lifting.reconstruct import mirror_plane
     >>> axis = Stroke(np.array([[[0, -1], [0, -0.3], [0, 0.3], [0, 1]]], float), "axis")
-    >>> rib = Stroke(np.array([[[0, 0], [0.3, 0.05], [0.6, 0.05], [1, 0]]], float), "rib")
+    >>> rib = Stroke(np.array([[[0, 0], [0.3, 0], [0.6, 0.05], [1, 0.1]]], float), "rib")
     >>> (_, g), = layer_graphs(Sketch((axis, rib)))
     >>> X = np.c_[g.points, np.zeros(len(g.points))]
     >>> n, d = mirror_plane(g, X, 0)
-    >>> np.round(n, 6).tolist(), round(d, 6)
-    ([1.0, 0.0, 0.0], 0.0)
+    >>> np.round(n, 6).tolist(), round(d, 6)    # graph units: x = (0 - 0.5) / sqrt(5)
+    ([1.0, 0.0, 0.0], -0.223607)
     """
     ends = np.unique(g.segments[g.chains[s]][:, [0, 3]])
     P = X[np.unique(g.segments[g.chains[s]])]

@@ -233,3 +233,50 @@ def truth_points(truth: Truth, graph) -> np.ndarray:
     X[:, :2] = graph.points
     X[:, 2] = allc[d.argmin(1), 2] / graph.scale
     return X
+
+
+def barrel_half(n_mer: int = 5, n_par: int = 3, tilt: float = 25.0, turn: float = 35.0, noise: float = 0.0,
+                seed: int = 0, symmetry_drawn: bool = False) -> tuple[Truth, tuple[np.ndarray, ...]]:
+    """Half a barrel drawn up to its symmetry plane, for global symmetry (paper sec. 4, Fig. 7).
+
+    The barrel is the surface of revolution r(x) = 1 - 0.3 x^2 about the object's x axis; its
+    symmetry plane is x = 0. Drawn: the parallel x = 0 (the symmetry curve, a circle arc), ``n_par
+    - 1`` more parallels at x > 0, and ``n_mer`` meridians that start on the symmetry curve and run
+    half a step beyond the last parallel. Parallels overshoot the outer meridians by half a step, so
+    every crossing off the symmetry curve is a smooth crossing; the meridians meet the symmetry
+    curve at their ends (corners, orthogonal in 3D).
+
+    Returns the truth (the symmetry curve in ``sketch.symmetry``, and among the strokes as well if
+    ``symmetry_drawn``; ``chains3d`` in the order of the lifted network's curves: the drawn strokes,
+    then the symmetry curve when it is not drawn, then the mirrored strokes) and the mirrored chains
+    alone (view coordinates).
+    """
+    phis = np.radians(np.linspace(-45, 45, n_mer))
+    xs = np.linspace(0.0, 1.0, n_par)
+    dphi, dx = phis[1] - phis[0], xs[1] - xs[0]
+    R = rotation(tilt, turn)
+
+    def surf(x, phi):
+        r = 1.0 - 0.3 * x**2
+        return np.stack([x * np.ones_like(phi), r * np.sin(phi), r * np.cos(phi)], axis=-1)
+
+    mer, par = [], []
+    for phi in phis:
+        x = np.concatenate([xs, [xs[-1] + dx / 2]])
+        p = surf(x, np.full_like(x, phi))
+        dp = np.stack([np.ones_like(x), -0.6 * x * np.sin(phi), -0.6 * x * np.cos(phi)], axis=-1)
+        mer.append(hermite_chain(p, dp, dx))
+    for x0 in xs:
+        ph = np.concatenate([[phis[0] - dphi / 2], phis, [phis[-1] + dphi / 2]])
+        p = surf(np.full_like(ph, x0), ph)
+        r = 1.0 - 0.3 * x0**2
+        dp = np.stack([np.zeros_like(ph), r * np.cos(ph), -r * np.sin(ph)], axis=-1)
+        par.append(hermite_chain(p, dp, dphi))
+    axis, drawn = par[0], mer + par[1:]
+    flip = np.diag([-1.0, 1.0, 1.0])
+    mirrored = tuple((c @ flip) @ R.T for c in drawn)
+    t = _project([*drawn, axis], R, noise, seed)
+    strokes = t.sketch.strokes
+    sym = Stroke(strokes[-1].controls, "symmetry")
+    sk = Sketch(strokes if symmetry_drawn else strokes[:-1], t.sketch.markers, sym)
+    return Truth(sk, (*t.chains3d, *mirrored)), mirrored

@@ -135,3 +135,7 @@ def _report(result: "LiftResult", classes: tuple[str, ...]) -> None:
         print("not tried (--cues): " + ", ".join(f"{n} {k}" for k, n in sorted(skipped.items())))
     worst = max((c.angle for c in applied), default=0.0)
     print(f"largest angle of an applied cue: {worst:.3f} deg")
+    if result.mirror is not None:
+        layer, n, d = result.mirror
+        print(f"global symmetry: layer {layer} mirrored across the plane "
+              f"({n[0]:.6f}, {n[1]:.6f}, {n[2]:.6f}) . p = {d:.6g}")

@@ -51,7 +51,7 @@ def to_dict(sketch: Sketch) -> dict[str, Any]:
             "strokes": [_stroke(s) for s in sketch.strokes],
             "markers": [{"kind": m.kind, "id": m.id, "point": np.asarray(m.point, dtype=float).tolist()}
                         for m in sketch.markers],
-            "symmetry": None if sketch.symmetry is None else _stroke(sketch.symmetry, layer=False)}
+            "symmetry": None if sketch.symmetry is None else _stroke(sketch.symmetry)}
 
 
 def dumps(sketch: Sketch) -> str:
@@ -125,7 +125,10 @@ def from_dict(d: Any, name: str = "<string>") -> Sketch:
     if sym is not None:
         if not isinstance(sym, dict):
             raise FormatError("symmetry must be an object with \"controls\", or null", name)
-        symmetry = Stroke(_controls(sym.get("controls"), "symmetry", name), str(sym.get("id", "")))
+        layer = sym.get("layer", 0)
+        if not isinstance(layer, int) or isinstance(layer, bool) or layer < 0:
+            raise FormatError(f"symmetry: layer must be a whole number >= 0, got {layer!r}", name)
+        symmetry = Stroke(_controls(sym.get("controls"), "symmetry", name), str(sym.get("id", "")), layer)
     sketch = Sketch(tuple(strokes), tuple(markers), symmetry, str(d.get("name", "")),
                     tuple(str(x) for x in layers))
     check(sketch, name)

@@ -17,7 +17,10 @@ in any layer:
 - ``<circle class="occlusion">``: the 2D crossing under its centre is not a
   3D intersection;
 - ``<circle class="flip">``: flip the convexity of the intersection under it;
-- ``<path class="symmetry">``: the global symmetry curve (at most one).
+- ``<path class="symmetry">``: the global symmetry curve (at most one): half the object is
+  drawn, the lift is mirrored across the curve's plane. It belongs to the layer it is drawn in if
+  that layer has strokes, else (an annotation layer, outside the layers) to the layer whose
+  strokes' bounding box it overlaps most.
 
 Each marker snaps to the nearest crossing within 1 % of the sketch's diagonal.
 The reader validates the sketch as :func:`auszug.lifting.lift` will, so a
@@ -44,7 +47,7 @@ from auszug.errors import FormatError, GeometryError
 from auszug.formats._registry import FileFormat, register
 
 if TYPE_CHECKING:
-    from auszug.lifting import Sketch
+    from auszug.lifting import Sketch, Stroke
 
 __all__ = ["read_sketch_svg", "MARKER_CLASSES", "SYMMETRY_CLASS"]
 
@@ -168,7 +171,7 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
 
     strokes: list[tuple[Any, Stroke]] = []     # (layer key, stroke)
     markers: list[Marker] = []
-    symmetry: list[Stroke] = []
+    symmetry: list[tuple[Any, Stroke]] = []   # (layer key, stroke)
     layer_names: dict[Any, str] = {}
     counter = [0]
 
@@ -221,7 +224,7 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
                 c = c.copy()
                 c[..., 1] *= -1.0
                 if SYMMETRY_CLASS in classes:
-                    symmetry.append(Stroke(c, sid))
+                    symmetry.append((layer, Stroke(c, sid)))
                 else:
                     strokes.append((layer, Stroke(c, sid)))
 
@@ -229,14 +232,44 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
     if not strokes:
         raise _fail("no strokes: the SVG has no path or shape to lift (besides markers)", name)
     if len(symmetry) > 1:
-        raise _fail(f"{symmetry[1].id}: a second symmetry path; a sketch has at most one", name)
+        raise _fail(f"{symmetry[1][1].id}: a second symmetry path; a sketch has at most one", name)
     order = list(dict.fromkeys(k for k, _ in strokes))   # layers back to front, in document order
     index = {k: i for i, k in enumerate(order)}
     names = tuple(layer_names.get(k, "(no layer)") for k in order)
     out = tuple(Stroke(s.controls, s.id, index[k]) for k, s in strokes)
-    sketch = Sketch(out, tuple(markers), symmetry[0] if symmetry else None, Path(name).stem, names)
+    sym = None
+    if symmetry:
+        key, st = symmetry[0]
+        # in a layer of strokes: that layer; elsewhere (an annotation layer, outside the layers): the
+        # layer whose strokes' bounding box it overlaps most
+        lay = index[key] if key in index else _overlapping_layer(st, out)
+        if lay is None:
+            raise _fail(f"{st.id}: the symmetry path overlaps no layer's strokes; draw it in the layer of the "
+                        "half it mirrors", name)
+        sym = Stroke(st.controls, st.id, lay)
+    sketch = Sketch(out, tuple(markers), sym, Path(name).stem, names)
     check(sketch, name)
     return sketch
+
+
+def _overlapping_layer(sym: Stroke, strokes: tuple[Stroke, ...]) -> int | None:
+    """The layer whose strokes' bounding box overlaps the symmetry path's the most (its first if tied).
+
+    Overlap is the area of the boxes' intersection, or its length where one box is flat (a straight
+    axis); None when it overlaps no layer's box.
+    """
+    c = sym.controls.reshape(-1, 2)
+    lo, hi = c.min(0), c.max(0)
+    best, best_v = None, 0.0
+    for lay in sorted({s.layer for s in strokes}):
+        pts = np.concatenate([s.controls.reshape(-1, 2) for s in strokes if s.layer == lay])
+        ext = np.minimum(hi, pts.max(0)) - np.maximum(lo, pts.min(0))
+        if np.any(ext < 0):
+            continue
+        v = float(np.prod(ext)) or float(ext.max())
+        if best is None or v > best_v:
+            best, best_v = lay, v
+    return best
 
 
 def check(sketch: Sketch, name: str) -> None:

@@ -9,7 +9,7 @@ the viewer), the cues found and every stage's energy and timing.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 from typing import Callable
 
 import numpy as np
@@ -21,12 +21,12 @@ from auszug.geometry.heights import SideCoordinate
 from auszug.geometry.network import CurveNetwork, Piece
 from auszug.lifting import cues as cu
 from auszug.lifting.params import DEFAULT, LiftParams
-from auszug.lifting.sketch import Sketch, SketchGraph, sketch_graph
+from auszug.lifting.sketch import Sketch, SketchGraph, Stroke, sketch_graph
 from auszug.lifting.solver import Poly2, SolveResult, solve
 from auszug.lifting.terms import fidelity, structure
 
 __all__ = ["CueResult", "Stage", "LiftResult", "lift", "lift_graph", "layer_graphs", "from_above", "CLASSES",
-           "DEFAULT_CLASSES"]
+           "DEFAULT_CLASSES", "mirror_plane", "symmetry_stroke"]
 
 Array = NDArray[np.float64]
 
@@ -99,6 +99,12 @@ class LiftResult:
     points : tuple of (n, 3) ndarray
         Per layer: the lifted control points (sketch units).
     graphs : tuple of SketchGraph
+        Per layer; with a global symmetry curve, its layer's graph also holds
+        the mirrored strokes (ids ending in ``" (mirror)"``), whose points
+        follow the drawn ones in ``points``.
+    mirror : tuple or None
+        With a global symmetry curve: ``(layer, normal (3,), offset)``, the
+        symmetry plane ``normal . p = offset`` in sketch units (unit normal).
     """
 
     network: CurveNetwork
@@ -108,6 +114,7 @@ class LiftResult:
     flipped: tuple[bool, ...]
     points: tuple[Array, ...]
     graphs: tuple[SketchGraph, ...]
+    mirror: tuple[int, Array, float] | None = None
 
 
 Progress = Callable[[str], None]
@@ -249,10 +256,77 @@ class _Problem:
         return C
 
 
+@dataclass(frozen=True)
+class _Forced:
+    """The cues a global symmetry curve applies (masks into the families, and its Eq. 8 rows)."""
+
+    parallel: NDArray[np.bool_]
+    orthogonal: NDArray[np.bool_]
+    planar: NDArray[np.bool_]
+    symmetry: cu.Symmetry
+
+
+def _take(fam, keep: NDArray[np.bool_]):
+    """The candidates of a cue family where ``keep`` (every array field indexed, ``where`` filtered)."""
+    out = {}
+    for f in fields(fam):
+        v = getattr(fam, f.name)
+        out[f.name] = tuple(x for x, k in zip(v, keep, strict=True) if k) if isinstance(v, tuple) else v[keep]
+    return type(fam)(**out)
+
+
+def _handle_strokes(g: SketchGraph) -> NDArray[np.intp]:
+    """Per control point: the stroke whose handle it is, -1 for segment ends."""
+    out = np.full(len(g.points), -1, dtype=np.intp)
+    out[g.segments[:, 1]] = g.seg_stroke
+    out[g.segments[:, 2]] = g.seg_stroke
+    return out
+
+
+def _about(g: SketchGraph, sym: cu.Symmetry, s: int) -> NDArray[np.bool_]:
+    """Local symmetry rows whose symmetry plane is stroke ``s`` (its far points on s, the other curve not s)."""
+    ends = np.unique(g.segments[g.chains[s]][:, [0, 3]])
+    hs = _handle_strokes(g)
+    return np.isin(sym.f_out, ends) & np.isin(sym.f_in, ends) & np.isin(sym.p, ends) & (hs[sym.h] != s)
+
+
+def _symmetry_forced(g: SketchGraph, s: int | None, smooth: cu.Orthogonal, par: cu.Parallel, orth: cu.Orthogonal,
+                     pla: cu.Planar) -> _Forced:
+    """What a global symmetry curve (stroke ``s`` of ``g``) applies.
+
+    The paper's sec. 4 "planarity, orthogonality, and symmetry along the marked curve", and the
+    parallelism of the curves that cross it at adjacent crossings (all normal to its plane).
+    """
+    if s is None:
+        return _Forced(np.zeros(len(par), bool), np.zeros(len(orth), bool), np.zeros(len(pla), bool),
+                       cu.symmetry_cues(g, []))
+    ends = np.unique(g.segments[g.chains[s]][:, [0, 3]])
+    hs = _handle_strokes(g)
+    f_par = np.isin(par.p1, ends) & np.isin(par.p2, ends) & (hs[par.h1] != s) & (hs[par.h2] != s)
+    f_orth = np.isin(orth.p, ends) & ((hs[orth.h1] == s) ^ (hs[orth.h2] == s))
+    f_pla = pla.stroke == s
+    pairs = [(int(p), int(a), int(b)) for p, a, b in zip(smooth.p, smooth.h1, smooth.h2, strict=True)
+             if p in ends and (hs[a] == s) != (hs[b] == s)]
+    pairs += [(int(orth.p[i]), int(orth.h1[i]), int(orth.h2[i])) for i in np.nonzero(f_orth)[0]]
+    sym = cu.symmetry_cues(g, pairs)
+    return _Forced(f_par, f_orth, f_pla, _take(sym, _about(g, sym, s)))
+
+
 def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
                progress: Progress | None = None,
-               classes: tuple[str, ...] = CLASSES) -> tuple[Array, list[CueResult], list[Stage], bool, bool]:
+               classes: tuple[str, ...] = CLASSES,
+               symmetry: int | None = None) -> tuple[Array, list[CueResult], list[Stage], bool, bool]:
     """Lift one layer's graph; return control points (normalised), cues, stages, converged, flipped.
+
+    ``symmetry``: index (into ``g.strokes``) of the global symmetry curve, if
+    the layer has one. Then, from the baseline on, the paper's sec. 4
+    "planarity, orthogonality, and symmetry along the marked curve" are
+    applied, not resolved: the curve's planarity (when it is curved in 2D)
+    and the orthogonality of every curve meeting it are hard constraints, the
+    local symmetry (Eq. 8) of those curves about the curve's plane is hard
+    wherever the curve is curved there, and the tangent parallelism of the
+    curves at adjacent crossings along it is applied (soft with w_c, as every
+    applied parallelism). The caller mirrors the result (:func:`mirror_plane`).
 
     The stages (paper sec. 5.3):
 
@@ -320,14 +394,19 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     hard: list[Callable[[Poly2], None]] = [lambda c: pr.smooth.add(c, np.arange(len(pr.smooth)), 1.0)]
     soft_kept: list[Callable[[Poly2], None]] = []
     results: list[CueResult] = []
+    orth = cu.orthogonal_cues(g)
+    pla = cu.planar_cues(g, pr.N)
+    forced = _symmetry_forced(g, symmetry, pr.smooth, par, orth, pla)
 
-    def resolve(name: str, fam, hard_add, soft_add) -> NDArray[np.bool_]:
+    def resolve(name: str, fam, hard_add, soft_add, pre: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
         nonlocal ok
         m = len(fam)
-        applied = np.zeros(m, dtype=bool)
+        applied = np.zeros(m, dtype=bool) if pre is None else pre.copy()   # pre: applied by global symmetry
         if not m or name not in classes:
             return applied
-        undecided = np.ones(m, dtype=bool)
+        undecided = ~applied
+        if not undecided.any():
+            return applied
         Lp = cu.likelihood(fam.angles(pr.X()), params)
         for rnd in range(params.rounds):
             E = pr.energy(params.w_a)
@@ -361,22 +440,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         par_state["sel"] = sel
 
     soft_kept.append(lambda E: par.add(E, par_state["sel"], params.w_c))
-    par_applied = resolve("parallel", par, par_apply, lambda E, i, w: par.add(E, i, w))
-
-    orth = cu.orthogonal_cues(g)
     orth_state = {"sel": np.zeros(0, np.intp)}
     hard.append(lambda c: orth.add(c, orth_state["sel"], 1.0))
-    orth_applied = resolve("orthogonal", orth, lambda s: orth_state.update(sel=s),
-                           lambda E, i, w: orth.add(E, i, w))
-
-    pairs = [(int(p), int(a), int(b)) for p, a, b in zip(pr.smooth.p, pr.smooth.h1, pr.smooth.h2, strict=True)]
-    pairs += [(int(orth.p[i]), int(orth.h1[i]), int(orth.h2[i])) for i in np.nonzero(orth_applied)[0]]
-    sym = cu.symmetry_cues(g, pairs)
-    sym_state = {"sel": np.zeros(0, np.intp)}
-    hard.append(lambda c: sym.add(c, sym_state["sel"], 1.0))
-    sym_applied = resolve("symmetry", sym, lambda s: sym_state.update(sel=s), lambda E, i, w: sym.add(E, i, w))
-
-    pla = cu.planar_cues(g, pr.N)
     pla_state = {"sel": np.zeros(0, np.intp)}
 
     offset_slot = 3 * (pr.N + len(g.chains)) + pla.stroke   # one plane offset unknown per candidate
@@ -392,7 +457,6 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
                 pr.v[offset_slot[i]] = float(nrm[i] @ X[pla.points[i]].mean(0))
         pla_state["sel"] = sel
 
-    hard.append(lambda c: pla.add_hard(c, pla_state["sel"], offset_slot))
     def pla_soft(E: Poly2, idx: NDArray[np.intp], w: Array) -> None:
         X = pr.X()
         nrm = pla.normals(X)
@@ -400,7 +464,41 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             pr.v[offset_slot[i]] = float(nrm[i] @ X[pla.points[i]].mean(0))
         pla.add_soft(E, idx, w, X, offset_slot)
 
-    pla_applied = resolve("planar", pla, pla_apply, pla_soft)
+    # global symmetry: its cues hold from here on (the paper's sec. 4), before any class is resolved
+    sym_glob = forced.symmetry
+    if symmetry is not None:
+        par_apply(np.nonzero(forced.parallel)[0])
+        orth_state["sel"] = np.nonzero(forced.orthogonal)[0]
+        if forced.planar.any():
+            pla_apply(np.nonzero(forced.planar)[0])
+        hard.append(lambda c: sym_glob.add(c, np.arange(len(sym_glob)), 1.0))
+        hard.append(lambda c: pla.add_hard(c, pla_state["sel"], offset_slot))
+        E = pr.energy(params.w_a)
+        for f in soft_kept:
+            f(E)
+        C = pr.constraints()
+        for f in hard:
+            f(C)
+        n_forced = int(forced.parallel.sum() + forced.orthogonal.sum() + forced.planar.sum()) + len(sym_glob)
+        ok &= pr.run("global symmetry", E, C, applied=n_forced).converged
+
+    par_applied = resolve("parallel", par, par_apply, lambda E, i, w: par.add(E, i, w), forced.parallel)
+
+    orth_applied = resolve("orthogonal", orth, lambda s: orth_state.update(sel=s),
+                           lambda E, i, w: orth.add(E, i, w), forced.orthogonal)
+
+    pairs = [(int(p), int(a), int(b)) for p, a, b in zip(pr.smooth.p, pr.smooth.h1, pr.smooth.h2, strict=True)]
+    pairs += [(int(orth.p[i]), int(orth.h1[i]), int(orth.h2[i])) for i in np.nonzero(orth_applied)[0]]
+    sym = cu.symmetry_cues(g, pairs)
+    if symmetry is not None:   # the global symmetry's own rows are in sym_glob already
+        sym = _take(sym, ~_about(g, sym, symmetry))
+    sym_state = {"sel": np.zeros(0, np.intp)}
+    hard.append(lambda c: sym.add(c, sym_state["sel"], 1.0))
+    sym_applied = resolve("symmetry", sym, lambda s: sym_state.update(sel=s), lambda E, i, w: sym.add(E, i, w))
+
+    if symmetry is None:
+        hard.append(lambda c: pla.add_hard(c, pla_state["sel"], offset_slot))
+    pla_applied = resolve("planar", pla, pla_apply, pla_soft, forced.planar)
 
     # plane parallelism / orthogonality: single-linkage clusters of the applied planar strokes' normals
     slots = 3 * pla.normal_slot[:, None] + np.arange(3)
@@ -416,6 +514,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
                            ("symmetry", sym, sym_applied), ("planar", pla, pla_applied), ("plane", pp, pp_applied)):
         ang = fam.angles(X) if len(fam) else np.zeros(0)
         results += [CueResult(kind, w, bool(a), float(x), layer) for w, a, x in zip(fam.where, app, ang, strict=True)]
+    results += [CueResult("symmetry", f"{w} (global symmetry)", True, float(x), layer)
+                for w, x in zip(sym_glob.where, sym_glob.angles(X) if len(sym_glob) else [], strict=True)]
     results = [CueResult("smooth-orthogonal", w, True, float(x), layer)
                for w, x in zip(pr.smooth.where, pr.smooth.angles(X), strict=True)] + results
 
@@ -574,11 +674,17 @@ def lift(sketch: Sketch, params: LiftParams = DEFAULT, progress: Progress | None
     graphs: list[SketchGraph] = []
     flips: list[bool] = []
     ok = True
+    mirror: tuple[int, Array, float] | None = None
     for layer, g in layers:
-        X, cues_, st, conv, flip = lift_graph(g, params, layer, progress, classes)
+        s_sym = symmetry_stroke(sketch, g)
+        X, cues_, st, conv, flip = lift_graph(g, params, layer, progress, classes, s_sym)
         results += cues_
         stages += st
         ok &= conv
+        if s_sym is not None:
+            nrm, off = mirror_plane(g, X, s_sym)
+            g, X = _mirrored(g, X, s_sym, nrm, off)
+            mirror = (layer, nrm, float(off * g.scale + nrm[:2] @ g.offset))
         Xs = X.copy()
         Xs[:, :2] = X[:, :2] * g.scale + g.offset
         Xs[:, 2] = X[:, 2] * g.scale
@@ -587,7 +693,131 @@ def lift(sketch: Sketch, params: LiftParams = DEFAULT, progress: Progress | None
         flips.append(flip)
     _stack(graphs, pts)
     net = _network(sketch, graphs, pts, results)
-    return LiftResult(net, tuple(results), tuple(stages), bool(ok), tuple(flips), tuple(pts), tuple(graphs))
+    if mirror is not None:
+        net = replace(net, meta={**net.meta, "lifting": {**net.meta["lifting"], "symmetry_plane": {
+            "layer": mirror[0], "normal": mirror[1].tolist(), "offset": mirror[2]}}})
+    return LiftResult(net, tuple(results), tuple(stages), bool(ok), tuple(flips), tuple(pts), tuple(graphs), mirror)
+
+
+def symmetry_stroke(sketch: Sketch, g: SketchGraph) -> int | None:
+    """Index in ``g.strokes`` of the sketch's global symmetry curve, or None if ``g`` has none.
+
+    The curve is a stroke of its layer's graph: :func:`layer_graphs` adds it
+    there unless a drawn stroke already is that curve (the same control
+    points, either direction, within ``100 * params.merge`` of the diagonal,
+    the duplicate test), which then serves as it.
+    """
+    sym = sketch.symmetry
+    if sym is None:
+        return None
+    for i, t in enumerate(g.strokes):
+        if t is sym:
+            return i
+    for i, t in enumerate(g.strokes):
+        if t.layer == sym.layer and _same_curve(t.controls, sym.controls, 1e-4 * g.scale):
+            return i
+    return None
+
+
+def _same_curve(a: Array, b: Array, tol: float) -> bool:
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    if a.shape != b.shape:
+        return False
+    return bool(np.abs(a - b).max() <= tol or np.abs(a - b[::-1, ::-1]).max() <= tol)
+
+
+def mirror_plane(g: SketchGraph, X: Array, s: int) -> tuple[Array, float]:
+    """The symmetry plane of a lifted layer: unit normal (3,) and offset, ``n . p = offset`` (graph units).
+
+    The plane holds the symmetry curve (stroke ``s``) and is normal to the
+    curves that meet it: ``n`` is the eigenvector of the smallest eigenvalue
+    of ``A - B``, where ``A`` is the curve's control points' scatter divided
+    by its trace (0 along its plane's normal) and ``B`` the mean outer product
+    of the unit tangents of the other curves where they meet it (1 along
+    their common direction). A curve straight in 3D leaves ``A`` two zero
+    directions and ``B`` picks the plane; a planar one with hard orthogonality
+    and local symmetry agrees with ``B`` exactly. The sign of ``n`` is made
+    to point toward the drawn half.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from auszug.lifting import Sketch, Stroke, layer_graphs
+    >>> from auszug.lifting.reconstruct import mirror_plane
+    >>> axis = Stroke(np.array([[[0, -1], [0, -0.3], [0, 0.3], [0, 1]]], float), "axis")
+    >>> rib = Stroke(np.array([[[0, 0], [0.3, 0], [0.6, 0.05], [1, 0.1]]], float), "rib")
+    >>> (_, g), = layer_graphs(Sketch((axis, rib)))
+    >>> X = np.c_[g.points, np.zeros(len(g.points))]
+    >>> n, d = mirror_plane(g, X, 0)
+    >>> np.round(n, 6).tolist(), round(d, 6)    # graph units: x = (0 - 0.5) / sqrt(5)
+    ([1.0, 0.0, 0.0], -0.223607)
+    """
+    ends = np.unique(g.segments[g.chains[s]][:, [0, 3]])
+    P = X[np.unique(g.segments[g.chains[s]])]
+    Y = P - P.mean(0)
+    A = Y.T @ Y
+    A /= max(float(np.trace(A)), 1e-300)
+    hs = _handle_strokes(g)
+    t: list[Array] = []
+    for c in g.crossings:
+        if c.point not in ends:
+            continue
+        for seg, end in c.ends:
+            if int(g.seg_stroke[seg]) == s:
+                continue
+            h = int(g.segments[seg, 1] if end == 0 else g.segments[seg, 2])
+            if hs[h] != s:
+                v = X[h] - X[c.point]
+                if np.linalg.norm(v) > 0:
+                    t.append(v / np.linalg.norm(v))
+    T = np.array(t).reshape(-1, 3)
+    B = T.T @ T / max(len(T), 1)
+    w, V = np.linalg.eigh(A - B)
+    n = V[:, 0]
+    others = np.setdiff1d(np.arange(len(X)), np.unique(g.segments[g.chains[s]]))
+    if len(others) and float(np.mean((X[others] - P.mean(0)) @ n)) < 0:
+        n = -n
+    return n, float(n @ P.mean(0))
+
+
+def _mirrored(g: SketchGraph, X: Array, s: int, n: Array, d: float) -> tuple[SketchGraph, Array]:
+    """The layer's graph and points with every stroke but the symmetry curve mirrored across ``n . p = d``.
+
+    Points of the symmetry curve stay shared (a mirrored curve that ends on it
+    starts where the drawn one does); the others are reflected. The mirrored
+    strokes follow the drawn ones, ids with ``" (mirror)"``.
+    """
+    on_s = np.unique(g.segments[g.chains[s]])
+    others = [k for k in range(len(g.chains)) if k != s]
+    used = np.unique(np.concatenate([g.segments[g.chains[k]].reshape(-1) for k in others])) if others \
+        else np.zeros(0, np.intp)
+    new = np.setdiff1d(used, on_s)
+    remap = np.arange(len(X))
+    remap[new] = len(X) + np.arange(len(new))
+    R = X[new] - 2.0 * ((X[new] @ n) - d)[:, None] * n
+    X2 = np.concatenate([X, R])
+    segs, seg_stroke, chains, closed, strokes = [g.segments], [g.seg_stroke], list(g.chains), list(g.closed), \
+        list(g.strokes)
+    joints, g1 = [g.joints], [g.joint_g1]
+    S = len(g.segments)
+    for k in others:
+        ch = g.chains[k]
+        base = S + sum(len(g.chains[j]) for j in others[: others.index(k)])
+        segs.append(remap[g.segments[ch]])
+        seg_stroke.append(np.full(len(ch), len(strokes), dtype=np.intp))
+        newid = {int(a): base + i for i, a in enumerate(ch)}
+        chains.append(np.array([newid[int(a)] for a in ch], dtype=np.intp))
+        closed.append(bool(g.closed[k]))
+        sel = np.isin(g.joints[:, 0], ch) if len(g.joints) else np.zeros(0, bool)
+        joints.append(np.vectorize(newid.get, otypes=[np.intp])(g.joints[sel]).reshape(-1, 2))
+        g1.append(g.joint_g1[sel])
+        st = g.strokes[k]
+        xy = X2[remap[g.segments[ch]]][..., :2] * g.scale + g.offset
+        strokes.append(Stroke(xy, f"{st.id or f'stroke #{k}'} (mirror)", st.layer))
+    g2 = replace(g, points=X2[:, :2].copy(), segments=np.concatenate(segs), seg_stroke=np.concatenate(seg_stroke),
+                 chains=tuple(chains), closed=np.array(closed, dtype=bool), joints=np.concatenate(joints),
+                 joint_g1=np.concatenate(g1), strokes=tuple(strokes))
+    return g2, X2
 
 
 def layer_graphs(sketch: Sketch, params: LiftParams = DEFAULT) -> tuple[tuple[int, SketchGraph], ...]:
@@ -622,8 +852,19 @@ def layer_graphs(sketch: Sketch, params: LiftParams = DEFAULT) -> tuple[tuple[in
         strokes = tuple(s for s in sketch.strokes if s.layer == layer)
         if not strokes:
             continue
+        sym = sketch.symmetry
+        if sym is not None and sym.layer == layer:
+            scale = Sketch(strokes).diagonal()
+            if not any(_same_curve(t.controls, sym.controls, 1e-4 * scale) for t in strokes):
+                strokes = (*strokes, sym)
         sub = Sketch(strokes, sketch.markers, None, sketch.name)
         g, snapped = _graph_with_markers(sub, params)
+        if sym is not None and sym.layer == layer:
+            k = symmetry_stroke(sketch, g)
+            assert k is not None
+            if not any(k in c.strokes for c in g.crossings):
+                raise GeometryError(f"symmetry path {sym.id or '(no id)'}: meets no stroke of layer {layer}; the "
+                                    "drawn half's curves must meet the symmetry curve")
         used_markers |= snapped
         comp = _components(g)
         if len(np.unique(comp)) > 1:
@@ -632,6 +873,9 @@ def layer_graphs(sketch: Sketch, params: LiftParams = DEFAULT) -> tuple[tuple[in
             raise GeometryError(f"{', '.join(lone[:3])}{' ...' if len(lone) > 3 else ''}: not joined to the rest "
                                 f"of layer {layer} by any intersection; put independent parts in their own layers")
         out.append((layer, g))
+    if sketch.symmetry is not None and sketch.symmetry.layer not in {lay for lay, _ in out}:
+        raise GeometryError(f"symmetry path {sketch.symmetry.id or '(no id)'}: its layer "
+                            f"{sketch.symmetry.layer} has no strokes")
     missing = [m for i, m in enumerate(sketch.markers) if i not in used_markers]
     if missing:
         m = missing[0]

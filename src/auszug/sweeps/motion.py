@@ -75,8 +75,8 @@ def se3_log(rotation: ArrayLike, translation: ArrayLike) -> tuple[Array, Array]:
     --------
     >>> r, t = se3_exp([0.1, -0.2, 0.3], [0.5, 0.0, -1.0])
     >>> w, v = se3_log(r, t)
-    >>> np.round(w, 12).tolist(), np.round(v, 12).tolist()
-    ([0.1, -0.2, 0.3], [0.5, -0.0, -1.0])
+    >>> (np.round(w, 12) + 0.0).tolist(), (np.round(v, 12) + 0.0).tolist()   # + 0.0: no -0.0
+    ([0.1, -0.2, 0.3], [0.5, 0.0, -1.0])
     """
     r = np.asarray(rotation, float)
     t = np.asarray(translation, float)

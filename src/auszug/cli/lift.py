@@ -30,7 +30,7 @@ if TYPE_CHECKING:
 
 HELP = "lift a 2D design sketch (.svg, .sketch.json) to a 3D curve network"
 #: ``lifting.CLASSES`` and ``lifting.DEFAULT_CLASSES``, for the help text (a test keeps them equal).
-CUE_CLASSES = ("parallel", "orthogonal", "symmetry", "planar", "plane")
+CUE_CLASSES = ("parallel", "orthogonal", "symmetry", "linear", "planar", "plane")
 DEFAULT_CUES = ("parallel", "orthogonal", "planar")
 
 

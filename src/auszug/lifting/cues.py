@@ -21,7 +21,8 @@ from auszug.lifting.solver import Poly2
 from auszug.lifting.terms import add_dot, add_lin3
 
 __all__ = ["likelihood", "Parallel", "Orthogonal", "Symmetry", "Planar", "parallel_cues", "orthogonal_cues",
-           "symmetry_cues", "planar_cues", "angle_between", "PlanePairs", "plane_cues"]
+           "symmetry_cues", "planar_cues", "angle_between", "PlanePairs", "plane_cues", "Linear",
+           "linear_cues"]
 
 Array = NDArray[np.float64]
 Index = NDArray[np.intp]
@@ -245,6 +246,63 @@ class Planar:
                 C.add(np.zeros(m), 1.0, lin=(np.arange(m), np.full(m, int(offset_slot[i])), -np.ones(m)),
                       bil=(rows, ii, jj, np.ones(3 * m)))
             add_dot(C, np.array([[ns]]), np.ones((1, 1)), np.array([[ns]]), np.ones((1, 1)), -1.0, 1.0)
+
+
+@dataclass(frozen=True)
+class Linear:
+    """Curve linearity (paper sec. 5.2, ``C_linear``), one candidate per stroke.
+
+    Rows ``t B_0 + (1 - t) B_3 - B_k`` for the handles ``B_k`` (k = 1, 2) of
+    each segment of the stroke, with ``t`` the least-squares fraction on the
+    2D sketch, as the paper states (three rows, x y z, per handle). With the
+    G1 joints' fixed ratios (:func:`~auszug.lifting.terms.structure`) straight
+    segments make a straight curve. Segments the structure already keeps
+    straight have no rows (they would be redundant hard constraints).
+    """
+
+    points: tuple[Index, ...]       # per candidate: its control points (for the angle)
+    stroke: Index
+    rows: Index                     # (r, 3) point slots per row: handle, B_0, B_3
+    t: Array                        # (r,) the 2D fraction of each row
+    cand: Index                     # (r,) candidate of each row
+    where: tuple[str, ...]
+
+    def __len__(self) -> int:
+        return len(self.points)
+
+    def angles(self, X: Array) -> Array:
+        """The paper's "angles between pairs of lines connecting control points", as one figure per curve.
+
+        Each chord between two control points makes an angle dev (0-90 deg) with
+        the curve's principal direction; alpha = sum dev^3 / sum dev^2, the
+        weighting :meth:`Planar.angles` uses (0 for a straight curve).
+        """
+        out = np.zeros(len(self.points))
+        for i, p in enumerate(self.points):
+            Y = X[p]
+            u = np.linalg.svd(Y - Y.mean(0), full_matrices=False)[2][0]
+            iu, ju = np.triu_indices(len(p), 1)
+            d = Y[ju] - Y[iu]
+            keep = np.linalg.norm(d, axis=1) > 1e-12
+            a = angle_between(d[keep], np.broadcast_to(u, d[keep].shape))
+            dev = np.minimum(a, 180.0 - a)
+            w = dev**2
+            out[i] = float((dev * w).sum() / w.sum()) if w.sum() > 0 else 0.0
+        return out
+
+    def add(self, P: Poly2, which: Index, weight: Array | float) -> None:
+        """Add the rows of candidates ``which`` (soft term or hard constraint)."""
+        if not len(which):
+            return
+        wt = np.broadcast_to(np.asarray(weight, float), (len(which),))
+        pos = np.full(len(self.points), -1)
+        pos[np.asarray(which)] = np.arange(len(which))
+        r = np.nonzero(pos[self.cand] >= 0)[0]
+        if not len(r):
+            return
+        t = self.t[r]
+        w = np.stack([-np.ones_like(t), t, 1.0 - t], axis=1)
+        add_lin3(P, self.rows[r], w, np.zeros(3 * len(r)), wt[pos[self.cand[r]]])
 
 
 @dataclass(frozen=True)
@@ -533,6 +591,59 @@ def symmetry_cues(g: SketchGraph, ortho_pairs: list[tuple[int, int, int]]) -> Sy
     keep = (nm > 1e-3 * np.maximum(span, 1e-300)) & (nh > 0)   # a straight curve defines no plane
     where = tuple(r[4] for r, k in zip(rows, keep, strict=True) if k)
     return Symmetry(p[keep], fo[keep], fi[keep], h[keep], nm[keep], nh[keep], where)
+
+
+def linear_cues(g: SketchGraph, params: LiftParams) -> Linear:
+    """One linearity candidate per stroke that is nearly but not exactly straight in 2D.
+
+    Nearly: its linearity angle (:meth:`Linear.angles`) on the 2D control
+    points is below ``params.outer_deg`` (a projection of a straight curve is
+    straight, so a curve farther from straight in 2D has L = 0 anyway). Not
+    exactly: at least one of its segments is not kept straight by the structure
+    (handles within ``params.straight_tol`` of the chord), or one of its joints
+    is not G1; a stroke the structure keeps straight needs no cue.
+    """
+    seg = g.segments
+    bar = g.points
+    P0, P3 = bar[seg[:, 0]], bar[seg[:, 3]]
+    ch = P3 - P0
+    L2 = np.maximum(np.einsum("ij,ij->i", ch, ch), 1e-300)
+    t: dict[int, Array] = {}
+    straight = np.ones(len(seg), dtype=bool)
+    for k in (1, 2):
+        s = np.einsum("ij,ij->i", bar[seg[:, k]] - P0, ch) / L2
+        off = np.linalg.norm(bar[seg[:, k]] - (P0 + s[:, None] * ch), axis=1)
+        straight &= off <= params.straight_tol
+        t[k] = 1.0 - s            # B_k = t B_0 + (1 - t) B_3
+    g1 = {(int(a), int(b)): bool(ok) for (a, b), ok in zip(g.joints, g.joint_g1, strict=True)}
+    pts: list[NDArray[np.intp]] = []
+    strokes: list[int] = []
+    where: list[str] = []
+    rows: list[list[int]] = []
+    ts: list[float] = []
+    cand: list[int] = []
+    for si, chain in enumerate(g.chains):
+        joints_ok = all(g1.get((int(a), int(b)), True) for a, b in zip(chain[:-1], chain[1:], strict=True))
+        if straight[chain].all() and joints_ok:
+            continue
+        p = np.unique(seg[chain].reshape(-1))
+        probe = Linear((p.astype(np.intp),), np.zeros(1, np.intp), np.zeros((0, 3), np.intp), np.zeros(0),
+                       np.zeros(0, np.intp), ("",))
+        if probe.angles(np.c_[bar, np.zeros(len(bar))])[0] >= params.outer_deg:
+            continue
+        c = len(pts)
+        own = [(int(k_seg), k) for k_seg in chain if not straight[k_seg] for k in (1, 2)]
+        if not own:   # straight segments at corners: a polyline, no curve to straighten
+            continue
+        for k_seg, k in own:
+            rows.append([int(seg[k_seg, k]), int(seg[k_seg, 0]), int(seg[k_seg, 3])])
+            ts.append(float(t[k][k_seg]))
+            cand.append(c)
+        pts.append(p.astype(np.intp))
+        strokes.append(si)
+        where.append(f"{_name(g, si)} straight")
+    return Linear(tuple(pts), np.array(strokes, dtype=np.intp), np.array(rows, dtype=np.intp).reshape(-1, 3),
+                  np.array(ts), np.array(cand, dtype=np.intp), tuple(where))
 
 
 def planar_cues(g: SketchGraph, n_points: int) -> Planar:

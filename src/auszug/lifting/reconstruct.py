@@ -31,11 +31,12 @@ __all__ = ["CueResult", "Stage", "LiftResult", "lift", "lift_graph", "layer_grap
 Array = NDArray[np.float64]
 
 #: The cue classes in the order they are resolved (paper sec. 4 and 5.3).
-CLASSES = ("parallel", "orthogonal", "symmetry", "planar", "plane")
+CLASSES = ("parallel", "orthogonal", "symmetry", "linear", "planar", "plane")
 #: The classes :func:`lift` resolves by default: local symmetry is implemented but off, since its hard
 #: constraints currently stop Newton from converging on the revolve ground truth (docs/lifting.md);
 #: plane parallelism / orthogonality ("plane") is off since its round made the arches example worse
-#: (9.16 -> 11.07 % depth RMSE, docs/lifting.md).
+#: (9.16 -> 11.07 % depth RMSE, docs/lifting.md); linearity ("linear") is off since it made the noisy
+#: vase worse (1 % noise: 3.08, 3.09, 4.57 -> 3.66, 4.02, 5.48 %) while it helps noisy boxes.
 DEFAULT_CLASSES = ("parallel", "orthogonal", "planar")
 
 
@@ -398,13 +399,14 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     pla = cu.planar_cues(g, pr.N)
     forced = _symmetry_forced(g, symmetry, pr.smooth, par, orth, pla)
 
-    def resolve(name: str, fam, hard_add, soft_add, pre: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
+    def resolve(name: str, fam, hard_add, soft_add, pre: NDArray[np.bool_] | None = None,
+                skip: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
         nonlocal ok
         m = len(fam)
         applied = np.zeros(m, dtype=bool) if pre is None else pre.copy()   # pre: applied by global symmetry
         if not m or name not in classes:
             return applied
-        undecided = ~applied
+        undecided = ~applied if skip is None else ~applied & ~skip
         if not undecided.any():
             return applied
         Lp = cu.likelihood(fam.angles(pr.X()), params)
@@ -496,9 +498,18 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     hard.append(lambda c: sym.add(c, sym_state["sel"], 1.0))
     sym_applied = resolve("symmetry", sym, lambda s: sym_state.update(sel=s), lambda E, i, w: sym.add(E, i, w))
 
+    # linearity (class "linear", off by default; our order: before planarity, whose plane a straight
+    # curve leaves free; the paper resolves the curve-level cues together). Applied linearity stays soft
+    # with weight w_c like parallelism: hard, with the 2D fractions fixed, it made noisy boxes diverge
+    lin = cu.linear_cues(g, params)
+    lin_state = {"sel": np.zeros(0, np.intp)}
+    soft_kept.append(lambda E: lin.add(E, lin_state["sel"], params.w_c))
+    lin_applied = resolve("linear", lin, lambda s: lin_state.update(sel=s), lambda E, i, w: lin.add(E, i, w))
+
     if symmetry is None:
         hard.append(lambda c: pla.add_hard(c, pla_state["sel"], offset_slot))
-    pla_applied = resolve("planar", pla, pla_apply, pla_soft, forced.planar)
+    pla_applied = resolve("planar", pla, pla_apply, pla_soft, forced.planar,
+                          skip=np.isin(pla.stroke, lin.stroke[lin_applied]))
 
     # plane parallelism / orthogonality: single-linkage clusters of the applied planar strokes' normals
     slots = 3 * pla.normal_slot[:, None] + np.arange(3)
@@ -511,7 +522,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
 
     X = pr.X().copy()
     for kind, fam, app in (("parallel", par, par_applied), ("orthogonal", orth, orth_applied),
-                           ("symmetry", sym, sym_applied), ("planar", pla, pla_applied), ("plane", pp, pp_applied)):
+                           ("symmetry", sym, sym_applied), ("linear", lin, lin_applied), ("planar", pla, pla_applied),
+                           ("plane", pp, pp_applied)):
         ang = fam.angles(X) if len(fam) else np.zeros(0)
         results += [CueResult(kind, w, bool(a), float(x), layer) for w, a, x in zip(fam.where, app, ang, strict=True)]
     results += [CueResult("symmetry", f"{w} (global symmetry)", True, float(x), layer)

@@ -14,6 +14,7 @@ import { perFrame } from "./frames";
 import { vertexNormals } from "./meshnormals";
 import type { ClientMessage, ServerMessage, Styles, TraceryField, TraceryGeometry } from "./protocol";
 import { VIEW3D } from "./scene";
+import { shadeVertices, type Lighting } from "./vertexlight";
 import { installShortcuts, registerShortcut } from "./shortcuts";
 import { History, readTraceryUrl, withValue, writeTraceryUrl, type TraceryState } from "./tracerystate";
 
@@ -24,7 +25,7 @@ export interface TraceryTiming {
   sent: number;
   received: number;
   svg: number;
-  /** The 3D buffers replaced (normals computed), the frame started, the frame drawn. */
+  /** The 3D buffers rewritten (normals and vertex colours computed), the frame started, the frame drawn. */
   meshed: number;
   frame: number;
   rendered: number;
@@ -349,9 +350,14 @@ class View3d {
   readonly camera = new THREE.PerspectiveCamera(35, 1, 0.01, 1e5);
   readonly orbit: OrbitControls;
   readonly geometry = new THREE.BufferGeometry();
+  /** The back half's: the same positions and indices, its own colours (shaded with mirrored normals). */
+  readonly backGeometry = new THREE.BufferGeometry();
   readonly mesh: THREE.Mesh;
   /** The back half: the front half mirrored in the middle plane y = 0 (the same buffers). */
   readonly back: THREE.Mesh;
+  readonly lighting: Lighting;
+  /** Vertex normals of the current mesh (CPU only: the shading is per vertex). */
+  private normals = new Float32Array(0);
   lastFrameAt = 0;
   frames = 0;
   /** How many vertices of the buffers the current mesh uses. */
@@ -366,20 +372,31 @@ class View3d {
     this.renderer.setClearColor(SKY);
     this.renderer.domElement.dataset.testid = "tracery-canvas";
     host.appendChild(this.renderer.domElement);
-    this.scene.add(new THREE.HemisphereLight(0xffffff, 0xb8b0a0, 1.6));
-    const sun = new THREE.DirectionalLight(0xffffff, 1.5);
-    sun.position.set(0.6, -1, 1.6);
-    this.scene.add(sun);
-    const fill = new THREE.DirectionalLight(0xffffff, 0.6);
-    fill.position.set(-1, 0.8, 0.4);
-    this.scene.add(fill);
     this.camera.up.set(0, 0, 1);
-    // Lambert shading (matte stone): on a software renderer a frame of Fig. 20h costs about half of the
-    // design page's MeshStandardMaterial (bench_studio_tracery.py); both sides lit (the preview is not closed)
-    const material = new THREE.MeshLambertMaterial({ color: 0xcfc6b8, side: THREE.DoubleSide });
+    // Lambert shading (matte stone), computed per vertex (vertexlight.ts) and drawn unlit with vertex
+    // colours: on a software renderer the fragment shader is a frame's cost (bench_studio_tracery.py).
+    // The lights are fixed in the world (they do not follow the camera), as three.js lights would be:
+    // a hemisphere light along +y (three.js's default light position), a sun and a fill light.
+    const rgb = (hex: number, k: number): [number, number, number] => {
+      const c = new THREE.Color(hex); // sRGB hex -> linear working colour space
+      return [k * c.r, k * c.g, k * c.b];
+    };
+    const toward = (x: number, y: number, z: number): [number, number, number] => {
+      const l = Math.hypot(x, y, z);
+      return [x / l, y / l, z / l];
+    };
+    this.lighting = {
+      albedo: rgb(0xcfc6b8, 1),
+      hemisphere: { up: [0, 1, 0], sky: rgb(0xffffff, 1.6), ground: rgb(0xb8b0a0, 1.6) },
+      directional: [{ toward: toward(0.6, -1, 1.6), color: rgb(0xffffff, 1.5) },
+        { toward: toward(-1, 0.8, 0.4), color: rgb(0xffffff, 0.6) }],
+    };
+    // front faces only: the preview's triangles face out of the stone (tracery/preview.py, tested), the
+    // mirrored back half included (three.js flips the winding of a mirrored object)
+    const material = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.FrontSide });
     this.mesh = new THREE.Mesh(this.geometry, material);
     this.mesh.name = "window";
-    this.back = new THREE.Mesh(this.geometry, material);
+    this.back = new THREE.Mesh(this.backGeometry, material);
     this.back.name = "window-back";
     this.back.scale.set(1, -1, 1);
     this.scene.add(this.mesh, this.back);
@@ -412,26 +429,35 @@ class View3d {
     if (!P || !I || P.array.length < 3 * nv || I.array.length < 3 * nt) {
       const cv = Math.ceil(1.25 * nv), ct = Math.ceil(1.25 * nt);
       this.geometry.dispose();
+      this.backGeometry.dispose();
       P = new THREE.BufferAttribute(new Float32Array(3 * cv), 3);
       I = new THREE.BufferAttribute(new Uint32Array(3 * ct), 1);
-      this.geometry.setAttribute("position", P);
-      this.geometry.setAttribute("normal", new THREE.BufferAttribute(new Float32Array(3 * cv), 3));
-      this.geometry.setIndex(I);
+      this.normals = new Float32Array(3 * cv);
+      for (const g of [this.geometry, this.backGeometry]) {
+        g.setAttribute("position", P);
+        g.setAttribute("color", new THREE.BufferAttribute(new Float32Array(3 * cv), 3));
+        g.setIndex(I);
+      }
     }
-    const N = this.geometry.getAttribute("normal") as THREE.BufferAttribute;
+    const C = this.geometry.getAttribute("color") as THREE.BufferAttribute;
+    const CB = this.backGeometry.getAttribute("color") as THREE.BufferAttribute;
     (P.array as Float32Array).set(pos);
     (I.array as Uint32Array).set(idx);
-    vertexNormals(pos, idx, nv, nt, N.array as Float32Array);
-    for (const [attr, n] of [[P, 3 * nv], [N, 3 * nv], [I, 3 * nt]] as [THREE.BufferAttribute, number][]) {
+    vertexNormals(pos, idx, nv, nt, this.normals);
+    shadeVertices(this.normals, nv, this.lighting, C.array as Float32Array);
+    shadeVertices(this.normals, nv, this.lighting, CB.array as Float32Array, true);
+    for (const [attr, n] of [[P, 3 * nv], [C, 3 * nv], [CB, 3 * nv], [I, 3 * nt]] as [THREE.BufferAttribute, number][]) {
       attr.clearUpdateRanges();
       attr.addUpdateRange(0, n);
       attr.needsUpdate = true;
     }
-    this.geometry.setDrawRange(0, 3 * nt);
     this.used = nv;
     const [a, b, c, d, e, f] = msg.mesh_bounds;
-    this.geometry.boundingBox = new THREE.Box3(new THREE.Vector3(a, b, c), new THREE.Vector3(d, e, f));
-    this.geometry.boundingSphere = this.geometry.boundingBox.getBoundingSphere(new THREE.Sphere());
+    for (const g of [this.geometry, this.backGeometry]) {
+      g.setDrawRange(0, 3 * nt);
+      g.boundingBox = new THREE.Box3(new THREE.Vector3(a, b, c), new THREE.Vector3(d, e, f));
+      g.boundingSphere = g.boundingBox.getBoundingSphere(new THREE.Sphere());
+    }
     // the whole window: the front half and its mirror image
     this.bounds.set(new THREE.Vector3(a, b, c), new THREE.Vector3(d, Math.max(e, -b), f));
     const key = `${msg.style}\u0000${msg.path}`;

@@ -126,8 +126,8 @@ class _Builder:
             return
         pts = np.concatenate([outer, *holes]) if holes else outer
         v = np.column_stack([pts[:, 0], np.full(len(pts), y), pts[:, 1]])
-        # the polygon is ccw in (x, z); seen from -y that is clockwise: flip to face the viewer
-        self.faces.append(self.n + (tri if flip else tri[:, ::-1]))
+        # ccw in (x, z) is ccw seen from -y (x right, z up): the triangles face -y as they are
+        self.faces.append(self.n + (tri[:, ::-1] if flip else tri))
         self.verts.append(v)
         self.n += len(v)
 
@@ -214,7 +214,8 @@ def preview_mesh(tracery: Tracery, max_angle: float = PREVIEW_MAX_ANGLE, chord: 
             lo, hi = p.min(0) - wall.margin, p.max(0) + wall.margin     # the wall: margin round the arch
             box = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]])
             out.cap(box, [wide[::-1]], -half_t)
-            out.rings(box, np.zeros_like(box), np.array([[0.0, 0.0], [0.0, 1.0]]), 1.0, -half_t, half_t)  # its sides
+            # its sides, facing out of the box (a clockwise loop's strips face away from its inside)
+            out.rings(box[::-1], np.zeros_like(box), np.array([[0.0, 0.0], [0.0, 1.0]]), 1.0, -half_t, half_t)
             out.cap(p, [k[::-1] for k in kids], -half_s)
             continue
         y0 = -half_s + r.face

@@ -109,8 +109,16 @@ def test_each_style_shows_its_regions_in_2d_and_its_window_in_3d(studio, page, n
     assert lo_hi[3] - lo_hi[0] == pytest.approx(span + 2 * t.style.wall.margin, abs=1e-5)
     assert s["indices"]["shape"][0] > 0 and frames(page) > 0
     # every vertex is shaded, front and back (a colour buffer left from the previous style's smaller mesh
-    # drew black); the back half is shaded as the mirror image it is, not with the front's colours
+    # drew black); the back half (shaded when first drawn: the camera goes behind the wall, and back) is
+    # shaded as the mirror image it is, not with the front's colours
     assert page.evaluate("""() => { const v = window.auszugTracery.view3d, g = v.geometry;
+        const front = v.camera.position.clone();
+        v.camera.position.y = 2 * v.orbit.target.y - front.y;
+        v.render();
+        const drawnBack = v.back.visible;
+        v.camera.position.copy(front);
+        v.render();
+        if (!drawnBack || v.back.visible) return false;
         const drawn = 3 * window.auszugTracery.shown().indices.shape[0];
         let differ = 0;
         for (const geo of [g, v.back.geometry]) {

@@ -298,8 +298,7 @@ function show(msg: TraceryGeometry, binary: ArrayBuffer): void {
   buildFields(msg.fields);
   drawSvg(msg);
   if (pending) pending.svg = performance.now();
-  view3d.setMesh(msg, binary);
-  if (pending) pending.meshed = performance.now();
+  view3d.setMesh(msg, binary); // and draws the frame (the timing's `meshed`, `frame` and `rendered`)
   document.body.dataset.regions = String(msg.regions.length);
   status(`${msg.path || msg.name}: ${msg.regions.length} regions, ${msg.n_lights} lights, depth ${msg.depth}; ` +
     `built in ${msg.build_ms.toFixed(1)} ms, preview mesh ${msg.mesh_ms.toFixed(1)} ms ` +
@@ -358,6 +357,8 @@ class View3d {
   readonly lighting: Lighting;
   /** Vertex normals of the current mesh (CPU only: the shading is per vertex). */
   private normals = new Float32Array(0);
+  /** Whether the back half's colours are those of the current mesh (shaded when it is first shown). */
+  private backShaded = false;
   lastFrameAt = 0;
   frames = 0;
   /** How many vertices of the buffers the current mesh uses. */
@@ -424,6 +425,7 @@ class View3d {
     // rewrites them in place (bufferSubData), where new buffers would cost the software renderer a
     // new vertex array and uploads of their whole size. They grow (new buffers, the old ones freed)
     // only when a mesh does not fit.
+    // 16-bit indices while the vertices fit them: half the bytes to upload after an edit
     let P = this.geometry.getAttribute("position") as THREE.BufferAttribute | undefined;
     let I = this.geometry.getIndex();
     if (!P || !I || P.array.length < 3 * nv || I.array.length < 3 * nt) {
@@ -431,7 +433,7 @@ class View3d {
       this.geometry.dispose();
       this.backGeometry.dispose();
       P = new THREE.BufferAttribute(new Float32Array(3 * cv), 3);
-      I = new THREE.BufferAttribute(new Uint32Array(3 * ct), 1);
+      I = new THREE.BufferAttribute(cv <= 65536 ? new Uint16Array(3 * ct) : new Uint32Array(3 * ct), 1);
       this.normals = new Float32Array(3 * cv);
       for (const g of [this.geometry, this.backGeometry]) {
         g.setAttribute("position", P);
@@ -440,17 +442,12 @@ class View3d {
       }
     }
     const C = this.geometry.getAttribute("color") as THREE.BufferAttribute;
-    const CB = this.backGeometry.getAttribute("color") as THREE.BufferAttribute;
     (P.array as Float32Array).set(pos);
-    (I.array as Uint32Array).set(idx);
+    (I.array as Uint16Array | Uint32Array).set(idx);
     vertexNormals(pos, idx, nv, nt, this.normals);
     shadeVertices(this.normals, nv, this.lighting, C.array as Float32Array);
-    shadeVertices(this.normals, nv, this.lighting, CB.array as Float32Array, true);
-    for (const [attr, n] of [[P, 3 * nv], [C, 3 * nv], [CB, 3 * nv], [I, 3 * nt]] as [THREE.BufferAttribute, number][]) {
-      attr.clearUpdateRanges();
-      attr.addUpdateRange(0, n);
-      attr.needsUpdate = true;
-    }
+    for (const [attr, n] of [[P, 3 * nv], [C, 3 * nv], [I, 3 * nt]] as [THREE.BufferAttribute, number][]) this.upload(attr, n);
+    this.backShaded = false;
     this.used = nv;
     const [a, b, c, d, e, f] = msg.mesh_bounds;
     for (const g of [this.geometry, this.backGeometry]) {
@@ -465,7 +462,24 @@ class View3d {
       this.fittedFor = key;
       this.fit();
     }
-    this.requestRender();
+    if (pending) pending.meshed = performance.now();
+    // drawn now, not at the next animation frame: the canvas is shown at the browser's next frame either
+    // way, and the software renderer's work is then done before it rather than inside it
+    this.render();
+  }
+
+  private upload(attr: THREE.BufferAttribute, n: number): void {
+    attr.clearUpdateRanges();
+    attr.addUpdateRange(0, n);
+    attr.needsUpdate = true;
+  }
+
+  /** The back half's colours for the current mesh, computed and uploaded when it is first drawn. */
+  private shadeBack(): void {
+    const CB = this.backGeometry.getAttribute("color") as THREE.BufferAttribute;
+    shadeVertices(this.normals, this.used, this.lighting, CB.array as Float32Array, true);
+    this.upload(CB, 3 * this.used);
+    this.backShaded = true;
   }
 
   private corners(): THREE.Vector3[] {
@@ -506,6 +520,12 @@ class View3d {
     return true;
   }
 
+  /** Calls `fn` after every frame drawn; returns the function that stops it. */
+  onFrame(fn: () => void): () => void {
+    this.frameListeners.add(fn);
+    return () => this.frameListeners.delete(fn);
+  }
+
   readonly requestRender = perFrame(() => this.render());
 
   render(): void {
@@ -513,6 +533,7 @@ class View3d {
     // seen from the front, the back half shows only through the lights: it is drawn when the camera is
     // behind the middle plane, which halves a frame's triangles in the usual views
     this.back.visible = this.camera.position.y > 0;
+    if (this.back.visible && !this.backShaded) this.shadeBack();
     this.renderer.render(this.scene, this.camera);
     this.lastFrameAt = performance.now();
     this.frames++;

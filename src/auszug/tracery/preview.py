@@ -9,12 +9,22 @@ preview cuts two corners and keeps the look:
   ``chord``), and the profile's insets are *vertex offsets* of that polygon
   (along the corner bisectors, the miter capped), not exact offsets, so
   sharp concave corners may fold over slightly;
+* a profile is sampled ``per_arc`` times per arc (:data:`PREVIEW_DETAIL`), and
+  a flat face needs no samples along it: profile points on the straight line
+  through their neighbours are left out (a light's last face, continued to the
+  middle plane, is one strip, not two);
 * every region is meshed on its own (its profile swept as quad strips, its
   recess floor triangulated with its children's openings as holes), the
   back half is the mirror image of the front half (or left to the viewer,
   ``back=False``), and nothing is zipped: the preview is neither watertight
-  nor manifold. Export uses
+  nor manifold (the recess floors are earcut's fills as they are,
+  ``triangulate_polygon(..., manifold=False)``). Export uses
   :func:`~auszug.tracery.window_mesh`.
+
+Every triangle faces out of the stone (counter-clockwise seen from outside), so
+a viewer may cull back faces; in the front half (``y <= 0``) that means every
+face looks to the front (``-y``) or sideways, apart from slivers where a sharp
+concave corner folds.
 
 Coordinates as :func:`~auszug.tracery.window_mesh`: x right, z up (the 2D
 window's x and y), the wall's front face at ``y = -thickness / 2``.
@@ -37,15 +47,21 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+from auszug.geometry import Arc, Curve
 from auszug.meshing import triangulate_polygon
-from auszug.tracery.model import Region, Tracery, polygon
+from auszug.tracery.model import Region, Tracery
 
-__all__ = ["preview_mesh", "PREVIEW_MAX_ANGLE", "PREVIEW_CHORD"]
+__all__ = ["preview_mesh", "PREVIEW_MAX_ANGLE", "PREVIEW_CHORD", "PREVIEW_DETAIL"]
 
 #: Largest angle of an arc sample in the preview (radians).
 PREVIEW_MAX_ANGLE = math.pi / 12
 #: Largest chord deviation of the preview, relative to the window's span.
 PREVIEW_CHORD = 2e-3
+#: Samples per arc of a region's profile in the preview (the finished mesh subdivides further).
+PREVIEW_DETAIL = 1
+#: Profile points this close to the line through their neighbours (profile units: the border) are
+#: left out: the face there is flat.
+_FLAT = 1e-9
 #: Largest miter factor of a vertex offset (sharp corners).
 _MITER = 3.0
 
@@ -97,10 +113,20 @@ def _strips(start: int, m: int, k: int) -> IntArray:
 
 
 class _Builder:
+    """Vertex and face blocks; ``starts[k]`` is the first vertex of ``verts[k]``."""
+
     def __init__(self) -> None:
         self.verts: list[Array] = []
         self.faces: list[IntArray] = []
+        self.starts: list[int] = []
         self.n = 0
+
+    def add(self, v: Array, f: IntArray) -> None:
+        """A block of vertices (k, 3) and its faces (indices from 0)."""
+        self.starts.append(self.n)
+        self.faces.append(f + self.n)
+        self.verts.append(v)
+        self.n += len(v)
 
     def rings(self, p: Array, d: Array, levels: Array, unit: float, y0: float, dy: float) -> Array:
         """Rings ``p + d * s * unit`` at depths ``y0 + t * dy`` for the (s, t) levels; the last ring (m, 2)."""
@@ -112,36 +138,78 @@ class _Builder:
         v[:, :, 0] = xy[:, :, 0]
         v[:, :, 1] = y[:, None]
         v[:, :, 2] = xy[:, :, 1]
-        self.faces.append(_strips(self.n, m, len(levels)))
-        self.verts.append(v.reshape(-1, 3))
-        self.n += m * len(levels)
+        self.add(v.reshape(-1, 3), _strips(0, m, len(levels)))
         last: Array = xy[-1]
         return last
 
     def cap(self, outer: Array, holes: list[Array], y: float, flip: bool = False) -> None:
         """A flat face at depth y: ``outer`` (ccw) minus ``holes``, facing -y (or +y if ``flip``)."""
         try:
-            tri = triangulate_polygon(outer, holes)
+            tri = triangulate_polygon(outer, holes, manifold=False)
         except Exception:   # a preview shows what it can; export reports errors
             return
         pts = np.concatenate([outer, *holes]) if holes else outer
         v = np.column_stack([pts[:, 0], np.full(len(pts), y), pts[:, 1]])
         # ccw in (x, z) is ccw seen from -y (x right, z up): the triangles face -y as they are
-        self.faces.append(self.n + (tri[:, ::-1] if flip else tri))
-        self.verts.append(v)
-        self.n += len(v)
+        self.add(v, tri[:, ::-1] if flip else tri)
 
 
-def _levels(r: Region, per_arc: int) -> Array:
-    lv = r.profile.sample(per_arc)
+def _flat_out(lv: Array) -> Array:
+    """The profile points (k, 2) without repeats and without points inside a straight run."""
     keep = np.ones(len(lv), dtype=bool)
     keep[1:] = np.any(np.abs(np.diff(lv, axis=0)) > 1e-12, axis=1)
+    lv = lv[keep]
+    if len(lv) < 3:
+        return lv
+    a, b = lv[1:-1] - lv[:-2], lv[2:] - lv[1:-1]
+    la, lb = np.hypot(a[:, 0], a[:, 1]), np.hypot(b[:, 0], b[:, 1])
+    cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    straight = (np.abs(cross) <= _FLAT * la * lb) & (a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1] > 0)
+    keep = np.ones(len(lv), dtype=bool)
+    keep[1:-1] = ~straight
     out: Array = lv[keep]
     return out
 
 
+def _levels(r: Region, per_arc: int) -> Array:
+    return _flat_out(r.profile.sample(per_arc))
+
+
+def _sample(curves: tuple[Curve, ...], max_angle: float, chord: float) -> Array:
+    """:func:`~auszug.tracery.model.polygon` of the loop, the same points, its arcs in one numpy pass."""
+    fixed: list[tuple[int, Array]] = []
+    arcs: list[tuple[int, int, float, float, float, float, float]] = []
+    at = 0
+    for c in curves:
+        if isinstance(c, Arc):
+            r = c.radius
+            step = max_angle
+            if chord < r:
+                step = max(step, 2.0 * math.acos(1.0 - chord / r))
+            step = min(step, math.pi / 4)
+            n = max(1, math.ceil(abs(c.sweep) / step - 1e-9))
+            arcs.append((at, n, float(c.center[0]), float(c.center[1]), r, c.theta0, c.sweep))
+            at += n
+        else:
+            fixed.append((at, c.start))
+            at += 1
+    out = np.empty((at, 2))
+    for k, p in fixed:
+        out[k] = p
+    if arcs:
+        a = np.array(arcs)
+        first, n = a[:, 0].astype(np.int64), a[:, 1].astype(np.int64)
+        idx = np.repeat(first, n) + (np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n))
+        t = (idx - np.repeat(first, n)) / np.repeat(a[:, 1], n)
+        ang = np.repeat(a[:, 5], n) + t * np.repeat(a[:, 6], n)
+        r = np.repeat(a[:, 4], n)
+        out[idx, 0] = np.repeat(a[:, 2], n) + r * np.cos(ang)
+        out[idx, 1] = np.repeat(a[:, 3], n) + r * np.sin(ang)
+    return out
+
+
 def preview_mesh(tracery: Tracery, max_angle: float = PREVIEW_MAX_ANGLE, chord: float = PREVIEW_CHORD,
-                 per_arc: int = 1, back: bool = True) -> tuple[NDArray[np.float32], NDArray[np.uint32]]:
+                 per_arc: int = PREVIEW_DETAIL, back: bool = True) -> tuple[NDArray[np.float32], NDArray[np.uint32]]:
     """Triangles that look like the window: profiles swept along the sampled borders, not united.
 
     Parameters
@@ -178,7 +246,7 @@ def preview_mesh(tracery: Tracery, max_angle: float = PREVIEW_MAX_ANGLE, chord: 
     def poly(i: int) -> Array:
         q = polys.get(i)
         if q is None:
-            q = polys[i] = polygon(regions[i].curves, max_angle, chord_abs)
+            q = polys[i] = _sample(regions[i].curves, max_angle, chord_abs)
         return q
 
     levels: dict[int, Array] = {}
@@ -191,18 +259,13 @@ def preview_mesh(tracery: Tracery, max_angle: float = PREVIEW_MAX_ANGLE, chord: 
 
     out = _Builder()
     # congruent regions (the sub-windows of a recursive style) are meshed once and translated
-    done: dict[int, tuple[int, int, int, int, tuple[float, float]]] = {}
+    done: dict[int, tuple[Array, IntArray, tuple[float, float]]] = {}
     for i, r in enumerate(regions):
         if r.template >= 0 and r.template in done:
-            v0, v1, f0, f1, origin = done[r.template]
-            shift = np.array([r.origin[0] - origin[0], 0.0, r.origin[1] - origin[1]])
-            vb = np.concatenate(out.verts[v0:v1])
-            fb = np.concatenate(out.faces[f0:f1]) - sum(len(x) for x in out.verts[:v0])
-            out.faces.append(fb + out.n)
-            out.verts.append(vb + shift)
-            out.n += len(vb)
+            vb, fb, origin = done[r.template]
+            out.add(vb + np.array([r.origin[0] - origin[0], 0.0, r.origin[1] - origin[1]]), fb)
             continue
-        v0, f0 = len(out.verts), len(out.faces)
+        k0 = len(out.verts)
         p = poly(i)
         d = _inward(p)
         kids = [poly(k) for k in children.get(r.id, [])]
@@ -224,13 +287,14 @@ def preview_mesh(tracery: Tracery, max_angle: float = PREVIEW_MAX_ANGLE, chord: 
             if y0 + lv[-1, 1] * r.border > 0.0:
                 lv = lv[y0 + lv[:, 1] * r.border <= 0.0]
             if len(lv):
-                lv = np.vstack([lv, [lv[-1, 0], -y0 / r.border]])
+                lv = _flat_out(np.vstack([lv, [lv[-1, 0], -y0 / r.border]]))
                 out.rings(p, d, lv, r.border, y0, r.border)
         else:
             floor = out.rings(p, d, lv, r.border, y0, r.border)
             out.cap(floor, [k[::-1] for k in kids] if r.role == "frame" else [], y0 + lv[-1, 1] * r.border)
-        if r.template >= 0:
-            done[r.template] = (v0, len(out.verts), f0, len(out.faces), r.origin)
+        if r.template >= 0 and len(out.verts) > k0:
+            s0 = out.starts[k0]
+            done[r.template] = (np.concatenate(out.verts[k0:]), np.concatenate(out.faces[k0:]) - s0, r.origin)
     v = np.concatenate(out.verts)
     f = np.concatenate(out.faces)
     if not back:

@@ -154,8 +154,13 @@ def test_a_value_change_redraws_2d_and_3d_and_goes_into_the_url(studio, page):
     ext0 = scene_extent(page)
     f0 = frames(page)
     assert before["bounds"][2] - before["bounds"][0] == pytest.approx(2.0)
+    page.evaluate("() => { window.keptPaths = [...document.querySelectorAll('[data-testid=tracery-svg] path')]; }")
     set_field(page, "params.span", "3")
     after = wait_value(page, "params.span=3")
+    # the SVG's path elements are kept and their shapes rewritten in place, every one of them
+    assert page.evaluate("""() => { const now = [...document.querySelectorAll('[data-testid=tracery-svg] path')];
+        return now.length === window.keptPaths.length && now.every((p, i) => p === window.keptPaths[i]); }""")
+    assert [p["d"] for p in svg_paths(page)] == [r["d"] for r in after["regions"]] != [r["d"] for r in before["regions"]]
     # 2D: the arch is 3 wide now; 3D: the wall (margin and reveal fixed) grew by exactly the span's 1
     assert after["bounds"][2] - after["bounds"][0] == pytest.approx(3.0, abs=1e-9)
     ext1 = scene_extent(page)

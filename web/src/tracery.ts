@@ -301,7 +301,8 @@ function show(msg: TraceryGeometry, binary: ArrayBuffer): void {
   view3d.setMesh(msg, binary); // and draws the frame (the timing's `meshed`, `frame` and `rendered`)
   document.body.dataset.regions = String(msg.regions.length);
   status(`${msg.path || msg.name}: ${msg.regions.length} regions, ${msg.n_lights} lights, depth ${msg.depth}; ` +
-    `built in ${msg.build_ms.toFixed(1)} ms, preview mesh ${msg.mesh_ms.toFixed(1)} ms ` +
+    `${msg.cached ? "from the server's cache (built in" : "built in"} ${msg.build_ms.toFixed(1)} ms, ` +
+    `preview mesh ${msg.mesh_ms.toFixed(1)} ms${msg.cached ? ")" : ""} ` +
     `(${msg.indices.shape[0]} triangles; exports are the finished watertight mesh)`);
 }
 
@@ -317,27 +318,37 @@ svgHost.appendChild(svg);
 const FILL: Record<string, string> = { light: "#a9c9e8", blind: "#b3a997" };
 const FRAME = ["#e4ddd2", "#d9d1c4"];
 
+/** Set attribute `name` of `el` to `value` unless it has it already (an unchanged path is not redrawn). */
+function setAttr(el: Element, name: string, value: string): void {
+  if (el.getAttribute(name) !== value) el.setAttribute(name, value);
+}
+
+/** The regions as SVG paths. The path elements are kept between edits and their attributes updated in
+ * place (most edits change the `d` of every path and nothing else), not replaced. */
 function drawSvg(msg: TraceryGeometry): void {
   const [x0, y0, x1, y1] = msg.bounds;
   const m = 0.05 * Math.max(x1 - x0, y1 - y0);
-  svg.setAttribute("viewBox", `${x0 - m} ${-(y1 + m)} ${x1 - x0 + 2 * m} ${y1 - y0 + 2 * m}`);
-  const sw = 0.003 * (x1 - x0);
-  const paths: SVGPathElement[] = [];
-  for (const r of msg.regions) {
-    const p = document.createElementNS(SVGNS, "path");
-    p.setAttribute("d", r.d);
-    p.setAttribute("fill", r.group === "arch" && r.depth === 0 ? "#cfc6b8" : r.role === "frame" ? FRAME[r.depth % 2] : FILL[r.role] ?? "#ccc");
-    p.setAttribute("stroke", "#3b3530");
-    p.setAttribute("stroke-width", String(sw));
-    p.dataset.id = r.id;
-    p.dataset.group = r.group;
-    p.dataset.role = r.role;
-    const t = document.createElementNS(SVGNS, "title");
-    t.textContent = `${r.id} (${r.group}, ${r.role})`;
-    p.appendChild(t);
-    paths.push(p);
+  setAttr(svg, "viewBox", `${x0 - m} ${-(y1 + m)} ${x1 - x0 + 2 * m} ${y1 - y0 + 2 * m}`);
+  const sw = String(0.003 * (x1 - x0));
+  while (flip.childElementCount > msg.regions.length) flip.lastElementChild!.remove();
+  for (const [i, r] of msg.regions.entries()) {
+    let p = flip.children[i] as SVGPathElement | undefined;
+    if (!p) {
+      p = document.createElementNS(SVGNS, "path");
+      p.setAttribute("stroke", "#3b3530");
+      p.appendChild(document.createElementNS(SVGNS, "title"));
+      flip.appendChild(p);
+    }
+    setAttr(p, "d", r.d);
+    setAttr(p, "fill", r.group === "arch" && r.depth === 0 ? "#cfc6b8" : r.role === "frame" ? FRAME[r.depth % 2] : FILL[r.role] ?? "#ccc");
+    setAttr(p, "stroke-width", sw);
+    if (p.dataset.id !== r.id) p.dataset.id = r.id;
+    if (p.dataset.group !== r.group) p.dataset.group = r.group;
+    if (p.dataset.role !== r.role) p.dataset.role = r.role;
+    const title = `${r.id} (${r.group}, ${r.role})`;
+    const t = p.firstElementChild!;
+    if (t.textContent !== title) t.textContent = title;
   }
-  flip.replaceChildren(...paths);
 }
 
 // ---------------------------------------------------------------- 3D

@@ -128,7 +128,8 @@ def test_each_style_shows_its_regions_in_2d_and_its_window_in_3d(studio, page, n
             if (!(Math.min(c.getX(i), c.getY(i), c.getZ(i)) > 0.01)) return false;
           }
         }
-        const p = g.getAttribute('position'), y0 = p.getY(0), c = g.getAttribute('color'), cb = v.back.geometry.getAttribute('color');
+        const p = g.getAttribute('position'), y0 = p.getY(0);
+        const c = g.getAttribute('color'), cb = v.back.geometry.getAttribute('color');
         for (let i = 0; i < v.used; i++) if (p.getY(i) === y0 && Math.abs(c.getX(i) - cb.getX(i)) > 0.05) differ++;
         return differ > 0; }""")
     # the camera: the design page's raised three-quarter view (35 degrees up, 35 round), the window inside it
@@ -160,7 +161,8 @@ def test_a_value_change_redraws_2d_and_3d_and_goes_into_the_url(studio, page):
     # the SVG's path elements are kept and their shapes rewritten in place, every one of them
     assert page.evaluate("""() => { const now = [...document.querySelectorAll('[data-testid=tracery-svg] path')];
         return now.length === window.keptPaths.length && now.every((p, i) => p === window.keptPaths[i]); }""")
-    assert [p["d"] for p in svg_paths(page)] == [r["d"] for r in after["regions"]] != [r["d"] for r in before["regions"]]
+    now_d = [p["d"] for p in svg_paths(page)]
+    assert now_d == [r["d"] for r in after["regions"]] != [r["d"] for r in before["regions"]]
     # 2D: the arch is 3 wide now; 3D: the wall (margin and reveal fixed) grew by exactly the span's 1
     assert after["bounds"][2] - after["bounds"][0] == pytest.approx(3.0, abs=1e-9)
     ext1 = scene_extent(page)

@@ -371,6 +371,7 @@ class WindowCache:
                 self._bytes -= n
 
     def clear(self) -> None:
+        """Forget every window."""
         with self._lock:
             self._items.clear()
             self._bytes = 0

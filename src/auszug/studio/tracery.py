@@ -276,7 +276,13 @@ def svg_path(curves: tuple[Any, ...]) -> str:
     """
     from auszug.geometry import Arc
 
-    x, y = curves[0].start.tolist()
+    c0 = curves[0]
+    if isinstance(c0, Arc):     # c0.start's arithmetic: centre + radius * (cos, sin) of theta0 + 0 * sweep
+        cx, cy = c0.center.tolist()
+        th = float(c0.theta0) + 0.0 * float(c0.sweep)
+        x, y = cx + float(c0.radius) * math.cos(th), cy + float(c0.radius) * math.sin(th)
+    else:
+        x, y = c0.p0.tolist()
     parts = [f"M{_fmt(x)} {_fmt(y)}"]
     for c in curves:
         if isinstance(c, Arc):
@@ -290,9 +296,9 @@ def svg_path(curves: tuple[Any, ...]) -> str:
                 qx, qy = cx + r * math.cos(th), cy + r * math.sin(th)
                 parts.append(f"A{rs} {rs} 0 {1 if abs(part) > math.pi else 0} {1 if part > 0 else 0} "
                              f"{_fmt(qx)} {_fmt(qy)}")
-        else:
-            x, y = c.end.tolist()
-            parts.append(f"L{_fmt(x)} {_fmt(y)}")
+        else:                   # c.end's arithmetic: p0 + 1 * (p1 - p0)
+            (x0, y0), (x1, y1) = c.p0.tolist(), c.p1.tolist()
+            parts.append(f"L{_fmt(x0 + (x1 - x0))} {_fmt(y0 + (y1 - y0))}")
     parts.append("Z")
     return " ".join(parts)
 

@@ -118,6 +118,21 @@ def test_earcut_triangles_are_counter_clockwise_for_a_concave_polygon():
     assert np.all(cross > 0) and 0.5 * cross.sum() == pytest.approx(_area(poly))
 
 
+def test_the_non_manifold_fill_is_counter_clockwise_and_covers_the_polygon_and_holes_exactly():
+    """``manifold=False`` (earcut as it is, the live previews): still a fill of exactly the area."""
+    outer = np.array([[0, 0], [2, 0], [4, 0], [4, 3], [2, 1], [0, 3.0]])   # a collinear vertex (2, 0)
+    holes = [np.array([[3.0, 0.5], [3.0, 1.0], [3.5, 1.0], [3.5, 0.5]]),   # clockwise
+             np.array([[0.5, 0.5], [1.0, 0.5], [1.0, 1.0]])]               # counter-clockwise
+    pts = np.concatenate([outer, *holes])
+    for hs in ([], holes):
+        t = triangulate_polygon(outer, hs, manifold=False)
+        assert t.min() >= 0 and t.max() < len(pts)
+        a, b, c = pts[t[:, 0]], pts[t[:, 1]], pts[t[:, 2]]
+        cross = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+        want = _area(outer) - sum(abs(_area(h)) for h in hs)
+        assert np.all(cross >= 0) and 0.5 * cross.sum() == pytest.approx(want, rel=1e-12)
+
+
 @pytest.mark.parametrize("make, message", [
     (lambda: polygon([[0, 0], [1, 1], [1, 0], [0, 1]]), "self-intersecting: edges 0 and 2"),
     (lambda: polygon([[0, 0], [0, 0], [0, 0]]), "zero size"),

@@ -103,18 +103,35 @@ def test_each_style_shows_its_regions_in_2d_and_its_window_in_3d(studio, page, n
     lo_hi = scene_extent(page)
     thick = t.style.wall.thickness
     assert lo_hi[1] == pytest.approx(-thick / 2, abs=1e-6) and lo_hi[4] == pytest.approx(0.0, abs=1e-9)
-    assert page.evaluate("""() => { const v = window.auszugTracery.view3d;
-        return v.back.geometry === v.geometry && v.back.scale.toArray().join() === '1,-1,1'; }""")
+    assert page.evaluate("""() => { const v = window.auszugTracery.view3d, g = v.geometry, b = v.back.geometry;
+        return b.getAttribute('position') === g.getAttribute('position') && b.getIndex() === g.getIndex()
+          && b.getAttribute('color') !== g.getAttribute('color') && v.back.scale.toArray().join() === '1,-1,1'; }""")
     assert lo_hi[3] - lo_hi[0] == pytest.approx(span + 2 * t.style.wall.margin, abs=1e-5)
     assert s["indices"]["shape"][0] > 0 and frames(page) > 0
-    # every vertex has a unit normal (a normal buffer left from the previous style's smaller mesh drew black)
-    assert page.evaluate("""() => { const v = window.auszugTracery.view3d, g = v.geometry, n = g.getAttribute('normal');
+    # every vertex is shaded, front and back (a colour buffer left from the previous style's smaller mesh
+    # drew black); the back half (shaded when first drawn: the camera goes behind the wall, and back) is
+    # shaded as the mirror image it is, not with the front's colours
+    assert page.evaluate("""() => { const v = window.auszugTracery.view3d, g = v.geometry;
+        const front = v.camera.position.clone();
+        v.camera.position.y = 2 * v.orbit.target.y - front.y;
+        v.render();
+        const drawnBack = v.back.visible;
+        v.camera.position.copy(front);
+        v.render();
+        if (!drawnBack || v.back.visible) return false;
         const drawn = 3 * window.auszugTracery.shown().indices.shape[0];
-        if (n.count !== g.getAttribute('position').count || g.drawRange.count !== drawn) return false;
-        for (let i = 0; i < v.used; i++) {
-          if (Math.abs(Math.hypot(n.getX(i), n.getY(i), n.getZ(i)) - 1) > 1e-3) return false;
+        let differ = 0;
+        for (const geo of [g, v.back.geometry]) {
+          const c = geo.getAttribute('color');
+          if (c.count !== g.getAttribute('position').count || geo.drawRange.count !== drawn) return false;
+          for (let i = 0; i < v.used; i++) {
+            if (!(Math.min(c.getX(i), c.getY(i), c.getZ(i)) > 0.01)) return false;
+          }
         }
-        return true; }""")
+        const p = g.getAttribute('position'), y0 = p.getY(0);
+        const c = g.getAttribute('color'), cb = v.back.geometry.getAttribute('color');
+        for (let i = 0; i < v.used; i++) if (p.getY(i) === y0 && Math.abs(c.getX(i) - cb.getX(i)) > 0.05) differ++;
+        return differ > 0; }""")
     # the camera: the design page's raised three-quarter view (35 degrees up, 35 round), the window inside it
     cam = page.evaluate("""() => { const v = window.auszugTracery.view3d, p = v.camera.position, t = v.orbit.target;
         return {d: [p.x - t.x, p.y - t.y, p.z - t.z], inside: v.inView()}; }""")
@@ -138,8 +155,14 @@ def test_a_value_change_redraws_2d_and_3d_and_goes_into_the_url(studio, page):
     ext0 = scene_extent(page)
     f0 = frames(page)
     assert before["bounds"][2] - before["bounds"][0] == pytest.approx(2.0)
+    page.evaluate("() => { window.keptPaths = [...document.querySelectorAll('[data-testid=tracery-svg] path')]; }")
     set_field(page, "params.span", "3")
     after = wait_value(page, "params.span=3")
+    # the SVG's path elements are kept and their shapes rewritten in place, every one of them
+    assert page.evaluate("""() => { const now = [...document.querySelectorAll('[data-testid=tracery-svg] path')];
+        return now.length === window.keptPaths.length && now.every((p, i) => p === window.keptPaths[i]); }""")
+    now_d = [p["d"] for p in svg_paths(page)]
+    assert now_d == [r["d"] for r in after["regions"]] != [r["d"] for r in before["regions"]]
     # 2D: the arch is 3 wide now; 3D: the wall (margin and reveal fixed) grew by exactly the span's 1
     assert after["bounds"][2] - after["bounds"][0] == pytest.approx(3.0, abs=1e-9)
     ext1 = scene_extent(page)

@@ -234,3 +234,42 @@ def test_the_fast_reply_text_is_the_protocols_encoding():
         values = ["params.excess=1.1", "circle.orientation=\"lying\""]
         msg, _ = build_message(window_style(None, name, "", values), name, "", values, msg_id=12)
         assert tracery_text(msg) == P.encode(msg)
+
+
+def test_a_window_built_before_comes_from_the_cache_the_same(client):
+    """Undo, redo and a value typed again: the same window, from the cache; the cache stays bounded."""
+    from auszug.studio.tracery import CACHE_WINDOWS, WINDOWS
+
+    WINDOWS.clear()
+    with client.websocket_connect(WS) as ws:
+        first, p1 = _build(ws, style="fig20d", values=["params.excess=1.3"])
+        other, _ = _build(ws, style="fig20d", values=["params.excess=1.1"])
+        again, p2 = _build(ws, style="fig20d", values=["params.excess=1.3"], id=9)
+        # the same style value written another way (a default spelled out) is the same window
+        same, p3 = _build(ws, style="fig20d", values=["params.excess=1.30", "circle.foils=4"])
+    assert not first["cached"] and not other["cached"] and again["cached"] and same["cached"]
+    assert p1 == p2 == p3 and again["regions"] == first["regions"] and again["id"] == 9
+    drop = {"cached", "id", "values"}
+    assert {k: v for k, v in again.items() if k not in drop} == {k: v for k, v in first.items() if k not in drop}
+    assert again["values"] == ["params.excess=1.3"] and same["values"] == ["params.excess=1.30", "circle.foils=4"]
+    # least recently used first out: after CACHE_WINDOWS other windows, 1.3 is built again
+    with client.websocket_connect(WS) as ws:
+        for k in range(CACHE_WINDOWS):
+            m, _ = _build(ws, style="fig20a", values=[f"params.span={2 + 0.01 * (k + 1)}"])
+            assert not m["cached"]
+        assert len(WINDOWS) == CACHE_WINDOWS
+        m, p4 = _build(ws, style="fig20d", values=["params.excess=1.3"])
+    assert not m["cached"] and p4 == p1
+
+
+def test_the_window_cache_is_bounded_in_bytes():
+    from auszug.studio.tracery import WindowCache
+
+    c = WindowCache(entries=10, max_bytes=100)
+    for k in range(5):
+        c.put(str(k), k, 30)
+    assert len(c) == 3 and c.nbytes == 90 and [c.get(str(k)) for k in range(5)] == [None, None, 2, 3, 4]
+    c.put("big", "x", 101)                      # larger than the whole cache: not kept, nothing dropped
+    assert c.get("big") is None and len(c) == 3
+    c.put("3", "again", 60)                     # replacing an entry counts its new size
+    assert c.nbytes <= 100 and c.get("3") == "again"

@@ -136,3 +136,25 @@ def test_params_from_mapping_rejects_unknown_names():
     assert e.value.name == "spam" and "excess" in str(e.value)
     assert WindowParams.from_mapping(PAPER.as_dict()) == PAPER
     assert PAPER.scaled(2.0).span == 4.0 and PAPER.scaled(2.0).excess == PAPER.excess
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(window_params())
+def test_the_left_fillet_is_the_offset_of_its_cell_and_the_right_ones_mirror_image(p):
+    """regions mirrors the right fillet's opening (one offset fewer): the exact offset of the left cell."""
+    from auszug.geometry.offset import offset_curves
+    from auszug.tracery.model import polygon
+
+    try:
+        w = prototype(p)
+    except ParameterError:
+        assume(False)
+    left, right = w.regions["fillet-left"], w.regions["fillet-right"]
+    direct = offset_curves(w.cells["fillet-left"], p.inner, closed=True).curves
+    assert list(w.regions) == list(CELLS) and is_closed(left) and signed_area(left) > 0
+    pts = polygon(left, max_angle=np.pi / 256)
+    span = p.span
+    assert max(dist_to_curves(q, direct) for q in pts) < 1e-9 * span
+    assert max(dist_to_curves(q, left) for q in polygon(direct, max_angle=np.pi / 256)) < 1e-9 * span
+    mirrored = pts * [-1.0, 1.0] + [2.0 * w.ensemble.mid, 0.0]
+    assert max(dist_to_curves(q, right) for q in mirrored) < 1e-9 * span

@@ -466,7 +466,7 @@ export interface Thumbnail {
   type: "thumbnail";
 }
 
-/** A built window; it has a payload: the preview mesh (``positions`` (n, 3) f4, ``indices`` (m, 3) u4). The preview mesh is the window's front half (``y <= 0``); its back half is the mirror image in ``y = 0`` (:func:`auszug.tracery.preview.preview_mesh`). ``bounds`` [xmin, ymin, xmax, ymax] of the 2D structure; ``mesh_bounds`` [xmin, ymin, zmin, xmax, ymax, zmax] of the preview mesh (its front half). ``values``: the overrides as the server understood them (canonical ``KEY=VALUE``). ``build_ms``, ``mesh_ms``: the server's time for the structure and the mesh. */
+/** A built window; it has a payload: the preview mesh (``positions`` (n, 3) f4, ``indices`` (m, 3) u4). The preview mesh is the window's front half (``y <= 0``); its back half is the mirror image in ``y = 0`` (:func:`auszug.tracery.preview.preview_mesh`). ``bounds`` [xmin, ymin, xmax, ymax] of the 2D structure; ``mesh_bounds`` [xmin, ymin, zmin, xmax, ymax, zmax] of the preview mesh (its front half). ``values``: the overrides as the server understood them (canonical ``KEY=VALUE``). ``build_ms``, ``mesh_ms``: the server's time for the structure and the mesh; ``cached``: they came from the server's cache of recently built windows (the times are then the original build's). */
 export interface TraceryGeometry {
   style: string;
   path: string;
@@ -483,6 +483,7 @@ export interface TraceryGeometry {
   build_ms: number;
   mesh_ms: number;
   binary_floats: number;
+  cached: boolean;
   id: number;
   type: "tracery";
 }

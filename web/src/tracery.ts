@@ -14,6 +14,7 @@ import { perFrame } from "./frames";
 import { vertexNormals } from "./meshnormals";
 import type { ClientMessage, ServerMessage, Styles, TraceryField, TraceryGeometry } from "./protocol";
 import { VIEW3D } from "./scene";
+import { shadeVertices, type Lighting } from "./vertexlight";
 import { installShortcuts, registerShortcut } from "./shortcuts";
 import { History, readTraceryUrl, withValue, writeTraceryUrl, type TraceryState } from "./tracerystate";
 
@@ -24,7 +25,7 @@ export interface TraceryTiming {
   sent: number;
   received: number;
   svg: number;
-  /** The 3D buffers replaced (normals computed), the frame started, the frame drawn. */
+  /** The 3D buffers rewritten (normals and vertex colours computed), the frame started, the frame drawn. */
   meshed: number;
   frame: number;
   rendered: number;
@@ -297,11 +298,11 @@ function show(msg: TraceryGeometry, binary: ArrayBuffer): void {
   buildFields(msg.fields);
   drawSvg(msg);
   if (pending) pending.svg = performance.now();
-  view3d.setMesh(msg, binary);
-  if (pending) pending.meshed = performance.now();
+  view3d.setMesh(msg, binary); // and draws the frame (the timing's `meshed`, `frame` and `rendered`)
   document.body.dataset.regions = String(msg.regions.length);
   status(`${msg.path || msg.name}: ${msg.regions.length} regions, ${msg.n_lights} lights, depth ${msg.depth}; ` +
-    `built in ${msg.build_ms.toFixed(1)} ms, preview mesh ${msg.mesh_ms.toFixed(1)} ms ` +
+    `${msg.cached ? "from the server's cache (built in" : "built in"} ${msg.build_ms.toFixed(1)} ms, ` +
+    `preview mesh ${msg.mesh_ms.toFixed(1)} ms${msg.cached ? ")" : ""} ` +
     `(${msg.indices.shape[0]} triangles; exports are the finished watertight mesh)`);
 }
 
@@ -317,27 +318,37 @@ svgHost.appendChild(svg);
 const FILL: Record<string, string> = { light: "#a9c9e8", blind: "#b3a997" };
 const FRAME = ["#e4ddd2", "#d9d1c4"];
 
+/** Set attribute `name` of `el` to `value` unless it has it already (an unchanged path is not redrawn). */
+function setAttr(el: Element, name: string, value: string): void {
+  if (el.getAttribute(name) !== value) el.setAttribute(name, value);
+}
+
+/** The regions as SVG paths. The path elements are kept between edits and their attributes updated in
+ * place (most edits change the `d` of every path and nothing else), not replaced. */
 function drawSvg(msg: TraceryGeometry): void {
   const [x0, y0, x1, y1] = msg.bounds;
   const m = 0.05 * Math.max(x1 - x0, y1 - y0);
-  svg.setAttribute("viewBox", `${x0 - m} ${-(y1 + m)} ${x1 - x0 + 2 * m} ${y1 - y0 + 2 * m}`);
-  const sw = 0.003 * (x1 - x0);
-  const paths: SVGPathElement[] = [];
-  for (const r of msg.regions) {
-    const p = document.createElementNS(SVGNS, "path");
-    p.setAttribute("d", r.d);
-    p.setAttribute("fill", r.group === "arch" && r.depth === 0 ? "#cfc6b8" : r.role === "frame" ? FRAME[r.depth % 2] : FILL[r.role] ?? "#ccc");
-    p.setAttribute("stroke", "#3b3530");
-    p.setAttribute("stroke-width", String(sw));
-    p.dataset.id = r.id;
-    p.dataset.group = r.group;
-    p.dataset.role = r.role;
-    const t = document.createElementNS(SVGNS, "title");
-    t.textContent = `${r.id} (${r.group}, ${r.role})`;
-    p.appendChild(t);
-    paths.push(p);
+  setAttr(svg, "viewBox", `${x0 - m} ${-(y1 + m)} ${x1 - x0 + 2 * m} ${y1 - y0 + 2 * m}`);
+  const sw = String(0.003 * (x1 - x0));
+  while (flip.childElementCount > msg.regions.length) flip.lastElementChild!.remove();
+  for (const [i, r] of msg.regions.entries()) {
+    let p = flip.children[i] as SVGPathElement | undefined;
+    if (!p) {
+      p = document.createElementNS(SVGNS, "path");
+      p.setAttribute("stroke", "#3b3530");
+      p.appendChild(document.createElementNS(SVGNS, "title"));
+      flip.appendChild(p);
+    }
+    setAttr(p, "d", r.d);
+    setAttr(p, "fill", r.group === "arch" && r.depth === 0 ? "#cfc6b8" : r.role === "frame" ? FRAME[r.depth % 2] : FILL[r.role] ?? "#ccc");
+    setAttr(p, "stroke-width", sw);
+    if (p.dataset.id !== r.id) p.dataset.id = r.id;
+    if (p.dataset.group !== r.group) p.dataset.group = r.group;
+    if (p.dataset.role !== r.role) p.dataset.role = r.role;
+    const title = `${r.id} (${r.group}, ${r.role})`;
+    const t = p.firstElementChild!;
+    if (t.textContent !== title) t.textContent = title;
   }
-  flip.replaceChildren(...paths);
 }
 
 // ---------------------------------------------------------------- 3D
@@ -349,9 +360,16 @@ class View3d {
   readonly camera = new THREE.PerspectiveCamera(35, 1, 0.01, 1e5);
   readonly orbit: OrbitControls;
   readonly geometry = new THREE.BufferGeometry();
+  /** The back half's: the same positions and indices, its own colours (shaded with mirrored normals). */
+  readonly backGeometry = new THREE.BufferGeometry();
   readonly mesh: THREE.Mesh;
   /** The back half: the front half mirrored in the middle plane y = 0 (the same buffers). */
   readonly back: THREE.Mesh;
+  readonly lighting: Lighting;
+  /** Vertex normals of the current mesh (CPU only: the shading is per vertex). */
+  private normals = new Float32Array(0);
+  /** Whether the back half's colours are those of the current mesh (shaded when it is first shown). */
+  private backShaded = false;
   lastFrameAt = 0;
   frames = 0;
   /** How many vertices of the buffers the current mesh uses. */
@@ -366,20 +384,31 @@ class View3d {
     this.renderer.setClearColor(SKY);
     this.renderer.domElement.dataset.testid = "tracery-canvas";
     host.appendChild(this.renderer.domElement);
-    this.scene.add(new THREE.HemisphereLight(0xffffff, 0xb8b0a0, 1.6));
-    const sun = new THREE.DirectionalLight(0xffffff, 1.5);
-    sun.position.set(0.6, -1, 1.6);
-    this.scene.add(sun);
-    const fill = new THREE.DirectionalLight(0xffffff, 0.6);
-    fill.position.set(-1, 0.8, 0.4);
-    this.scene.add(fill);
     this.camera.up.set(0, 0, 1);
-    // Lambert shading (matte stone): on a software renderer a frame of Fig. 20h costs about half of the
-    // design page's MeshStandardMaterial (bench_studio_tracery.py); both sides lit (the preview is not closed)
-    const material = new THREE.MeshLambertMaterial({ color: 0xcfc6b8, side: THREE.DoubleSide });
+    // Lambert shading (matte stone), computed per vertex (vertexlight.ts) and drawn unlit with vertex
+    // colours: on a software renderer the fragment shader is a frame's cost (bench_studio_tracery.py).
+    // The lights are fixed in the world (they do not follow the camera), as three.js lights would be:
+    // a hemisphere light along +y (three.js's default light position), a sun and a fill light.
+    const rgb = (hex: number, k: number): [number, number, number] => {
+      const c = new THREE.Color(hex); // sRGB hex -> linear working colour space
+      return [k * c.r, k * c.g, k * c.b];
+    };
+    const toward = (x: number, y: number, z: number): [number, number, number] => {
+      const l = Math.hypot(x, y, z);
+      return [x / l, y / l, z / l];
+    };
+    this.lighting = {
+      albedo: rgb(0xcfc6b8, 1),
+      hemisphere: { up: [0, 1, 0], sky: rgb(0xffffff, 1.6), ground: rgb(0xb8b0a0, 1.6) },
+      directional: [{ toward: toward(0.6, -1, 1.6), color: rgb(0xffffff, 1.5) },
+        { toward: toward(-1, 0.8, 0.4), color: rgb(0xffffff, 0.6) }],
+    };
+    // front faces only: the preview's triangles face out of the stone (tracery/preview.py, tested), the
+    // mirrored back half included (three.js flips the winding of a mirrored object)
+    const material = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.FrontSide });
     this.mesh = new THREE.Mesh(this.geometry, material);
     this.mesh.name = "window";
-    this.back = new THREE.Mesh(this.geometry, material);
+    this.back = new THREE.Mesh(this.backGeometry, material);
     this.back.name = "window-back";
     this.back.scale.set(1, -1, 1);
     this.scene.add(this.mesh, this.back);
@@ -407,31 +436,36 @@ class View3d {
     // rewrites them in place (bufferSubData), where new buffers would cost the software renderer a
     // new vertex array and uploads of their whole size. They grow (new buffers, the old ones freed)
     // only when a mesh does not fit.
+    // 16-bit indices while the vertices fit them: half the bytes to upload after an edit
     let P = this.geometry.getAttribute("position") as THREE.BufferAttribute | undefined;
     let I = this.geometry.getIndex();
     if (!P || !I || P.array.length < 3 * nv || I.array.length < 3 * nt) {
       const cv = Math.ceil(1.25 * nv), ct = Math.ceil(1.25 * nt);
       this.geometry.dispose();
+      this.backGeometry.dispose();
       P = new THREE.BufferAttribute(new Float32Array(3 * cv), 3);
-      I = new THREE.BufferAttribute(new Uint32Array(3 * ct), 1);
-      this.geometry.setAttribute("position", P);
-      this.geometry.setAttribute("normal", new THREE.BufferAttribute(new Float32Array(3 * cv), 3));
-      this.geometry.setIndex(I);
+      I = new THREE.BufferAttribute(cv <= 65536 ? new Uint16Array(3 * ct) : new Uint32Array(3 * ct), 1);
+      this.normals = new Float32Array(3 * cv);
+      for (const g of [this.geometry, this.backGeometry]) {
+        g.setAttribute("position", P);
+        g.setAttribute("color", new THREE.BufferAttribute(new Float32Array(3 * cv), 3));
+        g.setIndex(I);
+      }
     }
-    const N = this.geometry.getAttribute("normal") as THREE.BufferAttribute;
+    const C = this.geometry.getAttribute("color") as THREE.BufferAttribute;
     (P.array as Float32Array).set(pos);
-    (I.array as Uint32Array).set(idx);
-    vertexNormals(pos, idx, nv, nt, N.array as Float32Array);
-    for (const [attr, n] of [[P, 3 * nv], [N, 3 * nv], [I, 3 * nt]] as [THREE.BufferAttribute, number][]) {
-      attr.clearUpdateRanges();
-      attr.addUpdateRange(0, n);
-      attr.needsUpdate = true;
-    }
-    this.geometry.setDrawRange(0, 3 * nt);
+    (I.array as Uint16Array | Uint32Array).set(idx);
+    vertexNormals(pos, idx, nv, nt, this.normals);
+    shadeVertices(this.normals, nv, this.lighting, C.array as Float32Array);
+    for (const [attr, n] of [[P, 3 * nv], [C, 3 * nv], [I, 3 * nt]] as [THREE.BufferAttribute, number][]) this.upload(attr, n);
+    this.backShaded = false;
     this.used = nv;
     const [a, b, c, d, e, f] = msg.mesh_bounds;
-    this.geometry.boundingBox = new THREE.Box3(new THREE.Vector3(a, b, c), new THREE.Vector3(d, e, f));
-    this.geometry.boundingSphere = this.geometry.boundingBox.getBoundingSphere(new THREE.Sphere());
+    for (const g of [this.geometry, this.backGeometry]) {
+      g.setDrawRange(0, 3 * nt);
+      g.boundingBox = new THREE.Box3(new THREE.Vector3(a, b, c), new THREE.Vector3(d, e, f));
+      g.boundingSphere = g.boundingBox.getBoundingSphere(new THREE.Sphere());
+    }
     // the whole window: the front half and its mirror image
     this.bounds.set(new THREE.Vector3(a, b, c), new THREE.Vector3(d, Math.max(e, -b), f));
     const key = `${msg.style}\u0000${msg.path}`;
@@ -439,7 +473,24 @@ class View3d {
       this.fittedFor = key;
       this.fit();
     }
-    this.requestRender();
+    if (pending) pending.meshed = performance.now();
+    // drawn now, not at the next animation frame: the canvas is shown at the browser's next frame either
+    // way, and the software renderer's work is then done before it rather than inside it
+    this.render();
+  }
+
+  private upload(attr: THREE.BufferAttribute, n: number): void {
+    attr.clearUpdateRanges();
+    attr.addUpdateRange(0, n);
+    attr.needsUpdate = true;
+  }
+
+  /** The back half's colours for the current mesh, computed and uploaded when it is first drawn. */
+  private shadeBack(): void {
+    const CB = this.backGeometry.getAttribute("color") as THREE.BufferAttribute;
+    shadeVertices(this.normals, this.used, this.lighting, CB.array as Float32Array, true);
+    this.upload(CB, 3 * this.used);
+    this.backShaded = true;
   }
 
   private corners(): THREE.Vector3[] {
@@ -480,6 +531,12 @@ class View3d {
     return true;
   }
 
+  /** Calls `fn` after every frame drawn; returns the function that stops it. */
+  onFrame(fn: () => void): () => void {
+    this.frameListeners.add(fn);
+    return () => this.frameListeners.delete(fn);
+  }
+
   readonly requestRender = perFrame(() => this.render());
 
   render(): void {
@@ -487,6 +544,7 @@ class View3d {
     // seen from the front, the back half shows only through the lights: it is drawn when the camera is
     // behind the middle plane, which halves a frame's triangles in the usual views
     this.back.visible = this.camera.position.y > 0;
+    if (this.back.visible && !this.backShaded) this.shadeBack();
     this.renderer.render(this.scene, this.camera);
     this.lastFrameAt = performance.now();
     this.frames++;

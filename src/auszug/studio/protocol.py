@@ -850,7 +850,8 @@ class TraceryGeometry:
     ``bounds`` [xmin, ymin, xmax, ymax] of the 2D structure; ``mesh_bounds``
     [xmin, ymin, zmin, xmax, ymax, zmax] of the preview mesh (its front half). ``values``: the
     overrides as the server understood them (canonical ``KEY=VALUE``).
-    ``build_ms``, ``mesh_ms``: the server's time for the structure and the mesh.
+    ``build_ms``, ``mesh_ms``: the server's time for the structure and the mesh; ``cached``: they
+    came from the server's cache of recently built windows (the times are then the original build's).
     """
 
     style: str
@@ -868,6 +869,7 @@ class TraceryGeometry:
     build_ms: float
     mesh_ms: float
     binary_floats: int
+    cached: bool = False
     id: int = 0
     type: Literal["tracery"] = "tracery"
 

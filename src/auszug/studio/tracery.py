@@ -7,7 +7,10 @@ with the same code as ``auszug tracery`` (:meth:`Style.with_overrides`,
 the window's exact 2D regions and a preview mesh
 (:func:`auszug.tracery.preview.preview_mesh`). A refused value changes
 nothing, since the server keeps no tracery state; undo and redo are the
-page's (a list of states).
+page's (a list of states). The last :data:`CACHE_WINDOWS` built windows are
+remembered by their style's value (the complete style table), so undo, redo
+and a value typed again come back without a build: a memo of a pure
+function, bounded in count and in bytes (:data:`CACHE_BYTES`).
 
 Examples
 --------
@@ -27,7 +30,9 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import threading
 import time
+from collections import OrderedDict
 from functools import lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -51,7 +56,8 @@ from auszug.tracery.style import (
 if TYPE_CHECKING:
     from auszug.studio.session import Workspace
 
-__all__ = ["FIELDS", "STYLE_SUFFIXES", "window_style", "build_message", "style_text", "save_style",
+__all__ = ["FIELDS", "STYLE_SUFFIXES", "CACHE_WINDOWS", "CACHE_BYTES", "WINDOWS", "WindowCache", "style_key",
+           "window_style", "build_message", "style_text", "save_style",
            "export_window", "style_files", "split_values", "svg_path", "tracery_text"]
 
 #: Endings of style files the page opens and saves.
@@ -60,6 +66,10 @@ STYLE_SUFFIXES = (".toml", ".json")
 MAX_SUBDIVIDE = 4
 #: Most override values one message may carry.
 MAX_VALUES = 64
+#: Built windows the server remembers (by the style's value), the least recently used dropped first.
+CACHE_WINDOWS = 24
+#: ... and at most this many bytes of them (preview meshes and SVG path texts; Fig. 20h is about 0.3 MB).
+CACHE_BYTES = 64 * 2**20
 
 _ORIENT = ("standing", "lying")
 #: The page's fields: (key, label, group, kind, choices). Profiles list the built-in ones.
@@ -266,7 +276,13 @@ def svg_path(curves: tuple[Any, ...]) -> str:
     """
     from auszug.geometry import Arc
 
-    x, y = curves[0].start.tolist()
+    c0 = curves[0]
+    if isinstance(c0, Arc):     # c0.start's arithmetic: centre + radius * (cos, sin) of theta0 + 0 * sweep
+        cx, cy = c0.center.tolist()
+        th = float(c0.theta0) + 0.0 * float(c0.sweep)
+        x, y = cx + float(c0.radius) * math.cos(th), cy + float(c0.radius) * math.sin(th)
+    else:
+        x, y = c0.p0.tolist()
     parts = [f"M{_fmt(x)} {_fmt(y)}"]
     for c in curves:
         if isinstance(c, Arc):
@@ -280,23 +296,104 @@ def svg_path(curves: tuple[Any, ...]) -> str:
                 qx, qy = cx + r * math.cos(th), cy + r * math.sin(th)
                 parts.append(f"A{rs} {rs} 0 {1 if abs(part) > math.pi else 0} {1 if part > 0 else 0} "
                              f"{_fmt(qx)} {_fmt(qy)}")
-        else:
-            x, y = c.end.tolist()
-            parts.append(f"L{_fmt(x)} {_fmt(y)}")
+        else:                   # c.end's arithmetic: p0 + 1 * (p1 - p0)
+            (x0, y0), (x1, y1) = c.p0.tolist(), c.p1.tolist()
+            parts.append(f"L{_fmt(x0 + (x1 - x0))} {_fmt(y0 + (y1 - y0))}")
     parts.append("Z")
     return " ".join(parts)
 
 
-def build_message(st: Style, style: str, path: str, values: list[str], msg_id: int = 0
-                  ) -> tuple[P.TraceryGeometry, bytes]:
-    """The :class:`~auszug.studio.protocol.TraceryGeometry` of ``st`` and its payload (the preview mesh).
+@dataclasses.dataclass(frozen=True)
+class _Built:
+    """What a window's message carries that depends on its style's value alone (the cache's entries)."""
 
-    Raises
-    ------
-    ParameterError
-        If the style's window cannot be built (a misfit between values).
+    regions: list[P.TraceryRegion]
+    n_lights: int
+    depth: int
+    bounds: list[float]
+    mesh_bounds: list[float]
+    n_verts: int
+    n_faces: int
+    payload: bytes
+    build_ms: float
+    mesh_ms: float
+
+    @property
+    def nbytes(self) -> int:
+        """About the memory it holds: the payload and the path texts."""
+        return len(self.payload) + sum(len(r.d) + len(r.id) + 64 for r in self.regions)
+
+
+class WindowCache:
+    """The last built windows by key, least recently used dropped first; thread-safe.
+
+    At most ``entries`` windows and ``max_bytes`` bytes (:attr:`_Built.nbytes`); a window larger
+    than ``max_bytes`` is not kept.
+
+    Examples
+    --------
+    >>> c = WindowCache(entries=2, max_bytes=10**6)
+    >>> c.put("a", 1, 10); c.put("b", 2, 10); c.get("a"); c.put("c", 3, 10)
+    1
+    >>> c.get("b") is None, c.get("a"), c.get("c"), len(c)
+    (True, 1, 3, 2)
     """
-    _, _, sub = split_values(values)
+
+    def __init__(self, entries: int = CACHE_WINDOWS, max_bytes: int = CACHE_BYTES) -> None:
+        self.entries, self.max_bytes = entries, max_bytes
+        self._items: OrderedDict[str, tuple[Any, int]] = OrderedDict()
+        self._bytes = 0
+        self._lock = threading.Lock()
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    @property
+    def nbytes(self) -> int:
+        """The bytes of the windows held (as given to :meth:`put`)."""
+        return self._bytes
+
+    def get(self, key: str) -> Any:
+        """The value kept under ``key`` (now the most recently used), or None."""
+        with self._lock:
+            item = self._items.get(key)
+            if item is None:
+                return None
+            self._items.move_to_end(key)
+            return item[0]
+
+    def put(self, key: str, value: Any, nbytes: int) -> None:
+        """Keep ``value`` (about ``nbytes`` bytes) under ``key``, dropping the least recently used to fit."""
+        with self._lock:
+            old = self._items.pop(key, None)
+            if old is not None:
+                self._bytes -= old[1]
+            if nbytes > self.max_bytes:
+                return
+            self._items[key] = (value, nbytes)
+            self._bytes += nbytes
+            while len(self._items) > self.entries or self._bytes > self.max_bytes:
+                _, (_, n) = self._items.popitem(last=False)
+                self._bytes -= n
+
+    def clear(self) -> None:
+        """Forget every window."""
+        with self._lock:
+            self._items.clear()
+            self._bytes = 0
+
+
+#: The server's cache of built windows (:func:`build_message`).
+WINDOWS = WindowCache()
+
+
+def style_key(st: Style) -> str:
+    """The style's value as text: equal for styles that build the same window (the cache's key)."""
+    return json.dumps(st.data, sort_keys=True, separators=(",", ":"), default=repr)
+
+
+def _built(st: Style) -> _Built:
+    """Build the window of ``st``: structure, preview mesh, SVG paths."""
     t0 = time.perf_counter()
     t = build(st)
     t1 = time.perf_counter()
@@ -306,20 +403,43 @@ def build_message(st: Style, style: str, path: str, values: list[str], msg_id: i
     # (Tracery.bounds samples all 121 regions of Fig. 20h finely, as long as the build itself)
     arch = t.regions[0].polygon()
     lo, hi = arch.min(0), arch.max(0)
-    payload = verts.tobytes() + faces.tobytes()
     regions = [P.TraceryRegion(id=r.id, group=r.group, depth=r.depth, role=r.role, d=svg_path(r.curves))
                for r in t.regions]
     vlo, vhi = verts.min(0), verts.max(0)
+    return _Built(regions=regions, n_lights=len(t.lights), depth=t.depth,
+                  bounds=[float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])],
+                  mesh_bounds=[float(x) for x in (*vlo, *vhi)], n_verts=len(verts), n_faces=len(faces),
+                  payload=verts.tobytes() + faces.tobytes(),
+                  build_ms=round((t1 - t0) * 1e3, 3), mesh_ms=round((t2 - t1) * 1e3, 3))
+
+
+def build_message(st: Style, style: str, path: str, values: list[str], msg_id: int = 0,
+                  cache: WindowCache | None = WINDOWS) -> tuple[P.TraceryGeometry, bytes]:
+    """The :class:`~auszug.studio.protocol.TraceryGeometry` of ``st`` and its payload (the preview mesh).
+
+    A window built before from an equal style (:func:`style_key`) comes from ``cache`` (None: none).
+
+    Raises
+    ------
+    ParameterError
+        If the style's window cannot be built (a misfit between values).
+    """
+    _, _, sub = split_values(values)
+    key = style_key(st) if cache is not None else ""
+    b = cache.get(key) if cache is not None else None
+    cached = b is not None
+    if b is None:
+        b = _built(st)
+        if cache is not None:
+            cache.put(key, b, b.nbytes)
     msg = P.TraceryGeometry(
         style=style, path=path, name=st.name, values=_canonical(values), fields=_fields(st, sub),
-        regions=regions, n_lights=len(t.lights), depth=t.depth,
-        bounds=[float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])],
-        mesh_bounds=[float(x) for x in (*vlo, *vhi)],
-        positions=P.ArrayRef(offset=0, shape=[len(verts), 3]),
-        indices=P.ArrayRef(offset=verts.size, shape=[len(faces), 3], dtype="u4"),
-        build_ms=round((t1 - t0) * 1e3, 3), mesh_ms=round((t2 - t1) * 1e3, 3),
-        binary_floats=verts.size + faces.size, id=msg_id)
-    return msg, payload
+        regions=b.regions, n_lights=b.n_lights, depth=b.depth, bounds=b.bounds, mesh_bounds=b.mesh_bounds,
+        positions=P.ArrayRef(offset=0, shape=[b.n_verts, 3]),
+        indices=P.ArrayRef(offset=3 * b.n_verts, shape=[b.n_faces, 3], dtype="u4"),
+        build_ms=b.build_ms, mesh_ms=b.mesh_ms, binary_floats=3 * (b.n_verts + b.n_faces), cached=cached,
+        id=msg_id)
+    return msg, b.payload
 
 
 def _flat(obj: Any) -> dict[str, Any]:

@@ -87,26 +87,27 @@ def build(style: Style | str, params: WindowParams | None = None,
     f = p.outer + p.inner
     out.append(Region("arch", "arch", 0, a.curves(), "frame", f, st.wall.profile, 0.0))
     _window(a, p, st, 0, "arch", "arch", 0.0, out, {})
-    final = [r if r.origin == (0.0, 0.0) else replace(r, curves=tuple(_shift_curve(c, *r.origin) for c in r.curves))
+    final = [r if r.origin == (0.0, 0.0) else
+             Region(r.id, r.group, r.depth, _shifted(r.curves, *r.origin), r.role, r.border, r.profile, r.face,
+                    r.template, r.origin)
              for r in out]
     return Tracery(tuple(final), p, st)
 
 
-def _shift_curve(c: Curve, dx: float, dy: float) -> Curve:
-    """``c`` translated by (dx, dy), built without re-validation (the curve is valid already)."""
-    n = object.__new__(type(c))
+def _shifted(curves: tuple[Curve, ...], dx: float, dy: float) -> tuple[Curve, ...]:
+    """``curves`` translated by (dx, dy), built without re-validation (they are valid already)."""
     d = np.array((dx, dy))
-    if isinstance(c, Arc):
-        object.__setattr__(n, "center", c.center + d)
-        object.__setattr__(n, "radius", c.radius)
-        object.__setattr__(n, "theta0", c.theta0)
-        object.__setattr__(n, "sweep", c.sweep)
-    else:
-        assert isinstance(c, Line)
-        object.__setattr__(n, "p0", c.p0 + d)
-        object.__setattr__(n, "p1", c.p1 + d)
-        object.__setattr__(n, "_len", c._len)
-    return n
+    out: list[Curve] = []
+    for c in curves:
+        n = object.__new__(type(c))
+        # the fields set as the frozen dataclasses' own __init__ leaves them (no __slots__)
+        if isinstance(c, Arc):
+            n.__dict__.update(center=c.center + d, radius=c.radius, theta0=c.theta0, sweep=c.sweep)
+        else:
+            assert isinstance(c, Line)
+            n.__dict__.update(p0=c.p0 + d, p1=c.p1 + d, _len=c._len)
+        out.append(n)
+    return tuple(out)
 
 
 def _placed(rel: list[Region], prefix: str, dx: float, dy: float) -> list[Region]:

@@ -224,11 +224,19 @@ class Prototype:
 
     @cached_property
     def regions(self) -> dict[str, tuple[Curve, ...]]:
-        """The seven cells offset inwards by ``inner`` (the openings), keys :data:`CELLS`."""
+        """The seven cells offset inwards by ``inner`` (the openings), keys :data:`CELLS`.
+
+        The window is symmetric: the left fillet's opening is the right one's mirror image in
+        the middle line (offset once; the two are exact mirror images).
+        """
         b = self.params.inner
         out: dict[str, tuple[Curve, ...]] = {}
-        for name in CELLS:
-            if name.startswith("sub-arch"):
+        for name in (*CELLS[:-2], "fillet-right", "fillet-left"):
+            if name == "fillet-left":
+                flip = np.array([[-1.0, 0.0], [0.0, 1.0]])
+                at = np.array([2.0 * self.ensemble.mid, 0.0])
+                out[name] = tuple(c.transformed(flip, at).reversed() for c in reversed(out["fillet-right"]))
+            elif name.startswith("sub-arch"):
                 out[name] = self.sub_region(name).curves()
             elif name == "circle":
                 out[name] = (Arc(self.circle_center, self.circle_radius - b, -0.5 * math.pi, 2 * math.pi),)
@@ -237,7 +245,7 @@ class Prototype:
                     out[name] = offset_curves(self.cells[name], b, closed=True).curves
                 except GeometryError as e:
                     raise GeometryError(f"{name}: {e}") from None
-        return out
+        return {name: out[name] for name in CELLS}
 
     def sub_region(self, name: str) -> PointedArch:
         """The sub-arch region ``"sub-arch-left"`` or ``"sub-arch-right"`` (cell offset by ``inner``)."""

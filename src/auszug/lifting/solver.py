@@ -354,6 +354,7 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     converged = False
     it = 0
     stat = np.inf
+    sticky = False
 
     def small_step(d: Array) -> bool:
         return float(np.abs(d).max(initial=0.0)) <= tol
@@ -383,7 +384,11 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
             break
         # the step, with the Hessian regularised until its curvature along the step is positive:
         # first without the constraints' curvature (the energy's own, positive, scale), then + delta I
-        gauss_newton = not k
+        # after a shortened Gauss-Newton step the full Hessian is not tried again first (measured: it
+        # failed the curvature test on every step of a crawl, one wasted factorisation per step)
+        gauss_newton = not k or sticky
+        if sticky:
+            delta = 0.0
         rhs = np.concatenate([-g, -q])
         while True:
             K = asm.matrix(jc, jq, None if gauss_newton else lam, delta)
@@ -437,6 +442,7 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
             converged = True
             v = v_new
             break
+        sticky = bool(k) and gauss_newton and step < 1.0
         # Levenberg-Marquardt-like: a short step means a poor quadratic model, so regularise more
         delta = max(GROW * delta, 1e-6) if step < 0.25 else (delta / GROW if delta > 1e-10 else 0.0)
         if k:

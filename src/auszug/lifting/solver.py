@@ -198,11 +198,11 @@ class _Jacobian:
     def values(self, v: Array) -> Array:
         """The entries' values at ``v``, shape (size,)."""
         raw = np.concatenate([self.lin_val, self.bv * v[self.bj], self.bv * v[self.bi]])
-        return np.bincount(self.inv, raw, minlength=self.size).astype(float)
+        return np.asarray(np.bincount(self.inv, raw, minlength=self.size), dtype=float)
 
     def rmatvec(self, vals: Array, y: Array) -> Array:
         """J^T y with the entry values ``vals``, shape (n,)."""
-        return np.bincount(self.col, vals * y[self.row], minlength=self.n).astype(float)
+        return np.asarray(np.bincount(self.col, vals * y[self.row], minlength=self.n), dtype=float)
 
 
 class _Assembly:

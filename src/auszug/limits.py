@@ -125,9 +125,8 @@ class Limits:
         solve is a Newton iteration over every crossing and cue pair, and the
         time grows faster than quadratically (docs/limits.md): the 100-curve
         benchmark sketch (a vase of 96 x 4 curves, 384 crossings) lifts in
-        about 2 minutes, a grid of 20 x 20 straight strokes (400 crossings,
-        whose solves do not converge) in 7.4 minutes on a loaded 2-core
-        machine. The bundled examples have 8-15.
+        69-76 s, a grid of 20 x 20 straight strokes (400 crossings, whose
+        solves do not converge) in 445 s on a loaded 2-core machine. The bundled examples have 8-15.
     file_bytes : int
         Largest input file, checked before it is read. A 200 MB file cost
         7.7 GB of memory and 68 s; the largest corpus file is 3 KB, and 64 MB

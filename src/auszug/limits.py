@@ -123,9 +123,10 @@ class Limits:
     sketch_crossings : int
         Most crossings between strokes of a sketch given to lifting. Each
         solve is a Newton iteration over every crossing and cue pair, and the
-        time grows faster than quadratically: a grid of 10 x 10 strokes (100
-        crossings) lifts in 23 s, 20 x 20 (400 crossings) in 230 s (2 cores,
-        shared). The bundled examples have 8-15.
+        time grows faster than quadratically (docs/limits.md): the 100-curve
+        benchmark sketch (a vase of 96 x 4 curves, 384 crossings) lifts in
+        69-76 s, a grid of 20 x 20 straight strokes (400 crossings, whose
+        solves do not converge) in 445 s on a loaded 2-core machine. The bundled examples have 8-15.
     file_bytes : int
         Largest input file, checked before it is read. A 200 MB file cost
         7.7 GB of memory and 68 s; the largest corpus file is 3 KB, and 64 MB
@@ -170,7 +171,7 @@ class Limits:
     sweep_faces: int = 1_000_000
     sketch_strokes: int = 256
     sketch_segments: int = 4096
-    sketch_crossings: int = 128
+    sketch_crossings: int = 400
     file_bytes: int = 64 * 1024 * 1024
     quoted: int = 80
     message: int = 2000

@@ -364,7 +364,17 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     # 1. seed and propagation, 2. baseline: from each seed crossing, the lowest energy kept
     best: tuple[float, Array, Array | None, list[Stage]] | None = None
     start_stages = list(pr.stages)
-    for k in pr.seeds:
+
+    def baseline() -> SolveResult:
+        E = pr.energy(params.w_a_baseline)
+        par.add(E, all_par, params.w_p_baseline * wfac)
+        C = pr.constraints()
+        pr.smooth.add(C, np.arange(len(pr.smooth)), 1.0)
+        pr.lam = None
+        return pr.run("baseline", E, C, candidate=True)
+
+    first_v: Array | None = None   # the first seed's propagation, when its baseline was skipped
+    for i, k in enumerate(pr.seeds):
         pr.v = _initial(g, pr.n, pr.smooth, int(k))
         pr.lam = None
         pr.stages = list(start_stages)
@@ -373,19 +383,26 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         C = pr.constraints()
         pr.smooth.add(C, np.array([int(k)]), 1.0)
         r1 = pr.run(f"seed {int(k)}", E, C, candidate=True)
-        E = pr.energy(params.w_a_baseline)
-        par.add(E, all_par, params.w_p_baseline * wfac)
-        C = pr.constraints()
-        pr.smooth.add(C, np.arange(len(pr.smooth)), 1.0)
-        pr.lam = None
-        r2 = pr.run("baseline", E, C, candidate=True)
-        score = r2.energy if r1.converged and r2.converged else np.inf
+        if not r1.converged:
+            # a seed whose propagation does not converge is discarded whatever its baseline does, so that
+            # solve is skipped (it is run at the end only if no seed converges: the first seed's is kept)
+            if i == 0:
+                first_v = pr.v.copy()
+            start_stages = list(pr.stages)
+            continue
+        r2 = baseline()
+        score = r2.energy if r2.converged else np.inf
         start_stages = list(pr.stages)
         if best is not None and np.isfinite(score) and np.isfinite(best[0]) \
                 and abs(score - best[0]) <= SAME_MINIMUM * abs(best[0]):
             break   # a second seed reached the same minimum: the others are not tried
         if best is None or score < best[0]:
             best = (score, pr.v.copy(), pr.lam, list(pr.stages))
+    if first_v is not None and (best is None or not np.isfinite(best[0])):
+        pr.v, pr.stages = first_v, list(start_stages)
+        baseline()
+        start_stages = list(pr.stages)
+        best = (np.inf, pr.v.copy(), pr.lam, list(pr.stages))
     assert best is not None
     _, pr.v, pr.lam, pr.stages = best[0], best[1], best[2], start_stages
     if not np.isfinite(best[0]):

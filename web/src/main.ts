@@ -15,6 +15,7 @@ import { initSideView } from "./sideview";
 import { Store, type Mode } from "./store";
 import { initTopView } from "./topview";
 import { readUrlState, writeUrlState } from "./urlstate";
+import { button } from "./ui";
 
 /** One edit's timeline (performance.now() values), for the speed benchmark and the e2e tests. */
 export interface EditTiming {
@@ -132,15 +133,6 @@ const ctx: Ctx = {
 };
 
 // ---- modes and history (the rest of the toolbar belongs to the modules)
-function button(parent: HTMLElement, text: string, title: string, testid: string, onClick: () => void): HTMLButtonElement {
-  const b = document.createElement("button");
-  b.textContent = text;
-  b.title = title;
-  b.dataset.testid = testid;
-  b.addEventListener("click", onClick);
-  parent.appendChild(b);
-  return b;
-}
 
 const modeTools = document.getElementById("mode-tools")!;
 // the other page of the studio: window tracery (tracery.html, tracery.ts)

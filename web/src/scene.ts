@@ -8,6 +8,7 @@
 // rewrites the buffers in place, so no GPU resources are created or leaked per edit.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
+import { fitDistance } from "./camerafit";
 import { perFrame } from "./frames";
 import { layoutKey, transforms, view } from "./geometry";
 import type { Geometry } from "./protocol";
@@ -222,20 +223,8 @@ export class Views {
     const c = this.bounds.getCenter(new THREE.Vector3());
     const persp = this.rect("persp");
     const aspect = persp ? persp.w / Math.max(persp.h, 1) : 1;
-    const tanV = Math.tan(THREE.MathUtils.degToRad(this.persp.fov) / 2) * VIEW3D.fill, tanH = tanV * aspect;
-    // camera axes: back (towards the camera), right, up (z up; a straight-down view takes y as up)
     const back = dir.clone().normalize();
-    const right = new THREE.Vector3(0, 0, 1).cross(back);
-    if (right.lengthSq() < 1e-12) right.set(1, 0, 0);
-    right.normalize();
-    const up = back.clone().cross(right);
-    // a point at (x, y) across and z towards the camera stays inside when d >= z + |x| / tan
-    let d = 1e-6;
-    for (const p of this.modelPoints()) {
-      p.sub(c);
-      const z = p.dot(back);
-      d = Math.max(d, z + Math.abs(p.dot(right)) / tanH, z + Math.abs(p.dot(up)) / tanV);
-    }
+    const d = fitDistance(this.modelPoints(), c, back, this.persp.fov, aspect, VIEW3D.fill);
     this.persp.position.copy(c).addScaledVector(back, d);
     this.persp.near = d / 1000;
     this.persp.far = d * 100;

@@ -17,6 +17,8 @@ import { VIEW3D } from "./scene";
 import { shadeVertices, type Lighting } from "./vertexlight";
 import { installShortcuts, registerShortcut } from "./shortcuts";
 import { History, readTraceryUrl, withValue, writeTraceryUrl, type TraceryState } from "./tracerystate";
+import { button } from "./ui";
+import { fitDistance } from "./camerafit";
 
 /** One change's timeline (performance.now()), for the speed benchmark and the tests. */
 export interface TraceryTiming {
@@ -61,15 +63,6 @@ const conn = new Connection(socketUrl(window.location), {
 });
 
 // ---------------------------------------------------------------- toolbar
-function button(parent: HTMLElement, text: string, title: string, testid: string, onClick: () => void): HTMLButtonElement {
-  const b = document.createElement("button");
-  b.textContent = text;
-  b.title = title;
-  b.dataset.testid = testid;
-  b.addEventListener("click", onClick);
-  parent.appendChild(b);
-  return b;
-}
 
 const pages = document.getElementById("page-tools")!;
 const toDesign = document.createElement("a");
@@ -504,15 +497,7 @@ class View3d {
     const el = THREE.MathUtils.degToRad(VIEW3D.elevation), az = THREE.MathUtils.degToRad(VIEW3D.azimuth);
     const back = new THREE.Vector3(Math.cos(el) * Math.sin(az), -Math.cos(el) * Math.cos(az), Math.sin(el)).normalize();
     const c = this.bounds.getCenter(new THREE.Vector3());
-    const tanV = Math.tan(THREE.MathUtils.degToRad(this.camera.fov) / 2) * VIEW3D.fill, tanH = tanV * this.camera.aspect;
-    const right = new THREE.Vector3(0, 0, 1).cross(back).normalize();
-    const up = back.clone().cross(right);
-    let d = 1e-6;
-    for (const p of this.corners()) {
-      p.sub(c);
-      const z = p.dot(back);
-      d = Math.max(d, z + Math.abs(p.dot(right)) / tanH, z + Math.abs(p.dot(up)) / tanV);
-    }
+    const d = fitDistance(this.corners(), c, back, this.camera.fov, this.camera.aspect, VIEW3D.fill);
     this.camera.position.copy(c).addScaledVector(back, d);
     this.camera.near = d / 1000;
     this.camera.far = d * 100;

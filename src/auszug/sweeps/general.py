@@ -606,8 +606,7 @@ def extend_profile(mesh: SweepMesh, profile: Array, motion: Motion, tree: MeshTr
     return best
 
 
-def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepParams,
-              max_steps: int = 200) -> Array:
+def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepParams = DEFAULT) -> Array:
     """Ribs ``(k, n, 3)`` of the sweep continued past both ends of its motion while the mesh follows.
 
     Starting from the maps at the motion's integer parameters, each end is extrapolated by the
@@ -615,11 +614,11 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
     profile's centroid normal to the centroid's path (as :func:`profile_planes`; the path's
     tangent from a parabola through the last two centroids and this one), and
     the moved profile's closest points on the nearest cut curve taken as the next rib when at
-    least 90 % of them lie within ``2 eps_prox`` (the rib's map is then corrected to them,
-    Kabsch, and the cut repeated with it: 4 rounds, as in ICP). A failed full step is retried
-    as two and three steps (over a hole in the mesh), then as a half and a quarter step, which
-    ends the growth
-    (the mesh's end). Sample ``j`` of every rib corresponds to profile point ``j``.
+    least ``grow_share`` of them lie within ``grow_tolerance * eps_prox`` (the rib's map is then
+    corrected to them, Kabsch, and the cut repeated with it: 4 rounds, as in ICP). A failed full
+    step is retried as two and three steps (over a hole in the mesh), then as a half and a
+    quarter step, which ends the growth (the mesh's end); at most ``grow_steps`` ribs are added
+    at each end. Sample ``j`` of every rib corresponds to profile point ``j``.
     """
     lo, hi = motion.domain
     ts = lo + np.arange(int(round(hi - lo)) + 1, dtype=float)
@@ -637,7 +636,7 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
     while b - a > 3 and odd[b - 2]:
         b -= 1
     maps = [(r[i], tr[i]) for i in range(a, b)]
-    tol = 2 * params.eps_prox
+    tol = params.grow_tolerance * params.eps_prox
 
     def tangent(c0: Array, c1: Array, c2: Array) -> Array:
         """Unit tangent at ``c2`` of the parabola through three centroids (chord-length parameters)."""
@@ -670,13 +669,13 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
             # where the mesh ends before the profile does, the closest points pile up at the cut's end:
             # the map is fitted to the others, and those samples take the moved profile's points
             m = kabsch(profile[near], cp[near])
-        if np.mean(near) < 0.9:
+        if np.mean(near) < params.grow_share:
             return None
         return np.where(near[:, None], cp, profile @ m[0].T + m[1]), m
 
     def grow(seq: list[tuple[Array, Array]]) -> list[Array]:
         out: list[Array] = []
-        for _ in range(max_steps):
+        for _ in range(params.grow_steps):
             if len(seq) < 2:
                 break
             got = None
@@ -729,14 +728,15 @@ def grown_patch(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: Mes
 
 
 def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepParams, tree: MeshTree,
-                        areas: Array | None = None, step: float = 0.02) -> GeneralSweep | None:
+                        areas: Array | None = None) -> GeneralSweep | None:
     """A sweep by pure translations along a curved path (a double translational surface), or None.
 
     A translation along an arch glides like a turn, and a general sweep fitted to it turns. Here
     the profile is the cut by a general sweep's profile plane at its middle knot, and the mesh is
-    cut by planes *parallel* to it, ``step`` apart on both sides while the mesh follows; on each
-    the profile is moved by translations only (3 rounds of closest points, the mean offset), and a
-    cut counts when 90 % of the moved profile lies within ``2 eps_prox`` of it. The motion is the
+    cut by planes *parallel* to it, ``translation_step`` apart on both sides while the mesh
+    follows (at most ``translation_steps`` on each); on each the profile is moved by
+    translations only (3 rounds of closest points, the mean offset), and a cut counts when
+    ``grow_share`` of the moved profile lies within ``grow_tolerance * eps_prox`` of it. The motion is the
     translations at the cuts (rotation the identity), the profile improved and fitted as in
     :func:`general_patch`.
     """
@@ -754,7 +754,8 @@ def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params:
     if len(p0) < 2:
         return None
     m = n[0]
-    tol = 2 * params.eps_prox
+    tol = params.grow_tolerance * params.eps_prox
+    step = params.translation_step
 
     def place(offset: Array, d_plane: float) -> Array | None:
         cc = cut(mesh, m[None], np.array([d_plane]))
@@ -767,12 +768,12 @@ def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params:
             if near.mean() < 0.5:
                 return None
             offset = (cp[near] - p0[near]).mean(axis=0)
-        return offset if np.mean(dist <= tol) >= 0.9 else None
+        return offset if np.mean(dist <= tol) >= params.grow_share else None
 
     offsets = {0: np.zeros(3)}
     for sign in (1, -1):
         prev, before = np.zeros(3), np.zeros(3)
-        for k in range(1, 400):
+        for k in range(1, params.translation_steps + 1):
             guess = prev + (prev - before) if k > 1 else prev + sign * step * m
             got_k = place(guess, float(d[0] + sign * k * step))
             if got_k is None:

@@ -74,9 +74,9 @@ def _span(ribs):
 def test_grow_steps_bounds_the_ribs_added_at_each_end():
     fx, mesh, profile, motion = _extrusion()
     half = 0.5 * np.ptp(fx.vertices[:, 0])
-    none = grow_ribs(mesh, profile, motion, DEFAULT.with_(grow_steps=0))
-    two = grow_ribs(mesh, profile, motion, DEFAULT.with_(grow_steps=2))
-    every = grow_ribs(mesh, profile, motion, DEFAULT)
+    none = grow_ribs(mesh, profile, motion, DEFAULT.with_(grow_steps=0)).ribs
+    two = grow_ribs(mesh, profile, motion, DEFAULT.with_(grow_steps=2)).ribs
+    every = grow_ribs(mesh, profile, motion, DEFAULT).ribs
     assert len(none) == 3 and len(two) == 3 + 2 * 2
     assert _span(two) == pytest.approx(6 * STEP, abs=1e-9)
     # by default the growth runs to both ends of the mesh (the last step may be a half or a quarter)
@@ -90,8 +90,8 @@ def test_grow_tolerance_and_share_decide_where_a_noisy_sweep_stops():
     (measured: 10 ribs, 0.24 along x); the defaults (2 eps_prox for 90 % of the points) grow it to
     the ends (45 ribs, 0.88 of the mesh's 0.91)."""
     fx, mesh, profile, motion = _extrusion(1e-3)
-    strict = grow_ribs(mesh, profile, motion, DEFAULT.with_(grow_tolerance=0.5, grow_share=1.0))
-    loose = grow_ribs(mesh, profile, motion, DEFAULT)
+    strict = grow_ribs(mesh, profile, motion, DEFAULT.with_(grow_tolerance=0.5, grow_share=1.0)).ribs
+    loose = grow_ribs(mesh, profile, motion, DEFAULT).ribs
     assert len(strict) < len(loose) / 3
     assert _span(loose) >= np.ptp(fx.vertices[:, 0]) - 2 * STEP
 

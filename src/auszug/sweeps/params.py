@@ -156,6 +156,14 @@ class SweepParams:
     grow_tolerance : float
         The distance (in units of ``eps_prox``) within which a grown rib's points must lie of the
         mesh's cut (default 2, the bound of the fit check, ``fit_factor``'s default).
+    grow_skip : int
+        A failed growth step is retried as 2 .. ``grow_skip + 1`` steps at once, over a gap in
+        the mesh that no rib in between can bridge (default 2; 0: no skipping).
+    grow_on_mesh : float
+        A grown rib needs at least this share of the moved profile's points on the mesh. The others
+        lie beyond it: their closest point on the cut is an end of a cut curve (cuts end only on the
+        mesh's boundary) and far, as over a hole or past the mesh's end; they count neither for nor
+        against ``grow_share`` (default 0.5).
     translation_step : float
         Spacing (bounding-box diameters) of the parallel cuts of a translational sweep
         (:func:`~auszug.sweeps.general.translational_patch`; default 0.02).
@@ -222,6 +230,8 @@ class SweepParams:
     grow_steps: int = 200
     grow_share: float = 0.9
     grow_tolerance: float = 2.0
+    grow_skip: int = 2
+    grow_on_mesh: float = 0.5
     translation_step: float = 0.02
     translation_steps: int = 400
     max_match_runs: int = 600
@@ -269,6 +279,9 @@ class SweepParams:
              "in [0.5, 1] (a share of the profile's points)"),
             ("grow_tolerance", _real(self.grow_tolerance) and 0.5 <= self.grow_tolerance <= 20,
              "in [0.5, 20] (multiples of eps_prox)"),
+            ("grow_skip", _whole(self.grow_skip) and 0 <= self.grow_skip <= 16, "a whole number in 0..16"),
+            ("grow_on_mesh", _real(self.grow_on_mesh) and 0.1 <= self.grow_on_mesh <= 1,
+             "in [0.1, 1] (a share of the profile's points)"),
             ("translation_step", _real(self.translation_step) and 1e-4 <= self.translation_step <= 0.5,
              "in [1e-4, 0.5] (bounding-box diameters)"),
             ("translation_steps", _whole(self.translation_steps) and 1 <= self.translation_steps <= LIMITS.sweep_steps,

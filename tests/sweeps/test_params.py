@@ -1,7 +1,7 @@
 """SweepParams (auszug.sweeps.params): validation of every growth setting, and that each one acts.
 
-The growth settings (grow_steps, grow_share, grow_tolerance, translation_step, translation_steps) are
-exercised on the clean extrusion of the base moulding: its true motion is a
+The growth settings (grow_steps, grow_share, grow_tolerance, grow_skip, grow_on_mesh, translation_step,
+translation_steps) are exercised on the clean extrusion of the base moulding: its true motion is a
 translation along x, so the ribs a grown sweep may add and the parallel cuts a translational sweep
 may take are known exactly (the mesh is 0.8 / diameter long along x).
 """
@@ -16,7 +16,7 @@ import pytest
 from auszug.errors import GeometryError
 from auszug.limits import LIMITS
 from auszug.sweeps import DEFAULT, SweepParams, cut, normalise
-from auszug.sweeps.fixtures import extruded
+from auszug.sweeps.fixtures import extruded, with_hole
 from auszug.sweeps.general import grow_ribs, translational_patch
 from auszug.sweeps.motion import Motion
 from auszug.sweeps.patches import MeshTree
@@ -29,6 +29,8 @@ STEP = 0.02     # rib step of the seed motion (bounding-box diameters)
     ("grow_steps", "10"),
     ("grow_share", 0.4), ("grow_share", 1.01), ("grow_share", float("nan")), ("grow_share", "0.9"),
     ("grow_tolerance", 0.0), ("grow_tolerance", 21.0), ("grow_tolerance", float("inf")),
+    ("grow_skip", -1), ("grow_skip", 17), ("grow_skip", 1.5),
+    ("grow_on_mesh", 0.05), ("grow_on_mesh", 1.2), ("grow_on_mesh", None),
     ("translation_step", 0.0), ("translation_step", -0.02), ("translation_step", 0.6),
     ("translation_steps", 0), ("translation_steps", LIMITS.sweep_steps + 1), ("translation_steps", 3.0),
 ])
@@ -54,11 +56,15 @@ def test_unknown_parameter_names_the_known_ones():
 
 
 @cache
-def _extrusion(sigma=0.0):
-    """The extruded moulding, its profile cut in the middle and a 3-rib seed motion along x."""
+def _extrusion(sigma=0.0, hole=False):
+    """The extruded moulding (with a hole of radius 0.06 in the middle), its profile cut at x = x0 and a
+    3-rib seed motion along x from there (x0 = 0, or -0.3 beside the hole)."""
     fx = extruded(sigma=sigma)
+    if hole:
+        fx = with_hole(fx)
+    x0 = -0.3 if hole else 0.0
     mesh = normalise(fx.vertices, fx.faces)
-    c = cut(mesh, np.array([[1.0, 0, 0]]), np.array([0.0]))
+    c = cut(mesh, np.array([[1.0, 0, 0]]), np.array([x0]))
     profile = c.curve(int(np.argmax(np.diff(c.curve_start))))
     t = np.arange(3.0)
     motion = Motion(t, np.repeat(np.eye(3)[None], 3, axis=0), np.outer(t, [STEP, 0, 0]))
@@ -110,3 +116,18 @@ def test_translation_step_and_steps_set_the_parallel_cuts():
     assert np.allclose(few.motion.rotation, np.eye(3))
     assert full.coverage > wide.coverage > few.coverage
     assert full.coverage >= 0.95
+
+
+def test_grow_on_mesh_and_grow_skip_decide_whether_a_hole_is_crossed():
+    """A hole of radius 0.06 in the middle of the extrusion, the seed beside it (x = -0.3): by default
+    the ribs across the hole count the points over it as beyond the mesh and the growth reaches the
+    far end; asking every point to be on the mesh stops it at the hole, unless steps may skip it
+    (12 steps of 0.02 span its 0.12)."""
+    fx, mesh, profile, motion = _extrusion(hole=True)
+    right = 0.5 * np.ptp(fx.vertices[:, 0])
+    reach = {}
+    for name, p in [("default", DEFAULT), ("strict", DEFAULT.with_(grow_on_mesh=1.0, grow_skip=0)),
+                    ("skip", DEFAULT.with_(grow_on_mesh=1.0, grow_skip=12))]:
+        reach[name] = float(grow_ribs(mesh, profile, motion, p).ribs.mean(axis=1)[:, 0].max())
+    assert reach["default"] >= right - STEP and reach["skip"] >= right - STEP
+    assert reach["strict"] <= -0.06 + STEP        # stopped before the hole (centred at x = 0)

@@ -219,14 +219,14 @@ class MeshTree:
         out: IntArray = self._bnd
         return out
 
-    def interior_distance(self, points: ArrayLike, surface: tuple[Array, IntArray] | None = None,
+    def interior_distance(self, points: ArrayLike, surface: MeshTree | tuple[Array, IntArray] | None = None,
                           tol: float = 0.0) -> Array:
         """Distances ``(n,)`` to the mesh, 0 where a point lies beyond the mesh.
 
         A point whose closest point is on the mesh's boundary lies beyond the mesh (past its end or
         over a hole), where the mesh says nothing; the fit check does not count it against a sweep.
 
-        With ``surface``, the swept surface ``(V (k, 3), F (m, 3))`` the points lie on, a point
+        With ``surface``, the swept surface ``(V (k, 3), F (m, 3))`` (or its tree) the points lie on, a point
         farther than ``tol`` from the mesh also counts as beyond it when its closest mesh point lies
         on *another part* of that surface: within ``tol`` of it, and there at least half the
         point's distance away from the point (the reciprocal closest-point test of registration
@@ -248,10 +248,13 @@ class MeshTree:
             gap = np.linalg.norm(c[:, None, :] - (a + f[..., None] * ab), axis=2)
             on = (has & (gap <= 1e-9)).any(axis=1)
             out = np.where(on, 0.0, d)
-        if surface is not None and len(surface[1]):
+        if surface is not None and (isinstance(surface, MeshTree) or len(surface[1])):
             far = np.flatnonzero(out > tol)
             if len(far):
-                ds, back = closest_distance(c[far], surface[0], surface[1])
+                if isinstance(surface, MeshTree):
+                    ds, _, back = surface.query(c[far])
+                else:
+                    ds, back = closest_distance(c[far], surface[0], surface[1])
                 other = (ds <= tol) & (np.linalg.norm(back - p[far], axis=1) >= 0.5 * d[far])
                 out = out.copy()
                 out[far[other]] = 0.0
@@ -474,11 +477,12 @@ def fit_patch(mesh: SweepMesh, profile: Array, closed: bool, motion: Motion,
     # vertices outside the swept surface's box grown by eps are farther than eps: not queried
     lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
     inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
+    swept = MeshTree(sv, sf)       # one tree of the swept surface for both directions
     dv = np.full(mesh.n_vertices, np.inf)
-    dv[inside] = closest_distance(mesh.vertices[inside], sv, sf)[0]
+    dv[inside] = swept.query(mesh.vertices[inside])[0]
     near = dv <= eps
     faces = np.flatnonzero(near[mesh.faces].all(axis=1)).astype(np.int64)
-    ds = (tree if tree is not None else MeshTree(mesh.vertices, mesh.faces)).interior_distance(sv, (sv, sf), eps)
+    ds = (tree if tree is not None else MeshTree(mesh.vertices, mesh.faces)).interior_distance(sv, swept, eps)
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     total = float(a.sum())
     cov = float(a[faces].sum() / total) if total > 0 else 0.0

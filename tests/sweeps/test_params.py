@@ -1,7 +1,7 @@
 """SweepParams (auszug.sweeps.params): validation of every growth setting, and that each one acts.
 
-The growth settings (grow_steps, grow_share, grow_tolerance, grow_skip, grow_on_mesh, translation_step,
-translation_steps) are exercised on the clean extrusion of the base moulding: its true motion is a
+The growth settings (grow_steps, grow_share, grow_tolerance, grow_skip, grow_on_mesh, end_gap,
+translation_step, translation_steps) are exercised on the clean extrusion of the base moulding: its true motion is a
 translation along x, so the ribs a grown sweep may add and the parallel cuts a translational sweep
 may take are known exactly (the mesh is 0.8 / diameter long along x).
 """
@@ -31,6 +31,7 @@ STEP = 0.02     # rib step of the seed motion (bounding-box diameters)
     ("grow_tolerance", 0.0), ("grow_tolerance", 21.0), ("grow_tolerance", float("inf")),
     ("grow_skip", -1), ("grow_skip", 17), ("grow_skip", 1.5),
     ("grow_on_mesh", 0.05), ("grow_on_mesh", 1.2), ("grow_on_mesh", None),
+    ("end_gap", 0.0), ("end_gap", 25.0), ("end_gap", float("nan")),
     ("translation_step", 0.0), ("translation_step", -0.02), ("translation_step", 0.6),
     ("translation_steps", 0), ("translation_steps", LIMITS.sweep_steps + 1), ("translation_steps", 3.0),
 ])
@@ -122,12 +123,17 @@ def test_grow_on_mesh_and_grow_skip_decide_whether_a_hole_is_crossed():
     """A hole of radius 0.06 in the middle of the extrusion, the seed beside it (x = -0.3): by default
     the ribs across the hole count the points over it as beyond the mesh and the growth reaches the
     far end; asking every point to be on the mesh stops it at the hole, unless steps may skip it
-    (12 steps of 0.02 span its 0.12)."""
+    (12 steps of 0.02 span its 0.12); so does a large ``end_gap`` (points over the hole then count
+    as on the mesh, and far from it)."""
     fx, mesh, profile, motion = _extrusion(hole=True)
     right = 0.5 * np.ptp(fx.vertices[:, 0])
     reach = {}
     for name, p in [("default", DEFAULT), ("strict", DEFAULT.with_(grow_on_mesh=1.0, grow_skip=0)),
-                    ("skip", DEFAULT.with_(grow_on_mesh=1.0, grow_skip=12))]:
+                    ("skip", DEFAULT.with_(grow_on_mesh=1.0, grow_skip=12)),
+                    ("no gap", DEFAULT.with_(end_gap=20.0, grow_skip=0))]:
         reach[name] = float(grow_ribs(mesh, profile, motion, p).ribs.mean(axis=1)[:, 0].max())
     assert reach["default"] >= right - STEP and reach["skip"] >= right - STEP
     assert reach["strict"] <= -0.06 + STEP        # stopped before the hole (centred at x = 0)
+    # with end_gap 20 (0.1 of the diameter) the points over the hole are taken as on the mesh, and
+    # far from it: the step fails there too
+    assert reach["no gap"] <= -0.06 + STEP

@@ -392,7 +392,7 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
         if i == 0 and n_rounds > 1:
             # the ribs as found are cuts by planes up to 8 deg off the profile planes: their motion
             # only serves to re-slice (fitted, they missed the mesh by 2-6e-3, re-sliced by 0.6-1.9e-3)
-            again = reslice(mesh, profile, motion, params.eps_prox / 2, times)
+            again = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times)
             if again is not None:
                 ribs = again
                 continue
@@ -403,7 +403,7 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
         if best is None or cand.fit_error < best.fit_error:
             best = cand
         if i + 1 < n_rounds:
-            ribs = reslice(mesh, profile, motion, params.eps_prox / 2, times)
+            ribs = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times)
     assert best is not None
     return best
 
@@ -746,10 +746,10 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
             if got is None:
                 return None
             dist, cp, at_end = got
-            # points whose closest cut point is an end of a cut curve, farther than eps_prox / 2 (a profile's
+            # points whose closest cut point is an end of a cut curve, farther than end_gap eps_prox (a profile's
             # own end point lies at one), lie beyond the mesh (over a hole, past its end): they count
             # neither for nor against the step, and are no correspondences for the map
-            on = ~(at_end & (dist > params.eps_prox / 2))
+            on = ~(at_end & (dist > params.end_gap * params.eps_prox))
             near = (dist <= (4 * tol if k == 0 else tol)) & on
             if on.mean() < params.grow_on_mesh or near.sum() < max(3.0, 0.5 * on.sum()):
                 return None
@@ -802,7 +802,7 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
     ahead = grow(list(maps))
     behind = grow(list(maps[::-1]))
     # the motion's own ribs re-cut as well: the profile may have grown beyond what it was fitted to
-    again = reslice(mesh, profile, motion, params.eps_prox / 2, tu)
+    again = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, tu)
     middle = list(again) if again is not None else [profile @ m[0].T + m[1] for m in maps]
     t_mid = np.arange(len(middle), dtype=float)
     t_ahead = t_mid[-1] + np.cumsum([h for _, h in ahead])

@@ -164,6 +164,11 @@ class SweepParams:
         lie beyond it: their closest point on the cut is an end of a cut curve (cuts end only on the
         mesh's boundary) and far, as over a hole or past the mesh's end; they count neither for nor
         against ``grow_share`` (default 0.5).
+    end_gap : float
+        Growing and re-slicing a general sweep: a moved profile point whose closest point on the
+        cut is an end of a cut curve (cuts end only on the mesh's boundary) farther than
+        ``end_gap * eps_prox`` lies beyond the mesh, over a hole or past its end: it is no
+        correspondence (default 0.5; a profile's own end point lies at a curve's end, nearer).
     translation_step : float
         Spacing (bounding-box diameters) of the parallel cuts of a translational sweep
         (:func:`~auszug.sweeps.general.translational_patch`; default 0.02).
@@ -232,6 +237,7 @@ class SweepParams:
     grow_tolerance: float = 2.0
     grow_skip: int = 2
     grow_on_mesh: float = 0.5
+    end_gap: float = 0.5
     translation_step: float = 0.02
     translation_steps: int = 400
     max_match_runs: int = 600
@@ -282,6 +288,7 @@ class SweepParams:
             ("grow_skip", _whole(self.grow_skip) and 0 <= self.grow_skip <= 16, "a whole number in 0..16"),
             ("grow_on_mesh", _real(self.grow_on_mesh) and 0.1 <= self.grow_on_mesh <= 1,
              "in [0.1, 1] (a share of the profile's points)"),
+            ("end_gap", _real(self.end_gap) and 0.05 <= self.end_gap <= 20, "in [0.05, 20] (multiples of eps_prox)"),
             ("translation_step", _real(self.translation_step) and 1e-4 <= self.translation_step <= 0.5,
              "in [1e-4, 0.5] (bounding-box diameters)"),
             ("translation_steps", _whole(self.translation_steps) and 1 <= self.translation_steps <= LIMITS.sweep_steps,

@@ -32,6 +32,7 @@ STEP = 0.02     # rib step of the seed motion (bounding-box diameters)
     ("grow_skip", -1), ("grow_skip", 17), ("grow_skip", 1.5),
     ("grow_on_mesh", 0.05), ("grow_on_mesh", 1.2), ("grow_on_mesh", None),
     ("end_gap", 0.0), ("end_gap", 25.0), ("end_gap", float("nan")),
+    ("rib_jump", 1.0), ("rib_jump", 0.5), ("rib_jump", float("nan")),
     ("translation_step", 0.0), ("translation_step", -0.02), ("translation_step", 0.6),
     ("translation_steps", 0), ("translation_steps", LIMITS.sweep_steps + 1), ("translation_steps", 3.0),
 ])

@@ -63,7 +63,8 @@ from auszug.sweeps.planes import plane_recall
 from auszug.sweeps.stage import Stage
 
 __all__ = ["kabsch", "rib_velocity", "rib_velocities", "hermite_motion", "rib_parts", "general_patch",
-           "general_stages", "motion_planes", "profile_planes", "reslice", "GeneralSweep", "extend_profile",
+           "general_stages", "split_ribs", "motion_planes", "profile_planes", "reslice", "GeneralSweep",
+           "extend_profile",
            "grow_ribs", "GrownRibs", "grown_patch", "trajectory_error", "translational_patch"]
 
 Array = NDArray[np.float64]
@@ -221,6 +222,25 @@ def hermite_motion(profile: Array, rotations: Array, translations: Array, veloci
             rs.append(r)
             trs.append(t)
     return Motion(np.array(ts), np.array(rs), np.array(trs))
+
+
+def split_ribs(parts: Array, jump: float) -> list[Array]:
+    """Ordered ribs ``(k, n, 3)`` split where a step between consecutive centroids is a jump.
+
+    A jump is more than ``jump`` times the median step.
+
+    Examples
+    --------
+    >>> x = np.array([0.0, 1.0, 2.0, 3.0, 9.0, 10.0, 11.0])
+    >>> parts = np.zeros((7, 2, 3)); parts[:, :, 0] = x[:, None]
+    >>> [len(q) for q in split_ribs(parts, 3.0)]
+    [4, 3]
+    """
+    if len(parts) < 3:
+        return [parts]
+    step = np.linalg.norm(np.diff(parts.mean(axis=1), axis=0), axis=1)
+    cut_after = np.flatnonzero(step > jump * np.median(step)) + 1
+    return [q for q in np.split(parts, cut_after) if len(q)]
 
 
 def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
@@ -492,8 +512,10 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     tree = MeshTree(mesh.vertices, mesh.faces)
     grown = np.zeros(len(mesh.faces), bool)
     skipped = 0
-    for r in ribs:
-        parts = rib_parts(r, plots)
+    # a family's ordered ribs may jump across a gap (parallel cuts of two parallel stretches of a
+    # border): each stretch between such jumps is fitted on its own
+    stretches = [q for r in ribs for q in split_ribs(rib_parts(r, plots), params.rib_jump) if len(q) >= 3]
+    for parts in stretches:
         # a family whose ribs lie on what an earlier grown patch covers adds nothing
         if grown.any() and float(np.mean(grown[tree.query(parts)[1]])) >= params.patch_overlap:
             skipped += 1

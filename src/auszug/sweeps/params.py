@@ -164,6 +164,11 @@ class SweepParams:
         lie beyond it: their closest point on the cut is an end of a cut curve (cuts end only on the
         mesh's boundary) and far, as over a hole or past the mesh's end; they count neither for nor
         against ``grow_share`` (default 0.5).
+    rib_jump : float
+        A family's ordered ribs are split where the step between consecutive ribs' centroids is
+        more than this many times the median step; each stretch (of at least 3 ribs) is fitted on
+        its own (default 3: cuts of one plane family across two parallel stretches of a border
+        match, and one sweep through both crosses the opening between them).
     end_gap : float
         Growing and re-slicing a general sweep: a moved profile point whose closest point on the
         cut is an end of a cut curve (cuts end only on the mesh's boundary) farther than
@@ -237,6 +242,7 @@ class SweepParams:
     grow_tolerance: float = 2.0
     grow_skip: int = 2
     grow_on_mesh: float = 0.5
+    rib_jump: float = 3.0
     end_gap: float = 0.5
     translation_step: float = 0.02
     translation_steps: int = 400
@@ -288,6 +294,7 @@ class SweepParams:
             ("grow_skip", _whole(self.grow_skip) and 0 <= self.grow_skip <= 16, "a whole number in 0..16"),
             ("grow_on_mesh", _real(self.grow_on_mesh) and 0.1 <= self.grow_on_mesh <= 1,
              "in [0.1, 1] (a share of the profile's points)"),
+            ("rib_jump", _real(self.rib_jump) and self.rib_jump > 1, "> 1 (times the median rib step)"),
             ("end_gap", _real(self.end_gap) and 0.05 <= self.end_gap <= 20, "in [0.05, 20] (multiples of eps_prox)"),
             ("translation_step", _real(self.translation_step) and 1e-4 <= self.translation_step <= 0.5,
              "in [1e-4, 0.5] (bounding-box diameters)"),

@@ -110,6 +110,14 @@ class Limits:
         in memory (about 50 bytes per cut point, some 10 000 planes): the
         paper's largest mesh has 200 000 vertices (400 000 triangles); a
         million triangles stays below 2 GB. 2 M are refused before any work.
+    sweep_steps : int
+        Most steps of a sweep grown along its path at each end
+        (``SweepParams.grow_steps``) and most parallel cuts on each side of a
+        translational sweep (``SweepParams.translation_steps``). Each step cuts
+        the mesh a few times (about 5 ms at 32k vertices), and a grown sweep
+        stops where the mesh ends; 10 000 steps are at most about a minute
+        per sweep, far beyond any mesh at the steps of 1-3 % of its diameter
+        that a sweep takes.
     sketch_strokes : int
         Most strokes of a sketch given to lifting (``auszug lift``,
         :func:`auszug.lifting.lift`); checked before crossings are searched.
@@ -169,6 +177,7 @@ class Limits:
     faces: int = 16384
     pixels: int = 16384
     sweep_faces: int = 1_000_000
+    sweep_steps: int = 10_000
     sketch_strokes: int = 256
     sketch_segments: int = 4096
     sketch_crossings: int = 400

@@ -1,6 +1,6 @@
 """More general-sweep fixtures (issue 11, section 3): a letter G along the cubic, a remeshed, a holed
 and a decimated version of the moulding along the cubic. Targets: coverage >= 0.95 and plane recall
->= 0.95 on clean fixtures; what is missed is asserted as measured (docs/sweeps.md, Numbers)."""
+>= 0.95 on clean fixtures, met on all four (docs/sweeps.md, Numbers)."""
 
 from __future__ import annotations
 
@@ -35,18 +35,22 @@ def test_letter_g_profile_is_an_open_g():
     assert step.min() > 0
 
 
-@pytest.mark.parametrize("name, coverage, recall", [
-    ("letter_g", 0.95, 0.95),      # measured 0.960, 1.00 (targets met)
-    ("remeshed", 0.95, 0.95),      # measured 0.967, 1.00 (targets met)
-    ("hole", 0.7, 0.3),            # measured 0.776, 0.37: missed (the growth stops at the hole)
-    ("decimated", 0.6, 0.6),       # measured 0.685, 0.68: missed
+@pytest.mark.parametrize("name, coverage, recall, profile", [
+    ("letter_g", 0.95, 0.95, 0.95),     # measured 0.996, 1.00, 0.98 of the profile (targets met)
+    ("remeshed", 0.95, 0.95, 0.95),     # measured 1.000, 1.00, 0.96 (targets met)
+    ("hole", 0.95, 0.95, 0.95),         # measured 1.000, 1.00, 0.97 (targets met; main had 0.776, 0.37)
+    ("decimated", 0.95, 0.95, 0.88),    # measured 0.986, 1.00, 0.91 (targets met; main had 0.728, 0.20)
 ])
-def test_general_sweep_fixture(name, coverage, recall):
+def test_general_sweep_fixture(name, coverage, recall, profile):
+    """Coverage and plane recall (issue targets 0.95 / 0.95 on clean fixtures), every kept patch within
+    the fit bound, and the patch of most coverage sweeps (nearly) the whole profile."""
     fx, r, rec = _run(name)
     assert r.patches and all(p.kind == "general" for p in r.patches)
     assert all(p.fit_error <= DEFAULT.fit_factor * 0.005 for p in r.patches)
     assert r.coverage >= coverage
     assert rec >= recall
+    best = max(r.patches, key=lambda p: p.coverage)
+    assert np.linalg.norm(np.diff(best.profile, axis=0), axis=1).sum() >= profile * fx.profile_length
 
 
 def test_hole_and_decimation_keep_the_truth():

@@ -193,3 +193,41 @@ def helical_diameter():
     t = np.repeat(th, 60)
     v = np.column_stack([r * np.cos(t), r * np.sin(t), z + 0.1 * t])
     return float(np.linalg.norm(np.ptp(v, axis=0)))
+
+
+def _sheets(hole: bool, shift: float = 0.0):
+    """Two parallel unit squares 0.01 apart (the two sides of a fold), the lower one shifted down by
+    ``shift`` and, with ``hole``, without its faces within 0.2 of its centre: ``(V, F)``."""
+    from auszug.sweeps.fixtures import grid_faces
+
+    n = 41
+    x, y = np.meshgrid(np.linspace(0, 1, n), np.linspace(0, 1, n), indexing="ij")
+    lower = np.column_stack([x.ravel(), y.ravel(), np.full(n * n, -shift)])
+    upper = lower + [0, 0, 0.01 + shift]
+    f = grid_faces(n, n)
+    if hole:
+        centre = lower[f].mean(axis=1)[:, :2]
+        f = f[np.linalg.norm(centre - 0.5, axis=1) > 0.2]
+    return np.vstack([lower, upper]), np.vstack([f, grid_faces(n, n) + n * n])
+
+
+def test_interior_distance_over_a_hole_beside_a_fold_is_not_counted():
+    """Over a hole, the closest mesh point of a swept point may lie on the fold's other side, not on
+    the hole's rim: with the swept surface given, that point counts as beyond the mesh; a swept
+    surface off the mesh by more than eps still counts everywhere (reciprocal closest points)."""
+    from auszug.sweeps.patches import MeshTree
+
+    v, f = _sheets(hole=True)
+    tree = MeshTree(v, f)
+    over_hole = np.array([[0.5, 0.5, 0.0], [0.45, 0.55, 0.0]])
+    on_mesh = np.array([[0.1, 0.1, 0.0], [0.9, 0.3, 0.01]])
+    plain = tree.interior_distance(over_hole)
+    assert np.allclose(plain, 0.01)                                    # the upper sheet, not the rim
+    swept = _sheets(hole=False)                                        # the whole fold, as swept
+    assert np.allclose(tree.interior_distance(over_hole, swept, 0.005), 0.0)
+    assert np.allclose(tree.interior_distance(on_mesh, swept, 0.005), 0.0, atol=1e-12)
+    # a sweep 0.008 below the lower sheet: its points beside the hole are 0.008 off (closest mesh
+    # point on the lower sheet, which that sweep does not pass through)
+    low = _sheets(hole=False, shift=0.008)
+    off = np.array([[0.1, 0.1, -0.008], [0.8, 0.75, -0.008]])
+    assert np.allclose(tree.interior_distance(off, low, 0.005), 0.008)

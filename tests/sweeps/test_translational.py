@@ -21,17 +21,17 @@ def _run(sigma):
 @pytest.mark.parametrize("sigma", [0.0, 5e-4])
 def test_double_translational_sweep_is_found_as_a_translation(sigma):
     """Every cut glides under one turn (the arch is nearly a circle), whose sweep does not fit; detect
-    then fits general sweeps and tries each as a pure translation (parallel cuts). Measured: one patch,
-    coverage 1.000 / 0.944, fit error 1.3e-4 / 3.1e-3, no turn at all; its profile plane is x = const
-    clean (0.0 deg, plane recall 1.00) and 2.02 deg off at sigma 5e-4 (recall 0.00 within 2 deg and
-    0.005, missed; 0.96 within 5 deg and 0.01): the plane is the general sweep's, not refined."""
+    then fits general sweeps and tries each as a pure translation (parallel cuts). Measured (sweeps7):
+    one patch, coverage 1.000 / 1.000, fit error 1.3e-4 / 1.3e-3, no turn at all; its profile plane
+    is x = const clean (0.0 deg, plane recall 1.00) and 0.25 deg off at sigma 5e-4 (recall 1.00
+    within 2 deg and 0.005; sweeps5 had coverage 0.944 and 2.02 deg, recall 0.00)."""
     fx, r = _run(sigma)
     kin = next(s for s in r.stages if s.name == "kinematic")
     assert kin.numbers["kinematic"] == 1      # a turn (clean: 1 candidate) or a screw (noisy: 0 candidates)
     assert [s.name for s in r.stages][-4:] == ["match", "families", "motion", "fit"]
     assert r.patches and all(p.kind == "general" for p in r.patches)
     assert all(p.fit_error <= DEFAULT.fit_factor * DEFAULT.eps_prox for p in r.patches)
-    assert r.coverage >= (0.99 if sigma == 0 else 0.9)
+    assert r.coverage >= (0.99 if sigma == 0 else 0.95)
     best = max(r.patches, key=lambda p: p.coverage)
     assert np.abs(best.motion.rotation - np.eye(3)).max() <= 1e-12          # translations only
     assert best.fit_error <= (5e-4 if sigma == 0 else 5e-3)
@@ -39,7 +39,7 @@ def test_double_translational_sweep_is_found_as_a_translation(sigma):
     assert np.allclose(fx.planes[:, :3], [1.0, 0.0, 0.0])
     o = best.profile.mean(axis=0)
     n = np.linalg.svd(best.profile - o)[2][2]
-    assert np.degrees(np.arccos(min(1.0, abs(n[0])))) <= (1e-6 if sigma == 0 else 2.5)
+    assert np.degrees(np.arccos(min(1.0, abs(n[0])))) <= (1e-6 if sigma == 0 else 1.0)
     moved = o + best.motion.at(np.linspace(*best.motion.domain, 8 * len(best.motion)))[1]
     normals = np.tile(n, (len(moved), 1))
-    assert plane_recall(fx.planes, normals, moved @ n, 5.0 if sigma else 2.0, 0.01 if sigma else 0.005) >= 0.95
+    assert plane_recall(fx.planes, normals, moved @ n, 2.0, 0.005) >= 0.95

@@ -58,13 +58,14 @@ from auszug.sweeps.mesh import SweepMesh
 from auszug.sweeps.motion import Motion, se3_log
 from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
-from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas, fit_patch
+from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas, fit_patch, ring_faces
 from auszug.sweeps.planes import plane_recall
 from auszug.sweeps.stage import Stage
 
 __all__ = ["kabsch", "rib_velocity", "rib_velocities", "hermite_motion", "rib_parts", "general_patch",
-           "general_stages", "motion_planes", "profile_planes", "reslice", "GeneralSweep", "extend_profile",
-           "grow_ribs", "grown_patch", "trajectory_error", "translational_patch"]
+           "general_stages", "split_ribs", "motion_planes", "profile_planes", "reslice", "GeneralSweep",
+           "extend_profile",
+           "grow_ribs", "GrownRibs", "grown_patch", "trajectory_error", "translational_patch"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -156,19 +157,24 @@ def rib_velocity(rib: ArrayLike, neighbours: list[tuple[Array, float]], normals:
     return out
 
 
-def rib_velocities(parts: Array, normals: Array | None, mu: tuple[float, float] = DEFAULT.mu) -> Array:
-    """Velocity states ``(k, 6)`` of ribs ``parts (k, n, 3)`` at times ``0..k-1`` (neighbours on both sides)."""
+def rib_velocities(parts: Array, normals: Array | None, mu: tuple[float, float] = DEFAULT.mu,
+                   times: Array | None = None) -> Array:
+    """Velocity states ``(k, 6)`` of ribs ``parts (k, n, 3)`` at ``times (k,)`` (default ``0..k-1``).
+
+    Each rib's neighbours on both sides enter Eq. 7.
+    """
     k = len(parts)
+    tt = np.arange(k, dtype=float) if times is None else np.asarray(times, float)
     out = np.zeros((k, 6))
     for i in range(k):
-        nb = [(parts[j], float(j - i)) for j in (i - 1, i + 1) if 0 <= j < k]
+        nb = [(parts[j], float(tt[j] - tt[i])) for j in (i - 1, i + 1) if 0 <= j < k]
         out[i] = rib_velocity(parts[i], nb, None if normals is None else normals[i], mu)
     return out
 
 
 def hermite_motion(profile: Array, rotations: Array, translations: Array, velocities: Array,
-                   samples_per_rib: int = SAMPLES_PER_RIB) -> Motion:
-    """C1 Hermite interpolation of affine maps between ribs at times ``0..k-1``, projected to rigid motions.
+                   samples_per_rib: int = SAMPLES_PER_RIB, times: Array | None = None) -> Motion:
+    """C1 Hermite interpolation of affine maps between ribs at ``times``, projected to rigid motions.
 
     Parameters
     ----------
@@ -180,11 +186,13 @@ def hermite_motion(profile: Array, rotations: Array, translations: Array, veloci
         Velocity states ``(c, c_bar)`` at the ribs (spatial: ``xdot = c x x + c_bar``).
     samples_per_rib : int
         Parameters per interval.
+    times : (k,) float array, optional
+        Increasing rib parameters (default ``0..k-1``).
 
     Returns
     -------
     Motion
-        Knots at ``i + j / samples_per_rib``; exactly the given maps at the ribs.
+        Knots at ``t_i + j (t_i+1 - t_i) / samples_per_rib``; exactly the given maps at the ribs.
     """
     k = len(rotations)
     c, cb = velocities[:, :3], velocities[:, 3:]
@@ -194,24 +202,45 @@ def hermite_motion(profile: Array, rotations: Array, translations: Array, veloci
     hat[:, 2, 0], hat[:, 2, 1] = -c[:, 1], c[:, 0]
     dl = hat @ rotations                       # d/dt of the linear part
     da = cb + np.cross(c, translations)        # d/dt of the translation
-    ts, rs, trs = [0.0], [rotations[0]], [translations[0]]
+    tt = np.arange(k, dtype=float) if times is None else np.asarray(times, float)
+    ts, rs, trs = [float(tt[0])], [rotations[0]], [translations[0]]
     f = np.arange(1, samples_per_rib + 1) / samples_per_rib
     h00, h10 = 2 * f**3 - 3 * f**2 + 1, f**3 - 2 * f**2 + f
     h01, h11 = -2 * f**3 + 3 * f**2, f**3 - f**2
     for i in range(k - 1):
-        lin = (h00[:, None, None] * rotations[i] + h10[:, None, None] * dl[i] + h01[:, None, None] * rotations[i + 1]
-               + h11[:, None, None] * dl[i + 1])
-        off = (h00[:, None] * translations[i] + h10[:, None] * da[i] + h01[:, None] * translations[i + 1]
-               + h11[:, None] * da[i + 1])
+        h = tt[i + 1] - tt[i]
+        lin = (h00[:, None, None] * rotations[i] + h * h10[:, None, None] * dl[i]
+               + h01[:, None, None] * rotations[i + 1] + h * h11[:, None, None] * dl[i + 1])
+        off = (h00[:, None] * translations[i] + h * h10[:, None] * da[i] + h01[:, None] * translations[i + 1]
+               + h * h11[:, None] * da[i + 1])
         for j in range(samples_per_rib):
             if j == samples_per_rib - 1:
                 r, t = rotations[i + 1], translations[i + 1]
             else:
                 r, t = kabsch(profile, profile @ lin[j].T + off[j])
-            ts.append(i + f[j])
+            ts.append(tt[i] + h * f[j])
             rs.append(r)
             trs.append(t)
     return Motion(np.array(ts), np.array(rs), np.array(trs))
+
+
+def split_ribs(parts: Array, jump: float) -> list[Array]:
+    """Ordered ribs ``(k, n, 3)`` split where a step between consecutive centroids is a jump.
+
+    A jump is more than ``jump`` times the median step.
+
+    Examples
+    --------
+    >>> x = np.array([0.0, 1.0, 2.0, 3.0, 9.0, 10.0, 11.0])
+    >>> parts = np.zeros((7, 2, 3)); parts[:, :, 0] = x[:, None]
+    >>> [len(q) for q in split_ribs(parts, 3.0)]
+    [4, 3]
+    """
+    if len(parts) < 3:
+        return [parts]
+    step = np.linalg.norm(np.diff(parts.mean(axis=1), axis=0), axis=1)
+    cut_after = np.flatnonzero(step > jump * np.median(step)) + 1
+    return [q for q in np.split(parts, cut_after) if len(q)]
 
 
 def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
@@ -250,22 +279,27 @@ def _on_polyline(points: Array, polyline: Array) -> tuple[Array, Array]:
 def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float) -> list[Array]:
     """Cuts of the mesh by the moved profile's planes at the motion's knots, mapped back (sec. 2.3.3).
 
-    Per knot, the cut points within ``reach`` of the moved profile, mapped back by the inverse of
-    the knot's map.
+    Per knot, each stretch of a cut curve within ``reach`` of the moved profile, mapped back by the
+    inverse of the knot's map.
     """
     n0, _ = _plane_of(profile)
     moved = motion.apply(profile, motion.t)
     normals = np.einsum("kij,j->ki", motion.rotation, n0)
     offsets = np.einsum("ki,ki->k", normals, moved.mean(axis=1))
     c = cut(mesh, normals, offsets)
-    plane_of_point = np.repeat(c.curve_plane, np.diff(c.curve_start))
     out = []
-    for k in np.unique(c.curve_plane):
-        q = c.points[plane_of_point == k]
-        near = _polyline_distance(q, moved[k]) <= reach
-        if near.sum() < 2:
+    for j in range(c.n_curves):
+        k = int(c.curve_plane[j])
+        q = c.curve(j)
+        if len(q) < 2:
             continue
-        out.append(np.einsum("ji,nj->ni", motion.rotation[k], q[near] - motion.translation[k]))
+        near = _polyline_distance(q, moved[k]) <= reach
+        # each stretch of a curve near the moved profile is a piece of its own: joined, a curve
+        # broken by a hole in the mesh would bridge the hole by a chord
+        edges = np.flatnonzero(np.diff(np.r_[0, near.astype(np.int8), 0]))
+        for a, b in zip(edges[::2], edges[1::2], strict=True):
+            if b - a >= 2:
+                out.append(np.einsum("ji,nj->ni", motion.rotation[k], q[a:b] - motion.translation[k]))
     return out
 
 
@@ -314,36 +348,41 @@ def profile_planes(profile: Array, motion: Motion, t: ArrayLike) -> tuple[Array,
     return n, np.einsum("qi,qi->q", n, x)
 
 
-def reslice(mesh: SweepMesh, profile: Array, motion: Motion) -> Array | None:
-    """New ribs ``(k, n, 3)`` at the motion's integer parameters; None if a plane misses the mesh.
+def reslice(mesh: SweepMesh, profile: Array, motion: Motion, tol: float = np.inf,
+            t: ArrayLike | None = None) -> Array | None:
+    """New ribs ``(k, n, 3)`` at the motion's integer parameters (or at ``t (k,)``); None if a plane misses the mesh.
 
     The mesh is cut by the profile planes (:func:`profile_planes`) there; sample ``j`` of a rib is
-    the closest cut point to the moved profile's point ``j``.
+    the closest point to the moved profile's point ``j`` on the plane's cut curves, or the moved
+    point itself where that closest point is an end of a cut curve farther than ``tol`` (beyond
+    the mesh: over a hole or past its end).
     """
-    k = int(round(motion.domain[1] - motion.domain[0])) + 1
-    ts = motion.domain[0] + np.arange(k, dtype=float)
+    if t is None:
+        ts = motion.domain[0] + np.arange(int(round(motion.domain[1] - motion.domain[0])) + 1, dtype=float)
+    else:
+        ts = np.asarray(t, float)
+    k = len(ts)
     n, d = profile_planes(profile, motion, ts)
     x = motion.apply(profile, ts)
     c = cut(mesh, n, d)
     out = []
     for i in range(k):
-        best: tuple[float, Array] | None = None
-        for j in np.flatnonzero(c.curve_plane == i):
-            q = c.curve(int(j))
-            if len(q) < 2:
-                continue
-            dist, cp = _on_polyline(x[i], q)
-            if best is None or dist.mean() < best[0]:
-                best = (float(dist.mean()), cp)
-        if best is None:
+        got = _closest_on_cut(c, i, x[i])
+        if got is None:
             return None
-        out.append(best[1])
+        dist, cp, at_end = got
+        # beyond the mesh (closest cut point an end of a cut curve, and far): the moved profile's point
+        beyond = at_end & (dist > tol)
+        out.append(np.where(beyond[:, None], x[i], cp))
     return np.stack(out)
 
 
 def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
-                  areas: Array | None = None, tree: MeshTree | None = None) -> GeneralSweep:
+                  areas: Array | None = None, tree: MeshTree | None = None,
+                  times: Array | None = None) -> GeneralSweep:
     """Fit a sweep to ordered rib parts ``(k, n, 3)`` (k >= 2), iterating sec. 2.3.2-2.3.4.
+
+    The ribs lie at parameters ``times (k,)`` (default ``0..k-1``).
 
     The first round fits a motion to the ribs as found (cuts by the initial planes, up to 8
     degrees off the profile planes) and re-slices the mesh by its profile planes
@@ -368,23 +407,23 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
         maps = [kabsch(profile, q) for q in ribs]
         rot = np.array([m[0] for m in maps])
         tr = np.array([m[1] for m in maps])
-        vel = rib_velocities(ribs, normals, params.mu)
-        motion = hermite_motion(profile, rot, tr, vel, SAMPLES_PER_RIB)
+        vel = rib_velocities(ribs, normals, params.mu, times)
+        motion = hermite_motion(profile, rot, tr, vel, SAMPLES_PER_RIB, times)
         if i == 0 and n_rounds > 1:
             # the ribs as found are cuts by planes up to 8 deg off the profile planes: their motion
             # only serves to re-slice (fitted, they missed the mesh by 2-6e-3, re-sliced by 0.6-1.9e-3)
-            again = reslice(mesh, profile, motion)
+            again = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times)
             if again is not None:
                 ribs = again
                 continue
         more = _recut(mesh, profile, motion, 4 * params.eps_prox)
-        profile = _improve(profile, False, more)
+        profile = _improve(profile, False, more, params.eps_prox)
         fit = fit_patch(mesh, profile, False, motion, params, a, tr_)
         cand = GeneralSweep(profile, motion, vel, fit.fit_error, fit.coverage, fit.faces)
         if best is None or cand.fit_error < best.fit_error:
             best = cand
         if i + 1 < n_rounds:
-            ribs = reslice(mesh, profile, motion)
+            ribs = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times)
     assert best is not None
     return best
 
@@ -473,8 +512,10 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     tree = MeshTree(mesh.vertices, mesh.faces)
     grown = np.zeros(len(mesh.faces), bool)
     skipped = 0
-    for r in ribs:
-        parts = rib_parts(r, plots)
+    # a family's ordered ribs may jump across a gap (parallel cuts of two parallel stretches of a
+    # border): each stretch between such jumps is fitted on its own
+    stretches = [q for r in ribs for q in split_ribs(rib_parts(r, plots), params.rib_jump) if len(q) >= 3]
+    for parts in stretches:
         # a family whose ribs lie on what an earlier grown patch covers adds nothing
         if grown.any() and float(np.mean(grown[tree.query(parts)[1]])) >= params.patch_overlap:
             skipped += 1
@@ -545,13 +586,46 @@ def _nearest_curve(c: Cuts, plane: int, target: Array) -> tuple[Array, Array] | 
     return None if best is None else (best[1], np.stack([best[2], *best[3].T], axis=1))
 
 
-def trajectory_error(profile: Array, motion: Motion, tree: MeshTree) -> Array:
+def _closest_on_cut(c: Cuts, plane: int, target: Array) -> tuple[Array, Array, NDArray[np.bool_]] | None:
+    """Closest points of ``target (n, 3)`` on all cut curves of ``plane`` together, or None if it has none.
+
+    Returns the distances ``(n,)``, the closest points ``(n, 3)`` and whether each closest point
+    is an end of an open curve ``(n,)``: a cut curve ends only on the mesh's boundary, so a point
+    farther than the tolerance from its cut there lies beyond the mesh (past its end, over a hole).
+    Where a hole splits the cut into pieces, every target point finds its own piece.
+    """
+    dist = np.full(len(target), np.inf)
+    cp = np.zeros((len(target), 3))
+    at_end = np.zeros(len(target), bool)
+    for j in np.flatnonzero(c.curve_plane == plane):
+        q = c.curve(int(j))
+        if len(q) < 2:
+            continue
+        closed = bool(c.curve_closed[j])
+        if closed:
+            q = np.vstack([q, q[:1]])
+        d, p = _on_polyline(target, q)
+        better = d < dist
+        dist[better], cp[better] = d[better], p[better]
+        if not closed:
+            ends = (np.linalg.norm(p - q[0], axis=1) <= 1e-12) | (np.linalg.norm(p - q[-1], axis=1) <= 1e-12)
+            at_end[better] = ends[better]
+        else:
+            at_end[better] = False
+    return None if not np.isfinite(dist).any() else (dist, cp, at_end)
+
+
+def trajectory_error(profile: Array, motion: Motion, tree: MeshTree, tol: float = 0.0) -> Array:
     """Largest distance ``(n,)`` to the mesh of each profile point's path (at the knots and between them).
 
-    Positions beyond the mesh (closest point on its boundary: past its end, over a hole) do not count.
+    Positions beyond the mesh do not count: closest point on its boundary (past its end, over a
+    hole), or, when farther than ``tol``, on another part of the swept surface
+    (:meth:`~auszug.sweeps.patches.MeshTree.interior_distance`).
     """
     t = np.sort(np.concatenate([motion.t, (motion.t[:-1] + motion.t[1:]) / 2]))
-    d = tree.interior_distance(motion.apply(profile, t)).reshape(len(t), len(profile))
+    x = motion.apply(profile, t).reshape(-1, 3)
+    surface = (x, ring_faces(len(t), len(profile)))
+    d = tree.interior_distance(x, surface, tol).reshape(len(t), len(profile))
     out: Array = d.max(axis=0)
     return out
 
@@ -600,26 +674,49 @@ def extend_profile(mesh: SweepMesh, profile: Array, motion: Motion, tree: MeshTr
         if np.linalg.norm(back[0] - profile[0]) + np.linalg.norm(back[-1] - profile[-1]) > \
                 np.linalg.norm(back[-1] - profile[0]) + np.linalg.norm(back[0] - profile[-1]):
             back = back[::-1]
-        a, b = _longest_run(trajectory_error(back, motion, tree) <= params.eps_prox)
+        a, b = _longest_run(trajectory_error(back, motion, tree, params.eps_prox) <= params.eps_prox)
         if b - a >= 2 and length(back[a:b]) > length(best):
             best = back[a:b]
     return best
 
 
-def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepParams,
-              max_steps: int = 200) -> Array:
-    """Ribs ``(k, n, 3)`` of the sweep continued past both ends of its motion while the mesh follows.
+@dataclass(frozen=True)
+class GrownRibs:
+    """Ribs of a sweep grown along its path (:func:`grow_ribs`).
+
+    Attributes
+    ----------
+    ribs : (k, n, 3) float array
+        Sample ``j`` of every rib corresponds to profile point ``j``.
+    t : (k,) float array
+        Their parameters, increasing from 0: one per step, a fraction for a last step that ends at
+        the mesh's end.
+    """
+
+    ribs: Array
+    t: Array
+
+    def __len__(self) -> int:
+        return len(self.ribs)
+
+
+def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepParams = DEFAULT) -> GrownRibs:
+    """Ribs of the sweep continued past both ends of its motion while the mesh follows.
 
     Starting from the maps at the motion's integer parameters, each end is extrapolated by the
     last rib step (the same screw again), the mesh cut there by the plane through the moved
     profile's centroid normal to the centroid's path (as :func:`profile_planes`; the path's
     tangent from a parabola through the last two centroids and this one), and
     the moved profile's closest points on the nearest cut curve taken as the next rib when at
-    least 90 % of them lie within ``2 eps_prox`` (the rib's map is then corrected to them,
-    Kabsch, and the cut repeated with it: 4 rounds, as in ICP). A failed full step is retried
-    as two and three steps (over a hole in the mesh), then as a half and a quarter step, which
-    ends the growth
-    (the mesh's end). Sample ``j`` of every rib corresponds to profile point ``j``.
+    least ``grow_share`` of the points on the mesh lie within ``grow_tolerance * eps_prox`` and at
+    least ``grow_on_mesh`` of all are on it (the others lie beyond the mesh, over a hole or past
+    its end: their closest cut point is an end of a cut curve; the rib's map is corrected to the
+    near points, Kabsch, and the cut repeated with it: 4 rounds, as in ICP). The seeds are the
+    motion's maps evenly spaced along the centroid's path, one median rib step apart. A failed
+    full step is retried as 2 .. ``grow_skip + 1`` steps at once (over a gap in the mesh; the ribs
+    in between are the moved profile), then bisected for the farthest fraction of a step that
+    fits (to ``eps_prox / 2``), the last rib (the mesh's end); at most ``grow_steps`` ribs are
+    added at each end. Sample ``j`` of every rib corresponds to profile point ``j``.
     """
     lo, hi = motion.domain
     ts = lo + np.arange(int(round(hi - lo)) + 1, dtype=float)
@@ -636,8 +733,15 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
         a += 1
     while b - a > 3 and odd[b - 2]:
         b -= 1
-    maps = [(r[i], tr[i]) for i in range(a, b)]
-    tol = 2 * params.eps_prox
+    # the seeds evenly spaced along the centroid's path, one median step apart: a family's ribs
+    # (cuts by initial planes) lie unevenly, and the refit puts its ribs at t = 0, 1, 2, ...
+    fine = np.linspace(ts[a], ts[b - 1], 32 * (b - a) + 1)
+    arc = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(motion.apply(centre[None], fine)[:, 0], axis=0), axis=1))]
+    n_steps = max(2, int(round(arc[-1] / max(float(np.median(length[a:b - 1])), 1e-12))))
+    tu = np.interp(np.linspace(0.0, arc[-1], n_steps + 1), arc, fine)
+    r, tr = motion.at(tu)
+    maps = [(r[i], tr[i]) for i in range(len(tu))]
+    tol = params.grow_tolerance * params.eps_prox
 
     def tangent(c0: Array, c1: Array, c2: Array) -> Array:
         """Unit tangent at ``c2`` of the parabola through three centroids (chord-length parameters)."""
@@ -660,39 +764,59 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
             c2 = centre @ m[0].T + m[1]
             nm = tangent(c0, c1, c2)
             c = cut(mesh, nm[None], np.array([nm @ c2]))
-            near_curve = _nearest_curve(c, 0, moved)
-            if near_curve is None:
+            got = _closest_on_cut(c, 0, moved)
+            if got is None:
                 return None
-            dist, cp = near_curve[1][:, 0], near_curve[1][:, 1:]
-            near = dist <= (4 * tol if k == 0 else tol)
-            if np.mean(near) < 0.5:
+            dist, cp, at_end = got
+            # points whose closest cut point is an end of a cut curve, farther than end_gap eps_prox (a profile's
+            # own end point lies at one), lie beyond the mesh (over a hole, past its end): they count
+            # neither for nor against the step, and are no correspondences for the map
+            on = ~(at_end & (dist > params.end_gap * params.eps_prox))
+            near = (dist <= (4 * tol if k == 0 else tol)) & on
+            if on.mean() < params.grow_on_mesh or near.sum() < max(3.0, 0.5 * on.sum()):
                 return None
             # where the mesh ends before the profile does, the closest points pile up at the cut's end:
             # the map is fitted to the others, and those samples take the moved profile's points
             m = kabsch(profile[near], cp[near])
-        if np.mean(near) < 0.9:
+        if near.sum() < params.grow_share * on.sum():
             return None
         return np.where(near[:, None], cp, profile @ m[0].T + m[1]), m
 
-    def grow(seq: list[tuple[Array, Array]]) -> list[Array]:
-        out: list[Array] = []
-        for _ in range(max_steps):
+    def grow(seq: list[tuple[Array, Array]]) -> list[tuple[Array, float]]:
+        out: list[tuple[Array, float]] = []     # ribs and their steps (1, or the fraction of the last)
+        for _ in range(params.grow_steps):
             if len(seq) < 2:
                 break
             got = None
             c0, c1 = (centre @ seq[-2][0].T + seq[-2][1]), (centre @ seq[-1][0].T + seq[-1][1])
-            # a full step; then two or three (over a hole in the mesh); then a half or a quarter (the end)
-            for h in (1.0, 2.0, 3.0, 0.5, 0.25):
-                got = try_at(_compose(_step(seq[-2], seq[-1], h), seq[-1]), c0, c1)
+            # a full step; then 2 .. grow_skip + 1 at once (over a gap in the mesh)
+            for h in range(1, params.grow_skip + 2):
+                got = try_at(_compose(_step(seq[-2], seq[-1], float(h)), seq[-1]), c0, c1)
                 if got is not None:
                     break
             if got is None:
+                # the mesh ends within the step: bisect for the farthest fraction of it that still fits
+                # (to eps_prox / 2 along the path), the last rib
+                lo_f, hi_f, last = 0.0, 1.0, None
+                span = float(np.linalg.norm(c1 - c0))
+                while (hi_f - lo_f) * span > params.eps_prox / 2 and hi_f - lo_f > 1e-3:
+                    f = (lo_f + hi_f) / 2
+                    tried = try_at(_compose(_step(seq[-2], seq[-1], f), seq[-1]), c0, c1)
+                    if tried is None:
+                        hi_f = f
+                    else:
+                        lo_f, last = f, tried
+                if last is not None:
+                    out.append((last[0], lo_f))
                 break
-            out.append(got[0])
+            # over a gap of h steps, the ribs in between are the profile moved along the step's screw (the
+            # mesh says nothing there): the ribs stay one step apart, as the refit's parameters assume
+            for j in range(1, h):
+                m = _compose(_step(seq[-1], got[1], j / h), seq[-1])
+                out.append((profile @ m[0].T + m[1], 1.0))
+            out.append((got[0], 1.0))
             seq.append(got[1])
-            if h < 1.0:
-                break
-            if h > 1.0:
+            if h > 1:
                 # the next step extrapolates the last one: make it one step long again
                 seq[-2] = _compose(_step(seq[-2], seq[-1], 1.0 - 1.0 / h), seq[-2])
         return out
@@ -700,9 +824,14 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
     ahead = grow(list(maps))
     behind = grow(list(maps[::-1]))
     # the motion's own ribs re-cut as well: the profile may have grown beyond what it was fitted to
-    again = reslice(mesh, profile, motion)
-    middle = list(again[a:b]) if again is not None else [profile @ m[0].T + m[1] for m in maps]
-    return np.stack(behind[::-1] + middle + ahead)
+    again = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, tu)
+    middle = list(again) if again is not None else [profile @ m[0].T + m[1] for m in maps]
+    t_mid = np.arange(len(middle), dtype=float)
+    t_ahead = t_mid[-1] + np.cumsum([h for _, h in ahead])
+    t_behind = -np.cumsum([h for _, h in behind])[::-1]
+    t = np.concatenate([t_behind, t_mid, t_ahead])
+    ribs = np.stack([r for r, _ in behind[::-1]] + middle + [r for r, _ in ahead])
+    return GrownRibs(ribs, t - t[0])
 
 
 def grown_patch(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTree,
@@ -715,11 +844,11 @@ def grown_patch(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: Mes
     more or fits worse than ``fit_factor * eps_prox``.
     """
     profile = extend_profile(mesh, g.profile, g.motion, tree, params)
-    ribs = grow_ribs(mesh, profile, g.motion, params)
-    if len(ribs) < 2:
+    grown = grow_ribs(mesh, profile, g.motion, params)
+    if len(grown) < 2:
         return g
-    h = general_patch(mesh, ribs, params.with_(general_iterations=2), areas, tree)
-    a, b = _longest_run(trajectory_error(h.profile, h.motion, tree) <= params.eps_prox)
+    h = general_patch(mesh, grown.ribs, params.with_(general_iterations=2), areas, tree, grown.t)
+    a, b = _longest_run(trajectory_error(h.profile, h.motion, tree, params.eps_prox) <= params.eps_prox)
     if b - a >= 2 and b - a < len(h.profile):
         fit = fit_patch(mesh, h.profile[a:b], False, h.motion, params, areas, tree)
         h = GeneralSweep(h.profile[a:b], h.motion, h.velocities, fit.fit_error, fit.coverage, fit.faces)
@@ -729,14 +858,15 @@ def grown_patch(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: Mes
 
 
 def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepParams, tree: MeshTree,
-                        areas: Array | None = None, step: float = 0.02) -> GeneralSweep | None:
+                        areas: Array | None = None) -> GeneralSweep | None:
     """A sweep by pure translations along a curved path (a double translational surface), or None.
 
     A translation along an arch glides like a turn, and a general sweep fitted to it turns. Here
     the profile is the cut by a general sweep's profile plane at its middle knot, and the mesh is
-    cut by planes *parallel* to it, ``step`` apart on both sides while the mesh follows; on each
-    the profile is moved by translations only (3 rounds of closest points, the mean offset), and a
-    cut counts when 90 % of the moved profile lies within ``2 eps_prox`` of it. The motion is the
+    cut by planes *parallel* to it, ``translation_step`` apart on both sides while the mesh
+    follows (at most ``translation_steps`` on each); on each the profile is moved by
+    translations only (3 rounds of closest points, the mean offset), and a cut counts when
+    ``grow_share`` of the moved profile lies within ``grow_tolerance * eps_prox`` of it. The motion is the
     translations at the cuts (rotation the identity), the profile improved and fitted as in
     :func:`general_patch`.
     """
@@ -754,7 +884,8 @@ def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params:
     if len(p0) < 2:
         return None
     m = n[0]
-    tol = 2 * params.eps_prox
+    tol = params.grow_tolerance * params.eps_prox
+    step = params.translation_step
 
     def place(offset: Array, d_plane: float) -> Array | None:
         cc = cut(mesh, m[None], np.array([d_plane]))
@@ -767,12 +898,12 @@ def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params:
             if near.mean() < 0.5:
                 return None
             offset = (cp[near] - p0[near]).mean(axis=0)
-        return offset if np.mean(dist <= tol) >= 0.9 else None
+        return offset if np.mean(dist <= tol) >= params.grow_share else None
 
     offsets = {0: np.zeros(3)}
     for sign in (1, -1):
         prev, before = np.zeros(3), np.zeros(3)
-        for k in range(1, 400):
+        for k in range(1, params.translation_steps + 1):
             guess = prev + (prev - before) if k > 1 else prev + sign * step * m
             got_k = place(guess, float(d[0] + sign * k * step))
             if got_k is None:
@@ -787,8 +918,8 @@ def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params:
     rot = np.repeat(np.eye(3)[None], len(keys), axis=0)
     mot = Motion(np.arange(len(keys), dtype=float), rot, shifts - shifts[0])
     more = _recut(mesh, start, mot, 4 * params.eps_prox)
-    start = _improve(start, False, more)
-    a, b = _longest_run(trajectory_error(start, mot, tree) <= params.eps_prox)
+    start = _improve(start, False, more, params.eps_prox)
+    a, b = _longest_run(trajectory_error(start, mot, tree, params.eps_prox) <= params.eps_prox)
     if b - a < 2:
         return None
     start = start[a:b]

@@ -10,9 +10,22 @@ from __future__ import annotations
 from dataclasses import dataclass, fields, replace
 from typing import Any
 
+import numpy as np
+
 from auszug.errors import GeometryError
+from auszug.limits import LIMITS
 
 __all__ = ["SweepParams", "DEFAULT"]
+
+
+def _whole(x: object) -> bool:
+    """True for an int (not a bool, not a float with a whole value)."""
+    return isinstance(x, (int, np.integer)) and not isinstance(x, bool)
+
+
+def _real(x: object) -> bool:
+    """True for a finite real number (not a bool)."""
+    return isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, bool) and bool(np.isfinite(x))
 
 
 @dataclass(frozen=True)
@@ -133,6 +146,40 @@ class SweepParams:
         Beyond the paper: grow every fitted general sweep across its profile (to the whole cut
         curve, trimmed to the points whose paths stay within ``eps_prox``) and along its path
         (extrapolated rib by rib while the mesh follows), then refit it (docs/sweeps.md).
+    grow_steps : int
+        Growing a general sweep along its path: at most this many ribs are added at each end
+        (each a few cuts of the mesh; at most ``LIMITS.sweep_steps``). Default 200: a rib step
+        of a family is about 1-3 % of the diameter, so 200 steps reach beyond any mesh.
+    grow_share : float
+        A grown rib is accepted when at least this share of the moved profile's points lies
+        within ``grow_tolerance * eps_prox`` of the cut curve there (default 0.9).
+    grow_tolerance : float
+        The distance (in units of ``eps_prox``) within which a grown rib's points must lie of the
+        mesh's cut (default 2, the bound of the fit check, ``fit_factor``'s default).
+    grow_skip : int
+        A failed growth step is retried as 2 .. ``grow_skip + 1`` steps at once, over a gap in
+        the mesh that no rib in between can bridge (default 2; 0: no skipping).
+    grow_on_mesh : float
+        A grown rib needs at least this share of the moved profile's points on the mesh. The others
+        lie beyond it: their closest point on the cut is an end of a cut curve (cuts end only on the
+        mesh's boundary) and far, as over a hole or past the mesh's end; they count neither for nor
+        against ``grow_share`` (default 0.5).
+    rib_jump : float
+        A family's ordered ribs are split where the step between consecutive ribs' centroids is
+        more than this many times the median step; each stretch (of at least 3 ribs) is fitted on
+        its own (default 3: cuts of one plane family across two parallel stretches of a border
+        match, and one sweep through both crosses the opening between them).
+    end_gap : float
+        Growing and re-slicing a general sweep: a moved profile point whose closest point on the
+        cut is an end of a cut curve (cuts end only on the mesh's boundary) farther than
+        ``end_gap * eps_prox`` lies beyond the mesh, over a hole or past its end: it is no
+        correspondence (default 0.5; a profile's own end point lies at a curve's end, nearer).
+    translation_step : float
+        Spacing (bounding-box diameters) of the parallel cuts of a translational sweep
+        (:func:`~auszug.sweeps.general.translational_patch`; default 0.02).
+    translation_steps : int
+        At most this many parallel cuts on each side of a translational sweep's first cut (at
+        most ``LIMITS.sweep_steps``; default 400: 8 diameters at the default spacing).
     max_match_runs : int
         At most this many movable runs of the initial planes, longest first, are matched (the
         paper's N_match, good runs only, is 144-229 in Fig. 15).
@@ -190,6 +237,15 @@ class SweepParams:
     general_iterations: int = 3
     mu: tuple[float, float] = (0.002, 0.1)
     grow: bool = True
+    grow_steps: int = 200
+    grow_share: float = 0.9
+    grow_tolerance: float = 2.0
+    grow_skip: int = 2
+    grow_on_mesh: float = 0.5
+    rib_jump: float = 3.0
+    end_gap: float = 0.5
+    translation_step: float = 0.02
+    translation_steps: int = 400
     max_match_runs: int = 600
     max_families: int = 6
     min_sweep_length: float = 0.2
@@ -229,6 +285,21 @@ class SweepParams:
             ("profile_cuts", 0 <= self.profile_cuts <= 256, "in 0..256"),
             ("general_iterations", 1 <= self.general_iterations <= 16, "in 1..16"),
             ("grow", isinstance(self.grow, bool), "true or false"),
+            ("grow_steps", _whole(self.grow_steps) and 0 <= self.grow_steps <= LIMITS.sweep_steps,
+             f"a whole number in 0..{LIMITS.sweep_steps} (auszug.limits.LIMITS.sweep_steps)"),
+            ("grow_share", _real(self.grow_share) and 0.5 <= self.grow_share <= 1,
+             "in [0.5, 1] (a share of the profile's points)"),
+            ("grow_tolerance", _real(self.grow_tolerance) and 0.5 <= self.grow_tolerance <= 20,
+             "in [0.5, 20] (multiples of eps_prox)"),
+            ("grow_skip", _whole(self.grow_skip) and 0 <= self.grow_skip <= 16, "a whole number in 0..16"),
+            ("grow_on_mesh", _real(self.grow_on_mesh) and 0.1 <= self.grow_on_mesh <= 1,
+             "in [0.1, 1] (a share of the profile's points)"),
+            ("rib_jump", _real(self.rib_jump) and self.rib_jump > 1, "> 1 (times the median rib step)"),
+            ("end_gap", _real(self.end_gap) and 0.05 <= self.end_gap <= 20, "in [0.05, 20] (multiples of eps_prox)"),
+            ("translation_step", _real(self.translation_step) and 1e-4 <= self.translation_step <= 0.5,
+             "in [1e-4, 0.5] (bounding-box diameters)"),
+            ("translation_steps", _whole(self.translation_steps) and 1 <= self.translation_steps <= LIMITS.sweep_steps,
+             f"a whole number in 1..{LIMITS.sweep_steps} (auszug.limits.LIMITS.sweep_steps)"),
             ("max_match_runs", 2 <= self.max_match_runs <= 100000, "in 2..100000"),
             ("max_families", 0 <= self.max_families <= 1000, "in 0..1000"),
             ("min_sweep_length", self.min_sweep_length >= 0, ">= 0"),

@@ -219,25 +219,45 @@ class MeshTree:
         out: IntArray = self._bnd
         return out
 
-    def interior_distance(self, points: ArrayLike) -> Array:
-        """Distances ``(n,)`` to the mesh, 0 where the closest point lies on a boundary edge.
+    def interior_distance(self, points: ArrayLike, surface: MeshTree | tuple[Array, IntArray] | None = None,
+                          tol: float = 0.0) -> Array:
+        """Distances ``(n,)`` to the mesh, 0 where a point lies beyond the mesh.
 
         A point whose closest point is on the mesh's boundary lies beyond the mesh (past its end or
         over a hole), where the mesh says nothing; the fit check does not count it against a sweep.
+
+        With ``surface``, the swept surface ``(V (k, 3), F (m, 3))`` (or its tree) the points lie on, a point
+        farther than ``tol`` from the mesh also counts as beyond it when its closest mesh point lies
+        on *another part* of that surface: within ``tol`` of it, and there at least half the
+        point's distance away from the point (the reciprocal closest-point test of registration
+        with partial overlap). Over a hole in a mesh whose profile folds (a torus) the closest mesh
+        point is often on the fold's other side, not on the hole's rim; where the sweep misses
+        the mesh, the closest mesh point lies off the sweep and the distance counts.
         """
-        d, face, c = self.query(points)
+        p = np.asarray(points, float).reshape(-1, 3)
+        d, face, c = self.query(p)
         e = self._boundary_edges()[face]                            # (n, 3, 2)
         has = e[:, :, 0] >= 0
-        if not has.any():
-            return d
-        a = self.vertices[np.maximum(e[:, :, 0], 0)]
-        b = self.vertices[np.maximum(e[:, :, 1], 0)]
-        ab = b - a
-        w = np.einsum("nki,nki->nk", ab, ab)
-        f = np.clip(np.einsum("nki,nki->nk", c[:, None, :] - a, ab) / np.where(w > 0, w, 1.0), 0.0, 1.0)
-        gap = np.linalg.norm(c[:, None, :] - (a + f[..., None] * ab), axis=2)
-        on = (has & (gap <= 1e-9)).any(axis=1)
-        out: Array = np.where(on, 0.0, d)
+        out: Array = d
+        if has.any():
+            a = self.vertices[np.maximum(e[:, :, 0], 0)]
+            b = self.vertices[np.maximum(e[:, :, 1], 0)]
+            ab = b - a
+            w = np.einsum("nki,nki->nk", ab, ab)
+            f = np.clip(np.einsum("nki,nki->nk", c[:, None, :] - a, ab) / np.where(w > 0, w, 1.0), 0.0, 1.0)
+            gap = np.linalg.norm(c[:, None, :] - (a + f[..., None] * ab), axis=2)
+            on = (has & (gap <= 1e-9)).any(axis=1)
+            out = np.where(on, 0.0, d)
+        if surface is not None and (isinstance(surface, MeshTree) or len(surface[1])):
+            far = np.flatnonzero(out > tol)
+            if len(far):
+                if isinstance(surface, MeshTree):
+                    ds, _, back = surface.query(c[far])
+                else:
+                    ds, back = closest_distance(c[far], surface[0], surface[1])
+                other = (ds <= tol) & (np.linalg.norm(back - p[far], axis=1) >= 0.5 * d[far])
+                out = out.copy()
+                out[far[other]] = 0.0
         return out
 
 
@@ -382,8 +402,12 @@ def _length(p: Array, closed: bool) -> float:
     return float(np.linalg.norm(np.diff(q, axis=0), axis=1).sum())
 
 
-def _improve(profile: Array, closed: bool, others: list[Array]) -> Array:
-    """Each profile point moved to the mean of itself and its closest points on the other curves."""
+def _improve(profile: Array, closed: bool, others: list[Array], end_reach: float = np.inf) -> Array:
+    """Each profile point moved to the mean of itself and its closest points on the other curves.
+
+    A closest point at an end of another curve counts only within ``end_reach`` (a curve that ends
+    on the mesh's boundary, at a hole, says nothing about the profile points beyond it).
+    """
     if not others:
         return profile
     acc = profile.copy()
@@ -394,6 +418,9 @@ def _improve(profile: Array, closed: bool, others: list[Array]) -> Array:
             continue
         d, c = polyline_closest(np.ascontiguousarray(profile, dtype=float), np.ascontiguousarray(q, dtype=float))
         near = d <= reach
+        if np.isfinite(end_reach):
+            at_end = (np.linalg.norm(c - q[0], axis=1) <= 1e-12) | (np.linalg.norm(c - q[-1], axis=1) <= 1e-12)
+            near &= ~at_end | (d <= end_reach)
         acc[near] += c[near]
         count[near] += 1
     return acc / count[:, None]
@@ -418,13 +445,25 @@ def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
             break
         t = np.sort(np.concatenate([t, mid[bad]]))
     rings = motion.apply(profile, t)
-    k = len(t)
+    return rings.reshape(-1, 3), ring_faces(len(t), n, closed)
+
+
+def ring_faces(k: int, n: int, closed: bool = False) -> IntArray:
+    """Triangles ``(2 (k - 1) m, 3)`` between ``k`` rings of ``n`` points stored ring after ring.
+
+    ``m`` is ``n`` for closed rings, else ``n - 1``.
+
+    Examples
+    --------
+    >>> ring_faces(2, 3).tolist()
+    [[0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4]]
+    """
     j = np.arange(n if closed else n - 1)
     j1 = (j + 1) % n
     i = np.arange(k - 1)[:, None]
     a_, b_, c_, d_ = i * n + j, i * n + j1, (i + 1) * n + j1, (i + 1) * n + j
     f = np.stack([np.stack([a_, b_, c_], -1), np.stack([a_, c_, d_], -1)], axis=2).reshape(-1, 3)
-    return rings.reshape(-1, 3), f.astype(np.int64)
+    return f.astype(np.int64)
 
 
 def fit_patch(mesh: SweepMesh, profile: Array, closed: bool, motion: Motion,
@@ -438,11 +477,12 @@ def fit_patch(mesh: SweepMesh, profile: Array, closed: bool, motion: Motion,
     # vertices outside the swept surface's box grown by eps are farther than eps: not queried
     lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
     inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
+    swept = MeshTree(sv, sf)       # one tree of the swept surface for both directions
     dv = np.full(mesh.n_vertices, np.inf)
-    dv[inside] = closest_distance(mesh.vertices[inside], sv, sf)[0]
+    dv[inside] = swept.query(mesh.vertices[inside])[0]
     near = dv <= eps
     faces = np.flatnonzero(near[mesh.faces].all(axis=1)).astype(np.int64)
-    ds = (tree if tree is not None else MeshTree(mesh.vertices, mesh.faces)).interior_distance(sv)
+    ds = (tree if tree is not None else MeshTree(mesh.vertices, mesh.faces)).interior_distance(sv, swept, eps)
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     total = float(a.sum())
     cov = float(a[faces].sum() / total) if total > 0 else 0.0

@@ -43,6 +43,15 @@ def _normals(x):
     return n / np.linalg.norm(n, axis=1, keepdims=True)
 
 
+def _screw_error(m, x, q, step):
+    """The motion's rotations at parameters q, and its largest distance from the true screw's images of x."""
+    rq, tq = m.at(q)
+    r0, t0 = screw_motion(AXIS, POINT, PITCH, q * step)
+    moved = np.einsum("qij,nj->qni", rq, x) + tq[:, None]
+    truth = np.einsum("qij,nj->qni", r0, x) + t0[:, None]
+    return rq, float(np.abs(moved - truth).max())
+
+
 @pytest.mark.parametrize("degrees", [2.0, 5.0, 10.0, 15.0])
 @pytest.mark.parametrize("with_normals", [False, True])
 def test_two_ribs_of_a_known_sweep_give_its_velocity_within_1_percent(degrees, with_normals):
@@ -81,11 +90,8 @@ def test_hermite_motion_of_exact_screw_data_is_the_screw():
     m = hermite_motion(x, r, t, vel)
     assert len(m) == 3 * 8 + 1
     q = np.linspace(0, 3, 61)
-    rq, tq = m.at(q)
-    r0, t0 = screw_motion(AXIS, POINT, PITCH, q * step)
-    moved = np.einsum("qij,nj->qni", rq, x) + tq[:, None]
-    truth = np.einsum("qij,nj->qni", r0, x) + t0[:, None]
-    assert np.abs(moved - truth).max() <= 2e-4
+    rq, err = _screw_error(m, x, q, step)
+    assert err <= 2e-4
     assert np.allclose(np.linalg.det(rq), 1.0)
 
 
@@ -173,8 +179,5 @@ def test_hermite_motion_at_uneven_times_is_the_screw():
     assert m.t[0] == 0.0 and m.t[-1] == pytest.approx(2.3) and len(m) == 3 * 8 + 1
     assert np.allclose(m.t[::8], times)
     q = np.linspace(0, 2.3, 47)
-    rq, tq = m.at(q)
-    r0, t0 = screw_motion(AXIS, POINT, PITCH, q * step)
-    moved = np.einsum("qij,nj->qni", rq, x) + tq[:, None]
-    truth = np.einsum("qij,nj->qni", r0, x) + t0[:, None]
-    assert np.abs(moved - truth).max() <= 2e-4
+    rq, err = _screw_error(m, x, q, step)
+    assert err <= 2e-4

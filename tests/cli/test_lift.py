@@ -9,7 +9,7 @@ from auszug import examples
 from auszug.formats import load
 from tests.cli.conftest import files_in, png_size
 
-EXAMPLES = ["arches", "ogee-roof", "vase"]
+EXAMPLES = ["arches", "barrel-half", "ogee-roof", "vase"]
 
 
 @pytest.mark.parametrize("name", EXAMPLES)
@@ -23,7 +23,10 @@ def test_each_example_lifts_and_its_network_reads_back(cli, tmp_path, name):
     doc = load(out, kind="network")
     sketch = load(src, kind="sketch")
     assert doc["source"] == f"{name}.svg"
-    assert {c["basic"] for c in doc["curves"]} == set(range(len(sketch.strokes)))
+    # one curve per stroke; a half with a symmetry curve: that curve and the mirrored strokes too
+    n = len(sketch.strokes) * (2 if sketch.symmetry is not None else 1) + (sketch.symmetry is not None)
+    assert {c["basic"] for c in doc["curves"]} == set(range(n))
+    assert ("global symmetry: layer 0 mirrored" in r.out) == (sketch.symmetry is not None)
     pts = np.concatenate([np.asarray(c["points"], float) for c in doc["curves"]])
     assert np.isfinite(pts).all() and np.ptp(pts[:, 2]) > 0.05 * np.ptp(pts[:, :2], axis=0).max()  # lifted
     # --report: every applied hard cue within 0.5 deg, smooth crossings exactly orthogonal

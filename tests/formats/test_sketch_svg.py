@@ -17,7 +17,7 @@ from auszug.geometry import CubicBezier
 
 NS = 'xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape"'
 CROSS = '<path id="h" d="M 0 50 C 30 40 70 40 100 50"/><path id="v" d="M 45 0 C 50 30 50 70 55 100"/>'
-EXAMPLES = ["arches", "ogee-roof", "vase"]
+EXAMPLES = ["arches", "barrel-half", "ogee-roof", "vase"]
 
 
 def svg(body: str, head: str = 'viewBox="0 0 100 100"') -> str:

@@ -18,10 +18,11 @@ from pathlib import Path
 import numpy as np
 
 from auszug.geometry import CubicBezier
-from tests.lifting.truth import hermite_chain, occlusions, revolve, rotation
+from tests.lifting.truth import barrel_chains, hermite_chain, occlusions, revolve, rotation
 
 JITTER = 0.0
-VIEWS = {"vase": rotation(25.0, 15.0), "ogee-roof": rotation(26.0, -34.0), "arches": rotation(24.0, 32.0)}
+VIEWS = {"vase": rotation(25.0, 15.0), "ogee-roof": rotation(26.0, -34.0), "arches": rotation(24.0, 32.0),
+         "barrel-half": rotation(25.0, 35.0)}
 OUT = Path(__file__).resolve().parents[2] / "src" / "auszug" / "examples" / "sketches"
 
 
@@ -99,8 +100,13 @@ def spurious(strokes2d: list[np.ndarray], view: list[np.ndarray], tol: float) ->
     return occlusions(view, tol, strokes2d)
 
 
-def svg(name: str, strokes2d: list[np.ndarray], markers: list[np.ndarray], ids: list[str]) -> str:
-    """The sketch as an Inkscape-style SVG: y down, fitted in a 600 px wide page with a margin."""
+def svg(name: str, strokes2d: list[np.ndarray], markers: list[np.ndarray], ids: list[str],
+        symmetry: np.ndarray | None = None) -> str:
+    """The sketch as an Inkscape-style SVG: y down, fitted in a 600 px wide page with a margin.
+
+    ``symmetry``: the global symmetry curve (2D chain), written as ``<path class="symmetry">`` in the
+    annotations layer (its last stroke of ``strokes2d`` too: the page is fitted to all of them).
+    """
     pts = np.concatenate([s.reshape(-1, 2) for s in strokes2d])
     lo, hi = pts.min(0), pts.max(0)
     scale = 520.0 / float(max(hi - lo))
@@ -119,25 +125,31 @@ def svg(name: str, strokes2d: list[np.ndarray], markers: list[np.ndarray], ids: 
              '</title>',
              f'  <g inkscape:groupmode="layer" inkscape:label="{name}" id="layer-{name}"',
              '     style="fill:none;stroke:#222;stroke-width:2;stroke-linecap:round">']
-    for sid, c in zip(ids, strokes2d, strict=True):
+    def path(c: np.ndarray) -> str:
         d = "M " + " ".join(f(x) for x in tr(c[0, 0]))
         for seg in c:
             d += " C " + " ".join(" ".join(f(x) for x in tr(p)) for p in seg[1:])
-        lines.append(f'    <path id="{sid}" d="{d}"/>')
+        return d
+
+    for sid, c in zip(ids, strokes2d[:len(ids)], strict=True):
+        lines.append(f'    <path id="{sid}" d="{path(c)}"/>')
     lines.append("  </g>")
-    if markers:
+    if markers or symmetry is not None:
         lines.append('  <g inkscape:groupmode="layer" inkscape:label="annotations" id="layer-annotations"'
                      ' style="fill:none;stroke:#d33;stroke-width:1.5">')
         for i, m in enumerate(markers):
             x, y = tr(m)
             lines.append(f'    <circle class="occlusion" id="occlusion-{i + 1}" cx="{f(x)}" cy="{f(y)}" r="6"/>')
+        if symmetry is not None:
+            lines.append(f'    <path class="symmetry" id="symmetry" d="{path(symmetry)}" '
+                         'style="stroke-dasharray:8 4"/>')
         lines.append("  </g>")
     lines.append("</svg>")
     return "\n".join(lines) + "\n"
 
 
 def main() -> None:
-    """Write the three example sketches."""
+    """Write the example sketches (the half barrel with its symmetry curve, the last of its chains)."""
     OUT.mkdir(parents=True, exist_ok=True)
     jobs = {
         "vase": (vase(), VIEWS["vase"], [f"meridian-{i + 1}" for i in range(5)] +
@@ -146,12 +158,15 @@ def main() -> None:
                                                         "flank-1", "flank-2", "flank-3", "flank-4"]),
         "arches": (arches(), VIEWS["arches"], ["arch-front", "arch-back", "post-line-left", "flank-left",
                                                "flank-right", "post-line-right"]),
+        "barrel-half": ([*barrel_chains()[0], barrel_chains()[1]], VIEWS["barrel-half"],
+                        [f"meridian-{i + 1}" for i in range(5)] + ["parallel-1", "parallel-2"]),
     }
     for seed, (name, (chains, R, ids)) in enumerate(jobs.items()):
         s2, view = project(chains, R, JITTER, seed)
         diag = float(np.linalg.norm(np.ptp(np.concatenate([v.reshape(-1, 3) for v in view]), axis=0)))
         marks = spurious(s2, view, 0.02 * diag)
-        (OUT / f"{name}.svg").write_text(svg(name, s2, marks, ids))
+        sym = s2[-1] if len(ids) < len(s2) else None   # a chain without an id: the symmetry curve
+        (OUT / f"{name}.svg").write_text(svg(name, s2, marks, ids, sym))
         print(f"{name}: {len(s2)} strokes, {len(marks)} occlusion markers")
 
 

@@ -251,10 +251,23 @@ def barrel_half(n_mer: int = 5, n_par: int = 3, tilt: float = 25.0, turn: float 
     then the symmetry curve when it is not drawn, then the mirrored strokes) and the mirrored chains
     alone (view coordinates).
     """
+    R = rotation(tilt, turn)
+    drawn, axis = barrel_chains(n_mer, n_par)
+    flip = np.diag([-1.0, 1.0, 1.0])
+    mirrored = tuple((c @ flip) @ R.T for c in drawn)
+    t = _project([*drawn, axis], R, noise, seed)
+    strokes = t.sketch.strokes
+    sym = Stroke(strokes[-1].controls, "symmetry")
+    sk = Sketch(strokes if symmetry_drawn else strokes[:-1], t.sketch.markers, sym)
+    return Truth(sk, (*t.chains3d, *mirrored)), mirrored
+
+
+def barrel_chains(n_mer: int = 5, n_par: int = 3) -> tuple[list[np.ndarray], np.ndarray]:
+    """The half barrel of :func:`barrel_half` in object coordinates: the drawn chains (meridians, then
+    the parallels at x > 0) and the symmetry curve (the parallel x = 0)."""
     phis = np.radians(np.linspace(-45, 45, n_mer))
     xs = np.linspace(0.0, 1.0, n_par)
     dphi, dx = phis[1] - phis[0], xs[1] - xs[0]
-    R = rotation(tilt, turn)
 
     def surf(x, phi):
         r = 1.0 - 0.3 * x**2
@@ -272,11 +285,4 @@ def barrel_half(n_mer: int = 5, n_par: int = 3, tilt: float = 25.0, turn: float 
         r = 1.0 - 0.3 * x0**2
         dp = np.stack([np.zeros_like(ph), r * np.cos(ph), -r * np.sin(ph)], axis=-1)
         par.append(hermite_chain(p, dp, dphi))
-    axis, drawn = par[0], mer + par[1:]
-    flip = np.diag([-1.0, 1.0, 1.0])
-    mirrored = tuple((c @ flip) @ R.T for c in drawn)
-    t = _project([*drawn, axis], R, noise, seed)
-    strokes = t.sketch.strokes
-    sym = Stroke(strokes[-1].controls, "symmetry")
-    sk = Sketch(strokes if symmetry_drawn else strokes[:-1], t.sketch.markers, sym)
-    return Truth(sk, (*t.chains3d, *mirrored)), mirrored
+    return mer + par[1:], par[0]

@@ -65,11 +65,14 @@ def render_lift(sketch: "Sketch", result: "LiftResult", fmt: str = "png", *, wid
         if pts:
             a = np.array(pts)
             ax.scatter(a[:, 0], a[:, 1], zorder=3, linewidths=0.8, **kw)  # type: ignore[arg-type]
+    if sketch.symmetry is not None:   # the global symmetry curve, dashed (a stroke drawn there shows too)
+        p = _sample(np.asarray(sketch.symmetry.controls, float))
+        ax.plot(p[:, 0], p[:, 1], color="#d33", lw=1.4, ls=(0, (4, 2)), zorder=2)
     occ = [m.point for m in sketch.markers if m.kind == "occlusion"]
     if occ:
         a = np.array(occ, float)
         ax.scatter(a[:, 0], a[:, 1], marker="x", s=30, c="#d33", zorder=3, linewidths=1.2)
-    _plain_axes(ax, "the sketch")
+    _plain_axes(ax, "the sketch" if result.mirror is None else "the sketch (half; dashed: symmetry)")
     stats = (f"{len(smooth)} smooth crossings (dots), {len(corner)} orthogonal corners (squares), "
              f"{len(planar)} planar strokes (coloured)")
 

@@ -135,3 +135,25 @@ def test_the_bundled_half_barrel_is_mirrored_across_the_truths_plane():
     assert r.converged and r.mirror is not None and len(r.network.groups) == 15
     n_true = T.rotation(25.0, 35.0)[:, 0]
     assert np.degrees(np.arccos(min(1.0, abs(r.mirror[1] @ n_true)))) <= 4.0
+
+
+
+def test_the_plane_follows_its_layer_when_the_layers_are_stacked(barrel, monkeypatch):
+    """Stacking shifts a layer's depth after the mirror (a layer in front of another where they overlap):
+    the reported plane must still hold the symmetry curve. The shift is forced here (stacking proper is
+    tested with the layers)."""
+    from auszug.lifting import reconstruct
+
+    tr, _, r = barrel
+
+    def shifted(graphs, pts):
+        for X in pts:
+            X[:, 2] += 0.37
+    monkeypatch.setattr(reconstruct, "_stack", shifted)
+    r2 = lift(tr.sketch)
+    layer, n, d = r2.mirror
+    g, X = r2.graphs[0], r2.points[0]
+    on = np.unique(g.segments[g.chains[len(tr.sketch.strokes)]])
+    assert np.allclose(X[:, 2], r.points[0][:, 2] + 0.37)
+    assert np.abs(X[on] @ n - d).max() <= 1e-7 * tr.diagonal()
+    assert abs(d - r.mirror[2] - 0.37 * n[2]) <= 1e-9 * tr.diagonal()

@@ -703,7 +703,7 @@ def lift(sketch: Sketch, params: LiftParams = DEFAULT, progress: Progress | None
     graphs: list[SketchGraph] = []
     flips: list[bool] = []
     ok = True
-    mirror: tuple[int, Array, float] | None = None
+    sym_at: tuple[int, int, Array, NDArray[np.intp]] | None = None   # layer, its index, normal, curve points
     for layer, g in layers:
         s_sym = symmetry_stroke(sketch, g)
         X, cues_, st, conv, flip = lift_graph(g, params, layer, progress, classes, s_sym)
@@ -713,7 +713,7 @@ def lift(sketch: Sketch, params: LiftParams = DEFAULT, progress: Progress | None
         if s_sym is not None:
             nrm, off = mirror_plane(g, X, s_sym)
             g, X = _mirrored(g, X, s_sym, nrm, off)
-            mirror = (layer, nrm, float(off * g.scale + nrm[:2] @ g.offset))
+            sym_at = (layer, len(pts), nrm, np.unique(g.segments[g.chains[s_sym]]))
         Xs = X.copy()
         Xs[:, :2] = X[:, :2] * g.scale + g.offset
         Xs[:, 2] = X[:, 2] * g.scale
@@ -721,6 +721,10 @@ def lift(sketch: Sketch, params: LiftParams = DEFAULT, progress: Progress | None
         graphs.append(g)
         flips.append(flip)
     _stack(graphs, pts)
+    mirror: tuple[int, Array, float] | None = None
+    if sym_at is not None:   # the plane in sketch units, after the layers' depth shifts
+        lay, k, nrm, on = sym_at
+        mirror = (lay, nrm, float(np.mean(pts[k][on] @ nrm)))
     net = _network(sketch, graphs, pts, results)
     if mirror is not None:
         net = replace(net, meta={**net.meta, "lifting": {**net.meta["lifting"], "symmetry_plane": {

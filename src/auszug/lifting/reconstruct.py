@@ -669,6 +669,10 @@ def lift(sketch: Sketch, params: LiftParams = DEFAULT, progress: Progress | None
     Layers are independent parts, each lifted alone; the layers' depths are
     then stacked back to front (each layer's depth shifted so that it lies
     in front of the layers behind it wherever they overlap in the sketch).
+    A sketch with a global symmetry curve (``sketch.symmetry``: half the
+    object is drawn) has that curve's layer lifted with the curve's cues
+    applied and then mirrored across its plane (:func:`lift_graph`,
+    :func:`mirror_plane`; the plane is in ``LiftResult.mirror``).
 
     Parameters
     ----------

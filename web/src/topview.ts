@@ -119,6 +119,19 @@ function setTitle(e: SVGElement, text: string): void {
 
 const withTitle = (e: SVGElement) => void make(e, "title");
 
+/** What a pooled marker or dot last had written besides its position (class, data-*, title, r,
+ * fill), per element: a marker whose description is unchanged is only moved, with no DOM reads
+ * (a drag redraws every marker once a frame, and most of them keep their description). Only
+ * renderMarkers and renderDots write these attributes of their pools' elements. */
+const described = new WeakMap<Element, string>();
+
+/** Run `write` unless `e` was last described by `key`. */
+function describe(e: Element, key: string, write: () => void): void {
+  if (described.get(e) === key) return;
+  described.set(e, key);
+  write();
+}
+
 /** World (x, y) -> overlay pixels. */
 type Px = (p: readonly number[]) => [number, number];
 
@@ -589,17 +602,19 @@ class TopView {
     const marks = this.marks.take(n);
     let j = 0;
     ints.forEach((m, i) => {
-      const c = g!.curves[m.curve];
-      const tip = `${m.true ? "true" : "false"} intersection of curve ${m.curve} with curve ${m.other_curve} ` +
-        `${m.replica}: click to put the PRC here`;
+      const c = g!.curves[m.curve], faded = sel !== null && sel !== m.curve;
+      const id = `${m.true}|${m.curve}|${m.other_curve}|${m.replica}|${m.segment}|${i}|${faded}`;
       images(m.point, c.center, this.mats[m.curve]).forEach((p, k) => {
         const e = marks[j++];
         placeCircle(e, px(p));
-        attr(e, "r", k === 0 ? "4.5" : "3.5");
-        attr(e, "class", `intersection hit ${m.true}${sel !== null && sel !== m.curve ? " faded" : ""}`);
-        data(e, { true: String(m.true), curve: String(m.curve), segment: String(m.segment),
-          replica: String(k), index: String(i) });
-        setTitle(e, tip);
+        describe(e, `${id}|${k}`, () => {
+          attr(e, "r", k === 0 ? "4.5" : "3.5");
+          attr(e, "class", `intersection hit ${m.true}${faded ? " faded" : ""}`);
+          data(e, { true: String(m.true), curve: String(m.curve), segment: String(m.segment),
+            replica: String(k), index: String(i) });
+          setTitle(e, `${m.true ? "true" : "false"} intersection of curve ${m.curve} with curve ${m.other_curve} ` +
+            `${m.replica}: click to put the PRC here`);
+        });
       });
     });
     const prcs = g?.pieces.filter((p) => p.prc) ?? [];
@@ -624,13 +639,16 @@ class TopView {
     let j = 0;
     curves.forEach((c, i) => {
       if (i === sel) return;
+      const color = this.store.color(i);
       c.vertices.forEach((v, k) => {
         const e = dots[j++];
         placeCircle(e, px(v));
-        attr(e, "fill", this.store.color(i));
-        attr(e, "class", `dot hit mark-${c.marks[k]}`);
-        data(e, { curve: String(i), vertex: String(k) });
-        setTitle(e, `curve ${i}, ${c.marks[k]} point ${k}: drag to move`);
+        describe(e, `${i}|${k}|${c.marks[k]}|${color}`, () => {
+          attr(e, "fill", color);
+          attr(e, "class", `dot hit mark-${c.marks[k]}`);
+          data(e, { curve: String(i), vertex: String(k) });
+          setTitle(e, `curve ${i}, ${c.marks[k]} point ${k}: drag to move`);
+        });
       });
     });
   }

@@ -248,6 +248,18 @@ class Planar:
             add_dot(C, np.array([[ns]]), np.ones((1, 1)), np.array([[ns]]), np.ones((1, 1)), -1.0, 1.0)
 
 
+def _linearity_angle(Y: Array) -> float:
+    """:meth:`Linear.angles` of one curve's control points Y (k, 3), degrees."""
+    u = np.linalg.svd(Y - Y.mean(0), full_matrices=False)[2][0]
+    iu, ju = np.triu_indices(len(Y), 1)
+    d = Y[ju] - Y[iu]
+    keep = np.linalg.norm(d, axis=1) > 1e-12
+    a = angle_between(d[keep], np.broadcast_to(u, d[keep].shape))
+    dev = np.minimum(a, 180.0 - a)
+    w = dev**2
+    return float((dev * w).sum() / w.sum()) if w.sum() > 0 else 0.0
+
+
 @dataclass(frozen=True)
 class Linear:
     """Curve linearity (paper sec. 5.2, ``C_linear``), one candidate per stroke.
@@ -277,18 +289,7 @@ class Linear:
         the curve's principal direction; alpha = sum dev^3 / sum dev^2, the
         weighting :meth:`Planar.angles` uses (0 for a straight curve).
         """
-        out = np.zeros(len(self.points))
-        for i, p in enumerate(self.points):
-            Y = X[p]
-            u = np.linalg.svd(Y - Y.mean(0), full_matrices=False)[2][0]
-            iu, ju = np.triu_indices(len(p), 1)
-            d = Y[ju] - Y[iu]
-            keep = np.linalg.norm(d, axis=1) > 1e-12
-            a = angle_between(d[keep], np.broadcast_to(u, d[keep].shape))
-            dev = np.minimum(a, 180.0 - a)
-            w = dev**2
-            out[i] = float((dev * w).sum() / w.sum()) if w.sum() > 0 else 0.0
-        return out
+        return np.array([_linearity_angle(X[p]) for p in self.points], dtype=float)
 
     def add(self, P: Poly2, which: Index, weight: Array | float) -> None:
         """Add the rows of candidates ``which`` (soft term or hard constraint)."""
@@ -627,9 +628,7 @@ def linear_cues(g: SketchGraph, params: LiftParams) -> Linear:
         if straight[chain].all() and joints_ok:
             continue
         p = np.unique(seg[chain].reshape(-1))
-        probe = Linear((p.astype(np.intp),), np.zeros(1, np.intp), np.zeros((0, 3), np.intp), np.zeros(0),
-                       np.zeros(0, np.intp), ("",))
-        if probe.angles(np.c_[bar, np.zeros(len(bar))])[0] >= params.outer_deg:
+        if _linearity_angle(np.c_[bar[p], np.zeros(len(p))]) >= params.outer_deg:
             continue
         c = len(pts)
         own = [(int(k_seg), k) for k_seg in chain if not straight[k_seg] for k in (1, 2)]

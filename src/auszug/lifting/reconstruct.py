@@ -709,7 +709,7 @@ def lift(sketch: Sketch, params: LiftParams = DEFAULT, progress: Progress | None
     ok = True
     sym_at: tuple[int, int, Array, NDArray[np.intp]] | None = None   # layer, its index, normal, curve points
     for layer, g in layers:
-        s_sym = symmetry_stroke(sketch, g)
+        s_sym = symmetry_stroke(sketch, g, params)
         X, cues_, st, conv, flip = lift_graph(g, params, layer, progress, classes, s_sym)
         results += cues_
         stages += st
@@ -736,7 +736,7 @@ def lift(sketch: Sketch, params: LiftParams = DEFAULT, progress: Progress | None
     return LiftResult(net, tuple(results), tuple(stages), bool(ok), tuple(flips), tuple(pts), tuple(graphs), mirror)
 
 
-def symmetry_stroke(sketch: Sketch, g: SketchGraph) -> int | None:
+def symmetry_stroke(sketch: Sketch, g: SketchGraph, params: LiftParams = DEFAULT) -> int | None:
     """Index in ``g.strokes`` of the sketch's global symmetry curve, or None if ``g`` has none.
 
     The curve is a stroke of its layer's graph: :func:`layer_graphs` adds it
@@ -751,12 +751,18 @@ def symmetry_stroke(sketch: Sketch, g: SketchGraph) -> int | None:
         if t is sym:
             return i
     for i, t in enumerate(g.strokes):
-        if t.layer == sym.layer and _same_curve(t.controls, sym.controls, 1e-4 * g.scale):
+        if t.layer == sym.layer and _same_curve(t.controls, sym.controls, params, g.scale):
             return i
     return None
 
 
-def _same_curve(a: Array, b: Array, tol: float) -> bool:
+def _same_curve(a: Array, b: Array, params: LiftParams, diagonal: float) -> bool:
+    """Whether two strokes are one curve.
+
+    The same control points, either direction, within ``100 * params.merge`` of the diagonal (the
+    grid of the duplicate-stroke test).
+    """
+    tol = 100.0 * params.merge * diagonal
     a, b = np.asarray(a, float), np.asarray(b, float)
     if a.shape != b.shape:
         return False
@@ -892,12 +898,12 @@ def layer_graphs(sketch: Sketch, params: LiftParams = DEFAULT) -> tuple[tuple[in
         sym = sketch.symmetry
         if sym is not None and sym.layer == layer:
             scale = Sketch(strokes).diagonal()
-            if not any(_same_curve(t.controls, sym.controls, 1e-4 * scale) for t in strokes):
+            if not any(_same_curve(t.controls, sym.controls, params, scale) for t in strokes):
                 strokes = (*strokes, sym)
         sub = Sketch(strokes, sketch.markers, None, sketch.name)
         g, snapped = _graph_with_markers(sub, params)
         if sym is not None and sym.layer == layer:
-            k = symmetry_stroke(sketch, g)
+            k = symmetry_stroke(sketch, g, params)
             assert k is not None
             if not any(k in c.strokes for c in g.crossings):
                 raise GeometryError(f"symmetry path {sym.id or '(no id)'}: meets no stroke of layer {layer}; the "

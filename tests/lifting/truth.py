@@ -177,7 +177,12 @@ def _project(chains, R, noise: float, seed: int) -> Truth:
             return np.einsum("...kc,kc->...c", np.sin(arg[..., None] + phase), amp)
 
         strokes = [Stroke(s.controls + field(s.controls), s.id) for s in sk.strokes]
-        sk = Sketch(tuple(strokes), tuple(Marker(m.kind, m.point + field(m.point), m.id) for m in marks))
+        # the occlusion markers of the drawn (noisy) strokes: a near-tangent 2D crossing of the clean
+        # projection can vanish under the noise (or one appear), and its marker would have no crossing.
+        # The depths are the truth's at the noisy crossing's parameters: a true crossing is at a knot of
+        # both chains, moved alike, so its depths agree to rounding; an occlusion's differ by far more.
+        noisy = occlusions(view, 1e-4 * d, [s.controls for s in strokes])
+        sk = Sketch(tuple(strokes), tuple(Marker("occlusion", p, f"occlusion-{i + 1}") for i, p in enumerate(noisy)))
     return Truth(sk, view)
 
 

@@ -133,6 +133,14 @@ def occlusions(view, tol: float, strokes2d=None) -> list[np.ndarray]:
 
     The crossings are those of ``strokes2d`` (the drawn, possibly jittered strokes) when given,
     else of the view's own x, y; the depths are always the view's."""
+    return [p for p, dz in crossings2d(view, strokes2d) if dz > tol]
+
+
+def crossings2d(view, strokes2d=None) -> list[tuple[np.ndarray, float]]:
+    """Every 2D crossing of two different chains, with the depth difference of the truth there.
+
+    The crossings are those of ``strokes2d`` when given, else of the view's own x, y; the depths are
+    the view's chains' at the crossing's parameters."""
     from auszug.geometry import CubicBezier, intersect_many
 
     curves, owner = [], []
@@ -148,8 +156,7 @@ def occlusions(view, tol: float, strokes2d=None) -> list[np.ndarray]:
         for h in hits:
             za = CubicBezier.from_array(view[ia][ka][:, [0, 2]]).point(h.t1)[1]
             zb = CubicBezier.from_array(view[ib][kb][:, [0, 2]]).point(h.t2)[1]
-            if abs(za - zb) > tol:
-                out.append(np.asarray(h.point, float))
+            out.append((np.asarray(h.point, float), float(abs(za - zb))))
     return out
 
 
@@ -177,12 +184,23 @@ def _project(chains, R, noise: float, seed: int) -> Truth:
             return np.einsum("...kc,kc->...c", np.sin(arg[..., None] + phase), amp)
 
         strokes = [Stroke(s.controls + field(s.controls), s.id) for s in sk.strokes]
-        # the occlusion markers of the drawn (noisy) strokes: a near-tangent 2D crossing of the clean
-        # projection can vanish under the noise (or one appear), and its marker would have no crossing.
-        # The depths are the truth's at the noisy crossing's parameters: a true crossing is at a knot of
-        # both chains, moved alike, so its depths agree to rounding; an occlusion's differ by far more.
-        noisy = occlusions(view, 1e-4 * d, [s.controls for s in strokes])
-        sk = Sketch(tuple(strokes), tuple(Marker("occlusion", p, f"occlusion-{i + 1}") for i, p in enumerate(noisy)))
+        # the markers of the drawn (noisy) strokes: a near-tangent 2D crossing of the clean projection
+        # can vanish under the noise (its marker would have no crossing) or one appear. Each noisy
+        # crossing is what the clean crossing nearest its position (moved by the field, within 1 % of
+        # the diagonal) was, an occlusion or not; one without a clean counterpart is an occlusion when
+        # the truth's depths at its parameters differ by more than 1 % of the diagonal.
+        clean = crossings2d(view)
+        moved = np.array([p + field(p) for p, _ in clean]).reshape(-1, 2)
+        occluded = np.array([dz > 1e-6 * d0 for _, dz in clean], bool)
+        kept = []
+        for p, dz in crossings2d(view, [s.controls for s in strokes]):
+            dist = np.linalg.norm(moved - p, axis=1) if len(moved) else np.zeros(0)
+            if len(dist) and dist.min() <= 0.01 * d:
+                if occluded[dist.argmin()]:
+                    kept.append(p)
+            elif dz > 0.01 * d:
+                kept.append(p)
+        sk = Sketch(tuple(strokes), tuple(Marker("occlusion", p, f"occlusion-{i + 1}") for i, p in enumerate(kept)))
     return Truth(sk, view)
 
 

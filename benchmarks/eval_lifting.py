@@ -29,6 +29,7 @@ import time
 
 import numpy as np
 
+from auszug.errors import GeometryError
 from auszug.lifting import DEFAULT_CLASSES, lift
 from tests.lifting import truth as T
 
@@ -40,10 +41,13 @@ TURNS = tuple(float(t) for t in range(-50, 51, 10))
 
 def evaluate(tr: T.Truth, classes: tuple[str, ...]) -> dict:
     """One lift of a truth's sketch, scored against the truth."""
-    lab = T.labels(tr)
-    t0 = time.perf_counter()
-    r = lift(tr.sketch, classes=classes)
-    sec = time.perf_counter() - t0
+    try:
+        lab = T.labels(tr)
+        t0 = time.perf_counter()
+        r = lift(tr.sketch, classes=classes)
+        sec = time.perf_counter() - t0
+    except GeometryError as e:       # refused, e.g. noise left no smooth crossing to start from
+        return {"refused": str(e).split(":")[0]}
     err, sign = T.depth_rmse(tr, r)
     scores = T.cue_scores(r, lab)
     worst = {k: max((c.angle for c in r.cues if c.applied and c.kind == k), default=0.0)
@@ -52,6 +56,8 @@ def evaluate(tr: T.Truth, classes: tuple[str, ...]) -> dict:
 
 
 def _fmt_err(e: dict) -> str:
+    if "refused" in e:
+        return "refused"
     return f"{100 * e['err']:.2f}{'' if e['converged'] else ' !'}{'' if e['sign'] == 1 else ' (-)'}"
 
 
@@ -87,19 +93,22 @@ def noise_table(names: list[str], classes: tuple[str, ...], out) -> None:
                 tr = T.make(name, noise=noise, seed=s)
                 e = evaluate(tr, classes)
                 es.append(e)
+                if "refused" in e:
+                    print(f"# {name} noise {noise} seed {s}: refused: {e['refused']}", file=sys.stderr, flush=True)
+                    continue
                 rows.append(e)
                 print(f"# {name} noise {noise} seed {s}: {_fmt_err(e)} % {e['scores']} "
                       f"worst applied {e['worst']} {e['seconds']:.1f} s", file=sys.stderr, flush=True)
             cells.append(", ".join(_fmt_err(e) for e in es) + " %")
             if noise == 0:
-                e0 = es[0]["err"]
+                e0 = es[0].get("err", np.nan)
             if noise == NOISES[-1]:
-                ratio = max(e["err"] for e in es) / e0 if e0 > 0 else np.inf
+                ratio = max((e["err"] for e in es if "err" in e), default=np.nan) / e0
         tr0 = T.make(name)
         z = np.concatenate([c[..., 2].ravel() for c in tr0.chains3d])
         spread = float(np.std(z)) / tr0.diagonal()
         tilt, turn = T.VIEWS[name]
-        secs = np.mean([r["seconds"] for r in rows])
+        secs = np.mean([r["seconds"] for r in rows]) if rows else np.nan
         print(f"| {name} | {tilt:g}, {turn:g} | {100 * spread:.1f} % | {cells[0]} | {cells[1]} | {cells[2]} | "
               f"{ratio:.2f} | {_f1(rows, 'parallel')} | {_f1(rows, 'orthogonal')} | {_f1(rows, 'planar')} | "
               f"{_worst(rows)} | {secs:.1f} |",
@@ -114,7 +123,7 @@ def views_table(names: list[str], classes: tuple[str, ...], out) -> None:
     print("|---|---|---|---|---|---|---|---|---|", file=out)
     total = wrong_total = 0
     for name in names:
-        rows, rejected, wrong = [], 0, []
+        rows, rejected, refused, wrong = [], 0, 0, []
         for tilt in TILTS:
             for turn in TURNS:
                 tr = T.make(name, tilt, turn)
@@ -124,6 +133,10 @@ def views_table(names: list[str], classes: tuple[str, ...], out) -> None:
                     print(f"# {name} {tilt:g} {turn:g}: rejected: {'; '.join(why)}", file=sys.stderr, flush=True)
                     continue
                 e = evaluate(tr, classes)
+                if "refused" in e:
+                    refused += 1
+                    print(f"# {name} {tilt:g} {turn:g}: refused: {e['refused']}", file=sys.stderr, flush=True)
+                    continue
                 rows.append(e)
                 if e["sign"] != 1:
                     wrong.append(f"{tilt:g}/{turn:g} ({100 * e['err']:.1f} %)")
@@ -131,7 +144,8 @@ def views_table(names: list[str], classes: tuple[str, ...], out) -> None:
         errs = np.array([r["err"] for r in rows] or [np.nan])
         total += len(rows)
         wrong_total += len(wrong)
-        print(f"| {name} | {len(rows)} ({rejected}) | {len(wrong)}{': ' + ', '.join(wrong) if wrong else ''} | "
+        ref = f", {refused} refused" if refused else ""
+        print(f"| {name} | {len(rows)} ({rejected}{ref}) | {len(wrong)}{': ' + ', '.join(wrong) if wrong else ''} | "
               f"{100 * np.median(errs):.2f} / {100 * errs.max():.2f} % | {_f1(rows, 'parallel')} | "
               f"{_f1(rows, 'orthogonal')} | {_f1(rows, 'planar')} | {_worst(rows)} | "
               f"{sum(not r['converged'] for r in rows)} |", file=out, flush=True)

@@ -58,7 +58,7 @@ def test_noisy_graph_points_are_still_truth_control_points(name, noise, seed):
 
 def test_helicoid_rulings_straight_helices_not_planar():
     chains = T.spiral_chains()
-    rulings, helices = chains[3:], chains[:3]
+    rulings = chains[3:]                     # after the three helices
     for c in rulings:
         P = c.reshape(-1, 3)
         assert np.linalg.svd(P - P.mean(0), compute_uv=False)[1] < 1e-12
@@ -129,3 +129,42 @@ def test_turret_negative_cues():
 def test_accidental_views_are_rejected(make, reason):
     why = T.accidental(make())
     assert any(reason in w for w in why), why
+
+
+# (truth, depth RMSE bound, {class: (true positives, applied, true)}) measured 2026-12-03 at each truth's
+# own view, noise-free, default cues (docs/lifting.md, "Measured"); the bounds are the measured figure
+# plus about 3 % of it. Targets of issue 12: spiral <= 1 %, saddle, wrinkle and cross <= 3 %: all missed.
+LIFTED = [
+    ("spiral", 0.3530, {"parallel": (5, 13, 5)}),                      # measured 34.31 %
+    ("saddle", 0.0770, {"parallel": (12, 24, 12), "planar": (8, 8, 8)}),  # measured 7.45 %
+    ("wrinkle", 0.0925, {"parallel": (22, 22, 22), "planar": (3, 3, 3)}),  # measured 8.95 %
+    ("cross", 0.1670, {"parallel": (20, 70, 20), "orthogonal": (8, 16, 12), "planar": (6, 6, 6)}),  # 16.21 %
+    ("turret", 0.1060, {"parallel": (22, 24, 22), "orthogonal": (8, 12, 10)}),  # measured 10.28 %
+]
+
+
+@pytest.mark.parametrize("name, bound, counts", LIFTED)
+def test_lift_against_the_truth(name, bound, counts):
+    """Depth RMSE (best offset and sign), the sign, the cue counts against the true labels, and the residual
+    angles of the applied cues: the smooth crossings' orthogonality holds to 1e-6 deg; the last class
+    resolved (planarity, or corner orthogonality where no stroke is curved: the turret) is reported
+    after its last round's soft solve, its accepted cues never solved again as hard constraints, so
+    within I_b only (measured up to 4.7 deg); applied parallelism stays soft (at most 0.31 deg)."""
+    tr = T.make(name)
+    lab = T.labels(tr)
+    r = lift(tr.sketch)
+    err, sign = T.depth_rmse(tr, r)
+    assert sign == 1 and err <= bound, (err, sign)
+    scores = T.cue_scores(r, lab)
+    assert {k: scores[k][:3] for k in counts} == counts
+    # what is not listed has no candidate or nothing applied and nothing true
+    assert all(v[1] == v[2] == 0 for k, v in scores.items() if k not in counts and k != "linear")
+    ap = {k: [c.angle for c in r.cues if c.applied and c.kind == k]
+          for k in ("smooth-orthogonal", "orthogonal", "planar", "parallel")}
+    assert max(ap["smooth-orthogonal"]) < 1e-6
+    assert max(ap["orthogonal"] + ap["planar"], default=0.0) <= DEFAULT.inner_deg
+    if ap["planar"]:                # corners resolved before planarity: hard in every later solve
+        assert max(ap["orthogonal"], default=0.0) < 1e-6
+    assert max(ap["parallel"], default=0.0) < 0.35
+    if name != "cross":            # the cross's planar round ends unconverged (residual 1.4e-9 > 1e-10)
+        assert r.converged

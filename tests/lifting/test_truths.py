@@ -9,9 +9,12 @@ at each truth's own view (docs/lifting.md, "Measured"; the view grid is in bench
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 
+from auszug.errors import GeometryError
 from auszug.lifting import DEFAULT, layer_graphs, lift
 from tests.lifting import truth as T
 
@@ -143,6 +146,12 @@ LIFTED = [
 ]
 
 
+@functools.cache
+def _clean(name: str):
+    tr = T.make(name)
+    return tr, lift(tr.sketch)
+
+
 @pytest.mark.parametrize("name, bound, counts", LIFTED)
 def test_lift_against_the_truth(name, bound, counts):
     """Depth RMSE (best offset and sign), the sign, the cue counts against the true labels, and the residual
@@ -150,9 +159,8 @@ def test_lift_against_the_truth(name, bound, counts):
     resolved (planarity, or corner orthogonality where no stroke is curved: the turret) is reported
     after its last round's soft solve, its accepted cues never solved again as hard constraints, so
     within I_b only (measured up to 4.7 deg); applied parallelism stays soft (at most 0.31 deg)."""
-    tr = T.make(name)
+    tr, r = _clean(name)
     lab = T.labels(tr)
-    r = lift(tr.sketch)
     err, sign = T.depth_rmse(tr, r)
     assert sign == 1 and err <= bound, (err, sign)
     scores = T.cue_scores(r, lab)
@@ -168,3 +176,26 @@ def test_lift_against_the_truth(name, bound, counts):
     assert max(ap["parallel"], default=0.0) < 0.35
     if name != "cross":            # the cross's planar round ends unconverged (residual 1.4e-9 > 1e-10)
         assert r.converged
+
+
+@pytest.mark.parametrize("name", ["spiral", "saddle", "wrinkle", "cross", "turret"])
+def test_one_percent_noise_within_twice_the_noise_free_error(name):
+    """The issue's noise target, 1 % noise (seed 1) against the same truth noise-free, default cues.
+
+    Measured at 1 % (seeds 0, 1, 2) against noise-free: spiral 27.5 (a solve unconverged, wrong sign),
+    33.5, 28.3 against 34.3 %; saddle 8.30, 7.09, 4.80 against 7.45 %; wrinkle 4.07, 6.85, 8.31 against
+    8.95 %; cross refused (seed 0), 13.1 (wrong sign), 22.2 against 16.2 %; turret 11.5, 11.8, 17.0
+    against 10.3 %. Met everywhere, but only because the noise-free errors are large."""
+    tr0, r0 = _clean(name)
+    err0, _ = T.depth_rmse(tr0, r0)
+    tr = T.make(name, noise=0.01, seed=1)
+    err, _ = T.depth_rmse(tr, lift(tr.sketch))
+    assert err <= 2 * err0, (err, err0)
+
+
+def test_cross_with_noise_that_breaks_its_one_smooth_crossing_is_refused():
+    """The bay has one smooth crossing (the boss); 1 % noise, seed 0, turns a diagonal rib's tangent at the
+    boss by more than 10 deg, so no smooth crossing is left to start from: refused, with the reason."""
+    tr = T.make("cross", noise=0.01, seed=0)
+    with pytest.raises(GeometryError, match="no smooth crossing"):
+        lift(tr.sketch)

@@ -52,7 +52,8 @@ def evaluate(tr: T.Truth, classes: tuple[str, ...]) -> dict:
     scores = T.cue_scores(r, lab)
     worst = {k: max((c.angle for c in r.cues if c.applied and c.kind == k), default=0.0)
              for k in ("smooth-orthogonal", "orthogonal", "planar", "parallel")}
-    return {"err": err, "sign": sign, "converged": r.converged, "seconds": sec, "scores": scores, "worst": worst}
+    return {"err": err, "sign": sign, "converged": r.converged, "seconds": sec, "scores": scores, "worst": worst,
+            "classes": classes}
 
 
 def _fmt_err(e: dict) -> str:
@@ -62,6 +63,8 @@ def _fmt_err(e: dict) -> str:
 
 
 def _f1(rows: list[dict], k: str) -> str:
+    if not any(r["classes"] and k in r["classes"] for r in rows):
+        return "-"
     tp = sum(r["scores"][k][0] for r in rows if k in r["scores"])
     na = sum(r["scores"][k][1] for r in rows if k in r["scores"])
     nt = sum(r["scores"][k][2] for r in rows if k in r["scores"])

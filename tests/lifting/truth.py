@@ -484,6 +484,8 @@ def turret_chains(height: float = 1.4) -> list[np.ndarray]:
     return chains
 
 
+#: The truths of the evaluation (benchmarks/eval_lifting.py) by name: their chains in object
+#: coordinates (the revolve's are built inside :func:`revolve`); :func:`make` projects them.
 TRUTHS = {"revolve": None, "spiral": spiral_chains, "saddle": saddle_chains, "wrinkle": wrinkle_chains,
           "cross": cross_chains, "turret": turret_chains}
 #: The view (tilt, turn) of each truth in the tests: generic (:func:`accidental` finds nothing).

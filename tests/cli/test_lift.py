@@ -43,6 +43,37 @@ def test_obj_output_and_the_figure(cli, tmp_path):
     assert files_in(tmp_path) == ["a.obj", "a.png"]
 
 
+def test_mesh_output_is_the_lifted_curves_swept_as_tubes(cli, tmp_path):
+    src = examples.path("sketches/arches.svg")
+    net_out, glb = tmp_path / "a.network.json", tmp_path / "a.glb"
+    assert cli("lift", src, "-o", net_out, "--quiet", "--cues", "none").code == 0
+    r = cli("lift", src, "-o", glb, "--quiet", "--cues", "none", "--size", "0.5", "--segments", "24", "--around", "10")
+    assert r.code == 0, r.err
+    mesh = load(glb, kind="mesh")
+    doc = load(net_out, kind="network")
+    # one part per stroke (the GLB has a node per basic curve), 25 rings of 10 per Bezier piece
+    assert len(mesh.parts) == len({c["basic"] for c in doc["curves"]}) == 6
+    assert len(mesh.vertices) == len(doc["curves"]) * 25 * 10
+    # every vertex 0.25 (the tube's radius) from its piece's polyline (33 samples a Bezier piece;
+    # their chords stay within 0.008 of the curves here; float32 in the file: 1e-5). A part is a
+    # stroke, its vertices 250 per piece in the stroke's order.
+    pts = np.concatenate([np.asarray(c["points"], float) for c in doc["curves"]])
+    d = np.empty(len(mesh.vertices))
+    for part in mesh.parts:
+        basic = int(part.name.split()[-1])
+        polys = [np.asarray(c["points"], float) for c in doc["curves"] if c["basic"] == basic]
+        assert part.vertices[1] - part.vertices[0] == 250 * len(polys)
+        for j, poly in enumerate(polys):
+            lo = part.vertices[0] + 250 * j
+            a, ab = poly[:-1], np.diff(poly, axis=0)
+            q = np.asarray(mesh.vertices[lo:lo + 250], float)[:, None, :] - a[None]
+            t = np.clip(np.einsum("vsk,sk->vs", q, ab) / np.einsum("sk,sk->s", ab, ab), 0.0, 1.0)
+            d[lo:lo + 250] = np.linalg.norm(q - t[..., None] * ab[None], axis=2).min(axis=1)
+    assert np.abs(d - 0.25).max() < 0.01
+    assert np.ptp(mesh.vertices[:, 2]) > 0.9 * np.ptp(pts[:, 2])
+    assert files_in(tmp_path) == ["a.glb", "a.network.json"]
+
+
 def test_bad_sketches_exit_2_and_write_nothing(cli, tmp_path):
     bad = tmp_path / "bad.svg"
     bad.write_text('<svg xmlns="http://www.w3.org/2000/svg"><path id="p" d="M 0 0 L nan 1"/></svg>')

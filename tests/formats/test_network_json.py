@@ -9,7 +9,7 @@ import pytest
 
 from auszug.errors import FormatError
 from auszug.formats import load, save
-from auszug.formats.network_json import KINDS, NetworkFile, dumps, loads, to_dict
+from auszug.formats.network_json import KINDS, NetworkFile, dumps, loads, network_from_dict, to_dict
 from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry, build
 from tests.conftest import CORPUS, corpus_files
 
@@ -113,6 +113,46 @@ def test_round_trip_is_exact_and_does_not_touch_the_network(tmp_path):
     assert out.read_text() == text
     assert load(out, kind="network") == doc
     assert dumps(net, "tn-5.uc") == text                              # deterministic
+
+
+MESHED = ["teaching-sheet/tn-2.uc", "web/U.XI.28.uc", "web/3d-scan-final.uc", "web/ribbons/side6-drawing-cube.uc",
+          "legacy/U.XI.25.uc"]
+
+
+@pytest.mark.parametrize("name", MESHED)
+def test_the_network_read_back_from_a_file_meshes_as_the_drawing_does(name):
+    from auszug.geometry.network import as_curve_network
+    from auszug.meshing import Look, mesh_network
+
+    net = build(load(CORPUS / name))
+    back = network_from_dict(loads(dumps(net, name)))
+    cn = as_curve_network(net)
+    assert back.groups == cn.groups and back.layers == cn.layers and back.bottoms == cn.bottoms
+    assert back.size == cn.size and [c.id for c in back.curves()] == [c.id for c in cn.curves()]
+    # members with their mirror-plane joints: the same mesh (the exact curves' floats round-trip to 1 ulp)
+    look = Look(style="bar", segments=16)
+    a, b = mesh_network(net, look).mesh, mesh_network(back, look).mesh
+    assert [p.name for p in a.parts] == [p.name for p in b.parts] and np.array_equal(a.faces, b.faces)
+    np.testing.assert_allclose(b.vertices, a.vertices, rtol=0, atol=1e-14)
+
+
+def test_every_piece_kind_reads_back_exactly():
+    net = build(_decorated_free_end_post(), samples=70)
+    back = network_from_dict(loads(dumps(net, "synthetic.json")))
+    t = np.linspace(0.0, 1.0, 33)
+    for p, q in zip(net.pieces, back.pieces, strict=True):
+        assert (p.kind, p.basic, p.segment) == (q.kind, q.basic, q.segment)
+        np.testing.assert_allclose(q.point_t(t), p.point_t(t), rtol=0, atol=1e-14)
+    from auszug.geometry.network import as_curve_network
+
+    assert back.groups == as_curve_network(net).groups
+
+
+def test_a_network_without_exact_curves_is_refused_naming_the_curve():
+    doc = loads(dumps(build(_decorated_free_end_post(), samples=9), "synthetic.json"))
+    del doc["curves"][3]["exact"]
+    with pytest.raises(FormatError, match=r"curves\[3\] \(0/r1m?\S*\): no exact curve"):
+        network_from_dict(doc, "x.network.json")
 
 
 def test_extras_record_the_parameterization_and_algorithm1_choices():

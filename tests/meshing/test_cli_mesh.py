@@ -35,6 +35,27 @@ def test_output_ending_picks_the_mesh_format(cli, tmp_path, ending):
         assert (tmp_path / "tn-1.mtl").read_text().count("newmtl") == 1
 
 
+def test_a_network_file_meshes_as_its_drawing_does(cli, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    net = tmp_path / "tn-5.network.json"
+    assert cli("build", TN / "tn-5.uc", "-o", net)[0] == 0
+    code, text, err = cli("mesh", net, "--segments", "24", "--style", "tube", "--faces", "auto",
+                          "-o", tmp_path / "n.stl")
+    assert code == 0, err
+    code2, text2, _ = cli("mesh", TN / "tn-5.uc", "--segments", "24", "--style", "tube", "--faces", "auto",
+                          "-o", tmp_path / "d.stl")
+    assert code2 == 0 and text.split("; ")[1:] == text2.split("; ")[1:]     # counts, faces, residual
+    a, b = load(tmp_path / "d.stl", kind="mesh"), load(tmp_path / "n.stl", kind="mesh")
+    np.testing.assert_allclose(b.vertices, a.vertices, rtol=0, atol=1e-6)
+    # without -o: <stem>.glb, the network file's whole ending dropped
+    code, text, err = cli("mesh", net, "--segments", "8", "--format", "ply")
+    assert code == 0 and text.startswith("wrote tn-5.ply; ") and (tmp_path / "tn-5.ply").exists()
+    (tmp_path / "old.network.json").write_text(net.read_text().replace('"exact":', '"exact_":'))
+    code, _, err = cli("mesh", tmp_path / "old.network.json", "-o", tmp_path / "o.glb")
+    assert code == 2 and "old.network.json" in err and "no exact curve" in err
+    assert not (tmp_path / "o.glb").exists()
+
+
 def test_solid_with_base_reports_a_watertight_volume(cli, tmp_path):
     out = tmp_path / "tn-1.stl"
     code, text, err = cli("mesh", TN / "tn-1.uc", "--style", "tube", "--around", "8", "--solid", "--base",

@@ -188,3 +188,64 @@ def test_every_member_closed_at_its_cuts_is_watertight_with_positive_volume(name
         m = Mesh(v, f)
         assert m.is_watertight and m.is_manifold, mb.piece
         assert m.volume > 0
+
+
+# -- lifted sketch pieces (3D cubic Beziers) ---------------------------------------------------------
+
+
+def _bezier3(c, t):
+    m = 1.0 - t[:, None]
+    tt = t[:, None]
+    return m**3 * c[0] + 3 * m * m * tt * c[1] + 3 * m * tt * tt * c[2] + tt**3 * c[3]
+
+
+def _sketch_network(controls):
+    """A network of lifted sketch pieces, one basic curve each, as the lifting package builds it."""
+    from auszug.geometry import CubicBezier
+    from auszug.geometry.network import CurveNetwork, Piece, SideCoordinate, SymmetryGroup
+
+    pieces = tuple(Piece(k, 0, "sketch", CubicBezier.from_array(c[:, :2]), None, SideCoordinate("u"),
+                         c[[0, 3]].copy(), depth=c[:, 2].copy()) for k, c in enumerate(controls))
+    return CurveNetwork(pieces, tuple(SymmetryGroup(1) for _ in controls), tuple(0 for _ in controls), (0.0,),
+                        float(np.abs(np.concatenate(controls)).max()))
+
+
+SKETCH_BEZIERS = [np.array([[0.0, 0, 0], [1, 0.5, 0.8], [2, -0.3, 1.2], [3, 0.2, 0.1]]),
+                  # a handle on its end point (zero derivative there) and a stretch along the view (z)
+                  np.array([[0.0, 0, 0], [0, 0, 0], [0.1, 0.2, 1.5], [0.2, 0.1, 2.5]])]
+
+
+@pytest.mark.parametrize("c", SKETCH_BEZIERS, ids=["generic", "end-handle-along-view"])
+def test_sketch_pieces_sweep_rings_of_the_radius_around_the_exact_3d_bezier(c):
+    net = _sketch_network([c])
+    piece = net.pieces[0]
+    assert "sketch" in SWEPT_KINDS
+    (run,) = sample_piece(piece, 60)
+    # samples on the exact 3D curve: Bernstein in x, y (the top view) and in z (the depths)
+    t = np.array([piece.top.project(q) for q in run.points[:, :2]])
+    assert np.abs(_bezier3(c, t) - run.points).max() < 1e-9
+    assert run.points[0].tolist() == c[0].tolist() and run.points[-1].tolist() == c[3].tolist()
+    # even in 3D arc length (within 1 %), unit tangents along the chords
+    step = np.linalg.norm(np.diff(run.points, axis=0), axis=1)
+    assert step.max() / step.min() < 1.01
+    chord = np.diff(run.points, axis=0) / step[:, None]
+    mid = run.tangents[:-1] + run.tangents[1:]
+    mid /= np.linalg.norm(mid, axis=1, keepdims=True)
+    assert np.einsum("ij,ij->i", chord, mid).min() > math.cos(math.radians(2))
+    # the member: every ring at distance r from its sample, in the sample's normal plane
+    r, m = 0.05, 12
+    (member,) = sweep_members(net, circle(r, m), segments=60, kinds=("sketch",))
+    rings = member.vertices[: 61 * m].reshape(61, m, 3) - run.points[:, None, :]
+    assert np.abs(np.linalg.norm(rings, axis=2) - r).max() < 1e-12
+    assert np.abs(np.einsum("kij,kj->ki", rings, run.tangents)).max() < 1e-12
+    mesh = Mesh(member.vertices, member.faces)
+    assert mesh.is_watertight and mesh.volume > 0
+
+
+def test_a_lifted_network_meshes_with_every_piece_a_member():
+    from auszug.meshing import Look, mesh_network
+
+    net = _sketch_network(SKETCH_BEZIERS)
+    m = mesh_network(net, Look(style="tube", size=0.1, around=8, segments=20)).mesh
+    assert [p.name for p in m.parts] == [c.id for c in net.curves()]
+    assert len(m.vertices) == 2 * 21 * 8 and m.is_watertight   # rings only: the caps triangulate the end rings

@@ -175,16 +175,33 @@ def build_network(drawing: "Drawing", source: str | os.PathLike[str], args: argp
     return NetworkFile(net, Path(source).name)
 
 
-def network_of(path: str | os.PathLike[str], args: argparse.Namespace) -> "NetworkFile":
-    """Read the drawing at ``path`` and build its network."""
+def is_network_file(path: str | os.PathLike[str]) -> bool:
+    """Whether ``path`` names a network JSON file (``x.network.json``), which holds exact curves."""
+    return os.fspath(path).lower().endswith(".network.json")
+
+
+def network_of(path: str | os.PathLike[str], args: argparse.Namespace, networks: bool = False) -> "NetworkFile":
+    """Read the drawing at ``path`` and build its network; with ``networks``, read a ``.network.json`` as it is.
+
+    A network file (written by ``auszug build`` or ``auszug lift``) gives its exact curves back
+    with their symmetry groups; the reconstruction options do not apply to it. Without
+    ``networks`` it is refused as not a drawing.
+    """
+    if networks and is_network_file(path):
+        from auszug.formats import load
+        from auszug.formats.network_json import NetworkFile, network_from_dict
+
+        with about(path):
+            doc = load(path, kind="network")
+            return NetworkFile(network_from_dict(doc, os.fspath(path)), doc["source"])
     return build_network(read_drawing(path), path, args)
 
 
 def stem(path: str | os.PathLike[str]) -> str:
-    """File name without its drawing ending: ``U.XI.28.fixed.uc`` -> ``U.XI.28.fixed``."""
+    """File name without its drawing (or network file) ending: ``U.XI.28.fixed.uc`` -> ``U.XI.28.fixed``."""
     from auszug.formats import stem as file_stem
 
-    return file_stem(path, "drawing")
+    return file_stem(path, "network" if is_network_file(path) else "drawing")
 
 
 def find_drawings(inputs: Sequence[str]) -> list[tuple[Path, Path]]:

@@ -3,9 +3,11 @@
 SKETCH is an SVG as Inkscape or Illustrator write it (paths of any kind,
 layers as independent parts; occlusion and flip marker circles and a symmetry
 path as annotations, see docs/formats.md) or a .sketch.json. The ending of
-OUT picks the network format: .network.json, .obj, .svg, .dxf, .3dm. x and y
-are the sketch's own (y up), z is the lifted depth toward the viewer. Without
--o the network goes to <stem>.network.json in the current folder.
+OUT picks the network format: .network.json, .obj, .svg, .dxf, .3dm; or a
+mesh of the network's curves swept as tubes (--style, --size): .glb, .gltf,
+.stl, .ply (.obj is the network's polylines). x and y are the sketch's own
+(y up), z is the lifted depth toward the viewer. Without -o the network goes
+to <stem>.network.json in the current folder.
 
 One progress line per solve goes to stderr. The output is written
 atomically: a sketch that cannot be lifted leaves no file (exit code 2).
@@ -13,6 +15,7 @@ atomically: a sketch that cannot be lifted leaves no file (exit code 2).
 examples:
   auszug lift vase.svg -o vase.network.json
   auszug lift vase.svg -o vase.obj --report --render vase.png
+  auszug lift vase.svg -o vase.glb --style tube --size 2
   auszug lift vase.svg --cues none        # the baseline: hard orthogonality at smooth crossings only
 """
 
@@ -30,6 +33,11 @@ if TYPE_CHECKING:
 
 HELP = "lift a 2D design sketch (.svg, .sketch.json) to a 3D curve network"
 #: ``lifting.CLASSES`` and ``lifting.DEFAULT_CLASSES``, for the help text (a test keeps them equal).
+#: Output endings written as a mesh of the lifted curves (the rest are network formats).
+MESH_SUFFIXES = (".glb", ".gltf", ".stl", ".ply")
+#: Mesh output defaults: a lifted piece is one cubic Bezier, so fewer steps than a drawing's member need.
+MESH_SEGMENTS = 48
+MESH_AROUND = 16
 CUE_CLASSES = ("parallel", "orthogonal", "symmetry", "linear", "planar", "plane")
 DEFAULT_CUES = ("parallel", "orthogonal", "planar")
 
@@ -43,7 +51,17 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     """
     parser.add_argument("sketch", metavar="SKETCH", help="a sketch: .svg or .sketch.json")
     parser.add_argument("-o", "--output", metavar="OUT",
-                        help="network file: .network.json, .obj, .svg, .dxf, .3dm (default <stem>.network.json)")
+                        help="network file: .network.json, .obj, .svg, .dxf, .3dm, or a mesh of the curves: "
+                             ".glb, .gltf, .stl, .ply (default <stem>.network.json)")
+    parser.add_argument("--style", choices=("tube", "bar", "ribbon"), default="tube",
+                        help="cross-section of the curves in a mesh output (default tube)")
+    parser.add_argument("--size", type=_common.positive, default=None, metavar="S",
+                        help="tube diameter / bar side / ribbon width over 3 in a mesh output, sketch units "
+                             "(default 1.2%% of the network's bounding-box diagonal)")
+    parser.add_argument("--segments", type=_common.at_least(1), default=MESH_SEGMENTS, metavar="N",
+                        help=f"steps along each Bezier piece in a mesh output (default {MESH_SEGMENTS})")
+    parser.add_argument("--around", type=_common.at_least(2), default=None, metavar="N",
+                        help=f"points around a tube in a mesh output (default {MESH_AROUND}; 4 for bars, ribbons)")
     parser.add_argument("--report", action="store_true",
                         help="print the cues applied and their final angles (and how many were rejected)")
     parser.add_argument("--render", metavar="FIG",
@@ -84,7 +102,8 @@ def run(args: argparse.Namespace) -> int:
     classes = _classes(args.cues)
     format_for(src, "sketch")
     out = Path(args.output) if args.output else Path(stem(src, "sketch") + ".network.json")
-    format_for(out, "network", want="write")
+    as_mesh = out.name.lower().endswith(MESH_SUFFIXES)
+    format_for(out, "mesh" if as_mesh else "network", want="write")
     if args.render:
         fig_fmt = format_for(args.render, "figure", want="write")
         fig_ext = max((s for s in fig_fmt.suffixes if args.render.lower().endswith(s)), key=len)
@@ -103,7 +122,15 @@ def run(args: argparse.Namespace) -> int:
     if not result.converged:
         say("warning: not every solve converged; the hard cues may be violated (see --report)")
     with _common.about(out):
-        save(NetworkFile(result.network, src.name), out, kind="network")
+        if as_mesh:
+            from auszug.meshing import Look, mesh_network
+
+            around = args.around if args.around is not None else MESH_AROUND if args.style == "tube" else None
+            look = Look(style=args.style, size=args.size, around=around, segments=args.segments)
+            mesh = mesh_network(result.network, look).mesh
+            save(mesh, out, kind="mesh")
+        else:
+            save(NetworkFile(result.network, src.name), out, kind="network")
     if args.render:
         from auszug.formats import atomic_write
         from auszug.formats.lift_figure import render_lift

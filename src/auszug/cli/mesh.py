@@ -1,5 +1,8 @@
 """Turn drawings into meshes: members swept along the curves, minimal-surface faces, printable solids.
 
+A network file (.network.json, from `auszug build` or `auszug lift`) stands
+for its drawing: its exact curves are meshed with their symmetry.
+
 One drawing and OUT a file: the ending of OUT picks the format (.glb, .gltf,
 .obj with its .mtl, .stl, .ply), or a shaded picture of the mesh (.png,
 .svg, .pdf). Several drawings or a folder (searched recursively): OUT is a
@@ -22,6 +25,7 @@ examples:
   auszug mesh tn-1.uc --style bar --solid --base -o tn-1.stl
   auszug mesh corpus/ --style ribbon -o meshes/ --format ply
   auszug mesh tn-9.uc --style moulding.json -o tn-9.png
+  auszug mesh vase.network.json --style tube -o vase.glb
 """
 
 from __future__ import annotations
@@ -44,7 +48,7 @@ FIGURES = (".png", ".svg", ".pdf")
 def add_args(parser: argparse.ArgumentParser) -> None:
     """Options of ``auszug mesh``."""
     parser.add_argument("drawings", nargs="+", metavar="DRAWING",
-                        help="drawing files (.uc, .json) or folders of them")
+                        help="drawing files (.uc, .json), network files (.network.json) or folders of drawings")
     parser.add_argument("-o", "--output", metavar="OUT",
                         help="output file (one drawing) or folder (several drawings or a folder)")
     parser.add_argument("--format", choices=MESH_FORMATS, default=None,
@@ -153,7 +157,7 @@ def _make(src: Path, args: argparse.Namespace) -> tuple[Any, dict]:
     """The mesh (or solid) of one drawing and a summary."""
     from auszug.meshing import mesh_network
 
-    nf = _common.network_of(src, args)
+    nf = _common.network_of(src, args, networks=True)
     net = nf.network
     with _common.about(src):
         r = mesh_network(net, look_of(args, net))

@@ -30,7 +30,8 @@ def _dpi(text: str) -> int:
 
 def add_args(parser: argparse.ArgumentParser) -> None:
     """Options of ``auszug render``."""
-    parser.add_argument("drawing", metavar="DRAWING", help="a drawing file (.uc, .json)")
+    parser.add_argument("drawing", metavar="DRAWING",
+                        help="a drawing file (.uc, .json) or a network file (.network.json)")
     parser.add_argument("-o", "--output", metavar="FIG", help="figure file: .png, .svg or .pdf")
     g = parser.add_argument_group("figure")
     g.add_argument("--width", type=_common.pixels, default=1800, metavar="PX",
@@ -50,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.output) if args.output else Path(_common.stem(args.drawing) + ".png")
     fmt = format_for(out, "figure", want="write")
     ext = max((s for s in fmt.suffixes if out.name.lower().endswith(s)), key=len)
-    nf = _common.network_of(args.drawing, args)
+    nf = _common.network_of(args.drawing, args, networks=True)
     from auszug.formats.figure import render
 
     with _common.about(out):

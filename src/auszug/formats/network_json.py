@@ -41,7 +41,7 @@ from auszug.geometry.network import KINDS, CurveNetwork, Piece, as_curve_network
 from auszug.limits import check_text_size
 
 __all__ = ["NetworkFile", "FORMAT", "VERSION", "VERSIONS", "KINDS", "to_dict", "dumps", "loads", "unpack",
-           "exact_piece"]
+           "exact_piece", "network_from_dict"]
 
 FORMAT = "auszug.network"
 #: The version written.
@@ -330,6 +330,76 @@ def exact_piece(curve: dict[str, Any]) -> Piece:
     True
     """
     return Piece.from_dict(curve["exact"], int(curve.get("basic", 0)), int(curve.get("segment", 0)))
+
+
+def network_from_dict(doc: dict[str, Any], name: str = "<document>") -> CurveNetwork:
+    """The exact curve network of a version-2 document (as :func:`loads` returns it).
+
+    The basic pieces are the exact curves of the records of rotation 0, not
+    mirrored (``r0``), in their ``piece`` order (the index into the network's
+    pieces); each basic curve's symmetry
+    group comes from ``basic_curves`` (fold, mirror, centre, axis), the
+    identity where the document has none (a lifted sketch, a tracery window).
+    Meshing the result gives what meshing the network it was written from
+    gives.
+
+    Parameters
+    ----------
+    doc : dict
+        A validated network JSON document.
+    name : str
+        File name for messages.
+
+    Raises
+    ------
+    FormatError
+        For a version-1 document or a curve without its exact description
+        (polylines only), naming the curve.
+
+    Examples
+    --------
+    >>> from auszug.microarch import BasicCurve, Drawing, Segment, Symmetry, build
+    >>> c = BasicCurve(((1.0, 0.0), (0.0, 1.0)), (Segment(),), ("ground", "apex"), Symmetry(4, True), height=1.0)
+    >>> net = build(Drawing((c,)))
+    >>> back = network_from_dict(loads(dumps(net)))
+    >>> [x.id for x in back.curves()] == [x.id for x in net.curves()], back.groups[0].order
+    (True, 8)
+    """
+    from auszug.geometry.symmetry import SymmetryGroup
+
+    basics = {int(b["index"]): b for b in doc.get("basic_curves", []) if isinstance(b, dict) and "index" in b}
+    found: list[tuple[int, Piece]] = []
+    layer_of: dict[int, int] = {}
+    for i, c in enumerate(doc["curves"]):
+        if c.get("exact") is None:
+            raise FormatError(f"curves[{i}] ({c['id']}): no exact curve (a version-1 file holds polylines only); "
+                              "write it again with this version", name)
+        if c["rotation"] != 0 or c["mirrored"]:
+            continue
+        # the record's own samples (bounds, default member sizes and features are taken from them)
+        found.append((int(c.get("piece", i)),
+                      dataclasses.replace(exact_piece(c), points=np.asarray(c["points"], dtype=float))))
+        layer_of[int(c["basic"])] = int(c["layer"])
+    n_basic = len(layer_of)
+    if sorted(layer_of) != list(range(n_basic)):
+        raise FormatError("curves: every basic curve needs its r0 curves, numbered from 0", name)
+    pieces = [p for _, p in sorted(found, key=lambda t: t[0])]
+    groups: list[SymmetryGroup] = []
+    for b in range(n_basic):
+        info = basics.get(b)
+        if info is None:
+            groups.append(SymmetryGroup(1))
+        else:
+            axis = info.get("axis")
+            groups.append(SymmetryGroup(int(info["fold"]), bool(info["mirror"]), tuple(info["center"]),
+                                        (0.0, 1.0) if axis is None else tuple(axis)))
+    verts = [v for b in basics.values() for v in b.get("vertices", [])]
+    pts = np.asarray(verts, dtype=float) if verts else np.concatenate(
+        [np.asarray(c["points"], dtype=float)[:, :2] for c in doc["curves"]])
+    size = max(1e-9, float(np.abs(pts).max()))
+    bottoms = tuple(float(lay["bottom"]) for lay in doc["layers"]) or (0.0,)
+    return CurveNetwork(tuple(pieces), tuple(groups), tuple(layer_of[b] for b in range(n_basic)), bottoms,
+                        size, str(doc.get("source", "")).rsplit(".", 1)[0], {}, (), doc.get("tolerance"))
 
 
 register(FileFormat("network_json", (".network.json",), "network", reader=loads, writer=_write))

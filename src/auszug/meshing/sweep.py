@@ -44,7 +44,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from auszug.errors import GeometryError
-from auszug.geometry import TOL
+from auszug.geometry import TOL, CubicBezier
 from auszug.geometry.network import CurveNetwork, Piece, as_curve_network
 from auszug.meshing._clip import clip_halfspace, compact
 from auszug.meshing.frames import Frames, sweep_frames
@@ -70,7 +70,7 @@ Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
 #: Piece kinds that become members (decorations are part of their ogee).
-SWEPT_KINDS: tuple[str, ...] = ("ogee", "free_end", "level", "post", "pillar")
+SWEPT_KINDS: tuple[str, ...] = ("ogee", "free_end", "level", "post", "pillar", "sketch")
 #: Relative tolerance (of the drawing size) for "an end lies on a mirror axis".
 AXIS_TOL = 1e-6
 #: Side-view corners sharper than this (radians) split a member.
@@ -123,6 +123,10 @@ def sample_piece(piece: Piece, segments: int) -> list[CurveSamples]:
             raise GeometryError(f"zero-length {piece.kind}")
         return [CurveSamples(p, np.tile(d / ln, (2, 1)))]
     top = piece.top
+    if piece.depth is not None:  # a lifted sketch segment: a 3D cubic Bezier
+        assert isinstance(top, CubicBezier)   # Piece.from_dict and the lifting package make it so
+        return [_sample_bezier3(np.concatenate([top.controls, np.asarray(piece.depth, float)[:, None]], axis=1),
+                                segments)]
     if piece.side is None:  # level: constant height
         u = np.linspace(0.0, 1.0, max(1, segments) + 1)
         t = top.t_at_u(u)
@@ -185,6 +189,40 @@ def sample_piece(piece: Piece, segments: int) -> list[CurveSamples]:
     sel = np.concatenate(keep_idx)
     runs.append(CurveSamples(pts[sel], tan[sel]))
     return runs
+
+
+def _sample_bezier3(c: Array, segments: int) -> CurveSamples:
+    """``segments`` steps along the 3D cubic Bezier with controls ``c`` (4, 3), even in arc length.
+
+    The arc length is the chord length of a fine polygon (32 times ``segments``
+    chords); samples lie exactly on the curve.
+    """
+    n = max(1, segments)
+
+    def point(t: Array) -> Array:
+        m = (1.0 - t)[:, None]
+        tt = t[:, None]
+        return m * m * m * c[0] + 3.0 * m * m * tt * c[1] + 3.0 * m * tt * tt * c[2] + tt * tt * tt * c[3]
+
+    def deriv(t: Array) -> Array:
+        m = (1.0 - t)[:, None]
+        tt = t[:, None]
+        return 3.0 * (m * m * (c[1] - c[0]) + 2.0 * m * tt * (c[2] - c[1]) + tt * tt * (c[3] - c[2]))
+
+    fine = np.linspace(0.0, 1.0, 32 * n + 1)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(point(fine), axis=0), axis=1))])
+    if s[-1] <= TOL.zero:
+        raise GeometryError("zero-length sketch piece")
+    t = np.interp(np.linspace(0.0, s[-1], n + 1), s, fine)
+    t[0], t[-1] = 0.0, 1.0
+    d = deriv(t)
+    ln = np.linalg.norm(d, axis=1)
+    # a vanishing derivative (a handle on its end point): the chord's direction stands in
+    bad = ln <= TOL.zero * max(1.0, s[-1])
+    if bad.any():
+        d[bad] = (point(np.minimum(t[bad] + 1e-6, 1.0)) - point(np.maximum(t[bad] - 1e-6, 0.0)))
+        ln = np.linalg.norm(d, axis=1)
+    return CurveSamples(point(t), d / ln[:, None])
 
 
 # -- the sweep kernel ---------------------------------------------------------------------------
@@ -339,7 +377,13 @@ def _width0(piece: Piece, s: CurveSamples, cut_normal: Array | None) -> Array:
     if piece.top is not None:
         th = piece.top.tangent(0.0)
         nh = np.array([-th[1], th[0], 0.0])
-        return np.cross(nh, s.tangents[0])
+        w = np.cross(nh, s.tangents[0])
+        if np.linalg.norm(w) > 1e-6:
+            return w
+        # a tangent along the view (a lifted piece seen end-on): any normal of the tangent
+        t0 = s.tangents[0]
+        a = np.eye(3)[int(np.argmin(np.abs(t0)))]
+        return np.cross(t0, a)
     if cut_normal is not None:
         return cut_normal
     p = s.points[0]

@@ -133,6 +133,14 @@ def occlusions(view, tol: float, strokes2d=None) -> list[np.ndarray]:
 
     The crossings are those of ``strokes2d`` (the drawn, possibly jittered strokes) when given,
     else of the view's own x, y; the depths are always the view's."""
+    return [p for p, dz in crossings2d(view, strokes2d) if dz > tol]
+
+
+def crossings2d(view, strokes2d=None) -> list[tuple[np.ndarray, float]]:
+    """Every 2D crossing of two different chains, with the depth difference of the truth there.
+
+    The crossings are those of ``strokes2d`` when given, else of the view's own x, y; the depths are
+    the view's chains' at the crossing's parameters."""
     from auszug.geometry import CubicBezier, intersect_many
 
     curves, owner = [], []
@@ -148,8 +156,7 @@ def occlusions(view, tol: float, strokes2d=None) -> list[np.ndarray]:
         for h in hits:
             za = CubicBezier.from_array(view[ia][ka][:, [0, 2]]).point(h.t1)[1]
             zb = CubicBezier.from_array(view[ib][kb][:, [0, 2]]).point(h.t2)[1]
-            if abs(za - zb) > tol:
-                out.append(np.asarray(h.point, float))
+            out.append((np.asarray(h.point, float), float(abs(za - zb))))
     return out
 
 
@@ -177,7 +184,23 @@ def _project(chains, R, noise: float, seed: int) -> Truth:
             return np.einsum("...kc,kc->...c", np.sin(arg[..., None] + phase), amp)
 
         strokes = [Stroke(s.controls + field(s.controls), s.id) for s in sk.strokes]
-        sk = Sketch(tuple(strokes), tuple(Marker(m.kind, m.point + field(m.point), m.id) for m in marks))
+        # the markers of the drawn (noisy) strokes: a near-tangent 2D crossing of the clean projection
+        # can vanish under the noise (its marker would have no crossing) or one appear. Each noisy
+        # crossing is what the clean crossing nearest its position (moved by the field, within 1 % of
+        # the diagonal) was, an occlusion or not; one without a clean counterpart is an occlusion when
+        # the truth's depths at its parameters differ by more than 1 % of the diagonal.
+        clean = crossings2d(view)
+        moved = np.array([p + field(p) for p, _ in clean]).reshape(-1, 2)
+        occluded = np.array([dz > 1e-6 * d0 for _, dz in clean], bool)
+        kept = []
+        for p, dz in crossings2d(view, [s.controls for s in strokes]):
+            dist = np.linalg.norm(moved - p, axis=1) if len(moved) else np.zeros(0)
+            if len(dist) and dist.min() <= 0.01 * d:
+                if occluded[dist.argmin()]:
+                    kept.append(p)
+            elif dz > 0.01 * d:
+                kept.append(p)
+        sk = Sketch(tuple(strokes), tuple(Marker("occlusion", p, f"occlusion-{i + 1}") for i, p in enumerate(kept)))
     return Truth(sk, view)
 
 
@@ -286,3 +309,304 @@ def barrel_chains(n_mer: int = 5, n_par: int = 3) -> tuple[list[np.ndarray], np.
         dp = np.stack([np.zeros_like(ph), r * np.cos(ph), -r * np.sin(ph)], axis=-1)
         par.append(hermite_chain(p, dp, dphi))
     return mer + par[1:], par[0]
+
+
+# --------------------------------------------------------------------------------------------------
+# More truths (issue 12, sec. 4): helices and lines, curvature lines of a saddle, an inflected
+# extrusion, a rib-vaulted square bay, and a negative case. Object coordinates: y up; every crossing
+# at a knot of both chains, so graph points are truth control points (truth_xyz).
+
+
+def _grid_chains(surf, dsu, dsv, us: np.ndarray, vs: np.ndarray) -> list[np.ndarray]:
+    """The u-lines (v fixed) and v-lines (u fixed) of a parametric surface, knots at the grid.
+
+    ``surf(u, v) -> (..., 3)``, ``dsu``/``dsv`` its partial derivatives. Every line overshoots its
+    first and last crossing by half a step, so every crossing is a smooth crossing.
+    """
+    du, dv = us[1] - us[0], vs[1] - vs[0]
+    uu = np.concatenate([[us[0] - du / 2], us, [us[-1] + du / 2]])
+    vv = np.concatenate([[vs[0] - dv / 2], vs, [vs[-1] + dv / 2]])
+    chains = []
+    for v in vs:                       # u-lines
+        vfix = np.full_like(uu, v)
+        chains.append(hermite_chain(surf(uu, vfix), dsu(uu, vfix), du))
+    for u in us:                       # v-lines
+        ufix = np.full_like(vv, u)
+        chains.append(hermite_chain(surf(ufix, vv), dsv(ufix, vv), dv))
+    return chains
+
+
+def spiral_chains(n_rulings: int = 5, n_helices: int = 3, pitch: float = 0.15,
+                  t_range: tuple[float, float] = (-30.0, 120.0)) -> list[np.ndarray]:
+    """A helical stair: the helicoid (r cos t, pitch t, r sin t) about the vertical y axis.
+
+    Its rulings (the treads' radial edges, straight and horizontal) and its helices (r fixed: the
+    stringers) cross orthogonally: X_r = (cos t, 0, sin t) and X_t = (-r sin t, pitch, r cos t).
+    The rulings at t over ``t_range`` (deg), the helices at r = 0.5 .. 1.1, a gentle rise (steeper
+    ramps fold over in a view from above: their silhouette makes crossings tangent in 2D); adjacent
+    rulings are *not* parallel in 3D (they turn with t): false parallel candidates where they
+    project close.
+    """
+    ts = np.radians(np.linspace(*t_range, n_rulings))
+    rs = np.linspace(0.5, 1.1, n_helices)
+
+    def surf(t, r):
+        return np.stack([r * np.cos(t), pitch * t, r * np.sin(t)], axis=-1)
+
+    def d_t(t, r):
+        return np.stack([-r * np.sin(t), np.full_like(t, pitch), r * np.cos(t)], axis=-1)
+
+    def d_r(t, r):
+        return np.stack([np.cos(t), np.zeros_like(t), np.sin(t)], axis=-1)
+
+    return _grid_chains(surf, d_t, d_r, ts, rs)
+
+
+def saddle_chains(n: int = 4, extent: float = 0.3) -> list[np.ndarray]:
+    """Enneper's minimal surface, a saddle whose parameter lines are its lines of curvature.
+
+    X(u, v) = (u - u^3/3 + u v^2, v - v^3/3 + v u^2, u^2 - v^2), standing like a wall (its saddle
+    axis along z, toward the viewer): conformal (X_u . X_v = 0 exactly), and every parameter line
+    is a planar curve (a line of curvature). ``n`` u-lines and ``n`` v-lines over
+    ``[-extent, extent]^2``. Larger extents fold over in views off the axis (the normal turns by
+    2 atan |(u, v)|): at 0.4, 5 of 55 views of tilt 15-35 deg, turn -50..50 deg are generic.
+    """
+    s = np.linspace(-extent, extent, n)
+
+    def surf(u, v):
+        return np.stack([u - u**3 / 3 + u * v * v, v - v**3 / 3 + v * u * u, u * u - v * v], axis=-1)
+
+    def d_u(u, v):
+        return np.stack([1 - u * u + v * v, 2 * u * v, 2 * u], axis=-1)
+
+    def d_v(u, v):
+        return np.stack([2 * u * v, 1 - v * v + u * u, -2 * v], axis=-1)
+
+    return _grid_chains(surf, d_u, d_v, s, s)
+
+
+def wrinkle_chains(n_rulings: int = 5, n_sections: int = 3, depth: float = 1.6) -> list[np.ndarray]:
+    """An inflected extrusion: the S-profile y = 0.4 sin(1.6 x), |x| <= 1, extruded along z.
+
+    Sections (the profile at z fixed: planar, inflected at x = 0) and rulings (x fixed: straight,
+    along z) cross orthogonally; every ruling is parallel to every other, every section to every other.
+    """
+    xs = np.linspace(-1.0, 1.0, n_rulings)
+    zs = np.linspace(0.0, -depth, n_sections)
+
+    def surf(x, z):
+        return np.stack([x, 0.4 * np.sin(1.6 * x), z], axis=-1)
+
+    def d_x(x, z):
+        return np.stack([np.ones_like(x), 0.64 * np.cos(1.6 * x), np.zeros_like(x)], axis=-1)
+
+    def d_z(x, z):
+        return np.stack([np.zeros_like(x), np.zeros_like(x), np.ones_like(x)], axis=-1)
+
+    return _grid_chains(surf, d_x, d_z, xs, zs)
+
+
+def _arc3(c: np.ndarray, e1: np.ndarray, e2: np.ndarray, r: float, a0: float, a1: float, n: int) -> np.ndarray:
+    """A circular arc c + r (cos a e1 + sin a e2), a from a0 to a1, as n Hermite cubics (knots at n + 1 angles)."""
+    a = np.linspace(a0, a1, n + 1)[:, None]
+    p = c + r * (np.cos(a) * e1 + np.sin(a) * e2)
+    dp = r * (-np.sin(a) * e1 + np.cos(a) * e2)
+    return hermite_chain(p, dp, (a1 - a0) / n)
+
+
+def _segmental(p0: np.ndarray, p1: np.ndarray, rise: float, n: int) -> np.ndarray:
+    """A segmental (circular) arch in the vertical plane through p0 and p1 (same height), rising ``rise``."""
+    c = (p0 + p1) / 2
+    half = float(np.linalg.norm(p1 - p0)) / 2
+    e1 = (p1 - p0) / (2 * half)
+    up = np.array([0.0, 1.0, 0.0])
+    r = (half**2 + rise**2) / (2 * rise)
+    centre = c + (rise - r) * up
+    a0 = np.arctan2(-(rise - r), -half)          # the angle of p0 seen from the centre, in (e1, up)
+    return _arc3(centre, e1, up, r, a0, np.pi - a0, n)
+
+
+def _knotted_line(a: np.ndarray, b: np.ndarray, ts) -> np.ndarray:
+    """A straight chain along a + t (b - a) with knots at the sorted fractions ``ts`` (handles at thirds)."""
+    p = a + np.sort(np.asarray(ts, float))[:, None] * (b - a)
+    return np.stack([p[:-1], p[:-1] + (p[1:] - p[:-1]) / 3, p[:-1] + 2 * (p[1:] - p[:-1]) / 3, p[1:]], axis=1)
+
+
+def cross_chains(rise_wall: float = 0.8, rise_diagonal: float = 1.0) -> list[np.ndarray]:
+    """A rib-vaulted square bay (quadripartite vault) on a 2 x 2 plan.
+
+    Drawn: the four wall-plate lines at the springing height (straight, through the corners with a
+    knot there, overshooting them by 8 %), the four wall ribs (segmental arches in the wall planes)
+    and the two diagonal ribs (segmental arches in the diagonal planes, rising ``rise_diagonal``) that
+    cross at the boss, horizontal and orthogonal there (the one smooth crossing). At each corner five
+    strokes meet: the two wall-plate lines (orthogonal), the ribs springing there (not orthogonal to
+    the lines in their own planes, orthogonal to the line across: mixed corner candidates).
+    """
+    corners = np.array([[-1, 0, -1], [1, 0, -1], [1, 0, 1], [-1, 0, 1]], float)
+    chains = []
+    for i in range(4):                                   # wall-plate lines: knots at both corners
+        a, b = corners[i], corners[(i + 1) % 4]
+        chains.append(_knotted_line(a, b, [-0.08, 0.0, 1.0, 1.08]))
+    for i in range(4):                                   # wall ribs
+        chains.append(_segmental(corners[i], corners[(i + 1) % 4], rise_wall, 4))
+    for i in range(2):                                   # diagonal ribs: a knot at the boss (n even)
+        chains.append(_segmental(corners[i], corners[i + 2], rise_diagonal, 4))
+    return chains
+
+
+def turret_chains(height: float = 1.4) -> list[np.ndarray]:
+    """The negative case: a hexagonal prism (radius 1, vertical axis) with sections on its side faces.
+
+    Drawn: the top hexagon (six edges, meeting at 120 deg: corners that are *not* orthogonal), the
+    vertical edges and bottom edges of the faces turned to +z (the front half), and on each front
+    face a horizontal and a vertical section crossing each other and the face's edges orthogonally
+    (overshooting them by 8 %). Along a vertical edge the horizontal sections of its two faces cross
+    it at adjacent intersections: tangents 60 deg apart in 3D that may project close together
+    (false parallel candidates). Every crossing is at a knot of both strokes.
+    """
+    ang = np.radians(np.arange(6) * 60.0 + 30.0)
+    top = np.stack([np.cos(ang), np.full(6, height / 2), np.sin(ang)], 1)
+    bot = top - [0.0, height, 0.0]
+    front = [i for i in range(6) if (top[i, 2] + top[(i + 1) % 6, 2]) / 2 > 0.1]   # faces facing +z
+    down = {f: 0.3 + 0.2 * k for k, f in enumerate(front)}       # horizontal section: share of the height down
+    along = {f: 0.35 + 0.15 * k for k, f in enumerate(front)}    # vertical section: share along the top edge
+    chains = [_knotted_line(top[i], top[(i + 1) % 6], [0, along[i], 1] if i in front else [0, 1])
+              for i in range(6)]
+    for i in sorted({i for f in front for i in (f, (f + 1) % 6)}):
+        cuts = [down[f] for f in front if i in (f, (f + 1) % 6)]
+        chains.append(_knotted_line(top[i], bot[i], [0, *cuts, 1]))
+    chains += [_knotted_line(bot[f], bot[(f + 1) % 6], [0, along[f], 1]) for f in front]
+    for f in front:
+        dn = np.array([0.0, down[f] * height, 0.0])
+        chains.append(_knotted_line(top[f] - dn, top[(f + 1) % 6] - dn, [-0.08, 0, along[f], 1, 1.08]))
+        h = top[f] + (top[(f + 1) % 6] - top[f]) * along[f]
+        chains.append(_knotted_line(h, h - [0, height, 0], [-0.08, 0, down[f], 1, 1.08]))
+    return chains
+
+
+#: The truths of the evaluation (benchmarks/eval_lifting.py) by name: their chains in object
+#: coordinates (the revolve's are built inside :func:`revolve`); :func:`make` projects them.
+TRUTHS = {"revolve": None, "spiral": spiral_chains, "saddle": saddle_chains, "wrinkle": wrinkle_chains,
+          "cross": cross_chains, "turret": turret_chains}
+#: The view (tilt, turn) of each truth in the tests: generic (:func:`accidental` finds nothing).
+VIEWS = {"revolve": (25.0, 15.0), "spiral": (25.0, 20.0), "saddle": (25.0, 10.0), "wrinkle": (25.0, 30.0),
+         "cross": (30.0, 20.0), "turret": (25.0, 10.0)}
+
+
+def make(name: str, tilt: float | None = None, turn: float | None = None, noise: float = 0.0,
+         seed: int = 0) -> Truth:
+    """The named truth of :data:`TRUTHS`, seen from (tilt, turn) (default: :data:`VIEWS`), with 2D noise."""
+    t0, u0 = VIEWS[name]
+    tilt = t0 if tilt is None else tilt
+    turn = u0 if turn is None else turn
+    if name == "revolve":
+        return revolve(tilt=tilt, turn=turn, noise=noise, seed=seed)
+    return _project(TRUTHS[name](), rotation(tilt, turn), noise, seed)
+
+
+def truth_xyz(truth: Truth, graph) -> np.ndarray:
+    """The true 3D position (graph units) of every graph control point, noisy sketches too.
+
+    Every crossing must be at a knot of both chains (as in every truth here): each graph point is
+    then one of the sketch's control points (the noise moves control points, shared ones alike),
+    and the truth's control point of the same index is its 3D position. Raises when a graph point
+    is farther than 1e-9 of the diagonal from every sketch control point.
+    """
+    drawn = np.concatenate([s.controls.reshape(-1, 2) for s in truth.sketch.strokes])
+    allc = np.concatenate([c.reshape(-1, 3) for c in truth.chains3d[:len(truth.sketch.strokes)]])
+    xy = graph.points * graph.scale + graph.offset
+    d = np.linalg.norm(xy[:, None, :] - drawn[None, :, :], axis=2)
+    if d.min(1).max() > 1e-9 * truth.diagonal():
+        raise ValueError("graph points off the sketch's control points: a crossing is not at a knot")
+    P = allc[d.argmin(1)]
+    return np.column_stack([(P[:, :2] - graph.offset) / graph.scale, P[:, 2] / graph.scale])
+
+
+def labels(truth: Truth, params=None) -> dict[str, np.ndarray]:
+    """The true label of every cue candidate of the lift, per class, from the 3D truth.
+
+    For each class the candidates are those the lift detects on the sketch's graph (in the order of
+    its ``cues`` of that kind); a candidate is truly regular when its angle on the truth's control
+    points is within ``params.inner_deg`` (L = 1 there). Also ``"<kind>-angle"``: those true angles
+    (degrees), and ``"parallel-2d"``: the parallel candidates' 2D angles. One layer only.
+    """
+    from auszug.lifting import DEFAULT, layer_graphs
+    from auszug.lifting import cues as cu
+
+    params = DEFAULT if params is None else params
+    (_, g), = layer_graphs(truth.sketch, params)
+    X = truth_xyz(truth, g)
+    fams = {"parallel": cu.parallel_cues(g, params), "orthogonal": cu.orthogonal_cues(g),
+            "planar": cu.planar_cues(g, len(g.points)), "linear": cu.linear_cues(g, params),
+            "smooth-orthogonal": cu.smooth_orthogonal(g)}
+    out = {}
+    for k, fam in fams.items():
+        ang = fam.angles(X) if len(fam) else np.zeros(0)
+        out[k] = ang <= params.inner_deg
+        out[k + "-angle"] = ang
+    out["parallel-2d"] = fams["parallel"].angle2d
+    return out
+
+
+def accidental(truth: Truth, params=None) -> list[str]:
+    """Why a noise-free projection is an accidental view (empty: generic).
+
+    - two graph intersections or occlusion points closer than 1 % of the diagonal, the markers'
+      snap radius (a crossing that is a projection coincidence near another: a marker could snap
+      to the wrong one);
+    - a crossing of two strokes both passing through it, not a smooth crossing or within 5 deg of
+      ``params.min_crossing_deg`` (tangents projected nearly parallel);
+    - a parallel candidate whose tangents are more than ``params.inner_deg`` apart in 3D but
+      within 1 deg in 2D (non-parallel tangents projected parallel);
+    - a truly orthogonal smooth crossing (every one here) whose 3D tangents are not orthogonal to
+      1e-6 deg (a truth that breaks the method's assumption);
+    - a planar stroke whose plane is within 2 deg of edge-on.
+    """
+    from auszug.lifting import DEFAULT, layer_graphs
+
+    params = DEFAULT if params is None else params
+    (_, g), = layer_graphs(truth.sketch, params)
+    why = []
+    pts = np.concatenate([g.points[[c.point for c in g.crossings]], g.occluded.reshape(-1, 2)])
+    d = np.linalg.norm(pts[:, None] - pts[None], axis=2) + np.eye(len(pts)) * 9
+    if d.min() < 0.01:
+        why.append(f"two crossings {d.min():.4f} of the diagonal apart")
+    for c in g.crossings:
+        if len(set(c.strokes)) == 2 and len(c.ends) == 4:
+            t = [g.points[g.segments[s, 1 if e == 0 else 2]] - g.points[c.point] for s, e in c.ends]
+            by = {}
+            for (s, _), v in zip(c.ends, t, strict=True):
+                by.setdefault(int(g.seg_stroke[s]), v)
+            a, b = by.values()
+            ang = np.degrees(np.arccos(min(1.0, abs(a @ b) / np.linalg.norm(a) / np.linalg.norm(b))))
+            if not c.smooth or ang < params.min_crossing_deg + 5:
+                why.append(f"crossing of {sorted(by)} at {ang:.1f} deg in 2D")
+    lab = labels(truth, params)
+    bad = (lab["parallel-angle"] > params.inner_deg) & (lab["parallel-2d"] < 1.0)
+    if bad.any():
+        why.append(f"{int(bad.sum())} non-parallel tangent pairs within 1 deg in 2D")
+    if len(lab["smooth-orthogonal-angle"]) and lab["smooth-orthogonal-angle"].max() > 1e-6:
+        why.append("a smooth crossing is not orthogonal in 3D")
+    for k, c in enumerate(truth.chains3d[:len(truth.sketch.strokes)]):
+        P = c.reshape(-1, 3)
+        sv = np.linalg.svd(P - P.mean(0), full_matrices=True)
+        if sv[1][-1] <= 1e-9 * sv[1][0] and sv[1][1] > 1e-3 * sv[1][0]:
+            n = sv[2][-1]
+            if abs(n[2]) < np.sin(np.radians(2.0)):
+                why.append(f"stroke c{k} seen within 2 deg of edge-on")
+    return why
+
+
+def cue_scores(result, lab: dict[str, np.ndarray]) -> dict[str, tuple[int, int, int, float]]:
+    """Per class: (true positives, applied, true, F1) of the lift's applied cues against the labels."""
+    out = {}
+    for k in ("parallel", "orthogonal", "planar", "linear"):
+        app = np.array([c.applied for c in result.cues if c.kind == k and "(global" not in c.where], bool)
+        if len(app) != len(lab[k]):
+            if not len(app):       # the class was not resolved
+                continue
+            raise ValueError(f"{k}: {len(app)} cues in the lift, {len(lab[k])} labels")
+        tp, na, nt = int((app & lab[k]).sum()), int(app.sum()), int(lab[k].sum())
+        f1 = 2 * tp / (na + nt) if na + nt else 1.0
+        out[k] = (tp, na, nt, f1)
+    return out

@@ -1,0 +1,173 @@
+"""Sketch lifting against ground truth made in code (issue 12, sec. 4). Not a test: prints tables.
+
+The truths (tests/lifting/truth.py): ``revolve`` (a vase's meridians and parallels), ``spiral``
+(a helicoid's rulings and helices), ``saddle`` (lines of curvature of Enneper's surface), ``wrinkle``
+(an inflected extrusion), ``cross`` (a rib-vaulted square bay) and ``turret`` (the negative case: a
+hexagonal prism with 120 deg corners). Each is projected orthographically, its occlusion markers and
+the true label of every cue candidate derived from the 3D truth; views that ``truth.accidental``
+flags are rejected (and counted).
+
+Measured per lift: depth RMSE relative to the diagonal after the best depth offset and sign
+(``truth.depth_rmse``), the sign, convergence, precision / recall / F1 of the applied cues per class
+against the true labels, and the largest residual angle of the applied cues per class on the final
+network (degrees): smooth-crossing orthogonality (hard), corner orthogonality (hard), planarity (the
+last class: its last round's accepted cues are not solved again, docs/lifting.md) and parallelism
+(soft by design).
+
+Usage (from the repository root)::
+
+    python -m benchmarks.eval_lifting noise [--truths a,b] [--cues default|none] [--markdown]
+    python -m benchmarks.eval_lifting views [--truths a,b] [--cues none|default]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+
+import numpy as np
+
+from auszug.errors import GeometryError
+from auszug.lifting import DEFAULT_CLASSES, lift
+from tests.lifting import truth as T
+
+NOISES = (0.0, 0.005, 0.01)
+SEEDS = (0, 1, 2)
+TILTS = (15.0, 20.0, 25.0, 30.0, 35.0)
+TURNS = tuple(float(t) for t in range(-50, 51, 10))
+
+
+def evaluate(tr: T.Truth, classes: tuple[str, ...]) -> dict:
+    """One lift of a truth's sketch, scored against the truth."""
+    try:
+        lab = T.labels(tr)
+        t0 = time.perf_counter()
+        r = lift(tr.sketch, classes=classes)
+        sec = time.perf_counter() - t0
+    except GeometryError as e:       # refused, e.g. noise left no smooth crossing to start from
+        return {"refused": str(e).split(":")[0]}
+    err, sign = T.depth_rmse(tr, r)
+    scores = T.cue_scores(r, lab)
+    worst = {k: max((c.angle for c in r.cues if c.applied and c.kind == k), default=0.0)
+             for k in ("smooth-orthogonal", "orthogonal", "planar", "parallel")}
+    return {"err": err, "sign": sign, "converged": r.converged, "seconds": sec, "scores": scores, "worst": worst,
+            "classes": classes}
+
+
+def _fmt_err(e: dict) -> str:
+    if "refused" in e:
+        return "refused"
+    return f"{100 * e['err']:.2f}{'' if e['converged'] else ' !'}{'' if e['sign'] == 1 else ' (-)'}"
+
+
+def _f1(rows: list[dict], k: str) -> str:
+    if not any(r["classes"] and k in r["classes"] for r in rows):
+        return "-"
+    tp = sum(r["scores"][k][0] for r in rows if k in r["scores"])
+    na = sum(r["scores"][k][1] for r in rows if k in r["scores"])
+    nt = sum(r["scores"][k][2] for r in rows if k in r["scores"])
+    if not na + nt:
+        return "-"
+    p = tp / na if na else 1.0
+    rc = tp / nt if nt else 1.0
+    return f"{2 * tp / (na + nt):.2f} (P {p:.2f}, R {rc:.2f}; {tp}/{na}/{nt})"
+
+
+def _worst(rows: list[dict]) -> str:
+    return ", ".join(f"{max((r['worst'][k] for r in rows), default=0.0):.2g}"
+                     for k in ("smooth-orthogonal", "orthogonal", "planar", "parallel"))
+
+
+def noise_table(names: list[str], classes: tuple[str, ...], out) -> None:
+    """Depth RMSE at noise 0, 0.5 %, 1 % (3 seeds) at each truth's own view, and cue scores."""
+    print("| truth | view | depth spread | no noise | 0.5 % noise | 1 % noise | 1 % / none (worst) | "
+          "F1 parallel (tp/applied/true) | F1 corner orthogonal | F1 planar | largest applied angle (deg): smooth, "
+          "corner, planar, parallel | s per lift |", file=out)
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|", file=out)
+    for name in names:
+        rows: list[dict] = []
+        cells = []
+        for noise in NOISES:
+            seeds = (0,) if noise == 0 else SEEDS
+            es = []
+            for s in seeds:
+                tr = T.make(name, noise=noise, seed=s)
+                e = evaluate(tr, classes)
+                es.append(e)
+                if "refused" in e:
+                    print(f"# {name} noise {noise} seed {s}: refused: {e['refused']}", file=sys.stderr, flush=True)
+                    continue
+                rows.append(e)
+                print(f"# {name} noise {noise} seed {s}: {_fmt_err(e)} % {e['scores']} "
+                      f"worst applied {e['worst']} {e['seconds']:.1f} s", file=sys.stderr, flush=True)
+            cells.append(", ".join(_fmt_err(e) for e in es) + " %")
+            if noise == 0:
+                e0 = es[0].get("err", np.nan)
+            if noise == NOISES[-1]:
+                ratio = max((e["err"] for e in es if "err" in e), default=np.nan) / e0
+        tr0 = T.make(name)
+        z = np.concatenate([c[..., 2].ravel() for c in tr0.chains3d])
+        spread = float(np.std(z)) / tr0.diagonal()
+        tilt, turn = T.VIEWS[name]
+        secs = np.mean([r["seconds"] for r in rows]) if rows else np.nan
+        print(f"| {name} | {tilt:g}, {turn:g} | {100 * spread:.1f} % | {cells[0]} | {cells[1]} | {cells[2]} | "
+              f"{ratio:.2f} | {_f1(rows, 'parallel')} | {_f1(rows, 'orthogonal')} | {_f1(rows, 'planar')} | "
+              f"{_worst(rows)} | {secs:.1f} |",
+              file=out, flush=True)
+
+
+def views_table(names: list[str], classes: tuple[str, ...], out) -> None:
+    """Wrong-sign rate and depth RMSE over the grid TILTS x TURNS (noise-free), accidental views rejected."""
+    print("| truth | views lifted (rejected) | wrong sign | depth RMSE median / max | F1 parallel | "
+          "F1 corner orthogonal | F1 planar | largest applied angle (deg): smooth, corner, planar, parallel | "
+          "not converged |", file=out)
+    print("|---|---|---|---|---|---|---|---|---|", file=out)
+    total = wrong_total = 0
+    for name in names:
+        rows, rejected, refused, wrong = [], 0, 0, []
+        for tilt in TILTS:
+            for turn in TURNS:
+                tr = T.make(name, tilt, turn)
+                why = T.accidental(tr)
+                if why:
+                    rejected += 1
+                    print(f"# {name} {tilt:g} {turn:g}: rejected: {'; '.join(why)}", file=sys.stderr, flush=True)
+                    continue
+                e = evaluate(tr, classes)
+                if "refused" in e:
+                    refused += 1
+                    print(f"# {name} {tilt:g} {turn:g}: refused: {e['refused']}", file=sys.stderr, flush=True)
+                    continue
+                rows.append(e)
+                if e["sign"] != 1:
+                    wrong.append(f"{tilt:g}/{turn:g} ({100 * e['err']:.1f} %)")
+                print(f"# {name} {tilt:g} {turn:g}: {_fmt_err(e)} % {e['seconds']:.1f} s", file=sys.stderr, flush=True)
+        errs = np.array([r["err"] for r in rows] or [np.nan])
+        total += len(rows)
+        wrong_total += len(wrong)
+        ref = f", {refused} refused" if refused else ""
+        print(f"| {name} | {len(rows)} ({rejected}{ref}) | {len(wrong)}{': ' + ', '.join(wrong) if wrong else ''} | "
+              f"{100 * np.median(errs):.2f} / {100 * errs.max():.2f} % | {_f1(rows, 'parallel')} | "
+              f"{_f1(rows, 'orthogonal')} | {_f1(rows, 'planar')} | {_worst(rows)} | "
+              f"{sum(not r['converged'] for r in rows)} |", file=out, flush=True)
+    print(f"\nwrong sign: {wrong_total} of {total} lifts ({100 * wrong_total / max(total, 1):.1f} %)", file=out)
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("mode", choices=("noise", "views"))
+    ap.add_argument("--truths", default=",".join(T.TRUTHS))
+    ap.add_argument("--cues", default="default", choices=("default", "none"))
+    a = ap.parse_args(argv)
+    classes = DEFAULT_CLASSES if a.cues == "default" else ()
+    names = a.truths.split(",")
+    print(f"cues: {a.cues}; load {os.getloadavg()[0]:.1f} at start", file=sys.stdout)
+    (noise_table if a.mode == "noise" else views_table)(names, classes, sys.stdout)
+    print(f"load {os.getloadavg()[0]:.1f} at the end", file=sys.stdout)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

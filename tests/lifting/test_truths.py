@@ -1,0 +1,251 @@
+"""The ground truths of tests/lifting/truth.py, and the lifts measured against them (issue 12, sec. 4).
+
+The first tests check the truths themselves against closed-form geometry (no lift): every smooth
+crossing orthogonal in 3D, every crossing at a knot (so the true position of every graph point is
+known, noisy sketches too), the labels of the cue candidates equal to the angles the geometry
+gives, generic views accepted and accidental ones rejected. The lift tests pin what was measured
+at each truth's own view (docs/lifting.md, "Measured"; the view grid is in benchmarks/eval_lifting.py).
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+import pytest
+
+from auszug.errors import GeometryError
+from auszug.lifting import DEFAULT, layer_graphs, lift
+from tests.lifting import truth as T
+
+NEW = ("spiral", "saddle", "wrinkle", "cross", "turret")
+
+
+@pytest.mark.parametrize("name", list(T.TRUTHS))
+def test_truth_views_are_generic_and_smooth_crossings_orthogonal(name):
+    tr = T.make(name)
+    assert T.accidental(tr) == []
+    lab = T.labels(tr)
+    assert len(lab["smooth-orthogonal"]) and lab["smooth-orthogonal-angle"].max() < 1e-9
+
+
+@pytest.mark.parametrize("name", NEW)
+@pytest.mark.parametrize("noise, seed", [(0.005, 1), (0.01, 2)])
+def test_noisy_graph_points_are_still_truth_control_points(name, noise, seed):
+    """The noise field moves shared control points alike, so every crossing stays at a knot and the noisy
+    graph's points are the same 3D points. Every candidate of the clean sketch is one of the noisy
+    sketch's too, with the same true angle. The noise adds true ones only: straight strokes curved in
+    2D become planarity candidates (a 3D line is planar), and a smooth crossing turned below
+    ``min_crossing_deg`` in 2D becomes an orthogonal corner (the spiral at 1 %, seed 2); a stroke whose
+    short overshoot the noise turns by more than 10 deg is no longer G1 through a corner, so its two
+    halves are candidates each, with the same true angle (the cross at 1 %, seed 2). The parallel
+    candidates change with the 2D angles (their threshold) and are not compared."""
+    clean, noisy = T.make(name), T.make(name, noise=noise, seed=seed)
+    (_, g), = layer_graphs(noisy.sketch)
+    X = T.truth_xyz(noisy, g)
+    (_, g0), = layer_graphs(clean.sketch)
+    X0 = T.truth_xyz(clean, g0)
+    assert len(g.points) == len(g0.points)
+    # the 3D truth in sketch units is the same point set (graph units differ by the noisy diagonal)
+    a = X * g.scale + np.r_[g.offset, 0.0]
+    b = X0 * g0.scale + np.r_[g0.offset, 0.0]
+    assert np.abs(np.sort(a, axis=0) - np.sort(b, axis=0)).max() < 1e-9 * clean.diagonal()
+    la, lb = T.labels(noisy), T.labels(clean)
+    for k in ("orthogonal", "planar"):
+        extra = sorted(la[k + "-angle"].round(6))
+        clean_angles = sorted(lb[k + "-angle"].round(6))
+        for x in clean_angles:
+            extra.remove(x)          # raises if a clean candidate is missing
+        assert all(x == 0 or x in clean_angles for x in extra), (k, extra)
+
+
+def test_helicoid_rulings_straight_helices_not_planar():
+    chains = T.spiral_chains()
+    rulings = chains[3:]                     # after the three helices
+    for c in rulings:
+        P = c.reshape(-1, 3)
+        assert np.linalg.svd(P - P.mean(0), compute_uv=False)[1] < 1e-12
+    lab = T.labels(T.make("spiral"))
+    # the three helices are the planar candidates (curved in 2D), none planar in 3D
+    assert len(lab["planar"]) == 3 and lab["planar-angle"].min() > 5.0
+    # adjacent rulings turn by 150/4 = 37.5 deg about the axis: every ruling pair is a false candidate
+    t = np.radians(37.5)
+    assert np.isclose(lab["parallel-angle"], np.degrees(t)).sum() >= 8
+
+
+def test_enneper_lines_of_curvature_are_planar_and_conformal():
+    lab = T.labels(T.make("saddle"))
+    assert len(lab["planar"]) == 8 and lab["planar-angle"].max() < 1e-9
+    assert len(lab["smooth-orthogonal"]) == 16
+
+
+def test_extrusion_regularities_are_all_true():
+    lab = T.labels(T.make("wrinkle"))
+    assert lab["parallel"].all() and len(lab["parallel"]) == 22 and lab["parallel-angle"].max() < 1e-5
+    assert lab["planar"].all() and len(lab["planar"]) == 3
+
+
+def test_cross_vault_corner_angles_are_the_ribs_springing_angles():
+    """At each corner five strokes meet. Orthogonality-cue angles (|90 - angle| between the tangents):
+    wall-plate lines 0; a rib across a wall line 0; a wall rib (rise 0.8 on half-span 1: springing
+    tangent (-0.225, 1)) along its own wall line 90 - atan(1 / 0.225); the diagonal rib (rise 1 on
+    half-span sqrt 2: tangent (-0.5, sqrt 2) in its plane) along either wall line; rib against rib."""
+    lab = T.labels(T.make("cross"))
+    wall = np.array([(1 - 0.64) / 1.6, 1.0, 0.0])             # (half^2 - rise^2) / (2 rise) = R - rise
+    diag = np.array([0.5 / np.sqrt(2), np.sqrt(2), 0.5 / np.sqrt(2)])
+    other = wall[[2, 1, 0]]                                    # the wall rib of the other wall, same corner
+
+    def dev(u, v):
+        c = abs(u @ v) / np.linalg.norm(u) / np.linalg.norm(v)
+        return abs(90.0 - np.degrees(np.arccos(min(c, 1.0))))
+
+    x = np.array([1.0, 0.0, 0.0])
+    expected = {0.0: 12, round(dev(wall, x), 6): 8, round(dev(diag, x), 6): 8, round(dev(wall, other), 6): 4,
+                round(dev(diag, wall), 6): 8}
+    got = {}
+    for a in lab["orthogonal-angle"]:
+        k = min(expected, key=lambda e: abs(e - a))
+        assert abs(k - a) < 1e-6, a
+        got[k] = got.get(k, 0) + 1
+    assert got == expected and int(lab["orthogonal"].sum()) == 12
+    assert len(lab["smooth-orthogonal"]) == 1 and len(lab["planar"]) == 6 and lab["planar"].all()
+
+
+def test_turret_negative_cues():
+    """Hexagon corners are 120 deg (an orthogonality angle of 30); the horizontal sections of two faces
+    along their shared edge are 60 deg apart in 3D. Both are candidates the lift must reject."""
+    lab = T.labels(T.make("turret"))
+    o, p = lab["orthogonal-angle"], lab["parallel-angle"]
+    assert np.allclose(np.sort(o), [0.0] * 10 + [30.0] * 7, atol=1e-9)
+    false_par = p[~lab["parallel"]]
+    assert len(false_par) == 7 and np.all(np.isclose(false_par, 60.0) | np.isclose(false_par, 90.0))
+    assert len(lab["smooth-orthogonal"]) == 10
+
+
+@pytest.mark.parametrize("make, reason", [
+    (lambda: T.make("wrinkle", 25.0, -30.0), "crossing of"),             # a ruling along the profile's slope
+    (lambda: T.make("cross", 30.0, 0.0), "edge-on"),                      # the side walls seen edge-on
+    (lambda: T.make("revolve", 25.0, -50.0), "edge-on"),
+    (lambda: T._project(T.saddle_chains(extent=0.8), T.rotation(25.0, 10.0), 0.0, 0), "two crossings"),
+    (lambda: T._project(T.spiral_chains(pitch=0.35), T.rotation(25.0, 20.0), 0.0, 0), "crossing of"),
+])
+def test_accidental_views_are_rejected(make, reason):
+    why = T.accidental(make())
+    assert any(reason in w for w in why), why
+
+
+# (truth, depth RMSE bound, {class: (true positives, applied, true)}) measured 2026-12-03 at each truth's
+# own view, noise-free, default cues (docs/lifting.md, "Measured"); the bounds are the measured figure
+# plus about 3 % of it. Targets of issue 12: spiral <= 1 %, saddle, wrinkle and cross <= 3 %: all missed.
+LIFTED = [
+    ("spiral", 0.3530, {"parallel": (5, 13, 5)}),                      # measured 34.31 %
+    ("saddle", 0.0770, {"parallel": (12, 24, 12), "planar": (8, 8, 8)}),  # measured 7.45 %
+    ("wrinkle", 0.0925, {"parallel": (22, 22, 22), "planar": (3, 3, 3)}),  # measured 8.95 %
+    ("cross", 0.1670, {"parallel": (20, 70, 20), "orthogonal": (8, 16, 12), "planar": (6, 6, 6)}),  # 16.21 %
+    ("turret", 0.1060, {"parallel": (22, 24, 22), "orthogonal": (8, 12, 10)}),  # measured 10.28 %
+]
+
+
+@functools.cache
+def _clean(name: str):
+    tr = T.make(name)
+    return tr, lift(tr.sketch)
+
+
+@pytest.mark.parametrize("name, bound, counts", LIFTED)
+def test_lift_against_the_truth(name, bound, counts):
+    """Depth RMSE (best offset and sign), the sign, the cue counts against the true labels, and the residual
+    angles of the applied cues: the smooth crossings' orthogonality holds to 1e-6 deg; the last class
+    resolved (planarity, or corner orthogonality where no stroke is curved: the turret) is reported
+    after its last round's soft solve, its accepted cues never solved again as hard constraints, so
+    within I_b only (measured up to 4.7 deg); applied parallelism stays soft (at most 0.31 deg)."""
+    tr, r = _clean(name)
+    lab = T.labels(tr)
+    err, sign = T.depth_rmse(tr, r)
+    assert sign == 1 and err <= bound, (err, sign)
+    scores = T.cue_scores(r, lab)
+    assert {k: scores[k][:3] for k in counts} == counts
+    # what is not listed has no candidate or nothing applied and nothing true
+    assert all(v[1] == v[2] == 0 for k, v in scores.items() if k not in counts and k != "linear")
+    ap = {k: [c.angle for c in r.cues if c.applied and c.kind == k]
+          for k in ("smooth-orthogonal", "orthogonal", "planar", "parallel")}
+    assert max(ap["smooth-orthogonal"]) < 1e-6
+    assert max(ap["orthogonal"] + ap["planar"], default=0.0) <= DEFAULT.inner_deg
+    if ap["planar"]:                # corners resolved before planarity: hard in every later solve
+        assert max(ap["orthogonal"], default=0.0) < 1e-6
+    assert max(ap["parallel"], default=0.0) < 0.35
+    if name != "cross":            # the cross's planar round ends unconverged (residual 1.4e-9 > 1e-10)
+        assert r.converged
+
+
+@pytest.mark.parametrize("name", ["spiral", "saddle", "wrinkle", "cross", "turret"])
+def test_one_percent_noise_within_twice_the_noise_free_error(name):
+    """The issue's noise target, 1 % noise (seed 1) against the same truth noise-free, default cues.
+
+    Measured at 1 % (seeds 0, 1, 2) against noise-free: spiral 27.5 (a solve unconverged, wrong sign),
+    33.5, 28.3 against 34.3 %; saddle 8.30, 7.09, 4.80 against 7.45 %; wrinkle 4.07, 6.85, 8.31 against
+    8.95 %; cross refused (seed 0), 13.1 (wrong sign), 22.2 against 16.2 %; turret 11.5, 11.8, 17.0
+    against 10.3 %. Met everywhere, but only because the noise-free errors are large."""
+    tr0, r0 = _clean(name)
+    err0, _ = T.depth_rmse(tr0, r0)
+    tr = T.make(name, noise=0.01, seed=1)
+    err, _ = T.depth_rmse(tr, lift(tr.sketch))
+    assert err <= 2 * err0, (err, err0)
+
+
+def test_cross_with_noise_that_breaks_its_one_smooth_crossing_is_refused():
+    """The bay has one smooth crossing (the boss); 1 % noise, seed 0, turns a diagonal rib's tangent at the
+    boss by more than 10 deg, so no smooth crossing is left to start from: refused, with the reason."""
+    tr = T.make("cross", noise=0.01, seed=0)
+    with pytest.raises(GeometryError, match="no smooth crossing"):
+        lift(tr.sketch)
+
+
+def test_view_from_above_score_of_every_truth_over_the_view_grid():
+    """``from_above`` on the exact truths (no lift) over the evaluation grid, tilts 15-35 deg x turns
+    -50..50 deg: positive everywhere (measured minimum 0.012, the revolve at tilt 15, and 0.013, the
+    saddle), so a wrong sign in benchmarks/eval_lifting.py is a lift of another shape, not the rule."""
+    from auszug.lifting import from_above
+
+    for name in T.TRUTHS:
+        chains = T.make(name).chains3d if name == "revolve" else T.TRUTHS[name]()
+        R0 = T.rotation(*T.VIEWS[name]) if name == "revolve" else np.eye(3)
+        obj = [c @ R0 for c in chains]              # back to object coordinates (R is orthogonal)
+        for tilt in (15.0, 20.0, 25.0, 30.0, 35.0):
+            for turn in range(-50, 51, 10):
+                R = T.rotation(tilt, float(turn))
+                net = np.concatenate([c @ R.T for c in obj])
+                s = from_above(net)
+                assert s > 0.01, (name, tilt, turn, s)
+                assert from_above(net * [1.0, 1.0, -1.0]) == -s
+
+
+@pytest.mark.parametrize("name", list(T.TRUTHS))
+def test_baseline_finds_less_energy_than_the_truth(name):
+    """The truth is feasible for the baseline (its smooth crossings orthogonal, its G1 joints at the
+    sketch's handle ratios, to 1e-12) and costs more energy than the lift finds: the baseline's
+    errors are the energy's, not the solver's. Measured (accuracy, variation, foreshortening, soft
+    parallelism; lift | truth): the truth pays for parallelism on its false candidates (revolve
+    0.010 | 0.034, spiral 0.023 | 0.14, saddle 0.0026 | 0.024, cross 0.018 | 1.1, turret 0.0061 |
+    0.14), the wrinkle, whose candidates are all true, for foreshortening (1.0e-4 | 1.9e-4)."""
+    from auszug.lifting import cues as cu
+    from auszug.lifting.terms import fidelity, structure
+
+    tr = T.make(name)
+    (_, g), = layer_graphs(tr.sketch)
+    r = lift(tr.sketch, classes=())
+    e_lift = [s.energy for s in r.stages if s.name == "baseline" and not s.discarded]
+    n = 3 * (len(g.points) + len(g.chains)) + len(g.chains)
+    E = fidelity(g, n, DEFAULT, DEFAULT.w_a_baseline)
+    par = cu.parallel_cues(g, DEFAULT)
+    par.add(E, np.arange(len(par)), DEFAULT.w_p_baseline * np.exp(-(par.angle2d**2) / DEFAULT.sigma_p_deg**2))
+    smooth = cu.smooth_orthogonal(g)
+    X = T.truth_xyz(tr, g)
+    X[:, 2] -= X[smooth.p[0], 2]                      # the energy does not see a depth offset
+    v = np.zeros(n)
+    v[: 3 * len(g.points)] = X.ravel()
+    C = structure(g, n, DEFAULT, int(smooth.p[0]))     # pinned depth, G1 joints, straight segments
+    smooth.add(C, np.arange(len(smooth)), 1.0)
+    assert np.abs(C.value(v)).max() < 1e-12
+    e_truth = float((E.weights * E.value(v) ** 2).sum())
+    assert min(e_lift) < e_truth, (min(e_lift), e_truth)

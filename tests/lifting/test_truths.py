@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from auszug.errors import GeometryError
-from auszug.lifting import DEFAULT, layer_graphs, lift
+from auszug.lifting import DEFAULT, LiftParams, layer_graphs, lift
 from tests.lifting import truth as T
 
 NEW = ("spiral", "saddle", "wrinkle", "cross", "turret")
@@ -249,3 +249,19 @@ def test_baseline_finds_less_energy_than_the_truth(name):
     assert np.abs(C.value(v)).max() < 1e-12
     e_truth = float((E.weights * E.value(v) ** 2).sum())
     assert min(e_lift) < e_truth, (min(e_lift), e_truth)
+
+
+def test_the_final_solve_meets_every_applied_hard_cue():
+    """LiftParams(final_solve=True): one more solve after the last class holds the cues it applied in its
+    final round, so every applied hard cue is met (issue 12: within 0.5 deg); by default the vase's
+    planar cues stay as their last round left them (up to 3.85 deg measured). Measured on the revolve
+    truth: 3.11 % -> 2.76 % depth RMSE (docs/lifting.md, "Final solve", for the cases it makes worse)."""
+    tr = T.make("revolve")
+    r0, r1 = _clean("revolve")[1], lift(tr.sketch, params=LiftParams(final_solve=True))
+    hard0 = [c.angle for c in r0.cues if c.applied and c.kind not in ("parallel", "linear")]
+    hard1 = [c.angle for c in r1.cues if c.applied and c.kind not in ("parallel", "linear")]
+    assert r1.converged and max(hard1) < 1e-3 and max(hard0) > 1.0
+    assert [(c.kind, c.where, c.applied) for c in r1.cues] == [(c.kind, c.where, c.applied) for c in r0.cues]
+    err, sign = T.depth_rmse(tr, r1)
+    assert sign == 1 and err <= 0.0285
+    assert r1.stages[-1].name == "final" and all(s.name != "final" for s in r0.stages)

@@ -55,6 +55,11 @@ class LiftParams:
         Most rounds of the progressive resolution of one cue class (the paper:
         "four iterations typically suffice"; we allow 8, then the remaining
         cues are inapplicable, the conservative choice).
+    final_solve : bool
+        One more solve after the last class, with its cues applied in its
+        final round hard (the paper's fixed point: every applied cue met, not
+        only within ``inner_deg``). Off by default: measured, it costs
+        accuracy (docs/lifting.md, "Final solve").
     parallel_2d_deg : float
         Tangent pairs whose 2D angle is below this are parallelism candidates
         (our choice: twice O_b, since foreshortening changes angles).
@@ -113,6 +118,7 @@ class LiftParams:
     outer_deg: float = 15.0
     outer_value: float = 0.005
     rounds: int = 8
+    final_solve: bool = False
     parallel_2d_deg: float = 30.0
     plane_cluster_deg: float = 15.0
     smooth_joint_deg: float = 10.0

@@ -346,7 +346,10 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        w_a = 1: each round minimises fidelity + w_c sum L(alpha) C^2 over the
        undecided cues, subject to the applied ones; L = 1 applies a cue
        (parallelism stays soft with weight w_c), L = 0 or no increase rejects
-       it; after ``params.rounds`` rounds the rest is rejected. The class
+       it; after ``params.rounds`` rounds the rest is rejected. Cues applied
+       in a class's final round are held by the next class's solves; after the
+       last class, with ``params.final_solve``, one *final* solve holds them
+       (every applied hard cue met, not only within I_b). The class
        ``"plane"`` (plane parallelism and orthogonality) comes after planarity:
        its candidates are the single-linkage clusters of the applied planar
        strokes' normals (:func:`~auszug.lifting.cues.plane_cues`);
@@ -416,6 +419,10 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     pla = cu.planar_cues(g, pr.N)
     forced = _symmetry_forced(g, symmetry, pr.smooth, par, orth, pla)
 
+    # cues applied after the last solve (a class's final round): the next class's first solve holds
+    # them; after the last class one more solve does (see the docstring, 3.)
+    pending = {"applied": 0}
+
     def resolve(name: str, fam, hard_add, soft_add, pre: NDArray[np.bool_] | None = None,
                 skip: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
         nonlocal ok
@@ -437,6 +444,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             for f in hard:
                 f(C)
             r = pr.run(f"{name} round {rnd + 1}", E, C)
+            pending["applied"] = 0
             ok &= r.converged
             L = cu.likelihood(fam.angles(pr.X()), params)
             acc = undecided & (L >= 1.0)
@@ -448,6 +456,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             if acc.any():
                 sel = np.nonzero(applied)[0]
                 hard_add(sel)
+                pending["applied"] = int(acc.sum())
             if not undecided.any():
                 break
         return applied
@@ -536,6 +545,17 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     pp_state = {"sel": np.zeros(0, np.intp)}
     hard.append(lambda c: pp.add(c, pp_state["sel"], 1.0))
     pp_applied = resolve("plane", pp, lambda s: pp_state.update(sel=s), lambda E, i, w: pp.add(E, i, w))
+
+    if pending["applied"] and params.final_solve:
+        # the last class's cues applied in its final round have not been held by a solve yet: one
+        # more solve, every applied cue hard (parallelism and linearity soft with w_c, as before)
+        E = pr.energy(params.w_a)
+        for f in soft_kept:
+            f(E)
+        C = pr.constraints()
+        for f in hard:
+            f(C)
+        ok &= pr.run("final", E, C).converged
 
     X = pr.X().copy()
     for kind, fam, app in (("parallel", par, par_applied), ("orthogonal", orth, orth_applied),

@@ -68,16 +68,92 @@ export function memberMaterial(color: THREE.ColorRepresentation, side: THREE.Sid
     vertexShader: VERTEX,
     fragmentShader: FRAGMENT,
     side,
-    uniforms: {
-      diffuse: { value: diffuse },
-      skyColor: { value: light(LIGHTS.sky.color, LIGHTS.sky.intensity) },
-      groundColor: { value: light(LIGHTS.sky.ground, LIGHTS.sky.intensity) },
-      sunDir: { value: new THREE.Vector3(...LIGHTS.sun.direction).normalize() },
-      sunColor: { value: light(LIGHTS.sun.color, LIGHTS.sun.intensity) },
-      fillDir: { value: new THREE.Vector3(...LIGHTS.fill.direction).normalize() },
-      fillColor: { value: light(LIGHTS.fill.color, LIGHTS.fill.intensity) },
-    },
+    uniforms: lightUniforms(diffuse),
   });
   (m as THREE.ShaderMaterial & { color: THREE.Color }).color = diffuse;
+  return m;
+}
+
+// A tube drawn as a strip along its axis (tubes.ts: each station twice, with the axis' unit
+// tangent and a signed offset of one radius): the vertex shader moves each vertex by its offset
+// along s, the unit normal to the tangent and to the line of sight (towards the camera, or the
+// orthographic camera's axis), so the strip always faces the camera and is as wide as the tube.
+// Across the strip u runs from -1 to 1, and the fragment shader lights the normal a round tube
+// has there, u s + sqrt(1 - u^2) f (f: towards the camera, normal to the axis), with the same
+// lights as memberMaterial.
+const STRIP_VERTEX = /* glsl */ `
+#include <common>
+attribute vec3 axisTangent;
+attribute float across;
+varying vec3 vSide;
+varying vec3 vFacing;
+varying float vU;
+void main() {
+  mat4 m = modelMatrix;
+#ifdef USE_INSTANCING
+  m = m * instanceMatrix;
+#endif
+  vec3 p = (m * vec4(position, 1.0)).xyz;
+  vec3 t = normalize(mat3(m) * axisTangent);
+  vec3 e = isOrthographic ? vec3(viewMatrix[0][2], viewMatrix[1][2], viewMatrix[2][2]) : normalize(cameraPosition - p);
+  vec3 s = cross(t, e);
+  float ls = length(s);
+  // seen along its axis: any normal to the tangent
+  s = ls > 1e-6 ? s / ls : normalize(cross(t, abs(t.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0)));
+  vSide = s;
+  vFacing = cross(s, t);
+  vU = sign(across);
+  gl_Position = projectionMatrix * viewMatrix * vec4(p + across * s, 1.0);
+}`;
+
+const STRIP_FRAGMENT = /* glsl */ `
+#include <common>
+uniform vec3 diffuse;
+uniform vec3 skyColor;
+uniform vec3 groundColor;
+uniform vec3 sunDir;
+uniform vec3 sunColor;
+uniform vec3 fillDir;
+uniform vec3 fillColor;
+varying vec3 vSide;
+varying vec3 vFacing;
+varying float vU;
+void main() {
+  float u = clamp(vU, -1.0, 1.0);
+  vec3 n = normalize(u * vSide + sqrt(1.0 - u * u) * vFacing);
+  vec3 irradiance = mix(groundColor, skyColor, 0.5 * n.y + 0.5)
+    + max(dot(n, sunDir), 0.0) * sunColor + max(dot(n, fillDir), 0.0) * fillColor;
+  gl_FragColor = vec4(diffuse * irradiance * RECIPROCAL_PI, 1.0);
+#include <colorspace_fragment>
+}`;
+
+/** The uniforms of a member of colour `diffuse` lit by LIGHTS. */
+function lightUniforms(diffuse: THREE.Color): Record<string, THREE.IUniform> {
+  return {
+    diffuse: { value: diffuse },
+    skyColor: { value: light(LIGHTS.sky.color, LIGHTS.sky.intensity) },
+    groundColor: { value: light(LIGHTS.sky.ground, LIGHTS.sky.intensity) },
+    sunDir: { value: new THREE.Vector3(...LIGHTS.sun.direction).normalize() },
+    sunColor: { value: light(LIGHTS.sun.color, LIGHTS.sun.intensity) },
+    fillDir: { value: new THREE.Vector3(...LIGHTS.fill.direction).normalize() },
+    fillColor: { value: light(LIGHTS.fill.color, LIGHTS.fill.intensity) },
+  };
+}
+
+/**
+ * The material of the page's drag tubes (tubes.ts): strips turned to the camera and shaded as
+ * round tubes of colour `color`, lit by LIGHTS as memberMaterial lights the server's tubes.
+ * Seen from both sides (a strip faces the camera whatever its instance's handedness). `color`
+ * is exposed as `.color`.
+ */
+export function tubeStripMaterial(color: THREE.ColorRepresentation): THREE.ShaderMaterial & { color: THREE.Color } {
+  const diffuse = new THREE.Color(color);
+  const m = new THREE.ShaderMaterial({
+    vertexShader: STRIP_VERTEX,
+    fragmentShader: STRIP_FRAGMENT,
+    side: THREE.DoubleSide,
+    uniforms: lightUniforms(diffuse),
+  }) as THREE.ShaderMaterial & { color: THREE.Color };
+  m.color = diffuse;
   return m;
 }

@@ -78,16 +78,32 @@ export function memberMaterial(color: THREE.ColorRepresentation, side: THREE.Sid
 // tangent and a signed offset of one radius): the vertex shader moves each vertex by its offset
 // along s, the unit normal to the tangent and to the line of sight (towards the camera, or the
 // orthographic camera's axis), so the strip always faces the camera and is as wide as the tube.
-// Across the strip u runs from -1 to 1, and the fragment shader lights the normal a round tube
-// has there, u s + sqrt(1 - u^2) f (f: towards the camera, normal to the axis), with the same
-// lights as memberMaterial.
+// A round tube's normal across it runs from -s over f (towards the camera, normal to the axis)
+// to +s; the vertex shader lights those three normals with the lights of memberMaterial and
+// converts them to sRGB (the renderer's output), and the fragment shader only interpolates them
+// quadratically across the strip (u from -1 to 1): a fragment costs a few multiply-adds, as a
+// software renderer pays per pixel (no light or colour-space power per pixel).
 const STRIP_VERTEX = /* glsl */ `
 #include <common>
+#include <colorspace_pars_fragment>
 attribute vec3 axisTangent;
 attribute float across;
-varying vec3 vSide;
-varying vec3 vFacing;
+uniform vec3 diffuse;
+uniform vec3 skyColor;
+uniform vec3 groundColor;
+uniform vec3 sunDir;
+uniform vec3 sunColor;
+uniform vec3 fillDir;
+uniform vec3 fillColor;
+varying vec3 vMinus;
+varying vec3 vMid;
+varying vec3 vPlus;
 varying float vU;
+vec3 shade(vec3 n) {
+  vec3 irradiance = mix(groundColor, skyColor, 0.5 * n.y + 0.5)
+    + max(dot(n, sunDir), 0.0) * sunColor + max(dot(n, fillDir), 0.0) * fillColor;
+  return sRGBTransferOETF(vec4(diffuse * irradiance * RECIPROCAL_PI, 1.0)).rgb;
+}
 void main() {
   mat4 m = modelMatrix;
 #ifdef USE_INSTANCING
@@ -100,31 +116,21 @@ void main() {
   float ls = length(s);
   // seen along its axis: any normal to the tangent
   s = ls > 1e-6 ? s / ls : normalize(cross(t, abs(t.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0)));
-  vSide = s;
-  vFacing = cross(s, t);
+  vMinus = shade(-s);
+  vMid = shade(cross(s, t));
+  vPlus = shade(s);
   vU = sign(across);
   gl_Position = projectionMatrix * viewMatrix * vec4(p + across * s, 1.0);
 }`;
 
 const STRIP_FRAGMENT = /* glsl */ `
-#include <common>
-uniform vec3 diffuse;
-uniform vec3 skyColor;
-uniform vec3 groundColor;
-uniform vec3 sunDir;
-uniform vec3 sunColor;
-uniform vec3 fillDir;
-uniform vec3 fillColor;
-varying vec3 vSide;
-varying vec3 vFacing;
+varying vec3 vMinus;
+varying vec3 vMid;
+varying vec3 vPlus;
 varying float vU;
 void main() {
-  float u = clamp(vU, -1.0, 1.0);
-  vec3 n = normalize(u * vSide + sqrt(1.0 - u * u) * vFacing);
-  vec3 irradiance = mix(groundColor, skyColor, 0.5 * n.y + 0.5)
-    + max(dot(n, sunDir), 0.0) * sunColor + max(dot(n, fillDir), 0.0) * fillColor;
-  gl_FragColor = vec4(diffuse * irradiance * RECIPROCAL_PI, 1.0);
-#include <colorspace_fragment>
+  float u = vU;
+  gl_FragColor = vec4(vMid + 0.5 * u * (vPlus - vMinus) + u * u * (0.5 * (vPlus + vMinus) - vMid), 1.0);
 }`;
 
 /** The uniforms of a member of colour `diffuse` lit by LIGHTS. */
@@ -142,7 +148,8 @@ function lightUniforms(diffuse: THREE.Color): Record<string, THREE.IUniform> {
 
 /**
  * The material of the page's drag tubes (tubes.ts): strips turned to the camera and shaded as
- * round tubes of colour `color`, lit by LIGHTS as memberMaterial lights the server's tubes.
+ * round tubes of colour `color`, lit by LIGHTS as memberMaterial lights the server's tubes, for
+ * the renderer's default sRGB output.
  * Seen from both sides (a strip faces the camera whatever its instance's handedness). `color`
  * is exposed as `.color`.
  */

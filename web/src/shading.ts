@@ -164,3 +164,33 @@ export function tubeStripMaterial(color: THREE.ColorRepresentation): THREE.Shade
   m.color = diffuse;
   return m;
 }
+
+const VERTEX_COLOUR_VERTEX = /* glsl */ `
+#include <common>
+#include <colorspace_pars_fragment>
+varying vec3 vColor;
+void main() {
+  vColor = sRGBTransferOETF(vec4(color, 1.0)).rgb;
+  gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
+}`;
+
+const VERTEX_COLOUR_FRAGMENT = /* glsl */ `
+varying vec3 vColor;
+void main() {
+  gl_FragColor = vec4(vColor, 1.0);
+}`;
+
+/**
+ * Unlit, with the vertices' colours (linear RGB, as three.js takes vertex colours), encoded to sRGB
+ * (the renderer's default output) per vertex and interpolated in sRGB: three.js' MeshBasicMaterial
+ * encodes per pixel (a power per channel), which a software renderer pays for every pixel of a
+ * frame. For the tracery page's view, whose vertex colours are its lighting (vertexlight.ts).
+ */
+export function vertexColourMaterial(side: THREE.Side = THREE.FrontSide): THREE.ShaderMaterial {
+  return new THREE.ShaderMaterial({
+    vertexShader: VERTEX_COLOUR_VERTEX,
+    fragmentShader: VERTEX_COLOUR_FRAGMENT,
+    vertexColors: true,
+    side,
+  });
+}

@@ -339,7 +339,8 @@ def test_the_3d_view_draws_each_vertex_colour_encoded_to_srgb(studio, page):
           if (![b, d].every((i) => C(i).every((x, k) => Math.abs(x - ca[k]) < 1e-7))) continue;
           const [A, B, D] = [a, b, d].map((i) => screen(P(i)));
           const s = ((B[0] - A[0]) * (D[1] - A[1]) - (D[0] - A[0]) * (B[1] - A[1])) / 2;
-          if (s > area) { area = s; best = {colour: Array.from(ca), at: [(A[0] + B[0] + D[0]) / 3, (A[1] + B[1] + D[1]) / 3]}; }
+          const at = [(A[0] + B[0] + D[0]) / 3, (A[1] + B[1] + D[1]) / 3];
+          if (s > area) { area = s; best = {colour: Array.from(ca), at}; }
         }
         v.render();
         const px = new Uint8Array(4);

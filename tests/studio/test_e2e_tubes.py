@@ -169,7 +169,8 @@ def test_tube_look_draws_lines_only_in_views_without_members(studio, uxi28, page
     every view."""
     open_drawing(page, studio, uxi28)
     seen = """() => { const v = window.auszug.views;
-        return ['top', 'persp', 'side'].map((n) => v.network.children.filter((l) => l.layers.test(v.camera(n).layers)).length); }"""
+        return ['top', 'persp', 'side'].map((n) =>
+          v.network.children.filter((l) => l.layers.test(v.camera(n).layers)).length); }"""
     assert page.evaluate(seen) == [32, 0, 32]   # (the side view shows in preview mode only)
     page.click("[data-testid=mode-preview]")
     assert page.evaluate(seen) == [0, 0, 0]

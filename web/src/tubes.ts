@@ -5,7 +5,8 @@
 // that the vertex shader turns to face the camera and the fragment shader shades as a round tube
 // (shading.ts, tubeStripMaterial): two triangles per step along the curve, against 12 for a swept
 // tube of 6 points round, as software WebGL (headless chromium's SwiftShader) pays per triangle
-// (benchmarks/RESULTS.md, 2026-12-03, branch studio-frame). The strips are open at the ends and
+// and per shaded pixel (a frame of U.XI.28's tubes 27 -> 13 ms: benchmarks/RESULTS.md, 2026-12-03,
+// branch studio-frame). The strips are open at the ends and
 // lie on the curves (their depth is the axis'). Each geometry piece is one BufferGeometry drawn
 // by one InstancedMesh with the piece's transforms (a strip faces the camera whatever the
 // transform's handedness); an edit that keeps the layout rewrites the buffers in place (no GPU

@@ -318,3 +318,38 @@ def test_a_style_file_from_the_workspace_opens(studio, page):
     ok = page.evaluate("() => window.auszugTracery.change({style: '', path: 'bad.toml', values: []})")
     assert ok is False and svg_paths(page) == paths
     assert "bad.toml" in page.locator("#status").text_content()
+
+
+def test_the_3d_view_draws_each_vertex_colour_encoded_to_srgb(studio, page):
+    """The 3D view's pixels are its vertex colours (linear RGB, the lighting) encoded to sRGB: read
+    at the centre of the largest triangle on screen whose three vertices have one colour."""
+    open_tracery(page, studio)
+    res = page.evaluate("""() => { const v = window.auszugTracery.view3d, g = v.geometry, r = v.renderer;
+        const p = g.getAttribute('position'), c = g.getAttribute('color'), idx = g.getIndex().array;
+        const n = 3 * window.auszugTracery.shown().indices.shape[0], gl = r.getContext();
+        const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+        v.camera.updateMatrixWorld();
+        const P = (i) => p.array.slice(3 * i, 3 * i + 3), C = (i) => c.array.slice(3 * i, 3 * i + 3);
+        const screen = (q) => { const s = new v.camera.position.constructor(...q).project(v.camera);
+          return [(s.x + 1) / 2 * w, (s.y + 1) / 2 * h]; };
+        let best = null, area = 0;
+        for (let f = 0; f < n; f += 3) {
+          const [a, b, d] = [idx[f], idx[f + 1], idx[f + 2]];
+          const ca = C(a);
+          if (![b, d].every((i) => C(i).every((x, k) => Math.abs(x - ca[k]) < 1e-7))) continue;
+          const [A, B, D] = [a, b, d].map((i) => screen(P(i)));
+          const s = ((B[0] - A[0]) * (D[1] - A[1]) - (D[0] - A[0]) * (B[1] - A[1])) / 2;
+          const at = [(A[0] + B[0] + D[0]) / 3, (A[1] + B[1] + D[1]) / 3];
+          if (s > area) { area = s; best = {colour: Array.from(ca), at}; }
+        }
+        v.render();
+        const px = new Uint8Array(4);
+        gl.readPixels(Math.floor(best.at[0]), Math.floor(best.at[1]), 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+        return {...best, area, pixel: Array.from(px)}; }""")
+    assert res["area"] > 200, res    # a large flat face in view (pixels)
+
+    def srgb(x: float) -> float:
+        return 12.92 * x if x <= 0.0031308 else 1.055 * x ** (1 / 2.4) - 0.055
+
+    want = [round(255 * srgb(x)) for x in res["colour"]]
+    assert all(abs(a - b) <= 2 for a, b in zip(res["pixel"][:3], want, strict=True)), (res, want)

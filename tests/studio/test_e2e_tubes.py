@@ -115,7 +115,7 @@ def test_selected_curve_is_highlighted_in_the_tube_look(studio, uxi28, page):
     # an edit: the page's own tubes show the new geometry at once, the selection highlighted too
     page.evaluate("""() => { window.__seen = []; window.auszug.store.on('geometry', () => {
         const d = window.auszug.views.scene.getObjectByName('drag-tubes');
-        window.__seen.push({visible: d.visible, n: d.children.length,
+        window.__seen.push({visible: d.visible, n: d.children.length, instances: d.children.map((o) => o.count),
           colours: d.children.map((o) => [o.userData.basic, '#' + o.material.color.getHexString()])});
     }); }""")
     rev = geometry(page)["revision"]
@@ -123,7 +123,8 @@ def test_selected_curve_is_highlighted_in_the_tube_look(studio, uxi28, page):
     page.press("[data-testid=apex-height]", "Enter")
     page.wait_for_function(f"() => window.auszug.store.geometry.revision > {rev}")
     seen = page.evaluate("() => window.__seen")[0]
-    assert seen["visible"] and seen["n"] == 8    # four ogees, rotated and mirrored replicas
+    # four ogees, each drawn once per replica (rotated and mirrored: 8 each, the network's 32 lines)
+    assert seen["visible"] and seen["n"] == 4 and seen["instances"] == [8, 8, 8, 8]
     assert {tuple(c) for c in seen["colours"]} == {(0, HIGHLIGHT), *((b, faded(colours[b].lower())) for b in (1, 2, 3))}
     wait_server_mesh(page)
     assert member_colours(page, "meshes")[0] == {HIGHLIGHT}
@@ -136,3 +137,45 @@ def test_selected_curve_is_highlighted_in_the_tube_look(studio, uxi28, page):
     page.select_option("[data-testid=side-curve]", "")
     page.evaluate("() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)))")
     assert member_colours(page, "meshes") == {b: {c.lower()} for b, c in colours.items()}
+
+
+def test_drag_tubes_cover_what_the_server_tubes_cover(studio, uxi28, page):
+    """While a button is held the page draws its own tubes (strips turned to the camera, shaded
+    round): as wide as the server's tubes, so curve 0's blue covers about as many pixels."""
+    open_drawing(page, studio, uxi28)
+    wait_server_mesh(page)
+    served = blue(view3d_pixels(page))
+    box = page.locator("#status").bounding_box()
+    page.mouse.move(box["x"] + 5, box["y"] + 5)
+    page.mouse.down()   # held: the server's mesh waits for the release (looks.ts)
+    g = geometry(page)
+    rev = g["revision"]
+    page.evaluate("(h) => window.auszug.ctx.send({type: 'set_apex_height', curve: 1, height: h})",
+                  g["curves"][1]["apex"] * 0.98)
+    page.wait_for_function(f"() => window.auszug.views.membersRevision > {rev}")
+    page.evaluate("() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)))")
+    assert page.evaluate("() => window.auszug.views.scene.getObjectByName('drag-tubes').visible")
+    assert not page.evaluate("() => window.auszug.views.scene.getObjectByName('meshes').children"
+                             ".some((o) => o.visible && o.userData.basic >= 0)")
+    drawn = blue(view3d_pixels(page))
+    page.mouse.up()
+    assert served > 500, served
+    assert 0.8 * served < drawn < 1.25 * served, (served, drawn)
+
+
+def test_tube_look_draws_lines_only_in_views_without_members(studio, uxi28, page):
+    """The tube look's members cover the network's lines: the lines are drawn in the top view in
+    design mode, in no view in preview mode (members in all three); the curves look draws them in
+    every view."""
+    open_drawing(page, studio, uxi28)
+    seen = """() => { const v = window.auszug.views;
+        return ['top', 'persp', 'side'].map((n) =>
+          v.network.children.filter((l) => l.layers.test(v.camera(n).layers)).length); }"""
+    assert page.evaluate(seen) == [32, 0, 32]   # (the side view shows in preview mode only)
+    page.click("[data-testid=mode-preview]")
+    assert page.evaluate(seen) == [0, 0, 0]
+    page.click("[data-testid=mode-design]")
+    page.select_option("[data-testid=look-style]", "curves")
+    assert page.evaluate(seen) == [32, 32, 32]
+    page.select_option("[data-testid=look-style]", "tube")
+    assert page.evaluate(seen) == [32, 0, 32]

@@ -69,14 +69,15 @@ export function initLooks(ctx: Ctx): void {
 
   // the selected curve's members are highlighted as its lines are, the others faded towards the
   // 3D view's ground so that the highlight reads beside the palette's oranges (design mode only)
-  const meshes = new MeshView((b) => {
+  const memberColor = (b: number): string => {
     const sel = store.mode === "design" ? store.selection : null;
     return sel === null ? store.color(b) : b === sel ? SELECTED : faded(store.color(b));
-  });
+  };
+  const meshes = new MeshView(memberColor);
   const loops = new LoopView();
   // the tube look's tubes while the drawing changes, swept in the page (tubes.ts), until the
   // server's mesh of the current revision replaces them
-  const dragTubes = new DragTubes((b) => meshes.material(b, "tube"));
+  const dragTubes = new DragTubes(memberColor);
   views.scene.add(meshes.group, dragTubes.group, loops.group);
   /** Sweep the page's tubes of the current geometry and show them instead of the server's (stale) members. */
   const showDragTubes = (): void => {
@@ -91,6 +92,13 @@ export function initLooks(ctx: Ctx): void {
   /** Meshes show in the 3D view; in preview mode in all three. */
   const layers = (): number[] =>
     store.mode === "preview" ? [VIEW_LAYER.persp, VIEW_LAYER.top, VIEW_LAYER.side] : [VIEW_LAYER.persp];
+  /** The tube look's members cover the lines on their axes (the page's drag tubes lie on them):
+   * lines only in the views that show no members; the other looks show the lines everywhere. */
+  const syncLines = (): void => {
+    const shown = layers();
+    views.setLineViews(store.looks.style === "tube"
+      ? (["top", "persp", "side"] as ViewName[]).filter((v) => !shown.includes(VIEW_LAYER[v])) : null);
+  };
   /** Loops are picked in the 3D view, and in the top view in preview mode (in design it is the design tools'). */
   const pickViews = (): ViewName[] => (store.mode === "preview" ? ["persp", "top"] : ["persp"]);
 
@@ -150,6 +158,7 @@ export function initLooks(ctx: Ctx): void {
         loops.clear();
       }
     }
+    syncLines();
     meshes.recolor();
     dragTubes.recolor();
     loops.setPicked(l.loops);
@@ -181,11 +190,13 @@ export function initLooks(ctx: Ctx): void {
     dragTubes.recolor();
     meshes.setLayers(layers());
     dragTubes.setLayers(layers());
+    syncLines();
     loops.setLayers(pickViews().map((v) => VIEW_LAYER[v]));
     views.requestRender();
   });
   meshes.setLayers(layers());
   dragTubes.setLayers(layers());
+  syncLines();
   loops.setLayers(pickViews().map((v) => VIEW_LAYER[v]));
 
   // ---- picking loops: a click (no drag) toggles the loop under the pointer

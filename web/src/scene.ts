@@ -62,6 +62,8 @@ export class Views {
   refits = 0;
   /** The geometry revision the 3D view's members (lines, or the looks' meshes) show (for the timings). */
   membersRevision = 0;
+  /** The views the network's lines are drawn in (null: every view). */
+  private lineViews: readonly ViewName[] | null = null;
   private mode: Mode = "design";
   private layout = "";
   private geoms: THREE.BufferGeometry[] = [];
@@ -184,6 +186,23 @@ export class Views {
   onFrame(fn: () => void): () => void {
     this.frameListeners.add(fn);
     return () => this.frameListeners.delete(fn);
+  }
+
+  /** Draw the network's lines only in `views` (null: in every view). The tube look's members
+   * cover their lines (looks.ts): a software renderer pays for every line segment drawn. */
+  setLineViews(views: readonly ViewName[] | null): void {
+    this.lineViews = views;
+    for (const line of this.network.children) this.setLineLayers(line);
+    this.requestRender();
+  }
+
+  private setLineLayers(line: THREE.Object3D): void {
+    if (!this.lineViews) {
+      line.layers.set(0);
+      return;
+    }
+    line.layers.disableAll();
+    for (const v of this.lineViews) line.layers.enable(VIEW_LAYER[v]);
   }
 
   /** Fit the top view (and the 3D cameras) to the drawing's bounds. */
@@ -470,6 +489,7 @@ export class Views {
           line.userData.basic = p.basic;
           line.matrixAutoUpdate = false;
           line.matrix.copy(m);
+          this.setLineLayers(line);
           this.network.add(line);
         });
       }

@@ -14,6 +14,7 @@ import { perFrame } from "./frames";
 import { vertexNormals } from "./meshnormals";
 import type { ClientMessage, ServerMessage, Styles, TraceryField, TraceryGeometry } from "./protocol";
 import { VIEW3D } from "./scene";
+import { vertexColourMaterial } from "./shading";
 import { shadeVertices, type Lighting } from "./vertexlight";
 import { installShortcuts, registerShortcut } from "./shortcuts";
 import { History, readTraceryUrl, withValue, writeTraceryUrl, type TraceryState } from "./tracerystate";
@@ -398,7 +399,8 @@ class View3d {
     };
     // front faces only: the preview's triangles face out of the stone (tracery/preview.py, tested), the
     // mirrored back half included (three.js flips the winding of a mirrored object)
-    const material = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.FrontSide });
+    // (the colours encoded to sRGB per vertex, not per pixel: shading.ts, vertexColourMaterial)
+    const material = vertexColourMaterial(THREE.FrontSide);
     this.mesh = new THREE.Mesh(this.geometry, material);
     this.mesh.name = "window";
     this.back = new THREE.Mesh(this.backGeometry, material);

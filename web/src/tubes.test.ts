@@ -1,7 +1,7 @@
 import * as THREE from "three";
 import { describe, expect, it } from "vitest";
 import type { Geometry } from "./protocol";
-import { DragTubes, ringCount, strided, sweepTube, tubeIndices, tubeRadius } from "./tubes";
+import { DragTubes, ringCount, strided, stripIndices, stripVertices, tubeRadius } from "./tubes";
 
 /** n points of a helix of radius 2 and pitch 3 about the z axis, 1.5 turns, flattened. */
 function helix(n: number): Float32Array {
@@ -17,71 +17,62 @@ function at(a: Float32Array, i: number): THREE.Vector3 {
   return new THREE.Vector3(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
 }
 
-describe("sweepTube", () => {
-  it("puts every ring at the radius from its point, normal to the tangent, with unit outward normals", () => {
-    const n = 40, k = 12, r = 0.125, pts = helix(n);
-    const pos = new Float32Array(3 * n * k), nrm = new Float32Array(3 * n * k);
-    sweepTube(pts, r, k, pos, nrm);
+describe("stripVertices", () => {
+  it("doubles every point, with the unit tangent of central differences and offsets -r, +r", () => {
+    const n = 40, r = 0.125, pts = helix(n);
+    const pos = new Float32Array(6 * n), tan = new Float32Array(6 * n), across = new Float32Array(2 * n);
+    stripVertices(pts, r, pos, tan, across);
     for (let i = 0; i < n; i++) {
-      const c = at(pts, i);
       const t = at(pts, Math.min(i + 1, n - 1)).sub(at(pts, Math.max(i - 1, 0))).normalize();
-      for (let j = 0; j < k; j++) {
-        const d = at(pos, i * k + j).sub(c);
-        expect(d.length()).toBeCloseTo(r, 6);
-        expect(Math.abs(d.dot(t))).toBeLessThan(1e-6);
-        const m = at(nrm, i * k + j);
-        expect(m.length()).toBeCloseTo(1, 6);
-        expect(m.distanceTo(d.divideScalar(r))).toBeLessThan(1e-5);
+      for (const side of [0, 1]) {
+        expect(at(pos, 2 * i + side).distanceTo(at(pts, i))).toBe(0);
+        expect(at(tan, 2 * i + side).distanceTo(t)).toBeLessThan(1e-6);
+        expect(across[2 * i + side]).toBe(side ? r : -r);
       }
     }
   });
 
-  it("does not twist along a planar curve (rotation minimising)", () => {
-    // a half circle of radius 5 in the plane z = 1: a rotation-minimising frame keeps a constant
-    // angle with the plane's normal, so ring point 0 has the same z offset all along
-    const n = 33, k = 8, pts = new Float32Array(3 * n);
-    for (let i = 0; i < n; i++) {
-      const a = (Math.PI * i) / (n - 1);
-      pts.set([5 * Math.sin(a), 5 - 5 * Math.cos(a), 1], 3 * i);
-    }
-    const pos = new Float32Array(3 * n * k), nrm = new Float32Array(3 * n * k);
-    sweepTube(pts, 0.5, k, pos, nrm);
-    const z0 = nrm[2];
-    for (let i = 0; i < n; i++) expect(Math.abs(nrm[3 * i * k + 2] - z0)).toBeLessThan(1e-5);
-  });
-
-  it("twists with a helix as a rotation-minimising frame must, not with a fixed axis", () => {
-    // a frame made from a fixed axis would keep ring point 0's angle with the tangent's plane
-    // fixed; rotation minimising, its change from ring to ring is orthogonal to the tangent
-    const n = 200, k = 4, pts = helix(n);
-    const pos = new Float32Array(3 * n * k), nrm = new Float32Array(3 * n * k);
-    sweepTube(pts, 0.1, k, pos, nrm);
-    for (let i = 1; i + 1 < n; i++) {
-      const t = at(pts, i + 1).sub(at(pts, i - 1)).normalize();
-      const dr = at(nrm, (i + 1) * k).sub(at(nrm, (i - 1) * k));
-      // d r / ds has no component along the normal plane's own rotation about t: (dr . (t x r)) ~ 0
-      const side = t.clone().cross(at(nrm, i * k));
-      expect(Math.abs(dr.dot(side))).toBeLessThan(2e-3);
-    }
+  it("keeps the previous tangent where the neighbours coincide, +z before any", () => {
+    const pts = new Float32Array([1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 1, 1, 2, 1, 1, 2, 1, 1]);
+    const pos = new Float32Array(36), tan = new Float32Array(36), across = new Float32Array(12);
+    stripVertices(pts, 1, pos, tan, across);
+    const t = Array.from({ length: 6 }, (_, i) => Array.from(tan.subarray(6 * i, 6 * i + 3)));
+    expect(t).toEqual([[0, 0, 1], [0, 0, 1], [1, 0, 0], [1, 0, 0], [1, 0, 0], [1, 0, 0]]);
   });
 });
 
-describe("tubeIndices", () => {
-  it("winds every triangle of a straight tube outwards and uses every vertex", () => {
-    const n = 5, k = 6, pts = new Float32Array(3 * n);
-    for (let i = 0; i < n; i++) pts.set([i, 0, 0], 3 * i);
-    const pos = new Float32Array(3 * n * k), nrm = new Float32Array(3 * n * k);
-    sweepTube(pts, 1, k, pos, nrm);
-    const idx = tubeIndices(n, k);
-    expect(idx.length).toBe((n - 1) * k * 2 * 3);
-    expect(new Set(idx).size).toBe(n * k);
-    for (let f = 0; f < idx.length; f += 3) {
-      const a = at(pos, idx[f]), b = at(pos, idx[f + 1]), c = at(pos, idx[f + 2]);
-      const normal = b.clone().sub(a).cross(c.clone().sub(a));
-      const centroid = a.add(b).add(c).divideScalar(3);
-      const radial = new THREE.Vector3(0, centroid.y, centroid.z);
-      expect(normal.dot(radial)).toBeGreaterThan(0);
+/** A vertex of the strip as tubeStripMaterial's vertex shader places it for an eye at `eye`. */
+function shaded(pos: Float32Array, tan: Float32Array, across: Float32Array, i: number, eye: THREE.Vector3): THREE.Vector3 {
+  const p = at(pos, i), t = at(tan, i).normalize();
+  const s = t.clone().cross(eye.clone().sub(p).normalize()).normalize();
+  return p.addScaledVector(s, across[i]);
+}
+
+describe("stripIndices", () => {
+  it("covers every step with two triangles as wide as the tube, facing the eye unless seen end on", () => {
+    const n = 30, pts = helix(n);
+    const pos = new Float32Array(6 * n), tan = new Float32Array(6 * n), across = new Float32Array(2 * n);
+    stripVertices(pts, 0.1, pos, tan, across);
+    const idx = stripIndices(n);
+    expect(idx.length).toBe((n - 1) * 2 * 3);
+    expect(new Set(idx).size).toBe(2 * n);
+    let folded = 0;
+    for (const eye of [new THREE.Vector3(20, -30, 12), new THREE.Vector3(-5, 40, -20), new THREE.Vector3(0, 0, 50)]) {
+      for (let f = 0; f < idx.length; f += 3) {
+        const [a, b, c] = [0, 1, 2].map((j) => shaded(pos, tan, across, idx[f + j], eye));
+        const normal = b.clone().sub(a).cross(c.clone().sub(a));
+        const centroid = a.clone().add(b).add(c).divideScalar(3);
+        // facing the eye wherever the axis is not seen almost end on (there a strip may fold over,
+        // hence DoubleSide in the material)
+        const endOn = [0, 1, 2].some((j) => Math.abs(at(tan, idx[f + j]).dot(eye.clone().sub(centroid).normalize())) > 0.9);
+        if (!endOn) expect(normal.dot(eye.clone().sub(centroid))).toBeGreaterThan(0);
+        else folded++;
+        // as wide as the tube: each triangle has an edge across, of length 2 r
+        const widths = [[a, b], [b, c], [c, a]].map(([p, q]) => p.distanceTo(q));
+        expect(widths.some((w) => Math.abs(w - 0.2) < 1e-5)).toBe(true);
+      }
     }
+    expect(folded).toBeLessThan(3 * (n - 1));   // most triangles were checked (fewer than half end on)
   });
 });
 
@@ -118,25 +109,25 @@ function geometry(dx: number): { msg: Geometry; data: Float32Array } {
 }
 
 describe("DragTubes", () => {
-  it("instances a piece per handedness and rewrites its buffers in place on the next edit", () => {
-    const red = new THREE.MeshStandardMaterial({ color: "#ff0000" });
-    const tubes = new DragTubes(() => red, 8, 1);
+  it("instances a piece with all its transforms and rewrites its buffers in place on the next edit", () => {
+    const tubes = new DragTubes(() => "#ff0000", 1);
     const a = geometry(0);
     tubes.update(a.msg, a.data);
     const meshes = tubes.group.children as THREE.InstancedMesh[];
-    expect(meshes.map((m) => m.count)).toEqual([1, 1]);
-    // the mirrored replica shares positions and normals, its triangles wound the other way
-    expect(meshes[1].geometry.getAttribute("position")).toBe(meshes[0].geometry.getAttribute("position"));
-    const i0 = meshes[0].geometry.index!.array, i1 = meshes[1].geometry.index!.array;
-    expect([i1[0], i1[1], i1[2]]).toEqual([i0[0], i0[2], i0[1]]);
-    expect(meshes[1].instanceMatrix.array[0]).toBe(-1);
+    expect(meshes.map((m) => m.count)).toEqual([2]);
+    expect(Array.from(meshes[0].instanceMatrix.array)).toEqual(Array.from(a.data.subarray(9, 41)));
+    expect("#" + (meshes[0].material as THREE.ShaderMaterial & { color: THREE.Color }).color.getHexString()).toBe("#ff0000");
     const pos = meshes[0].geometry.getAttribute("position") as THREE.BufferAttribute;
+    const across = meshes[0].geometry.getAttribute("across") as THREE.BufferAttribute;
+    expect(pos.count).toBe(6);   // three stations, each twice
+    const r = tubeRadius(a.msg.bounds);   // 0.006 sqrt(17): half of 1.2 % of the diagonal
+    expect(Array.from(across.array)).toEqual([-r, r, -r, r, -r, r].map(Math.fround));
     const x0 = pos.array[0];
     const b = geometry(0.25);
     tubes.update(b.msg, b.data);
     expect(tubes.group.children).toEqual(meshes);
     expect(meshes[0].geometry.getAttribute("position")).toBe(pos);
-    expect(pos.array[0]).toBeCloseTo(x0 + 0.25, 6);   // ring 0 moved with the first point
+    expect(pos.array[0]).toBeCloseTo(x0 + 0.25, 6);   // station 0 moved with the first point
     tubes.clear();
     expect(tubes.group.children.length).toBe(0);
   });

@@ -1,18 +1,22 @@
-// Tubes swept in the page around the geometry's own polylines, for the tube look while the drawing
+// Tubes drawn by the page around the geometry's own polylines, for the tube look while the drawing
 // changes: a drag's every edit shows its tubes in the frame that shows its lines, without waiting
-// for the server's mesh (debounced, Looks). They are coarser (DRAG_AROUND points round the
-// profile, every DRAG_STRIDE-th point of the polyline along it) and open at the ends; the server's mesh (the one
-// the exports use) replaces them as soon as it arrives for the current revision. Each geometry
-// piece is one BufferGeometry drawn by InstancedMeshes with the piece's transforms; an edit that
-// keeps the layout rewrites the buffers in place (no GPU resources per edit).
+// for the server's mesh (debounced, Looks); the server's mesh (the one the exports use) replaces
+// them as soon as it arrives for the current revision. Each tube is a strip along the polyline
+// that the vertex shader turns to face the camera and the fragment shader shades as a round tube
+// (shading.ts, tubeStripMaterial): two triangles per step along the curve, against 12 for a swept
+// tube of 6 points round, as software WebGL (headless chromium's SwiftShader) pays per triangle
+// and per shaded pixel (a frame of U.XI.28's tubes 27 -> 13 ms: benchmarks/RESULTS.md, 2026-12-03,
+// branch studio-frame). The strips are open at the ends and
+// lie on the curves (their depth is the axis'). Each geometry piece is one BufferGeometry drawn
+// by one InstancedMesh with the piece's transforms (a strip faces the camera whatever the
+// transform's handedness); an edit that keeps the layout rewrites the buffers in place (no GPU
+// resources per edit).
 import * as THREE from "three";
 import { layoutKey, view } from "./geometry";
-import { reversedWinding, splitHandedness } from "./meshes";
 import type { Geometry } from "./protocol";
+import { tubeStripMaterial } from "./shading";
 
-/** Points round a tube's profile while the page sweeps it (the server's tubes have 40). */
-export const DRAG_AROUND = 6;
-/** Along a piece, every DRAG_STRIDE-th point of its polyline (and its last) is a ring. */
+/** Along a piece, every DRAG_STRIDE-th point of its polyline (and its last) is a station of its strip. */
 export const DRAG_STRIDE = 2;
 /** Tube diameter as a share of the bounding-box diagonal: the server's default member size
  * (auszug.meshing.sweep.default_size). */
@@ -24,7 +28,7 @@ export function tubeRadius(bounds: readonly number[]): number {
   return (SIZE_SHARE * d) / 2;
 }
 
-/** Every `stride`-th point of `points` ((n, 3) flattened) and the last: the rings of a tube. */
+/** Every `stride`-th point of `points` ((n, 3) flattened) and the last: the stations of a tube. */
 export function strided(points: Float32Array, stride: number, out?: Float32Array): Float32Array {
   const n = points.length / 3, m = ringCount(n, stride);
   const res = out ?? new Float32Array(3 * m);
@@ -35,84 +39,55 @@ export function strided(points: Float32Array, stride: number, out?: Float32Array
   return res;
 }
 
-/** The rings of a tube along `n` points taking every `stride`-th (and the last). */
+/** The stations of a tube along `n` points taking every `stride`-th (and the last). */
 export function ringCount(n: number, stride: number): number {
   return n <= 1 ? n : Math.ceil((n - 1) / stride) + 1;
 }
 
 /**
- * Triangles of a tube of `n` rings of `k` points (vertex i * k + j: ring i, point j), wound so
- * that they face outwards for the frames `sweepTube` uses: ((n - 1) * k * 2, 3) flattened.
+ * Triangles of a strip along `n` stations (vertices 2 i and 2 i + 1 at station i, the first on the
+ * side `-radius`, the second on `+radius`): ((n - 1) * 2, 3) flattened, each facing the camera
+ * once the vertex shader has turned the strip (tubeStripMaterial).
  */
-export function tubeIndices(n: number, k: number): Uint32Array {
-  const out = new Uint32Array(Math.max(n - 1, 0) * k * 6);
-  let o = 0;
-  for (let i = 0; i + 1 < n; i++) {
-    for (let j = 0; j < k; j++) {
-      const a = i * k + j, b = i * k + ((j + 1) % k), c = a + k, d = b + k;
-      out[o++] = a; out[o++] = b; out[o++] = c;
-      out[o++] = b; out[o++] = d; out[o++] = c;
-    }
+export function stripIndices(n: number): Uint32Array {
+  const out = new Uint32Array(Math.max(n - 1, 0) * 6);
+  for (let i = 0, o = 0; i + 1 < n; i++, o += 6) {
+    const a = 2 * i, b = a + 1, c = a + 2, d = a + 3;
+    out[o] = a; out[o + 1] = b; out[o + 2] = c;
+    out[o + 3] = b; out[o + 4] = d; out[o + 5] = c;
   }
   return out;
 }
 
 /**
- * Sweep a circle of `radius` with `k` points along the polyline `points` ((n, 3) flattened):
- * ring i lies in the plane through point i normal to the tangent there (central differences,
- * one-sided at the ends), its frames rotation minimising (double reflection). Writes (n * k, 3)
- * positions and unit outward normals into `pos` and `nrm` (each at least 3 n k long).
+ * A strip's vertices along the polyline `points` ((n, 3) flattened): each point twice in `pos`
+ * ((2 n, 3)), the unit tangent there twice in `tan` ((2 n, 3): central differences, one-sided
+ * at the ends; where the neighbours coincide, the previous station's, or +z at the start) and
+ * the signed offsets -`radius`, +`radius` in `across` ((2 n,)). The vertex shader moves each
+ * vertex by its offset along the direction normal to the tangent and to the line of sight.
  */
-export function sweepTube(points: Float32Array, radius: number, k: number, pos: Float32Array, nrm: Float32Array): void {
+export function stripVertices(points: Float32Array, radius: number, pos: Float32Array, tan: Float32Array,
+  across: Float32Array): void {
   const n = points.length / 3;
-  const t = new THREE.Vector3(), tPrev = new THREE.Vector3(), u = new THREE.Vector3(), w = new THREE.Vector3();
-  const v1 = new THREE.Vector3(), r = new THREE.Vector3(), rL = new THREE.Vector3(), tL = new THREE.Vector3();
-  const p = new THREE.Vector3(), q = new THREE.Vector3();
-  const tangent = (i: number, out: THREE.Vector3) => {
-    const a = Math.max(i - 1, 0), b = Math.min(i + 1, n - 1);
-    out.set(points[3 * b] - points[3 * a], points[3 * b + 1] - points[3 * a + 1], points[3 * b + 2] - points[3 * a + 2]);
-    const len = out.length();
-    return len > 0 ? out.divideScalar(len) : null;
-  };
+  let tx = 0, ty = 0, tz = 1;
   for (let i = 0; i < n; i++) {
-    if (!tangent(i, t)) t.copy(i > 0 ? tPrev : new THREE.Vector3(0, 0, 1));
-    if (i === 0) {
-      // any normal to the first tangent: the world axis least along it, made perpendicular
-      const ax = Math.abs(t.x), ay = Math.abs(t.y), az = Math.abs(t.z);
-      r.set(ax <= ay && ax <= az ? 1 : 0, ay < ax && ay <= az ? 1 : 0, az < ax && az < ay ? 1 : 0);
-      r.addScaledVector(t, -r.dot(t)).normalize();
-    } else {
-      // double reflection (Wang, Juettler, Zheng, Liu 2008): carry the previous frame's normal over
-      p.set(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
-      q.set(points[3 * i - 3], points[3 * i - 2], points[3 * i - 1]);
-      v1.subVectors(p, q);
-      const c1 = v1.dot(v1);
-      if (c1 > 0) {
-        rL.copy(r).addScaledVector(v1, (-2 / c1) * v1.dot(r));
-        tL.copy(tPrev).addScaledVector(v1, (-2 / c1) * v1.dot(tPrev));
-        const v2 = w.subVectors(t, tL), c2 = v2.dot(v2);
-        r.copy(rL);
-        if (c2 > 0) r.addScaledVector(v2, (-2 / c2) * v2.dot(rL));
-      }
-      r.addScaledVector(t, -r.dot(t)).normalize();   // against rounding drift
+    const a = 3 * Math.max(i - 1, 0), b = 3 * Math.min(i + 1, n - 1);
+    const dx = points[b] - points[a], dy = points[b + 1] - points[a + 1], dz = points[b + 2] - points[a + 2];
+    const len = Math.hypot(dx, dy, dz);
+    if (len > 0) { tx = dx / len; ty = dy / len; tz = dz / len; }
+    for (let side = 0; side < 2; side++) {
+      const o = 3 * (2 * i + side);
+      pos[o] = points[3 * i]; pos[o + 1] = points[3 * i + 1]; pos[o + 2] = points[3 * i + 2];
+      tan[o] = tx; tan[o + 1] = ty; tan[o + 2] = tz;
+      across[2 * i + side] = side ? radius : -radius;
     }
-    u.crossVectors(t, r);   // r, u, t: right handed
-    const px = points[3 * i], py = points[3 * i + 1], pz = points[3 * i + 2];
-    for (let j = 0; j < k; j++) {
-      const a = (2 * Math.PI * j) / k, ca = Math.cos(a), sa = Math.sin(a);
-      const nx = ca * r.x + sa * u.x, ny = ca * r.y + sa * u.y, nz = ca * r.z + sa * u.z;
-      const o = 3 * (i * k + j);
-      nrm[o] = nx; nrm[o + 1] = ny; nrm[o + 2] = nz;
-      pos[o] = px + radius * nx; pos[o + 1] = py + radius * ny; pos[o + 2] = pz + radius * nz;
-    }
-    tPrev.copy(t);
   }
 }
 
 interface Entry {
   basic: number;
-  geoms: THREE.BufferGeometry[];
-  meshes: THREE.InstancedMesh[];
+  geom: THREE.BufferGeometry;
+  mesh: THREE.InstancedMesh;
 }
 
 /** The page's own tubes of the last geometry, coloured like the server's meshes. */
@@ -121,84 +96,72 @@ export class DragTubes {
   private entries: Entry[] = [];
   private layout = "";
   private layers: readonly number[] = [0];
+  private materials = new Map<string, THREE.ShaderMaterial & { color: THREE.Color }>();
+  private stations: Float32Array = new Float32Array(0);
 
-  private rings: Float32Array = new Float32Array(0);
-
-  constructor(private material: (basic: number) => THREE.Material, private around = DRAG_AROUND,
-    private stride = DRAG_STRIDE) {
+  /** `color`: a basic curve's colour (#rrggbb) as the server's members show it. */
+  constructor(private color: (basic: number) => string, private stride = DRAG_STRIDE) {
     this.group.name = "drag-tubes";
   }
 
-  /** Sweep the tubes of `msg` (its points in `data`), in place when the layout is unchanged. */
+  /** Draw the tubes of `msg` (its points in `data`), in place when the layout is unchanged. */
   update(msg: Geometry, data: Float32Array): void {
     const radius = tubeRadius(msg.bounds);
     const key = layoutKey(msg);
-    const splits = msg.pieces.map((p) => splitHandedness(view(data, p.transforms)));
-    const sameCounts = splits.every((s, i) => {
-      const e = this.entries[i];
-      return !!e && e.meshes.length === (s.proper.length ? 1 : 0) + (s.mirrored.length ? 1 : 0) &&
-        e.meshes.every((m, j) => m.count * 16 === [s.proper, s.mirrored].filter((x) => x.length)[j].length);
-    });
-    if (key !== this.layout || !sameCounts) this.rebuild(msg, data, splits);
+    const same = key === this.layout && this.entries.length === msg.pieces.length &&
+      msg.pieces.every((p, i) => this.entries[i].mesh.count === p.transforms.shape[0]);
+    if (!same) this.rebuild(msg);
     msg.pieces.forEach((p, i) => {
-      const e = this.entries[i];
-      const pos = e.geoms[0].getAttribute("position") as THREE.BufferAttribute;
-      const nrm = e.geoms[0].getAttribute("normal") as THREE.BufferAttribute;
+      const { geom, mesh } = this.entries[i];
+      const pos = geom.getAttribute("position") as THREE.BufferAttribute;
+      const tan = geom.getAttribute("axisTangent") as THREE.BufferAttribute;
+      const across = geom.getAttribute("across") as THREE.BufferAttribute;
       const pts = view(data, p.points), n = ringCount(pts.length / 3, this.stride);
-      if (this.rings.length < 3 * n) this.rings = new Float32Array(3 * n);
-      const rings = strided(pts, this.stride, this.rings.subarray(0, 3 * n));
-      sweepTube(rings, radius, this.around, pos.array as Float32Array, nrm.array as Float32Array);
-      pos.needsUpdate = true;
-      nrm.needsUpdate = true;
-      const matrices = [splits[i].proper, splits[i].mirrored].filter((m) => m.length);
-      e.meshes.forEach((mesh, j) => {
-        (mesh.instanceMatrix.array as Float32Array).set(matrices[j]);
-        mesh.instanceMatrix.needsUpdate = true;
-      });
+      if (this.stations.length < 3 * n) this.stations = new Float32Array(3 * n);
+      const stations = strided(pts, this.stride, this.stations.subarray(0, 3 * n));
+      stripVertices(stations, radius, pos.array as Float32Array, tan.array as Float32Array, across.array as Float32Array);
+      pos.needsUpdate = tan.needsUpdate = across.needsUpdate = true;
+      (mesh.instanceMatrix.array as Float32Array).set(view(data, p.transforms));
+      mesh.instanceMatrix.needsUpdate = true;
     });
   }
 
-  private rebuild(msg: Geometry, data: Float32Array, splits: { proper: Float32Array; mirrored: Float32Array }[]): void {
+  private rebuild(msg: Geometry): void {
     this.clear();
-    const k = this.around;
-    msg.pieces.forEach((p, i) => {
+    for (const p of msg.pieces) {
       const n = ringCount(p.points.shape[0], this.stride);
       const geom = new THREE.BufferGeometry();
-      geom.setAttribute("position", new THREE.BufferAttribute(new Float32Array(3 * n * k), 3));
-      geom.setAttribute("normal", new THREE.BufferAttribute(new Float32Array(3 * n * k), 3));
-      const indices = tubeIndices(n, k);
-      geom.setIndex(new THREE.BufferAttribute(indices, 1));
-      const entry: Entry = { basic: p.basic, geoms: [geom], meshes: [] };
-      if (splits[i].mirrored.length) {
-        const flipped = new THREE.BufferGeometry();
-        flipped.setAttribute("position", geom.getAttribute("position"));
-        flipped.setAttribute("normal", geom.getAttribute("normal"));
-        flipped.setIndex(new THREE.BufferAttribute(reversedWinding(indices), 1));
-        entry.geoms.push(flipped);
-      }
-      [splits[i].proper, splits[i].mirrored].forEach((matrices, j) => {
-        if (!matrices.length) return;
-        const mesh = new THREE.InstancedMesh(entry.geoms[j], this.material(p.basic), matrices.length / 16);
-        mesh.name = `${p.basic}/${p.kind}`;
-        mesh.userData.basic = p.basic;
-        mesh.frustumCulled = false;
-        this.setObjectLayers(mesh);
-        this.group.add(mesh);
-        entry.meshes.push(mesh);
-      });
-      this.entries.push(entry);
-    });
+      geom.setAttribute("position", new THREE.BufferAttribute(new Float32Array(6 * n), 3));
+      geom.setAttribute("axisTangent", new THREE.BufferAttribute(new Float32Array(6 * n), 3));
+      geom.setAttribute("across", new THREE.BufferAttribute(new Float32Array(2 * n), 1));
+      geom.setIndex(new THREE.BufferAttribute(stripIndices(n), 1));
+      const mesh = new THREE.InstancedMesh(geom, this.material(p.basic), p.transforms.shape[0]);
+      mesh.name = `${p.basic}/${p.kind}`;
+      mesh.userData.basic = p.basic;
+      mesh.frustumCulled = false;
+      this.setObjectLayers(mesh);
+      this.group.add(mesh);
+      this.entries.push({ basic: p.basic, geom, mesh });
+    }
     this.layout = layoutKey(msg);
   }
 
-  /** Re-apply the materials (colours, selection). */
+  /** The material of basic curve `basic`'s tubes (shared per colour). */
+  private material(basic: number): THREE.ShaderMaterial & { color: THREE.Color } {
+    const c = this.color(basic);
+    let m = this.materials.get(c);
+    if (!m) this.materials.set(c, (m = tubeStripMaterial(c)));
+    return m;
+  }
+
+  /** Re-apply the colours (selection, looks). */
   recolor(): void {
-    for (const e of this.entries) for (const m of e.meshes) m.material = this.material(e.basic);
+    for (const e of this.entries) e.mesh.material = this.material(e.basic);
   }
 
   setLayers(layers: readonly number[]): void {
     this.layers = layers;
-    for (const e of this.entries) for (const m of e.meshes) this.setObjectLayers(m);
+    for (const e of this.entries) this.setObjectLayers(e.mesh);
   }
 
   private setObjectLayers(o: THREE.Object3D): void {
@@ -206,11 +169,11 @@ export class DragTubes {
     for (const l of this.layers) o.layers.enable(l);
   }
 
-  /** Remove and dispose every tube. */
+  /** Remove and dispose every tube (materials are kept for reuse). */
   clear(): void {
     for (const e of this.entries) {
-      for (const g of e.geoms) g.dispose();
-      for (const m of e.meshes) m.dispose();
+      e.geom.dispose();
+      e.mesh.dispose();
     }
     this.group.clear();
     this.entries = [];

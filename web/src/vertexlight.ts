@@ -1,8 +1,8 @@
 // Lambert shading computed once per vertex, for an unlit material with vertex colours (the tracery page's
 // 3D view). On a software WebGL renderer (SwiftShader, llvmpipe) a frame's cost is the fragment shader
 // run per pixel; MeshLambertMaterial evaluates its lights there. Shading the vertices on the CPU after
-// each edit (a few thousand vertices, well under a millisecond) and drawing with MeshBasicMaterial gives
-// the same matte look for a fraction of the fragment cost. The sums are three.js's (r170,
+// each edit (a few thousand vertices, well under a millisecond) and drawing unlit with vertex colours
+// (shading.ts, vertexColourMaterial) gives the same matte look for a fraction of the fragment cost. The sums are three.js's (r170,
 // lights_lambert_pars_fragment): colour = albedo / pi * (hemisphere + sum of max(0, n . l) * light), all
 // in linear RGB (three.js encodes to sRGB on output, and treats vertex colours as linear).
 // Pure functions over typed arrays; no three.js here.

@@ -436,7 +436,8 @@ def _gmres(K: sp.csc_matrix, prec: Callable[[Array], Array], b: Array, tol: floa
 
 def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = None, *, iterations: int = 60,
           tol: float = 1e-10, kkt_reg: float = 1e-11, hessian_reg: float = 1e-10,
-          stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 3,
+          stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 20, soc_rate: float = 0.5,
+          step_growth: float = 2.0, ldl_reg: float = 1e-8,
           stall_tol: float = 1e-6) -> SolveResult:
     """Minimise ``sum w_r p_r(v)^2`` subject to ``q(v) = 0`` from ``v0``.
 
@@ -502,13 +503,14 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     w = energy.weights
     asm = _Assembly(energy, constraints, hessian_reg, kkt_reg)
     zk = np.zeros(k)
-    kkt = _KKT(n)
+    kkt = _KKT(n, ldl_reg)
     mu = 0.0
     delta = 0.0
     converged = False
     it = 0
     stat = np.inf
     sticky = False
+    radius = np.inf
 
     def small_step(d: Array) -> bool:
         return float(np.abs(d).max(initial=0.0)) <= tol
@@ -561,15 +563,22 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
                 continue
             delta = max(1e-8, GROW * delta)
         lam_new = sol[n:] if k else np.zeros(0)
+        if small_step(dv) and feas <= tol:   # the Newton step says v is within tol of the KKT point
+            converged = True
+            v = v + dv
+            break
         # l1 merit with a penalty above the multipliers
         q1 = float(np.abs(q).sum())
         mu = max(mu, 1.5 * float(np.abs(lam_new).max(initial=0.0)) + 1e-8)
         slope = _dot(g, dv) - mu * q1
         phi0 = f + mu * q1
         step = 1.0
+        dvmax = float(np.abs(dv).max(initial=0.0))
+        if dvmax > radius:    # start where the last shortened step ended, times step_growth
+            step = 0.5 ** np.floor(np.log2(dvmax / radius))
         accepted = False
         v_new = v
-        small = float(np.abs(dv).max(initial=0.0)) < 1e-12
+        small = dvmax < 1e-12
         while step >= 1e-10:
             vt = v + step * dv
             ft, qt = merit_parts(vt)
@@ -579,12 +588,17 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
                 break
             if k:   # second-order corrections: back onto the curved constraints
                 vs, qs = vt, qt
+                qn = float(np.abs(qt).sum())
                 for _ in range(soc_steps):
                     vs = vs + lu(np.concatenate([np.zeros(n), -qs]))[:n]
                     fs, qs = merit_parts(vs)
-                    if fs + mu * float(np.abs(qs).sum()) <= phi0 + 1e-4 * step * slope + slack:
+                    qn_new = float(np.abs(qs).sum())
+                    if fs + mu * qn_new <= phi0 + 1e-4 * step * slope + slack:
                         v_new, accepted = vs, True
                         break
+                    if not qn_new <= soc_rate * qn:    # the corrections do not contract: give up
+                        break
+                    qn = qn_new
                 if accepted:
                     break
             step *= 0.5
@@ -592,11 +606,8 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
             # at the energy's float resolution with the remaining Newton step below stall_tol: done
             converged = feas <= tol and float(np.abs(dv).max(initial=0.0)) <= stall_tol
             break
-        if small_step(dv) and feas <= tol and step == 1.0:   # the Newton step says v is the KKT point
-            converged = True
-            v = v_new
-            break
         sticky = bool(k) and gauss_newton and step < 1.0
+        radius = np.inf if step == 1.0 else step_growth * step * dvmax
         # Levenberg-Marquardt-like: a short step means a poor quadratic model, so regularise more
         delta = max(GROW * delta, 1e-6) if step < 0.25 else (delta / GROW if delta > 1e-10 else 0.0)
         if k:

@@ -12,10 +12,10 @@ search on the l1 exact penalty merit function ``f + mu |q|_1`` with a
 second-order correction, an inertia-free curvature test that regularises the
 Hessian where it is not positive on the step, the paper's bound on the
 multiplier increments (sec. 5.3), and a convergence test on the KKT residual.
-The sparse system is factorised by SuperLU (``scipy.sparse.linalg.splu``);
-its sparsity pattern is built once per solve and only its values are
-filled per step, and the COLAMD fill-reducing column ordering of the first
-factorisation is reused for the later ones.
+The sparse system's pattern is built once per solve and only its values are
+filled per step; it is solved by GMRES preconditioned with a sparse LDL^T
+(QDLDL) of the system made quasi-definite, with SuperLU as the fallback
+(:class:`_KKT`).
 """
 
 from __future__ import annotations
@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
+import qdldl
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 from scipy.sparse.linalg import splu
@@ -149,7 +150,7 @@ class SolveResult:
     stationarity : float
         Largest absolute entry of the Lagrangian's gradient ``g + Jq^T lam`` at ``v``.
     factorisations : int
-        Sparse LU factorisations done.
+        KKT factorisations done (LDL^T, or LU where the LDL^T failed).
     """
 
     v: Array
@@ -264,36 +265,35 @@ class _Assembly:
 
 
 class _KKT:
-    """Factorises the KKT matrices of one solve (one sparsity pattern) and solves with them.
+    """Factorises the KKT matrices ``K`` (N, N) of one solve (one sparsity pattern) and solves with them.
 
-    The first choice is a sparse LDL^T without pivoting (QDLDL, AMD ordering, its symbolic
-    factorisation done once per pattern) of the matrix made quasi-definite,
-    ``K + diag(ldl_reg I, -ldl_reg I)``; it is used as the preconditioner of GMRES on ``K`` itself,
-    so the solves are those of ``K`` to the tolerance ``gmres_tol`` (relative residual), not of the
-    regularised matrix. Measured on the dumped KKT matrices of the 30 x 4 and 96 x 4 vase grids:
-    ... (see docs/lifting.md, Solver). Where the LDL^T fails (a zero pivot, a non-finite factor)
-    or GMRES does not reach the tolerance, SuperLU (COLAMD, its column ordering reused for the
-    later factorisations, scipy having no separate symbolic factorisation) factorises ``K``.
+    The first choice is a sparse LDL^T without pivoting (QDLDL, AMD ordering; its symbolic
+    factorisation is done once per pattern and reused by ``update``) of ``K`` made quasi-definite,
+    ``K + diag(ldl_reg I_n, -ldl_reg I_k)`` (the energy block positive definite, the constraint
+    block negative definite: such a matrix has an LDL^T for every symmetric ordering). That
+    factorisation is the preconditioner of GMRES on ``K`` itself, so the solves are those of
+    ``K`` (to a relative residual ``gmres_tol``, or at least ``1e-10``), not of the regularised
+    matrix. Measured on the KKT matrices of the 96 x 4 vase grid (benchmarks/bench_lifting.py):
+    0.35-0.57M non-zeros in L against 1.2M (baseline) and 8.9M (planar rounds) in SuperLU's L + U,
+    a solve of 1 ms against 3-14 ms, 5-12 GMRES iterations per solve. Where the LDL^T fails (a
+    zero pivot) or GMRES does not reach ``1e-10``, SuperLU factorises ``K`` (COLAMD, its column
+    ordering reused for the later factorisations, scipy having no separate symbolic
+    factorisation); ``ldl_reg <= 0`` uses SuperLU alone.
     """
 
     def __init__(self, n: int, ldl_reg: float = 1e-8, gmres_tol: float = 1e-15, gmres_its: int = 30) -> None:
         self.n = n
         self.perm: NDArray[np.intp] | None = None
         self.count = 0
-        self.ldl: object | None = None
+        self.lu_count = 0
+        self.ldl: qdldl.Solver | None = None
         self.ldl_reg = ldl_reg
         self.gmres_tol = gmres_tol
-        self.gmres_its = gmres_its
+        self.gmres_its = max(1, gmres_its)
         self.upper: NDArray[np.bool_] | None = None
-        self.use_lu = ldl_reg <= 0.0
-        self.krylov = 0
 
     def _ldl(self, K: sp.csc_matrix) -> Callable[[Array], Array] | None:
-        try:
-            import qdldl
-        except ImportError:      # optional speed-up: SuperLU alone without it
-            self.use_lu = True
-            return None
+        """The preconditioned solver of ``K``, None where the LDL^T of the regularised ``K`` fails."""
         N = K.shape[0]
         if self.upper is None:
             col = np.repeat(np.arange(N), np.diff(K.indptr))
@@ -310,7 +310,7 @@ class _KKT:
                 self.ldl = qdldl.Solver(U, upper=True)
             else:
                 self.ldl.update(U, upper=True)
-        except (ValueError, RuntimeError):
+        except (ValueError, RuntimeError):   # QDLDL: "not quasi-definite" (a zero pivot)
             self.ldl = None
             return None
         ldl = self.ldl
@@ -319,12 +319,13 @@ class _KKT:
             x = _gmres(K, ldl.solve, b, self.gmres_tol, self.gmres_its)
             if x is None:
                 raise _NotSolved
-            self.krylov += 1
             return x
 
         return solve_
 
     def _lu(self, K: sp.csc_matrix) -> Callable[[Array], Array]:
+        """SuperLU's solver of ``K``."""
+        self.lu_count += 1
         if self.perm is None or len(self.perm) != K.shape[0]:
             lu = splu(K, permc_spec="COLAMD")
             self.perm = np.asarray(lu.perm_c, dtype=np.intp)
@@ -342,7 +343,7 @@ class _KKT:
     def factor(self, K: sp.csc_matrix) -> Callable[[Array], Array]:
         """A function solving ``K x = b`` for ``b`` (N,), returning ``x`` (N,)."""
         self.count += 1
-        if not self.use_lu:
+        if self.ldl_reg > 0.0:
             fast = self._ldl(K)
             if fast is not None:
                 state: dict[str, Callable[[Array], Array]] = {}
@@ -459,12 +460,15 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     length comes from backtracking (Armijo, factor 1/2) on the l1 merit
     ``f + mu |q|_1`` with ``mu`` above the largest multiplier, trying a
     second-order correction (the same factorisation, right-hand side
-    ``[0, -q(v + dv)]``) when the full step is refused. The multipliers move
+    ``[0, -q(v + dv)]``) when the trial step is refused, repeated (at most
+    ``soc_steps``) while each reduces ``|q|_1`` by ``soc_rate``; after a shortened step the
+    next line search starts at ``step_growth`` times that step's length (in the max norm), not at
+    the full step. The multipliers move
     by the same step length toward ``lam'``, the increment scaled down to at
     most ``lam_bound max(1, |lam|)`` (the paper's bounded multiplier steps,
     relative so that large multipliers are reached in a few steps).
-    Converged: ``|q|_inf <= tol`` and either ``|g + Jq^T lam|_inf <= stat_tol`` or a full Newton
-    step below ``tol`` (the KKT point is within ``tol``: near redundant constraints the
+    Converged: ``|q|_inf <= tol`` and either ``|g + Jq^T lam|_inf <= stat_tol`` or a Newton
+    step below ``tol`` (taken; the KKT point is within ``tol``: near redundant constraints the
     stationarity residual stalls at the linear solve's rounding), or the line
     search finds no decrease (the merit's changes are below its float
     resolution, about 1e-13 for thousands of rows) while feasible and the
@@ -486,6 +490,13 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     kkt_reg, hessian_reg : float
         ``-kkt_reg I`` in the constraint block (redundant constraints), ``hessian_reg I`` on the energy
         Hessian (directions no term sees).
+    soc_steps, soc_rate : int, float
+        Most second-order corrections per trial step; the least reduction of ``|q|_1`` by each.
+    step_growth : float
+        A line search after a shortened step starts at this times that step's length.
+    ldl_reg : float
+        The regularisation making the KKT matrix quasi-definite for its LDL^T, the preconditioner
+        (the system solved is the unregularised one); 0: SuperLU alone.
 
     Examples
     --------

@@ -281,10 +281,8 @@ class _KKT:
     factorisation); ``ldl_reg <= 0`` uses SuperLU alone.
     """
 
-    def __init__(self, n: int, kkt_reg: float = 0.0, ldl_reg: float = 1e-8, gmres_tol: float = 1e-13,
-                 gmres_its: int = 30) -> None:
+    def __init__(self, n: int, ldl_reg: float = 1e-8, gmres_tol: float = 1e-15, gmres_its: int = 30) -> None:
         self.n = n
-        self.kkt_reg = kkt_reg
         self.perm: NDArray[np.intp] | None = None
         self.count = 0
         self.lu_count = 0
@@ -294,8 +292,8 @@ class _KKT:
         self.gmres_its = max(1, gmres_its)
         self.upper: NDArray[np.bool_] | None = None
 
-    def _ldl(self, K: sp.csc_matrix, K0: sp.csc_matrix) -> Callable[[Array], Array] | None:
-        """The preconditioned solver of ``K0``, None where the LDL^T of the regularised ``K`` fails."""
+    def _ldl(self, K: sp.csc_matrix) -> Callable[[Array], Array] | None:
+        """The preconditioned solver of ``K``, None where the LDL^T of the regularised ``K`` fails."""
         N = K.shape[0]
         if self.upper is None:
             col = np.repeat(np.arange(N), np.diff(K.indptr))
@@ -318,7 +316,7 @@ class _KKT:
         ldl = self.ldl
 
         def solve_(b: Array) -> Array:
-            x = _gmres(K0, ldl.solve, b, self.gmres_tol, self.gmres_its)
+            x = _gmres(K, ldl.solve, b, self.gmres_tol, self.gmres_its)
             if x is None:
                 raise _NotSolved
             return x
@@ -343,43 +341,23 @@ class _KKT:
         return solve_
 
     def factor(self, K: sp.csc_matrix) -> Callable[[Array], Array]:
-        """A function solving ``K0 x = b`` for ``b`` (N,), returning ``x`` (N,).
-
-        ``K0`` is ``K`` without the ``-kkt_reg I`` of its constraint block (redundant constraints
-        make ``K0`` singular). GMRES solves ``K0`` directly; SuperLU solves ``K`` and refines
-        twice toward ``K0`` (without that the constraint residual stalled at ``kkt_reg |lambda|``).
-        """
+        """A function solving ``K x = b`` for ``b`` (N,), returning ``x`` (N,)."""
         self.count += 1
-        K0 = K
-        if self.kkt_reg and K.shape[0] > self.n:
-            N = K.shape[0]
-            col = np.repeat(np.arange(N), np.diff(K.indptr))
-            cdiag = (K.indices == col) & (col >= self.n)
-            data = K.data.copy()
-            data[cdiag] += self.kkt_reg
-            K0 = sp.csc_matrix((data, K.indices, K.indptr), shape=K.shape)
-        state: dict[str, Callable[[Array], Array]] = {}
-        fast = self._ldl(K, K0) if self.ldl_reg > 0.0 else None
+        if self.ldl_reg > 0.0:
+            fast = self._ldl(K)
+            if fast is not None:
+                state: dict[str, Callable[[Array], Array]] = {}
 
-        def refined(b: Array) -> Array:
-            lu = state["lu"]
-            x = lu(b)
-            if K0 is not K:
-                for _ in range(2):
-                    x = x + lu(b - K0 @ x)
-            return x
+                def solve_(b: Array) -> Array:
+                    if "lu" not in state:
+                        try:
+                            return fast(b)
+                        except _NotSolved:
+                            state["lu"] = self._lu(K)
+                    return state["lu"](b)
 
-        def solve_(b: Array) -> Array:
-            if "lu" not in state:
-                if fast is not None:
-                    try:
-                        return fast(b)
-                    except _NotSolved:
-                        pass
-                state["lu"] = self._lu(K)
-            return refined(b)
-
-        return solve_
+                return solve_
+        return self._lu(K)
 
 
 class _NotSolved(Exception):
@@ -536,7 +514,7 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     w = energy.weights
     asm = _Assembly(energy, constraints, hessian_reg, kkt_reg)
     zk = np.zeros(k)
-    kkt = _KKT(n, kkt_reg, ldl_reg)
+    kkt = _KKT(n, ldl_reg)
     mu = 0.0
     delta = 0.0
     converged = False
@@ -581,8 +559,11 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
         rhs = np.concatenate([-g, -q])
         while True:
             K = asm.matrix(jc, jq, None if gauss_newton else lam, delta, w * p)
-            lu = kkt.factor(K)    # solves the system without the -kkt_reg I (see _KKT.factor)
+            lu = kkt.factor(K)
             sol = lu(rhs)
+            if k:   # iterative refinement toward the unregularised system's solution
+                for _ in range(2):
+                    sol = sol + lu(rhs - K @ sol - kkt_reg * np.concatenate([np.zeros(n), sol[n:]]))
             dv = sol[:n]
             curv = _dot(dv, (K @ np.concatenate([dv, zk]))[:n])
             dd = _dot(dv, dv)

@@ -281,7 +281,7 @@ class _KKT:
     factorisation); ``ldl_reg <= 0`` uses SuperLU alone.
     """
 
-    def __init__(self, n: int, ldl_reg: float = 1e-8, gmres_tol: float = 1e-15, gmres_its: int = 30) -> None:
+    def __init__(self, n: int, ldl_reg: float = 1e-8, gmres_tol: float = 1e-13, gmres_its: int = 30) -> None:
         self.n = n
         self.perm: NDArray[np.intp] | None = None
         self.count = 0

@@ -438,7 +438,7 @@ def _gmres(K: sp.csc_matrix, prec: Callable[[Array], Array], b: Array, tol: floa
 def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = None, *, iterations: int = 60,
           tol: float = 1e-10, kkt_reg: float = 1e-11, hessian_reg: float = 1e-10,
           stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 20, soc_rate: float = 0.5,
-          step_growth: float = 2.0, ldl_reg: float = 1e-7,
+          step_growth: float = 2.0, ldl_reg: float = 1e-7, refine_steps: int = 1,
           stall_tol: float = 1e-6) -> SolveResult:
     """Minimise ``sum w_r p_r(v)^2`` subject to ``q(v) = 0`` from ``v0``.
 
@@ -496,7 +496,9 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
         A line search after a shortened step starts at this times that step's length.
     ldl_reg : float
         The regularisation making the KKT matrix quasi-definite for its LDL^T, the preconditioner
-        (the system solved is the unregularised one); 0: SuperLU alone.
+        (the system solved is the one with ``-kkt_reg I``); 0: SuperLU alone.
+    refine_steps : int
+        Steps of iterative refinement from the solution with ``-kkt_reg I`` toward the one without.
 
     Examples
     --------
@@ -562,7 +564,7 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
             lu = kkt.factor(K)
             sol = lu(rhs)
             if k:   # iterative refinement toward the unregularised system's solution
-                for _ in range(2):
+                for _ in range(refine_steps):
                     sol = sol + lu(rhs - K @ sol - kkt_reg * np.concatenate([np.zeros(n), sol[n:]]))
             dv = sol[:n]
             curv = _dot(dv, (K @ np.concatenate([dv, zk]))[:n])

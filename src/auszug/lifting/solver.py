@@ -437,7 +437,7 @@ def _gmres(K: sp.csc_matrix, prec: Callable[[Array], Array], b: Array, tol: floa
 
 def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = None, *, iterations: int = 60,
           tol: float = 1e-10, kkt_reg: float = 1e-11, hessian_reg: float = 1e-10,
-          stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 20, soc_rate: float = 0.5,
+          stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 10, soc_rate: float = 0.5,
           step_growth: float = 2.0, ldl_reg: float = 1e-7, refine_steps: int = 1,
           stall_tol: float = 1e-6) -> SolveResult:
     """Minimise ``sum w_r p_r(v)^2`` subject to ``q(v) = 0`` from ``v0``.

@@ -619,6 +619,13 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
             # at the energy's float resolution with the remaining Newton step below stall_tol: done
             converged = feas <= tol and float(np.abs(dv).max(initial=0.0)) <= stall_tol
             break
+        if step < 1.0 and feas <= tol and dvmax <= stall_tol:
+            # a feasible Newton step below stall_tol shortened: the merit's changes are at its float
+            # resolution (the quadratic model's error, |dv|^3, is far below them), so the full step
+            # is taken and the solve ends as at a stall
+            converged = True
+            v = v + dv
+            break
         sticky = bool(k) and gauss_newton and step < 1.0
         radius = np.inf if step == 1.0 else step_growth * step * dvmax
         # Levenberg-Marquardt-like: a short step means a poor quadratic model, so regularise more

@@ -587,7 +587,7 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
         phi0 = f + mu * q1
         step = 1.0
         dvmax = float(np.abs(dv).max(initial=0.0))
-        if dvmax > radius:    # start where the last shortened step ended, times step_growth
+        if gauss_newton and dvmax > radius:    # start where the last shortened step ended, times step_growth
             step = 0.5 ** np.floor(np.log2(dvmax / radius))
         accepted = False
         v_new = v

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import scipy.sparse as sp
 
 from auszug.lifting.solver import Poly2, solve
 
@@ -57,3 +58,55 @@ def test_an_iteration_limit_is_reported_as_not_converged():
     e, c = _nearest_on_sphere(p)
     r = solve(e, c, np.array([10.0, -7.0]), iterations=1)
     assert not r.converged and r.iterations == 1
+
+
+def _kkt(rng: np.random.Generator, n: int, k: int) -> sp.csc_matrix:
+    """A random KKT matrix [[H, J^T], [J, -1e-11 I]] with H positive definite (n, n), J (k, n) of full rank.
+
+    The constraint block's diagonal is stored, as in the solver's assembly.
+    """
+    A = rng.normal(size=(n, n))
+    J = rng.normal(size=(k, n))
+    return sp.csc_matrix(np.block([[A @ A.T + np.eye(n), J.T], [J, -1e-11 * np.eye(k)]]))
+
+
+@pytest.mark.parametrize("ldl_reg, gmres_its", [(1e-8, 30), (1.0, 1), (0.0, 30)])
+def test_kkt_solves_are_of_the_unregularised_matrix(ldl_reg, gmres_its):
+    """LDL^T + GMRES, a preconditioner too poor for one GMRES step (SuperLU takes over), SuperLU alone."""
+    from auszug.lifting.solver import _KKT
+
+    rng = np.random.default_rng(3)
+    n, k = 12, 5
+    kkt = _KKT(n, ldl_reg=ldl_reg, gmres_its=gmres_its)
+    for _ in range(2):                                  # the second factorisation reuses the first's analysis
+        K = _kkt(rng, n, k)
+        b = rng.normal(size=n + k)
+        x = kkt.factor(K)(b)
+        assert np.abs(K @ x - b).max() < 1e-10 * np.abs(b).max()
+    assert kkt.count == 2
+    assert kkt.lu_count == (2 if ldl_reg == 0.0 or gmres_its == 1 else 0)
+
+
+def test_kkt_falls_back_to_lu_on_a_zero_pivot():
+    """H = [[1, 1], [1, 1]] - ldl_reg I: the regularised matrix is singular (no LDL^T), K is not."""
+    from auszug.lifting.solver import _KKT
+
+    reg = 1e-8
+    K = sp.csc_matrix(np.array([[1.0 - reg, 1.0, 1.0], [1.0, 1.0 - reg, 0.0], [1.0, 0.0, 0.0]]))
+    kkt = _KKT(2, ldl_reg=reg)
+    b = np.array([1.0, 2.0, 3.0])
+    x = kkt.factor(K)(b)
+    assert np.allclose(K @ x, b, atol=1e-12) and kkt.lu_count == 1
+
+
+@pytest.mark.parametrize("duplicate", [False, True])
+def test_ldl_and_lu_reach_the_same_point(duplicate):
+    """The preconditioned solves change rounding only: the same KKT point as with SuperLU alone."""
+    rng = np.random.default_rng(7)
+    p = rng.normal(size=6) * 3
+    e, c = _nearest_on_sphere(p, duplicate)
+    v0 = rng.normal(size=6) * 10
+    a = solve(e, c, v0)
+    b = solve(e, c, v0, ldl_reg=0.0)
+    assert a.converged and b.converged
+    assert np.abs(a.v - b.v).max() < 1e-10

@@ -12,10 +12,10 @@ search on the l1 exact penalty merit function ``f + mu |q|_1`` with a
 second-order correction, an inertia-free curvature test that regularises the
 Hessian where it is not positive on the step, the paper's bound on the
 multiplier increments (sec. 5.3), and a convergence test on the KKT residual.
-The sparse system is factorised by SuperLU (``scipy.sparse.linalg.splu``);
-its sparsity pattern is built once per solve and only its values are
-filled per step, and the COLAMD fill-reducing column ordering of the first
-factorisation is reused for the later ones.
+The sparse system's pattern is built once per solve and only its values are
+filled per step; it is solved by GMRES preconditioned with a sparse LDL^T
+(QDLDL) of the system made quasi-definite, with SuperLU as the fallback
+(:class:`_KKT`).
 """
 
 from __future__ import annotations
@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
+import qdldl
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 from scipy.sparse.linalg import splu
@@ -149,7 +150,7 @@ class SolveResult:
     stationarity : float
         Largest absolute entry of the Lagrangian's gradient ``g + Jq^T lam`` at ``v``.
     factorisations : int
-        Sparse LU factorisations done.
+        KKT factorisations done (LDL^T, or LU where the LDL^T failed).
     """
 
     v: Array
@@ -264,18 +265,67 @@ class _Assembly:
 
 
 class _KKT:
-    """Factorises KKT matrices of one sparsity pattern, reusing the first COLAMD column ordering.
+    """Factorises the KKT matrices ``K`` (N, N) of one solve (one sparsity pattern) and solves with them.
 
-    scipy has no separate symbolic factorisation; the ordering is the part that can be reused: the
-    later matrices are factorised with their columns permuted and ``permc_spec="NATURAL"``.
+    The first choice is a sparse LDL^T without pivoting (QDLDL, AMD ordering; its symbolic
+    factorisation is done once per pattern and reused by ``update``) of ``K`` made quasi-definite,
+    ``K + diag(ldl_reg I_n, -ldl_reg I_k)`` (the energy block positive definite, the constraint
+    block negative definite: such a matrix has an LDL^T for every symmetric ordering). That
+    factorisation is the preconditioner of GMRES on ``K`` itself, so the solves are those of
+    ``K`` (to a relative residual ``gmres_tol``, or at least ``1e-10``), not of the regularised
+    matrix. Measured on the KKT matrices of the 96 x 4 vase grid (benchmarks/bench_lifting.py):
+    0.35-0.57M non-zeros in L against 1.2M (baseline) and 8.9M (planar rounds) in SuperLU's L + U,
+    a solve of 1 ms against 3-14 ms, 5-12 GMRES iterations per solve. Where the LDL^T fails (a
+    zero pivot) or GMRES does not reach ``1e-10``, SuperLU factorises ``K`` (COLAMD, its column
+    ordering reused for the later factorisations, scipy having no separate symbolic
+    factorisation); ``ldl_reg <= 0`` uses SuperLU alone.
     """
 
-    def __init__(self) -> None:
+    def __init__(self, n: int, ldl_reg: float = 1e-7, gmres_tol: float = 1e-13, gmres_its: int = 30) -> None:
+        self.n = n
         self.perm: NDArray[np.intp] | None = None
         self.count = 0
+        self.lu_count = 0
+        self.ldl: qdldl.Solver | None = None
+        self.ldl_reg = ldl_reg
+        self.gmres_tol = gmres_tol
+        self.gmres_its = max(1, gmres_its)
+        self.upper: NDArray[np.bool_] | None = None
 
-    def factor(self, K: sp.csc_matrix) -> Callable[[Array], Array]:
-        self.count += 1
+    def _ldl(self, K: sp.csc_matrix) -> Callable[[Array], Array] | None:
+        """The preconditioned solver of ``K``, None where the LDL^T of the regularised ``K`` fails."""
+        N = K.shape[0]
+        if self.upper is None:
+            col = np.repeat(np.arange(N), np.diff(K.indptr))
+            self.upper = K.indices <= col
+            self.up_indptr = np.r_[0, np.cumsum(np.bincount(col[self.upper], minlength=N))].astype(np.int32)
+            self.up_indices = K.indices[self.upper]
+            self.up_diag = np.flatnonzero(self.up_indices == col[self.upper])
+            self.sign = np.where(self.up_indices[self.up_diag] < self.n, 1.0, -1.0)
+        data = K.data[self.upper].copy()
+        data[self.up_diag] += self.ldl_reg * self.sign
+        U = sp.csc_matrix((data, self.up_indices, self.up_indptr), shape=K.shape)
+        try:
+            if self.ldl is None:
+                self.ldl = qdldl.Solver(U, upper=True)
+            else:
+                self.ldl.update(U, upper=True)
+        except (ValueError, RuntimeError):   # QDLDL: "not quasi-definite" (a zero pivot)
+            self.ldl = None
+            return None
+        ldl = self.ldl
+
+        def solve_(b: Array) -> Array:
+            x = _gmres(K, ldl.solve, b, self.gmres_tol, self.gmres_its)
+            if x is None:
+                raise _NotSolved
+            return x
+
+        return solve_
+
+    def _lu(self, K: sp.csc_matrix) -> Callable[[Array], Array]:
+        """SuperLU's solver of ``K``."""
+        self.lu_count += 1
         if self.perm is None or len(self.perm) != K.shape[0]:
             lu = splu(K, permc_spec="COLAMD")
             self.perm = np.asarray(lu.perm_c, dtype=np.intp)
@@ -283,16 +333,112 @@ class _KKT:
         inv = np.empty_like(self.perm)
         inv[self.perm] = np.arange(len(self.perm))
         lu = splu(K[:, inv].tocsc(), permc_spec="NATURAL")
+        perm = self.perm
 
         def solve_(b: Array) -> Array:
-            return lu.solve(b)[self.perm]
+            return lu.solve(b)[perm]
 
         return solve_
+
+    def factor(self, K: sp.csc_matrix) -> Callable[[Array], Array]:
+        """A function solving ``K x = b`` for ``b`` (N,), returning ``x`` (N,)."""
+        self.count += 1
+        if self.ldl_reg > 0.0:
+            fast = self._ldl(K)
+            if fast is not None:
+                state: dict[str, Callable[[Array], Array]] = {}
+
+                def solve_(b: Array) -> Array:
+                    if "lu" not in state:
+                        try:
+                            return fast(b)
+                        except _NotSolved:
+                            state["lu"] = self._lu(K)
+                    return state["lu"](b)
+
+                return solve_
+        return self._lu(K)
+
+
+class _NotSolved(Exception):
+    """GMRES preconditioned by the LDL^T did not reach its tolerance."""
+
+
+def _dot(a: Array, b: Array) -> float:
+    """``a . b`` for (m,) arrays without BLAS.
+
+    numpy's threaded OpenBLAS took 0.11 ms for one dot product of 10^4 entries on the 2 shared
+    cores (load 2.6; 15 ms for 2.5 * 10^4 at load 5), against 0.007 ms on one thread: the merit
+    evaluations of the line search spent more time in it than in the polynomials.
+    """
+    return float(np.sum(a * b))
+
+
+def _norm(a: Array) -> float:
+    """``|a|_2`` for an (m,) array without BLAS (see :func:`_dot`)."""
+    return float(np.sqrt(np.sum(a * a)))
+
+
+def _gmres(K: sp.csc_matrix, prec: Callable[[Array], Array], b: Array, tol: float, its: int,
+           accept: float = 1e-10) -> Array | None:
+    """Right-preconditioned GMRES for ``K x = b`` from ``x0 = prec(b)``.
+
+    Stops when the residual is below ``tol |b|_2`` or after ``its`` iterations (one restart-free
+    cycle); None if the residual is then above ``accept |b|_2`` (or not finite).
+    """
+    x = prec(b)
+    if not np.all(np.isfinite(x)):
+        return None
+    r = b - K @ x
+    beta = _norm(r)
+    bnorm = _norm(b)
+    target = tol * bnorm
+    if beta <= target:
+        return x
+    N = len(b)
+    V = np.zeros((its + 1, N))
+    Z = np.zeros((its, N))
+    Hm = np.zeros((its + 1, its))
+    cs = np.zeros(its)
+    sn = np.zeros(its)
+    e = np.zeros(its + 1)
+    e[0] = beta
+    V[0] = r / beta
+    j = 0
+    for j in range(its):
+        Z[j] = prec(V[j])
+        w = K @ Z[j]
+        for _ in range(2):              # classical Gram-Schmidt, twice (no BLAS: see _norm)
+            h = (V[:j + 1] * w).sum(axis=1)
+            w -= (h[:, None] * V[:j + 1]).sum(axis=0)
+            Hm[:j + 1, j] += h
+        Hm[j + 1, j] = _norm(w)
+        if Hm[j + 1, j] > 0:
+            V[j + 1] = w / Hm[j + 1, j]
+        for i in range(j):              # apply the earlier Givens rotations
+            a, c = Hm[i, j], Hm[i + 1, j]
+            Hm[i, j], Hm[i + 1, j] = cs[i] * a + sn[i] * c, -sn[i] * a + cs[i] * c
+        rho = float(np.hypot(Hm[j, j], Hm[j + 1, j]))
+        if rho == 0.0:
+            return None
+        cs[j], sn[j] = Hm[j, j] / rho, Hm[j + 1, j] / rho
+        Hm[j, j], Hm[j + 1, j] = rho, 0.0
+        e[j + 1] = -sn[j] * e[j]
+        e[j] = cs[j] * e[j]
+        if abs(e[j + 1]) <= target:
+            break
+    if abs(e[j + 1]) > accept * bnorm:
+        return None
+    m = j + 1
+    y = np.linalg.solve(np.triu(Hm[:m, :m]), e[:m])
+    x = x + (y[:, None] * Z[:m]).sum(axis=0)
+    return x if np.all(np.isfinite(x)) else None
 
 
 def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = None, *, iterations: int = 60,
           tol: float = 1e-10, kkt_reg: float = 1e-11, hessian_reg: float = 1e-10,
-          stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 3,
+          stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 10, soc_rate: float = 0.5,
+          step_growth: float = 2.0, ldl_reg: float = 1e-7, refine_steps: int = 1,
           stall_tol: float = 1e-6) -> SolveResult:
     """Minimise ``sum w_r p_r(v)^2`` subject to ``q(v) = 0`` from ``v0``.
 
@@ -314,12 +460,18 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     length comes from backtracking (Armijo, factor 1/2) on the l1 merit
     ``f + mu |q|_1`` with ``mu`` above the largest multiplier, trying a
     second-order correction (the same factorisation, right-hand side
-    ``[0, -q(v + dv)]``) when the full step is refused. The multipliers move
+    ``[0, -q(v + dv)]``) when the trial step is refused, repeated (at most
+    ``soc_steps``) while each reduces ``|q|_1`` by ``soc_rate``; after a shortened step the
+    next Gauss-Newton line search starts at ``step_growth`` times that step's length (in the max
+    norm), not at the full step (for full Newton steps, whose regularisation changes between
+    steps, that cost a 30 x 4 planar round 19 -> 26 steps). A feasible Newton step below
+    ``stall_tol`` that the line search shortens ends the solve with the full step (the merit's
+    changes are then at its float resolution). The multipliers move
     by the same step length toward ``lam'``, the increment scaled down to at
     most ``lam_bound max(1, |lam|)`` (the paper's bounded multiplier steps,
     relative so that large multipliers are reached in a few steps).
-    Converged: ``|q|_inf <= tol`` and either ``|g + Jq^T lam|_inf <= stat_tol`` or a full Newton
-    step below ``tol`` (the KKT point is within ``tol``: near redundant constraints the
+    Converged: ``|q|_inf <= tol`` and either ``|g + Jq^T lam|_inf <= stat_tol`` or a Newton
+    step below ``tol`` (taken; the KKT point is within ``tol``: near redundant constraints the
     stationarity residual stalls at the linear solve's rounding), or the line
     search finds no decrease (the merit's changes are below its float
     resolution, about 1e-13 for thousands of rows) while feasible and the
@@ -341,6 +493,15 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     kkt_reg, hessian_reg : float
         ``-kkt_reg I`` in the constraint block (redundant constraints), ``hessian_reg I`` on the energy
         Hessian (directions no term sees).
+    soc_steps, soc_rate : int, float
+        Most second-order corrections per trial step; the least reduction of ``|q|_1`` by each.
+    step_growth : float
+        A Gauss-Newton line search after a shortened step starts at this times that step's length.
+    ldl_reg : float
+        The regularisation making the KKT matrix quasi-definite for its LDL^T, the preconditioner
+        (the system solved is the one with ``-kkt_reg I``); 0: SuperLU alone.
+    refine_steps : int
+        Steps of iterative refinement from the solution with ``-kkt_reg I`` toward the one without.
 
     Examples
     --------
@@ -358,24 +519,25 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     w = energy.weights
     asm = _Assembly(energy, constraints, hessian_reg, kkt_reg)
     zk = np.zeros(k)
-    kkt = _KKT()
+    kkt = _KKT(n, ldl_reg)
     mu = 0.0
     delta = 0.0
     converged = False
     it = 0
     stat = np.inf
     sticky = False
+    radius = np.inf
 
     def small_step(d: Array) -> bool:
         return float(np.abs(d).max(initial=0.0)) <= tol
 
     def merit_parts(x: Array) -> tuple[float, Array]:
         px = energy.value(x)
-        return float(np.dot(w, px * px)), (constraints.value(x) if k else np.zeros(0))
+        return _dot(w, px * px), (constraints.value(x) if k else np.zeros(0))
 
     for it in range(iterations + 1):
         p = energy.value(v)
-        f = float(np.dot(w, p * p))
+        f = _dot(w, p * p)
         g = 2.0 * asm.je.rmatvec(asm.je.values(v), w * p)
         jc = asm.jc.values(v)
         jq = asm.jq.values(v)
@@ -405,11 +567,11 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
             lu = kkt.factor(K)
             sol = lu(rhs)
             if k:   # iterative refinement toward the unregularised system's solution
-                for _ in range(2):
+                for _ in range(refine_steps):
                     sol = sol + lu(rhs - K @ sol - kkt_reg * np.concatenate([np.zeros(n), sol[n:]]))
             dv = sol[:n]
-            curv = float(dv @ (K @ np.concatenate([dv, zk]))[:n])
-            dd = float(dv @ dv)
+            curv = _dot(dv, (K @ np.concatenate([dv, zk]))[:n])
+            dd = _dot(dv, dv)
             if (np.all(np.isfinite(sol)) and curv >= 1e-10 * dd) or delta > 1e8:
                 break
             if not gauss_newton:
@@ -417,15 +579,22 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
                 continue
             delta = max(1e-8, GROW * delta)
         lam_new = sol[n:] if k else np.zeros(0)
+        if small_step(dv) and feas <= tol:   # the Newton step says v is within tol of the KKT point
+            converged = True
+            v = v + dv
+            break
         # l1 merit with a penalty above the multipliers
         q1 = float(np.abs(q).sum())
         mu = max(mu, 1.5 * float(np.abs(lam_new).max(initial=0.0)) + 1e-8)
-        slope = float(g @ dv) - mu * q1
+        slope = _dot(g, dv) - mu * q1
         phi0 = f + mu * q1
         step = 1.0
+        dvmax = float(np.abs(dv).max(initial=0.0))
+        if gauss_newton and dvmax > radius:    # start where the last shortened step ended, times step_growth
+            step = 0.5 ** np.floor(np.log2(dvmax / radius))
         accepted = False
         v_new = v
-        small = float(np.abs(dv).max(initial=0.0)) < 1e-12
+        small = dvmax < 1e-12
         while step >= 1e-10:
             vt = v + step * dv
             ft, qt = merit_parts(vt)
@@ -435,12 +604,17 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
                 break
             if k:   # second-order corrections: back onto the curved constraints
                 vs, qs = vt, qt
+                qn = float(np.abs(qt).sum())
                 for _ in range(soc_steps):
                     vs = vs + lu(np.concatenate([np.zeros(n), -qs]))[:n]
                     fs, qs = merit_parts(vs)
-                    if fs + mu * float(np.abs(qs).sum()) <= phi0 + 1e-4 * step * slope + slack:
+                    qn_new = float(np.abs(qs).sum())
+                    if fs + mu * qn_new <= phi0 + 1e-4 * step * slope + slack:
                         v_new, accepted = vs, True
                         break
+                    if not qn_new <= soc_rate * qn:    # the corrections do not contract: give up
+                        break
+                    qn = qn_new
                 if accepted:
                     break
             step *= 0.5
@@ -448,11 +622,15 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
             # at the energy's float resolution with the remaining Newton step below stall_tol: done
             converged = feas <= tol and float(np.abs(dv).max(initial=0.0)) <= stall_tol
             break
-        if small_step(dv) and feas <= tol and step == 1.0:   # the Newton step says v is the KKT point
+        if step < 1.0 and feas <= tol and dvmax <= stall_tol:
+            # a feasible Newton step below stall_tol shortened: the merit's changes are at its float
+            # resolution (the quadratic model's error, |dv|^3, is far below them), so the full step
+            # is taken and the solve ends as at a stall
             converged = True
-            v = v_new
+            v = v + dv
             break
         sticky = bool(k) and gauss_newton and step < 1.0
+        radius = np.inf if step == 1.0 else step_growth * step * dvmax
         # Levenberg-Marquardt-like: a short step means a poor quadratic model, so regularise more
         delta = max(GROW * delta, 1e-6) if step < 0.25 else (delta / GROW if delta > 1e-10 else 0.0)
         if k:
@@ -463,4 +641,4 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
         v = v_new
     p = energy.value(v)
     viol = float(np.abs(constraints.value(v)).max()) if k else 0.0
-    return SolveResult(v, lam, float(np.dot(w, p * p)), viol, it, converged, stat, kkt.count)
+    return SolveResult(v, lam, _dot(w, p * p), viol, it, converged, stat, kkt.count)

@@ -37,7 +37,6 @@ from auszug.sweeps.fixtures import (
     revolved,
     with_hole,
 )
-from auszug.sweeps.general import motion_planes
 from auszug.sweeps.planes import plane_recall
 
 EPS_PROX = 0.005
@@ -87,9 +86,18 @@ def evaluate(fx: Fixture) -> dict[str, float | int | str]:
                                          "recall": float("nan"), "axis": float("nan"),
                                          "kinds": ",".join(sorted({p.kind for p in r.patches})) or "-"}
     if len(fx.planes) and r.patches:
-        planes = [motion_planes(p.profile, p.motion, 8) for p in r.patches]
-        out["recall"] = plane_recall(fx.planes, np.vstack([n for n, _ in planes]),
-                                     np.concatenate([d for _, d in planes]))
+        # each patch's profile plane (its best fit) carried by the motion, 8 per knot interval: the
+        # planes the profile lies in (for a translation along a curved path these are not the planes
+        # across the path, which motion_planes gives)
+        normals, offsets = [], []
+        for p in r.patches:
+            o = p.profile.mean(axis=0)
+            n = np.linalg.svd(p.profile - o)[2][2]
+            rot, tr = p.motion.at(np.linspace(*p.motion.domain, 8 * len(p.motion)))
+            nt = rot @ n
+            normals.append(nt)
+            offsets.append(np.einsum("ij,ij->i", nt, rot @ o + tr))
+        out["recall"] = plane_recall(fx.planes, np.vstack(normals), np.concatenate(offsets))
     elif len(fx.planes):
         out["recall"] = 0.0
     if fx.axis_direction is not None and r.patches:

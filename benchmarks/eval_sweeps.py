@@ -37,6 +37,7 @@ from auszug.sweeps.fixtures import (
     revolved,
     with_hole,
 )
+from auszug.sweeps.general import motion_planes
 from auszug.sweeps.planes import plane_recall
 
 EPS_PROX = 0.005
@@ -86,17 +87,22 @@ def evaluate(fx: Fixture) -> dict[str, float | int | str]:
                                          "recall": float("nan"), "axis": float("nan"),
                                          "kinds": ",".join(sorted({p.kind for p in r.patches})) or "-"}
     if len(fx.planes) and r.patches:
-        # each patch's profile plane (its best fit) carried by the motion, 8 per knot interval: the
-        # planes the profile lies in (for a translation along a curved path these are not the planes
-        # across the path, which motion_planes gives)
         normals, offsets = [], []
         for p in r.patches:
-            o = p.profile.mean(axis=0)
-            n = np.linalg.svd(p.profile - o)[2][2]
-            rot, tr = p.motion.at(np.linspace(*p.motion.domain, 8 * len(p.motion)))
-            nt = rot @ n
-            normals.append(nt)
-            offsets.append(np.einsum("ij,ij->i", nt, rot @ o + tr))
+            if fx.name.startswith("double_translational"):
+                # the profile's own best-fit plane carried by the motion (as tests/sweeps/
+                # test_translational.py): for a translation along a curved path the profile planes
+                # are x = const, not the planes across the path
+                o = p.profile.mean(axis=0)
+                n = np.linalg.svd(p.profile - o)[2][2]
+                rot, tr = p.motion.at(np.linspace(*p.motion.domain, 8 * len(p.motion)))
+                nt = rot @ n
+                normals.append(nt)
+                offsets.append(np.einsum("ij,ij->i", nt, rot @ o + tr))
+            else:   # the sweep's profile planes, as tests/sweeps/test_more_fixtures.py
+                nn, dd = motion_planes(p.profile, p.motion, 8)
+                normals.append(nn)
+                offsets.append(dd)
         out["recall"] = plane_recall(fx.planes, np.vstack(normals), np.concatenate(offsets))
     elif len(fx.planes):
         out["recall"] = 0.0

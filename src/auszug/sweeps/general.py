@@ -62,7 +62,7 @@ from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas, fit_patch, r
 from auszug.sweeps.planes import plane_recall
 from auszug.sweeps.stage import Stage
 
-__all__ = ["kabsch", "rib_velocity", "rib_velocities", "hermite_motion", "rib_parts", "general_patch",
+__all__ = ["kabsch", "kabsch_batch", "rib_velocity", "rib_velocities", "hermite_motion", "rib_parts", "general_patch",
            "general_stages", "split_ribs", "motion_planes", "profile_planes", "reslice", "GeneralSweep",
            "extend_profile",
            "grow_ribs", "GrownRibs", "grown_patch", "trajectory_error", "translational_patch"]
@@ -96,6 +96,34 @@ def kabsch(p: ArrayLike, q: ArrayLike, weights: ArrayLike | None = None) -> tupl
     d = np.sign(np.linalg.det(vt.T @ u.T))
     r = vt.T @ np.diag([1.0, 1.0, d if d != 0 else 1.0]) @ u.T
     return r, cb - r @ ca
+
+
+def kabsch_batch(p: ArrayLike, q: ArrayLike) -> tuple[Array, Array]:
+    """:func:`kabsch` (equal weights) of ``p (n, 3)`` or ``p (k, n, 3)`` onto each ``q[i] (n, 3)`` of ``q (k, n, 3)``.
+
+    Returns ``R (k, 3, 3)`` and ``T (k, 3)``: one batched SVD, no Python loop per map.
+
+    Examples
+    --------
+    >>> from scipy.spatial.transform import Rotation
+    >>> p = np.random.default_rng(0).normal(size=(10, 3))
+    >>> r0 = Rotation.from_rotvec([[0.3, -0.2, 1.0], [0.0, 2.0, 0.1]]).as_matrix()
+    >>> r, t = kabsch_batch(p, np.einsum("kij,nj->kni", r0, p) + [[[1.0, 2, 3]], [[0.0, 0, 0]]])
+    >>> bool(np.allclose(r, r0)), np.round(t, 12).tolist()
+    (True, [[1.0, 2.0, 3.0], [0.0, 0.0, 0.0]])
+    """
+    b = np.asarray(q, float)
+    a = np.broadcast_to(np.asarray(p, float), b.shape)
+    ca = a.mean(axis=1)
+    cb = b.mean(axis=1)
+    h = np.einsum("kni,knj->kij", (a - ca[:, None]) / b.shape[1], b - cb[:, None])
+    u, _, vt = np.linalg.svd(h)
+    v = np.swapaxes(vt, 1, 2)
+    ut = np.swapaxes(u, 1, 2)
+    d = np.sign(np.linalg.det(v @ ut))
+    v[:, :, 2] *= np.where(d != 0, d, 1.0)[:, None]
+    r = v @ ut
+    return r, cb - np.einsum("kij,kj->ki", r, ca)
 
 
 def _rows(mid: Array, d: Array, mu2: float) -> tuple[Array, Array]:
@@ -161,14 +189,43 @@ def rib_velocities(parts: Array, normals: Array | None, mu: tuple[float, float] 
                    times: Array | None = None) -> Array:
     """Velocity states ``(k, 6)`` of ribs ``parts (k, n, 3)`` at ``times (k,)`` (default ``0..k-1``).
 
-    Each rib's neighbours on both sides enter Eq. 7.
+    Each rib's neighbours on both sides enter Eq. 7 (:func:`rib_velocity`, all ribs at once:
+    the normal equations of every rib and neighbour are batched, one solve per rib).
     """
-    k = len(parts)
+    x = np.asarray(parts, float)
+    k, n = x.shape[:2]
     tt = np.arange(k, dtype=float) if times is None else np.asarray(times, float)
-    out = np.zeros((k, 6))
-    for i in range(k):
-        nb = [(parts[j], float(tt[j] - tt[i])) for j in (i - 1, i + 1) if 0 <= j < k]
-        out[i] = rib_velocity(parts[i], nb, None if normals is None else normals[i], mu)
+    lhs = np.broadcast_to(mu[0] * np.eye(6), (k, 6, 6)).copy()
+    rhs = np.zeros((k, 6))
+    if normals is not None:
+        nr = np.asarray(normals, float)
+        tg = np.concatenate([np.cross(x, nr), nr], axis=2)             # (k, n, 6)
+        lhs += np.einsum("kni,knj->kij", tg, tg)
+    if k < 2:
+        out1: Array = np.linalg.solve(lhs, rhs[..., None])[..., 0]
+        return out1
+    # every (rib, neighbour) pair: i to i + 1 and i + 1 to i
+    i = np.r_[np.arange(k - 1), np.arange(1, k)]
+    j = np.r_[np.arange(1, k), np.arange(k - 1)]
+    dt = (tt[j] - tt[i])[:, None, None]
+    mid = (x[i] + x[j]) / 2
+    d = (x[j] - x[i]) / dt
+    a = np.zeros((len(i), n, 3, 6))
+    a[:, :, 0, 1], a[:, :, 0, 2] = mid[..., 2], -mid[..., 1]
+    a[:, :, 1, 0], a[:, :, 1, 2] = -mid[..., 2], mid[..., 0]
+    a[:, :, 2, 0], a[:, :, 2, 1] = mid[..., 1], -mid[..., 0]
+    a[:, :, :, 3:] = np.eye(3)
+    a = a.reshape(len(i), 3 * n, 6)
+    np.add.at(lhs, i, mu[1] * np.einsum("pri,prj->pij", a, a))
+    np.add.at(rhs, i, mu[1] * np.einsum("pri,pr->pi", a, d.reshape(len(i), 3 * n)))
+    # the prior C_0: the twist of the best rigid map to each neighbour over dt, mean over the neighbours
+    rot, tr = kabsch_batch(x[i], x[j])
+    w, v = se3_log(rot, tr)
+    n_nb = np.bincount(i, minlength=k).astype(float)
+    prior = np.zeros((k, 6))
+    np.add.at(prior, i, np.concatenate([w, v], axis=1) / dt[:, 0] / n_nb[i, None])
+    rhs += mu[0] * prior
+    out: Array = np.linalg.solve(lhs, rhs[..., None])[..., 0]
     return out
 
 
@@ -203,25 +260,24 @@ def hermite_motion(profile: Array, rotations: Array, translations: Array, veloci
     dl = hat @ rotations                       # d/dt of the linear part
     da = cb + np.cross(c, translations)        # d/dt of the translation
     tt = np.arange(k, dtype=float) if times is None else np.asarray(times, float)
-    ts, rs, trs = [float(tt[0])], [rotations[0]], [translations[0]]
     f = np.arange(1, samples_per_rib + 1) / samples_per_rib
     h00, h10 = 2 * f**3 - 3 * f**2 + 1, f**3 - 2 * f**2 + f
     h01, h11 = -2 * f**3 + 3 * f**2, f**3 - f**2
-    for i in range(k - 1):
-        h = tt[i + 1] - tt[i]
-        lin = (h00[:, None, None] * rotations[i] + h * h10[:, None, None] * dl[i]
-               + h01[:, None, None] * rotations[i + 1] + h * h11[:, None, None] * dl[i + 1])
-        off = (h00[:, None] * translations[i] + h * h10[:, None] * da[i] + h01[:, None] * translations[i + 1]
-               + h * h11[:, None] * da[i + 1])
-        for j in range(samples_per_rib):
-            if j == samples_per_rib - 1:
-                r, t = rotations[i + 1], translations[i + 1]
-            else:
-                r, t = kabsch(profile, profile @ lin[j].T + off[j])
-            ts.append(tt[i] + h * f[j])
-            rs.append(r)
-            trs.append(t)
-    return Motion(np.array(ts), np.array(rs), np.array(trs))
+    hh = np.diff(tt)[:, None]                                       # (k - 1, 1) interval lengths
+    # the affine maps at every inner sample of every interval: (k - 1, s, 3, 3) and (k - 1, s, 3)
+    lin = (h00[None, :, None, None] * rotations[:-1, None] + (hh * h10)[:, :, None, None] * dl[:-1, None]
+           + h01[None, :, None, None] * rotations[1:, None] + (hh * h11)[:, :, None, None] * dl[1:, None])
+    off = (h00[None, :, None] * translations[:-1, None] + (hh * h10)[:, :, None] * da[:-1, None]
+           + h01[None, :, None] * translations[1:, None] + (hh * h11)[:, :, None] * da[1:, None])
+    # each projected to the closest rigid motion in the sense of the profile's points (one batched Kabsch)
+    moved = np.einsum("ksij,nj->ksni", lin, profile) + off[:, :, None, :]
+    r_all, t_all = kabsch_batch(profile, moved.reshape(-1, len(profile), 3))
+    r_all = r_all.reshape(k - 1, samples_per_rib, 3, 3)
+    t_all = t_all.reshape(k - 1, samples_per_rib, 3)
+    r_all[:, -1], t_all[:, -1] = rotations[1:], translations[1:]   # exactly the given maps at the ribs
+    ts = np.r_[tt[0], (tt[:-1, None] + hh * f[None, :]).reshape(-1)]
+    return Motion(ts, np.concatenate([rotations[:1], r_all.reshape(-1, 3, 3)]),
+                  np.concatenate([translations[:1], t_all.reshape(-1, 3)]))
 
 
 def split_ribs(parts: Array, jump: float) -> list[Array]:
@@ -404,9 +460,7 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
         mid = kabsch(ribs[len(ribs) // 2], ribs[0])
         profile = ribs[len(ribs) // 2] @ mid[0].T + mid[1]
         normals = _normals_at(mesh, ribs, tr_)
-        maps = [kabsch(profile, q) for q in ribs]
-        rot = np.array([m[0] for m in maps])
-        tr = np.array([m[1] for m in maps])
+        rot, tr = kabsch_batch(profile, ribs)
         vel = rib_velocities(ribs, normals, params.mu, times)
         motion = hermite_motion(profile, rot, tr, vel, SAMPLES_PER_RIB, times)
         if i == 0 and n_rounds > 1:

@@ -109,7 +109,7 @@ def kabsch_batch(p: ArrayLike, q: ArrayLike) -> tuple[Array, Array]:
     >>> p = np.random.default_rng(0).normal(size=(10, 3))
     >>> r0 = Rotation.from_rotvec([[0.3, -0.2, 1.0], [0.0, 2.0, 0.1]]).as_matrix()
     >>> r, t = kabsch_batch(p, np.einsum("kij,nj->kni", r0, p) + [[[1.0, 2, 3]], [[0.0, 0, 0]]])
-    >>> bool(np.allclose(r, r0)), np.round(t, 12).tolist()
+    >>> bool(np.allclose(r, r0)), (np.round(t, 12) + 0.0).tolist()   # + 0.0: no -0.0
     (True, [[1.0, 2.0, 3.0], [0.0, 0.0, 0.0]])
     """
     b = np.asarray(q, float)

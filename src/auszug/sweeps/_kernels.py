@@ -500,3 +500,52 @@ def polyline_closest(points, polyline):  # pragma: no cover - compiled
             cp[i, 0], cp[i, 1], cp[i, 2] = polyline[0, 0], polyline[0, 1], polyline[0, 2]
         dist[i] = np.sqrt(best)
     return dist, cp
+
+
+@njit(cache=True)
+def curves_to_profiles(pts, curve_start, curve_plane, moved):  # pragma: no cover - compiled
+    """Distance (m,) of every cut point to the polyline ``moved[plane] (n, 3)`` of its curve's plane.
+
+    ``pts (m, 3)`` are the points of all curves, curve ``j`` being ``pts[curve_start[j]:curve_start[j + 1]]``;
+    ``moved (k, n, 3)`` one polyline per plane. One pass over all curves (the loop of
+    :func:`polyline_closest` per curve, fused).
+    """
+    out = np.full(len(pts), np.inf)
+    for j in range(len(curve_start) - 1):
+        line = moved[curve_plane[j]]
+        d, _ = polyline_closest(pts[curve_start[j]:curve_start[j + 1]], line)
+        out[curve_start[j]:curve_start[j + 1]] = d
+    return out
+
+
+@njit(cache=True)
+def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cover - compiled
+    """Sums (n, 3) and counts (n,) of the closest points of ``profile (n, 3)`` on each piece of ``pts``.
+
+    Piece ``j`` is the polyline ``pts[piece_start[j]:piece_start[j + 1]]`` (pieces of fewer than
+    2 points are skipped). A closest point counts when within ``reach``, and, when it is an end of
+    its piece, only within ``end_reach``. The sums start at the profile itself (count 1).
+    """
+    n = len(profile)
+    acc = profile.copy()
+    count = np.ones(n)
+    check_ends = np.isfinite(end_reach)
+    for j in range(len(piece_start) - 1):
+        a, b = piece_start[j], piece_start[j + 1]
+        if b - a < 2:
+            continue
+        q = pts[a:b]
+        d, c = polyline_closest(profile, q)
+        for i in range(n):
+            if d[i] > reach:
+                continue
+            if check_ends and d[i] > end_reach:
+                e0 = (c[i, 0] - q[0, 0]) ** 2 + (c[i, 1] - q[0, 1]) ** 2 + (c[i, 2] - q[0, 2]) ** 2
+                e1 = (c[i, 0] - q[-1, 0]) ** 2 + (c[i, 1] - q[-1, 1]) ** 2 + (c[i, 2] - q[-1, 2]) ** 2
+                if e0 <= 1e-24 or e1 <= 1e-24:
+                    continue
+            acc[i, 0] += c[i, 0]
+            acc[i, 1] += c[i, 1]
+            acc[i, 2] += c[i, 2]
+            count[i] += 1.0
+    return acc, count

@@ -51,14 +51,24 @@ from typing import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from auszug.sweeps._kernels import polyline_closest
+from auszug.sweeps._kernels import curves_to_profiles, polyline_closest
 from auszug.sweeps.cut import Cuts, cut
 from auszug.sweeps.matching import CurvaturePlots, Family, Ribs, curvature_plots, families, match_cuts, order_ribs
 from auszug.sweeps.mesh import SweepMesh
 from auszug.sweeps.motion import Motion, se3_log
 from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
-from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas, fit_patch, ring_faces
+from auszug.sweeps.patches import (
+    MeshTree,
+    SweepPatch,
+    SweptError,
+    face_areas,
+    fit_patch,
+    improve_flat,
+    ring_faces,
+    swept_coverage,
+    swept_error,
+)
 from auszug.sweeps.planes import plane_recall
 from auszug.sweeps.stage import Stage
 
@@ -332,31 +342,40 @@ def _on_polyline(points: Array, polyline: Array) -> tuple[Array, Array]:
     return d, c
 
 
-def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float) -> list[Array]:
+def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float) -> tuple[Array, IntArray]:
     """Cuts of the mesh by the moved profile's planes at the motion's knots, mapped back (sec. 2.3.3).
 
     Per knot, each stretch of a cut curve within ``reach`` of the moved profile, mapped back by the
-    inverse of the knot's map.
+    inverse of the knot's map. Returns the pieces' points ``(m, 3)`` and their starts ``(q + 1,)``
+    (piece ``j`` is ``points[starts[j]:starts[j + 1]]``); one compiled pass finds the stretches of
+    all curves.
     """
     n0, _ = _plane_of(profile)
     moved = motion.apply(profile, motion.t)
     normals = np.einsum("kij,j->ki", motion.rotation, n0)
     offsets = np.einsum("ki,ki->k", normals, moved.mean(axis=1))
     c = cut(mesh, normals, offsets)
-    out = []
-    for j in range(c.n_curves):
-        k = int(c.curve_plane[j])
-        q = c.curve(j)
-        if len(q) < 2:
-            continue
-        near = _polyline_distance(q, moved[k]) <= reach
-        # each stretch of a curve near the moved profile is a piece of its own: joined, a curve
-        # broken by a hole in the mesh would bridge the hole by a chord
-        edges = np.flatnonzero(np.diff(np.r_[0, near.astype(np.int8), 0]))
-        for a, b in zip(edges[::2], edges[1::2], strict=True):
-            if b - a >= 2:
-                out.append(np.einsum("ji,nj->ni", motion.rotation[k], q[a:b] - motion.translation[k]))
-    return out
+    if c.n_curves == 0:
+        return np.zeros((0, 3)), np.zeros(1, np.int64)
+    near = curves_to_profiles(c.points, c.curve_start, c.curve_plane, np.ascontiguousarray(moved)) <= reach
+    # each stretch of a curve near the moved profile is a piece of its own: joined, a curve
+    # broken by a hole in the mesh would bridge the hole by a chord
+    curve_of = np.repeat(np.arange(c.n_curves), np.diff(c.curve_start))
+    first = np.zeros(len(near), bool)
+    first[c.curve_start[:-1]] = True
+    begins = near & (first | ~np.r_[False, near[:-1]])
+    ends = near & (np.r_[first[1:], True] | ~np.r_[near[1:], False])
+    a = np.flatnonzero(begins)
+    b = np.flatnonzero(ends) + 1
+    keep = b - a >= 2
+    a, b = a[keep], b[keep]
+    if not len(a):
+        return np.zeros((0, 3)), np.zeros(1, np.int64)
+    starts = np.concatenate([[0], np.cumsum(b - a)]).astype(np.int64)
+    idx = np.arange(starts[-1]) + np.repeat(a - starts[:-1], b - a)
+    k = c.curve_plane[curve_of[idx]]
+    back = np.einsum("nji,nj->ni", motion.rotation[k], c.points[idx] - motion.translation[k])
+    return back, starts
 
 
 @dataclass(frozen=True)
@@ -446,11 +465,9 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
     ribs, improves the profile, checks the fit and re-slices again. The round of least fit
     error is returned (the first round is fitted only if re-slicing fails).
     """
-    from auszug.sweeps.patches import _improve
-
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     tr_ = MeshTree(mesh.vertices, mesh.faces) if tree is None else tree
-    best: GeneralSweep | None = None
+    best: tuple[Array, Motion, Array, SweptError] | None = None
     ribs: Array | None = parts
     n_rounds = params.general_iterations
     for i in range(n_rounds):
@@ -470,16 +487,16 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
             if again is not None:
                 ribs = again
                 continue
-        more = _recut(mesh, profile, motion, 4 * params.eps_prox)
-        profile = _improve(profile, False, more, params.eps_prox)
-        fit = fit_patch(mesh, profile, False, motion, params, a, tr_)
-        cand = GeneralSweep(profile, motion, vel, fit.fit_error, fit.coverage, fit.faces)
-        if best is None or cand.fit_error < best.fit_error:
-            best = cand
+        profile = improve_flat(profile, *_recut(mesh, profile, motion, 4 * params.eps_prox), params.eps_prox)
+        # the fit error in every round, the covered faces only of the round kept
+        err = swept_error(profile, False, motion, params.eps_prox, tr_)
+        if best is None or err.fit_error < best[3].fit_error:
+            best = (profile, motion, vel, err)
         if i + 1 < n_rounds:
             ribs = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times)
     assert best is not None
-    return best
+    fit = swept_coverage(mesh, best[3], params.eps_prox, a)
+    return GeneralSweep(best[0], best[1], best[2], fit.fit_error, fit.coverage, fit.faces)
 
 
 def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Array, Array]:
@@ -925,8 +942,6 @@ def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params:
     :func:`general_patch`.
     """
     from auszug.sweeps.matching import resample
-    from auszug.sweeps.patches import _improve
-
     tm = float(motion.t[len(motion.t) // 2])
     r, tr = motion.at([tm])
     n, d = profile_planes(profile, motion, [tm])
@@ -971,8 +986,7 @@ def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params:
     start = p0 + shifts[0]
     rot = np.repeat(np.eye(3)[None], len(keys), axis=0)
     mot = Motion(np.arange(len(keys), dtype=float), rot, shifts - shifts[0])
-    more = _recut(mesh, start, mot, 4 * params.eps_prox)
-    start = _improve(start, False, more, params.eps_prox)
+    start = improve_flat(start, *_recut(mesh, start, mot, 4 * params.eps_prox), params.eps_prox)
     a, b = _longest_run(trajectory_error(start, mot, tree, params.eps_prox) <= params.eps_prox)
     if b - a < 2:
         return None

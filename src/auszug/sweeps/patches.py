@@ -436,6 +436,7 @@ def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
     """
     n = len(profile)
     t = np.array(motion.t, float)
+    rings = None
     while len(t) < max_rings:
         mid = (t[:-1] + t[1:]) / 2
         a = motion.apply(profile, t)
@@ -443,9 +444,11 @@ def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
         dev = np.linalg.norm(m - (a[:-1] + a[1:]) / 2, axis=2).max(axis=1)
         bad = dev > tol
         if not bad.any():
+            rings = a
             break
         t = np.sort(np.concatenate([t, mid[bad]]))
-    rings = motion.apply(profile, t)
+    if rings is None:
+        rings = motion.apply(profile, t)
     return rings.reshape(-1, 3), ring_faces(len(t), n, closed)
 
 

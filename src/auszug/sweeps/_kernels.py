@@ -503,18 +503,29 @@ def polyline_closest(points, polyline):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def curves_to_profiles(pts, curve_start, curve_plane, moved):  # pragma: no cover - compiled
+def curves_to_profiles(pts, curve_start, curve_plane, moved, reach):  # pragma: no cover - compiled
     """Distance (m,) of every cut point to the polyline ``moved[plane] (n, 3)`` of its curve's plane.
 
     ``pts (m, 3)`` are the points of all curves, curve ``j`` being ``pts[curve_start[j]:curve_start[j + 1]]``;
-    ``moved (k, n, 3)`` one polyline per plane. One pass over all curves (the loop of
-    :func:`polyline_closest` per curve, fused).
+    ``moved (k, n, 3)`` one polyline per plane. Points outside the polyline's box grown by
+    ``reach`` are farther than ``reach`` and get inf without a search. One pass over all curves.
     """
     out = np.full(len(pts), np.inf)
+    k = moved.shape[0]
+    box = np.empty((k, 6))
+    for p in range(k):
+        for ax in range(3):
+            box[p, ax] = moved[p, :, ax].min() - reach
+            box[p, 3 + ax] = moved[p, :, ax].max() + reach
     for j in range(len(curve_start) - 1):
-        line = moved[curve_plane[j]]
-        d, _ = polyline_closest(pts[curve_start[j]:curve_start[j + 1]], line)
-        out[curve_start[j]:curve_start[j + 1]] = d
+        p = curve_plane[j]
+        line = moved[p]
+        for i in range(curve_start[j], curve_start[j + 1]):
+            x0, x1, x2 = pts[i, 0], pts[i, 1], pts[i, 2]
+            if x0 < box[p, 0] or x0 > box[p, 3] or x1 < box[p, 1] or x1 > box[p, 4] or x2 < box[p, 2] or x2 > box[p, 5]:
+                continue
+            d, _ = polyline_closest(pts[i:i + 1], line)
+            out[i] = d[0]
     return out
 
 
@@ -535,17 +546,24 @@ def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cov
         if b - a < 2:
             continue
         q = pts[a:b]
-        d, c = polyline_closest(profile, q)
+        # only the profile points within reach of the piece's box can count: the others are skipped
+        lo0, lo1, lo2 = q[:, 0].min() - reach, q[:, 1].min() - reach, q[:, 2].min() - reach
+        hi0, hi1, hi2 = q[:, 0].max() + reach, q[:, 1].max() + reach, q[:, 2].max() + reach
         for i in range(n):
-            if d[i] > reach:
+            x0, x1, x2 = profile[i, 0], profile[i, 1], profile[i, 2]
+            if x0 < lo0 or x0 > hi0 or x1 < lo1 or x1 > hi1 or x2 < lo2 or x2 > hi2:
                 continue
-            if check_ends and d[i] > end_reach:
-                e0 = (c[i, 0] - q[0, 0]) ** 2 + (c[i, 1] - q[0, 1]) ** 2 + (c[i, 2] - q[0, 2]) ** 2
-                e1 = (c[i, 0] - q[-1, 0]) ** 2 + (c[i, 1] - q[-1, 1]) ** 2 + (c[i, 2] - q[-1, 2]) ** 2
+            d, c = polyline_closest(profile[i:i + 1], q)
+            d, c = d[0], c[0]
+            if d > reach:
+                continue
+            if check_ends and d > end_reach:
+                e0 = (c[0] - q[0, 0]) ** 2 + (c[1] - q[0, 1]) ** 2 + (c[2] - q[0, 2]) ** 2
+                e1 = (c[0] - q[-1, 0]) ** 2 + (c[1] - q[-1, 1]) ** 2 + (c[2] - q[-1, 2]) ** 2
                 if e0 <= 1e-24 or e1 <= 1e-24:
                     continue
-            acc[i, 0] += c[i, 0]
-            acc[i, 1] += c[i, 1]
-            acc[i, 2] += c[i, 2]
+            acc[i, 0] += c[0]
+            acc[i, 1] += c[1]
+            acc[i, 2] += c[2]
             count[i] += 1.0
     return acc, count

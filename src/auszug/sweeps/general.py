@@ -357,7 +357,7 @@ def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float) -> tup
     c = cut(mesh, normals, offsets)
     if c.n_curves == 0:
         return np.zeros((0, 3)), np.zeros(1, np.int64)
-    near = curves_to_profiles(c.points, c.curve_start, c.curve_plane, np.ascontiguousarray(moved)) <= reach
+    near = curves_to_profiles(c.points, c.curve_start, c.curve_plane, np.ascontiguousarray(moved), reach) <= reach
     # each stretch of a curve near the moved profile is a piece of its own: joined, a curve
     # broken by a hole in the mesh would bridge the hole by a chord
     curve_of = np.repeat(np.arange(c.n_curves), np.diff(c.curve_start))

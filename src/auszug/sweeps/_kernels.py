@@ -536,34 +536,61 @@ def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cov
     Piece ``j`` is the polyline ``pts[piece_start[j]:piece_start[j + 1]]`` (pieces of fewer than
     2 points are skipped). A closest point counts when within ``reach``, and, when it is an end of
     its piece, only within ``end_reach``. The sums start at the profile itself (count 1).
+
+    Each piece is searched in chunks of 16 segments, a chunk only when its box grown by ``reach``
+    holds the point: a closest point within ``reach`` lies in such a chunk, and the segments are
+    visited in order with the first of equal distances kept (as :func:`polyline_closest`), so the
+    result is the same as a search of every segment.
     """
     n = len(profile)
     acc = profile.copy()
     count = np.ones(n)
     check_ends = np.isfinite(end_reach)
+    chunk = 16
     for j in range(len(piece_start) - 1):
         a, b = piece_start[j], piece_start[j + 1]
         if b - a < 2:
             continue
         q = pts[a:b]
-        # only the profile points within reach of the piece's box can count: the others are skipped
-        lo0, lo1, lo2 = q[:, 0].min() - reach, q[:, 1].min() - reach, q[:, 2].min() - reach
-        hi0, hi1, hi2 = q[:, 0].max() + reach, q[:, 1].max() + reach, q[:, 2].max() + reach
+        n_seg = len(q) - 1
+        n_chunk = (n_seg + chunk - 1) // chunk
+        box = np.empty((n_chunk, 6))
+        for h in range(n_chunk):
+            s0, s1 = h * chunk, min((h + 1) * chunk, n_seg)     # segments s0 .. s1 - 1: points s0 .. s1
+            for ax in range(3):
+                box[h, ax] = q[s0:s1 + 1, ax].min() - reach
+                box[h, 3 + ax] = q[s0:s1 + 1, ax].max() + reach
         for i in range(n):
-            x0, x1, x2 = profile[i, 0], profile[i, 1], profile[i, 2]
-            if x0 < lo0 or x0 > hi0 or x1 < lo1 or x1 > hi1 or x2 < lo2 or x2 > hi2:
-                continue
-            d, c = polyline_closest(profile[i:i + 1], q)
-            d, c = d[0], c[0]
+            px, py, pz = profile[i, 0], profile[i, 1], profile[i, 2]
+            best = np.inf
+            cx, cy, cz = 0.0, 0.0, 0.0
+            for h in range(n_chunk):
+                if (px < box[h, 0] or px > box[h, 3] or py < box[h, 1] or py > box[h, 4]
+                        or pz < box[h, 2] or pz > box[h, 5]):
+                    continue
+                for g in range(h * chunk, min((h + 1) * chunk, n_seg)):
+                    ax_, ay_, az_ = q[g, 0], q[g, 1], q[g, 2]
+                    bx, by, bz = q[g + 1, 0] - ax_, q[g + 1, 1] - ay_, q[g + 1, 2] - az_
+                    w = bx * bx + by * by + bz * bz
+                    f = 0.0
+                    if w > 0:
+                        f = ((px - ax_) * bx + (py - ay_) * by + (pz - az_) * bz) / w
+                        f = min(max(f, 0.0), 1.0)
+                    qx, qy, qz = ax_ + f * bx, ay_ + f * by, az_ + f * bz
+                    d2 = (px - qx) ** 2 + (py - qy) ** 2 + (pz - qz) ** 2
+                    if d2 < best:
+                        best = d2
+                        cx, cy, cz = qx, qy, qz
+            d = np.sqrt(best)
             if d > reach:
                 continue
             if check_ends and d > end_reach:
-                e0 = (c[0] - q[0, 0]) ** 2 + (c[1] - q[0, 1]) ** 2 + (c[2] - q[0, 2]) ** 2
-                e1 = (c[0] - q[-1, 0]) ** 2 + (c[1] - q[-1, 1]) ** 2 + (c[2] - q[-1, 2]) ** 2
+                e0 = (cx - q[0, 0]) ** 2 + (cy - q[0, 1]) ** 2 + (cz - q[0, 2]) ** 2
+                e1 = (cx - q[-1, 0]) ** 2 + (cy - q[-1, 1]) ** 2 + (cz - q[-1, 2]) ** 2
                 if e0 <= 1e-24 or e1 <= 1e-24:
                     continue
-            acc[i, 0] += c[0]
-            acc[i, 1] += c[1]
-            acc[i, 2] += c[2]
+            acc[i, 0] += cx
+            acc[i, 1] += cy
+            acc[i, 2] += cz
             count[i] += 1.0
     return acc, count

@@ -212,7 +212,7 @@ def rib_velocities(parts: Array, normals: Array | None, mu: tuple[float, float] 
         tg = np.concatenate([np.cross(x, nr), nr], axis=2)             # (k, n, 6)
         lhs += np.einsum("kni,knj->kij", tg, tg)
     if k < 2:
-        out1: Array = np.linalg.solve(lhs, rhs[..., None])[..., 0]
+        out1: Array = np.asarray(np.linalg.solve(lhs, rhs[..., None])[..., 0], dtype=np.float64)
         return out1
     # every (rib, neighbour) pair: i to i + 1 and i + 1 to i
     i = np.r_[np.arange(k - 1), np.arange(1, k)]
@@ -235,7 +235,7 @@ def rib_velocities(parts: Array, normals: Array | None, mu: tuple[float, float] 
     prior = np.zeros((k, 6))
     np.add.at(prior, i, np.concatenate([w, v], axis=1) / dt[:, 0] / n_nb[i, None])
     rhs += mu[0] * prior
-    out: Array = np.linalg.solve(lhs, rhs[..., None])[..., 0]
+    out: Array = np.asarray(np.linalg.solve(lhs, rhs[..., None])[..., 0], dtype=np.float64)
     return out
 
 

@@ -89,14 +89,22 @@ def cut_fill(v, vn, edges, edge_faces, face_edges, pn, pd, start):  # pragma: no
         for i in range(len(v)):
             dist[i] = v[i, 0] * nx + v[i, 1] * ny + v[i, 2] * nz - d
         crossed = np.zeros(len(edges), np.bool_)
+        # the crossed edges in increasing order (at most start[p + 1] - start[p] of them): the
+        # two phases below visit only these, not every edge again
+        hit = np.empty(start[p + 1] - start[p], np.int64)
+        n_hit = 0
         for e in range(len(edges)):
-            crossed[e] = (dist[edges[e, 0]] >= 0.0) != (dist[edges[e, 1]] >= 0.0)
+            if (dist[edges[e, 0]] >= 0.0) != (dist[edges[e, 1]] >= 0.0):
+                crossed[e] = True
+                hit[n_hit] = e
+                n_hit += 1
         seen = np.zeros(len(edges), np.bool_)
         pos = start[p]
         # open chains start at crossed boundary edges, then what is left are closed loops
         for phase in range(2):
-            for e0 in range(len(edges)):
-                if not crossed[e0] or seen[e0]:
+            for h in range(n_hit):
+                e0 = hit[h]
+                if seen[e0]:
                     continue
                 if phase == 0 and edge_faces[e0, 1] >= 0:
                     continue

@@ -89,14 +89,22 @@ def cut_fill(v, vn, edges, edge_faces, face_edges, pn, pd, start):  # pragma: no
         for i in range(len(v)):
             dist[i] = v[i, 0] * nx + v[i, 1] * ny + v[i, 2] * nz - d
         crossed = np.zeros(len(edges), np.bool_)
+        # the crossed edges in increasing order (at most start[p + 1] - start[p] of them): the
+        # two phases below visit only these, not every edge again
+        hit = np.empty(start[p + 1] - start[p], np.int64)
+        n_hit = 0
         for e in range(len(edges)):
-            crossed[e] = (dist[edges[e, 0]] >= 0.0) != (dist[edges[e, 1]] >= 0.0)
+            if (dist[edges[e, 0]] >= 0.0) != (dist[edges[e, 1]] >= 0.0):
+                crossed[e] = True
+                hit[n_hit] = e
+                n_hit += 1
         seen = np.zeros(len(edges), np.bool_)
         pos = start[p]
         # open chains start at crossed boundary edges, then what is left are closed loops
         for phase in range(2):
-            for e0 in range(len(edges)):
-                if not crossed[e0] or seen[e0]:
+            for h in range(n_hit):
+                e0 = hit[h]
+                if seen[e0]:
                     continue
                 if phase == 0 and edge_faces[e0, 1] >= 0:
                     continue
@@ -500,3 +508,97 @@ def polyline_closest(points, polyline):  # pragma: no cover - compiled
             cp[i, 0], cp[i, 1], cp[i, 2] = polyline[0, 0], polyline[0, 1], polyline[0, 2]
         dist[i] = np.sqrt(best)
     return dist, cp
+
+
+@njit(cache=True)
+def curves_to_profiles(pts, curve_start, curve_plane, moved, reach):  # pragma: no cover - compiled
+    """Distance (m,) of every cut point to the polyline ``moved[plane] (n, 3)`` of its curve's plane.
+
+    ``pts (m, 3)`` are the points of all curves, curve ``j`` being ``pts[curve_start[j]:curve_start[j + 1]]``;
+    ``moved (k, n, 3)`` one polyline per plane. Points outside the polyline's box grown by
+    ``reach`` are farther than ``reach`` and get inf without a search. One pass over all curves.
+    """
+    out = np.full(len(pts), np.inf)
+    k = moved.shape[0]
+    box = np.empty((k, 6))
+    for p in range(k):
+        for ax in range(3):
+            box[p, ax] = moved[p, :, ax].min() - reach
+            box[p, 3 + ax] = moved[p, :, ax].max() + reach
+    for j in range(len(curve_start) - 1):
+        p = curve_plane[j]
+        line = moved[p]
+        for i in range(curve_start[j], curve_start[j + 1]):
+            x0, x1, x2 = pts[i, 0], pts[i, 1], pts[i, 2]
+            if x0 < box[p, 0] or x0 > box[p, 3] or x1 < box[p, 1] or x1 > box[p, 4] or x2 < box[p, 2] or x2 > box[p, 5]:
+                continue
+            d, _ = polyline_closest(pts[i:i + 1], line)
+            out[i] = d[0]
+    return out
+
+
+@njit(cache=True)
+def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cover - compiled
+    """Sums (n, 3) and counts (n,) of the closest points of ``profile (n, 3)`` on each piece of ``pts``.
+
+    Piece ``j`` is the polyline ``pts[piece_start[j]:piece_start[j + 1]]`` (pieces of fewer than
+    2 points are skipped). A closest point counts when within ``reach``, and, when it is an end of
+    its piece, only within ``end_reach``. The sums start at the profile itself (count 1).
+
+    Each piece is searched in chunks of 16 segments, a chunk only when its box grown by ``reach``
+    holds the point: a closest point within ``reach`` lies in such a chunk, and the segments are
+    visited in order with the first of equal distances kept (as :func:`polyline_closest`), so the
+    result is the same as a search of every segment.
+    """
+    n = len(profile)
+    acc = profile.copy()
+    count = np.ones(n)
+    check_ends = np.isfinite(end_reach)
+    chunk = 16
+    for j in range(len(piece_start) - 1):
+        a, b = piece_start[j], piece_start[j + 1]
+        if b - a < 2:
+            continue
+        q = pts[a:b]
+        n_seg = len(q) - 1
+        n_chunk = (n_seg + chunk - 1) // chunk
+        box = np.empty((n_chunk, 6))
+        for h in range(n_chunk):
+            s0, s1 = h * chunk, min((h + 1) * chunk, n_seg)     # segments s0 .. s1 - 1: points s0 .. s1
+            for ax in range(3):
+                box[h, ax] = q[s0:s1 + 1, ax].min() - reach
+                box[h, 3 + ax] = q[s0:s1 + 1, ax].max() + reach
+        for i in range(n):
+            px, py, pz = profile[i, 0], profile[i, 1], profile[i, 2]
+            best = np.inf
+            cx, cy, cz = 0.0, 0.0, 0.0
+            for h in range(n_chunk):
+                if (px < box[h, 0] or px > box[h, 3] or py < box[h, 1] or py > box[h, 4]
+                        or pz < box[h, 2] or pz > box[h, 5]):
+                    continue
+                for g in range(h * chunk, min((h + 1) * chunk, n_seg)):
+                    ax_, ay_, az_ = q[g, 0], q[g, 1], q[g, 2]
+                    bx, by, bz = q[g + 1, 0] - ax_, q[g + 1, 1] - ay_, q[g + 1, 2] - az_
+                    w = bx * bx + by * by + bz * bz
+                    f = 0.0
+                    if w > 0:
+                        f = ((px - ax_) * bx + (py - ay_) * by + (pz - az_) * bz) / w
+                        f = min(max(f, 0.0), 1.0)
+                    qx, qy, qz = ax_ + f * bx, ay_ + f * by, az_ + f * bz
+                    d2 = (px - qx) ** 2 + (py - qy) ** 2 + (pz - qz) ** 2
+                    if d2 < best:
+                        best = d2
+                        cx, cy, cz = qx, qy, qz
+            d = np.sqrt(best)
+            if d > reach:
+                continue
+            if check_ends and d > end_reach:
+                e0 = (cx - q[0, 0]) ** 2 + (cy - q[0, 1]) ** 2 + (cz - q[0, 2]) ** 2
+                e1 = (cx - q[-1, 0]) ** 2 + (cy - q[-1, 1]) ** 2 + (cz - q[-1, 2]) ** 2
+                if e0 <= 1e-24 or e1 <= 1e-24:
+                    continue
+            acc[i, 0] += cx
+            acc[i, 1] += cy
+            acc[i, 2] += cz
+            count[i] += 1.0
+    return acc, count

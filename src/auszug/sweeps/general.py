@@ -51,18 +51,28 @@ from typing import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from auszug.sweeps._kernels import polyline_closest
+from auszug.sweeps._kernels import curves_to_profiles, polyline_closest
 from auszug.sweeps.cut import Cuts, cut
 from auszug.sweeps.matching import CurvaturePlots, Family, Ribs, curvature_plots, families, match_cuts, order_ribs
 from auszug.sweeps.mesh import SweepMesh
 from auszug.sweeps.motion import Motion, se3_log
 from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
-from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas, fit_patch, ring_faces
+from auszug.sweeps.patches import (
+    MeshTree,
+    SweepPatch,
+    SweptError,
+    face_areas,
+    fit_patch,
+    improve_flat,
+    ring_faces,
+    swept_coverage,
+    swept_error,
+)
 from auszug.sweeps.planes import plane_recall
 from auszug.sweeps.stage import Stage
 
-__all__ = ["kabsch", "rib_velocity", "rib_velocities", "hermite_motion", "rib_parts", "general_patch",
+__all__ = ["kabsch", "kabsch_batch", "rib_velocity", "rib_velocities", "hermite_motion", "rib_parts", "general_patch",
            "general_stages", "split_ribs", "motion_planes", "profile_planes", "reslice", "GeneralSweep",
            "extend_profile",
            "grow_ribs", "GrownRibs", "grown_patch", "trajectory_error", "translational_patch"]
@@ -96,6 +106,34 @@ def kabsch(p: ArrayLike, q: ArrayLike, weights: ArrayLike | None = None) -> tupl
     d = np.sign(np.linalg.det(vt.T @ u.T))
     r = vt.T @ np.diag([1.0, 1.0, d if d != 0 else 1.0]) @ u.T
     return r, cb - r @ ca
+
+
+def kabsch_batch(p: ArrayLike, q: ArrayLike) -> tuple[Array, Array]:
+    """:func:`kabsch` (equal weights) of ``p (n, 3)`` or ``p (k, n, 3)`` onto each ``q[i] (n, 3)`` of ``q (k, n, 3)``.
+
+    Returns ``R (k, 3, 3)`` and ``T (k, 3)``: one batched SVD, no Python loop per map.
+
+    Examples
+    --------
+    >>> from scipy.spatial.transform import Rotation
+    >>> p = np.random.default_rng(0).normal(size=(10, 3))
+    >>> r0 = Rotation.from_rotvec([[0.3, -0.2, 1.0], [0.0, 2.0, 0.1]]).as_matrix()
+    >>> r, t = kabsch_batch(p, np.einsum("kij,nj->kni", r0, p) + [[[1.0, 2, 3]], [[0.0, 0, 0]]])
+    >>> bool(np.allclose(r, r0)), (np.round(t, 12) + 0.0).tolist()   # + 0.0: no -0.0
+    (True, [[1.0, 2.0, 3.0], [0.0, 0.0, 0.0]])
+    """
+    b = np.asarray(q, float)
+    a = np.broadcast_to(np.asarray(p, float), b.shape)
+    ca = a.mean(axis=1)
+    cb = b.mean(axis=1)
+    h = np.einsum("kni,knj->kij", (a - ca[:, None]) / b.shape[1], b - cb[:, None])
+    u, _, vt = np.linalg.svd(h)
+    v = np.swapaxes(vt, 1, 2)
+    ut = np.swapaxes(u, 1, 2)
+    d = np.sign(np.linalg.det(v @ ut))
+    v[:, :, 2] *= np.where(d != 0, d, 1.0)[:, None]
+    r = v @ ut
+    return r, cb - np.einsum("kij,kj->ki", r, ca)
 
 
 def _rows(mid: Array, d: Array, mu2: float) -> tuple[Array, Array]:
@@ -161,14 +199,43 @@ def rib_velocities(parts: Array, normals: Array | None, mu: tuple[float, float] 
                    times: Array | None = None) -> Array:
     """Velocity states ``(k, 6)`` of ribs ``parts (k, n, 3)`` at ``times (k,)`` (default ``0..k-1``).
 
-    Each rib's neighbours on both sides enter Eq. 7.
+    Each rib's neighbours on both sides enter Eq. 7 (:func:`rib_velocity`, all ribs at once:
+    the normal equations of every rib and neighbour are batched, one solve per rib).
     """
-    k = len(parts)
+    x = np.asarray(parts, float)
+    k, n = x.shape[:2]
     tt = np.arange(k, dtype=float) if times is None else np.asarray(times, float)
-    out = np.zeros((k, 6))
-    for i in range(k):
-        nb = [(parts[j], float(tt[j] - tt[i])) for j in (i - 1, i + 1) if 0 <= j < k]
-        out[i] = rib_velocity(parts[i], nb, None if normals is None else normals[i], mu)
+    lhs = np.broadcast_to(mu[0] * np.eye(6), (k, 6, 6)).copy()
+    rhs = np.zeros((k, 6))
+    if normals is not None:
+        nr = np.asarray(normals, float)
+        tg = np.concatenate([np.cross(x, nr), nr], axis=2)             # (k, n, 6)
+        lhs += np.einsum("kni,knj->kij", tg, tg)
+    if k < 2:
+        out1: Array = np.asarray(np.linalg.solve(lhs, rhs[..., None])[..., 0], dtype=np.float64)
+        return out1
+    # every (rib, neighbour) pair: i to i + 1 and i + 1 to i
+    i = np.r_[np.arange(k - 1), np.arange(1, k)]
+    j = np.r_[np.arange(1, k), np.arange(k - 1)]
+    dt = (tt[j] - tt[i])[:, None, None]
+    mid = (x[i] + x[j]) / 2
+    d = (x[j] - x[i]) / dt
+    a = np.zeros((len(i), n, 3, 6))
+    a[:, :, 0, 1], a[:, :, 0, 2] = mid[..., 2], -mid[..., 1]
+    a[:, :, 1, 0], a[:, :, 1, 2] = -mid[..., 2], mid[..., 0]
+    a[:, :, 2, 0], a[:, :, 2, 1] = mid[..., 1], -mid[..., 0]
+    a[:, :, :, 3:] = np.eye(3)
+    a = a.reshape(len(i), 3 * n, 6)
+    np.add.at(lhs, i, mu[1] * np.einsum("pri,prj->pij", a, a))
+    np.add.at(rhs, i, mu[1] * np.einsum("pri,pr->pi", a, d.reshape(len(i), 3 * n)))
+    # the prior C_0: the twist of the best rigid map to each neighbour over dt, mean over the neighbours
+    rot, tr = kabsch_batch(x[i], x[j])
+    w, v = se3_log(rot, tr)
+    n_nb = np.bincount(i, minlength=k).astype(float)
+    prior = np.zeros((k, 6))
+    np.add.at(prior, i, np.concatenate([w, v], axis=1) / dt[:, 0] / n_nb[i, None])
+    rhs += mu[0] * prior
+    out: Array = np.asarray(np.linalg.solve(lhs, rhs[..., None])[..., 0], dtype=np.float64)
     return out
 
 
@@ -203,25 +270,24 @@ def hermite_motion(profile: Array, rotations: Array, translations: Array, veloci
     dl = hat @ rotations                       # d/dt of the linear part
     da = cb + np.cross(c, translations)        # d/dt of the translation
     tt = np.arange(k, dtype=float) if times is None else np.asarray(times, float)
-    ts, rs, trs = [float(tt[0])], [rotations[0]], [translations[0]]
     f = np.arange(1, samples_per_rib + 1) / samples_per_rib
     h00, h10 = 2 * f**3 - 3 * f**2 + 1, f**3 - 2 * f**2 + f
     h01, h11 = -2 * f**3 + 3 * f**2, f**3 - f**2
-    for i in range(k - 1):
-        h = tt[i + 1] - tt[i]
-        lin = (h00[:, None, None] * rotations[i] + h * h10[:, None, None] * dl[i]
-               + h01[:, None, None] * rotations[i + 1] + h * h11[:, None, None] * dl[i + 1])
-        off = (h00[:, None] * translations[i] + h * h10[:, None] * da[i] + h01[:, None] * translations[i + 1]
-               + h * h11[:, None] * da[i + 1])
-        for j in range(samples_per_rib):
-            if j == samples_per_rib - 1:
-                r, t = rotations[i + 1], translations[i + 1]
-            else:
-                r, t = kabsch(profile, profile @ lin[j].T + off[j])
-            ts.append(tt[i] + h * f[j])
-            rs.append(r)
-            trs.append(t)
-    return Motion(np.array(ts), np.array(rs), np.array(trs))
+    hh = np.diff(tt)[:, None]                                       # (k - 1, 1) interval lengths
+    # the affine maps at every inner sample of every interval: (k - 1, s, 3, 3) and (k - 1, s, 3)
+    lin = (h00[None, :, None, None] * rotations[:-1, None] + (hh * h10)[:, :, None, None] * dl[:-1, None]
+           + h01[None, :, None, None] * rotations[1:, None] + (hh * h11)[:, :, None, None] * dl[1:, None])
+    off = (h00[None, :, None] * translations[:-1, None] + (hh * h10)[:, :, None] * da[:-1, None]
+           + h01[None, :, None] * translations[1:, None] + (hh * h11)[:, :, None] * da[1:, None])
+    # each projected to the closest rigid motion in the sense of the profile's points (one batched Kabsch)
+    moved = np.einsum("ksij,nj->ksni", lin, profile) + off[:, :, None, :]
+    r_all, t_all = kabsch_batch(profile, moved.reshape(-1, len(profile), 3))
+    r_all = r_all.reshape(k - 1, samples_per_rib, 3, 3)
+    t_all = t_all.reshape(k - 1, samples_per_rib, 3)
+    r_all[:, -1], t_all[:, -1] = rotations[1:], translations[1:]   # exactly the given maps at the ribs
+    ts = np.r_[tt[0], (tt[:-1, None] + hh * f[None, :]).reshape(-1)]
+    return Motion(ts, np.concatenate([rotations[:1], r_all.reshape(-1, 3, 3)]),
+                  np.concatenate([translations[:1], t_all.reshape(-1, 3)]))
 
 
 def split_ribs(parts: Array, jump: float) -> list[Array]:
@@ -276,31 +342,40 @@ def _on_polyline(points: Array, polyline: Array) -> tuple[Array, Array]:
     return d, c
 
 
-def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float) -> list[Array]:
+def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float) -> tuple[Array, IntArray]:
     """Cuts of the mesh by the moved profile's planes at the motion's knots, mapped back (sec. 2.3.3).
 
     Per knot, each stretch of a cut curve within ``reach`` of the moved profile, mapped back by the
-    inverse of the knot's map.
+    inverse of the knot's map. Returns the pieces' points ``(m, 3)`` and their starts ``(q + 1,)``
+    (piece ``j`` is ``points[starts[j]:starts[j + 1]]``); one compiled pass finds the stretches of
+    all curves.
     """
     n0, _ = _plane_of(profile)
     moved = motion.apply(profile, motion.t)
     normals = np.einsum("kij,j->ki", motion.rotation, n0)
     offsets = np.einsum("ki,ki->k", normals, moved.mean(axis=1))
     c = cut(mesh, normals, offsets)
-    out = []
-    for j in range(c.n_curves):
-        k = int(c.curve_plane[j])
-        q = c.curve(j)
-        if len(q) < 2:
-            continue
-        near = _polyline_distance(q, moved[k]) <= reach
-        # each stretch of a curve near the moved profile is a piece of its own: joined, a curve
-        # broken by a hole in the mesh would bridge the hole by a chord
-        edges = np.flatnonzero(np.diff(np.r_[0, near.astype(np.int8), 0]))
-        for a, b in zip(edges[::2], edges[1::2], strict=True):
-            if b - a >= 2:
-                out.append(np.einsum("ji,nj->ni", motion.rotation[k], q[a:b] - motion.translation[k]))
-    return out
+    if c.n_curves == 0:
+        return np.zeros((0, 3)), np.zeros(1, np.int64)
+    near = curves_to_profiles(c.points, c.curve_start, c.curve_plane, np.ascontiguousarray(moved), reach) <= reach
+    # each stretch of a curve near the moved profile is a piece of its own: joined, a curve
+    # broken by a hole in the mesh would bridge the hole by a chord
+    curve_of = np.repeat(np.arange(c.n_curves), np.diff(c.curve_start))
+    first = np.zeros(len(near), bool)
+    first[c.curve_start[:-1]] = True
+    begins = near & (first | ~np.r_[False, near[:-1]])
+    ends = near & (np.r_[first[1:], True] | ~np.r_[near[1:], False])
+    a = np.flatnonzero(begins)
+    b = np.flatnonzero(ends) + 1
+    keep = b - a >= 2
+    a, b = a[keep], b[keep]
+    if not len(a):
+        return np.zeros((0, 3)), np.zeros(1, np.int64)
+    starts = np.concatenate([[0], np.cumsum(b - a)]).astype(np.int64)
+    idx = np.arange(starts[-1]) + np.repeat(a - starts[:-1], b - a)
+    k = c.curve_plane[curve_of[idx]]
+    back = np.einsum("nji,nj->ni", motion.rotation[k], c.points[idx] - motion.translation[k])
+    return back, starts
 
 
 @dataclass(frozen=True)
@@ -390,11 +465,9 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
     ribs, improves the profile, checks the fit and re-slices again. The round of least fit
     error is returned (the first round is fitted only if re-slicing fails).
     """
-    from auszug.sweeps.patches import _improve
-
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     tr_ = MeshTree(mesh.vertices, mesh.faces) if tree is None else tree
-    best: GeneralSweep | None = None
+    best: tuple[Array, Motion, Array, SweptError] | None = None
     ribs: Array | None = parts
     n_rounds = params.general_iterations
     for i in range(n_rounds):
@@ -404,9 +477,7 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
         mid = kabsch(ribs[len(ribs) // 2], ribs[0])
         profile = ribs[len(ribs) // 2] @ mid[0].T + mid[1]
         normals = _normals_at(mesh, ribs, tr_)
-        maps = [kabsch(profile, q) for q in ribs]
-        rot = np.array([m[0] for m in maps])
-        tr = np.array([m[1] for m in maps])
+        rot, tr = kabsch_batch(profile, ribs)
         vel = rib_velocities(ribs, normals, params.mu, times)
         motion = hermite_motion(profile, rot, tr, vel, SAMPLES_PER_RIB, times)
         if i == 0 and n_rounds > 1:
@@ -416,16 +487,16 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
             if again is not None:
                 ribs = again
                 continue
-        more = _recut(mesh, profile, motion, 4 * params.eps_prox)
-        profile = _improve(profile, False, more, params.eps_prox)
-        fit = fit_patch(mesh, profile, False, motion, params, a, tr_)
-        cand = GeneralSweep(profile, motion, vel, fit.fit_error, fit.coverage, fit.faces)
-        if best is None or cand.fit_error < best.fit_error:
-            best = cand
+        profile = improve_flat(profile, *_recut(mesh, profile, motion, 4 * params.eps_prox), params.eps_prox)
+        # the fit error in every round, the covered faces only of the round kept
+        err = swept_error(profile, False, motion, params.eps_prox, tr_)
+        if best is None or err.fit_error < best[3].fit_error:
+            best = (profile, motion, vel, err)
         if i + 1 < n_rounds:
             ribs = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times)
     assert best is not None
-    return best
+    fit = swept_coverage(mesh, best[3], params.eps_prox, a)
+    return GeneralSweep(best[0], best[1], best[2], fit.fit_error, fit.coverage, fit.faces)
 
 
 def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Array, Array]:
@@ -871,8 +942,6 @@ def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params:
     :func:`general_patch`.
     """
     from auszug.sweeps.matching import resample
-    from auszug.sweeps.patches import _improve
-
     tm = float(motion.t[len(motion.t) // 2])
     r, tr = motion.at([tm])
     n, d = profile_planes(profile, motion, [tm])
@@ -917,8 +986,7 @@ def translational_patch(mesh: SweepMesh, profile: Array, motion: Motion, params:
     start = p0 + shifts[0]
     rot = np.repeat(np.eye(3)[None], len(keys), axis=0)
     mot = Motion(np.arange(len(keys), dtype=float), rot, shifts - shifts[0])
-    more = _recut(mesh, start, mot, 4 * params.eps_prox)
-    start = _improve(start, False, more, params.eps_prox)
+    start = improve_flat(start, *_recut(mesh, start, mot, 4 * params.eps_prox), params.eps_prox)
     a, b = _longest_run(trajectory_error(start, mot, tree, params.eps_prox) <= params.eps_prox)
     if b - a < 2:
         return None

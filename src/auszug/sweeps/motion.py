@@ -185,17 +185,20 @@ class Motion:
         tt = np.clip(np.atleast_1d(np.asarray(t, float)), self.t[0], self.t[-1])
         i = np.clip(np.searchsorted(self.t, tt, side="right") - 1, 0, len(self.t) - 2)
         f = (tt - self.t[i]) / (self.t[i + 1] - self.t[i])
-        r0, r1 = self.rotation[i], self.rotation[i + 1]
-        t0, t1 = self.translation[i], self.translation[i + 1]
-        r0t = np.swapaxes(r0, -1, -2)
-        rel_r = r0t @ r1
-        rel_t = np.einsum("kij,kj->ki", r0t, t1 - t0)
-        w, v = se3_log(rel_r, rel_t)
-        dr, dt = se3_exp(w * f[:, None], v * f[:, None])
-        r = r0 @ dr
-        tr = t0 + np.einsum("kij,kj->ki", r0, dt)
+        r, tr = self.rotation[i], self.translation[i]       # copies (fancy indexing): exact at knots
         at1 = f >= 1.0
-        r[at1], tr[at1] = r1[at1], t1[at1]
+        r[at1], tr[at1] = self.rotation[i[at1] + 1], self.translation[i[at1] + 1]
+        # between knots the screw motion between them (log and exp only where needed)
+        inner = np.flatnonzero((f > 0.0) & ~at1)
+        if len(inner):
+            ii, ff = i[inner], f[inner]
+            r0, r1 = self.rotation[ii], self.rotation[ii + 1]
+            t0, t1 = self.translation[ii], self.translation[ii + 1]
+            r0t = np.swapaxes(r0, -1, -2)
+            w, v = se3_log(r0t @ r1, np.einsum("kij,kj->ki", r0t, t1 - t0))
+            dr, dt = se3_exp(w * ff[:, None], v * ff[:, None])
+            r[inner] = r0 @ dr
+            tr[inner] = t0 + np.einsum("kij,kj->ki", r0, dt)
         return r, tr
 
     def apply(self, points: ArrayLike, t: ArrayLike) -> Array:

@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
-from auszug.sweeps._kernels import polyline_closest
+from auszug.sweeps._kernels import improve_sums
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import KinematicAxis
 from auszug.sweeps.mesh import SweepMesh
@@ -44,7 +44,7 @@ if TYPE_CHECKING:
     from auszug.sweeps.profilefit import FittedProfile
 
 __all__ = ["SweepPatch", "Fit", "MeshTree", "kinematic_patches", "fit_patch", "face_areas", "sweep_surface",
-           "closest_distance", "polyline_hausdorff"]
+           "closest_distance", "polyline_hausdorff", "SweptError", "swept_error", "swept_coverage", "improve_flat"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -129,7 +129,7 @@ class Fit:
     ----------
     vertex_distance : (n_vertices,) float array
         Distance of every mesh vertex to the swept surface (inf outside its bounding box grown
-        by ``eps_prox``).
+        by ``eps_prox``, and at vertices of no face of the mesh, which may be a part).
     faces : (m,) int array
         Faces whose three vertices are within ``eps_prox``.
     fit_error : float
@@ -416,20 +416,21 @@ def _improve(profile: Array, closed: bool, others: list[Array], end_reach: float
     """
     if not others:
         return profile
-    acc = profile.copy()
-    count = np.ones(len(profile))
-    reach = 0.02
-    for q in others:
-        if len(q) < 2:
-            continue
-        d, c = polyline_closest(np.ascontiguousarray(profile, dtype=float), np.ascontiguousarray(q, dtype=float))
-        near = d <= reach
-        if np.isfinite(end_reach):
-            at_end = (np.linalg.norm(c - q[0], axis=1) <= 1e-12) | (np.linalg.norm(c - q[-1], axis=1) <= 1e-12)
-            near &= ~at_end | (d <= end_reach)
-        acc[near] += c[near]
-        count[near] += 1
-    return acc / count[:, None]
+    starts = np.concatenate([[0], np.cumsum([len(q) for q in others])]).astype(np.int64)
+    return improve_flat(profile, np.concatenate(others, axis=0).reshape(-1, 3), starts, end_reach)
+
+
+def improve_flat(profile: Array, pts: Array, piece_start: IntArray, end_reach: float = np.inf) -> Array:
+    """:func:`_improve` with the other curves as pieces of one array ``pts (m, 3)`` (``piece_start (q + 1,)``).
+
+    One compiled pass over all pieces (no Python loop per curve).
+    """
+    if len(piece_start) < 2:
+        return profile
+    acc, count = improve_sums(np.ascontiguousarray(profile, dtype=float), np.ascontiguousarray(pts, dtype=float),
+                              np.asarray(piece_start, np.int64), 0.02, float(end_reach))
+    out: Array = acc / count[:, None]
+    return out
 
 
 def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
@@ -441,6 +442,7 @@ def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
     """
     n = len(profile)
     t = np.array(motion.t, float)
+    rings = None
     while len(t) < max_rings:
         mid = (t[:-1] + t[1:]) / 2
         a = motion.apply(profile, t)
@@ -448,9 +450,11 @@ def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
         dev = np.linalg.norm(m - (a[:-1] + a[1:]) / 2, axis=2).max(axis=1)
         bad = dev > tol
         if not bad.any():
+            rings = a
             break
         t = np.sort(np.concatenate([t, mid[bad]]))
-    rings = motion.apply(profile, t)
+    if rings is None:
+        rings = motion.apply(profile, t)
     return rings.reshape(-1, 3), ring_faces(len(t), n, closed)
 
 
@@ -476,23 +480,65 @@ def fit_patch(mesh: SweepMesh, profile: Array, closed: bool, motion: Motion,
               params: SweepParams = DEFAULT, areas: Array | None = None, tree: MeshTree | None = None) -> Fit:
     """The fit check (sec. 2.3.4) of a profile and motion against the mesh (normalised coordinates).
 
-    ``tree`` is the mesh's :class:`MeshTree` (built here if not given).
+    ``tree`` is the mesh's :class:`MeshTree` (built here if not given). The same as
+    :func:`swept_error` followed by :func:`swept_coverage`.
     """
-    eps = params.eps_prox
+    err = swept_error(profile, closed, motion, params.eps_prox,
+                      tree if tree is not None else MeshTree(mesh.vertices, mesh.faces))
+    return swept_coverage(mesh, err, params.eps_prox, areas)
+
+
+@dataclass(frozen=True)
+class SweptError:
+    """The swept surface of a profile and motion and its fit error (the first half of the fit check).
+
+    Attributes
+    ----------
+    vertices : (k, 3) float array
+        The swept surface's vertices (rings of the profile, :func:`sweep_surface`).
+    tree : MeshTree
+        Closest points on the swept surface.
+    fit_error : float
+        Largest distance of the vertices to the mesh (:meth:`MeshTree.interior_distance`).
+    """
+
+    vertices: Array
+    tree: MeshTree
+    fit_error: float
+
+
+def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: MeshTree) -> SweptError:
+    """The swept surface (chords within ``eps / 10``) and its largest distance to the mesh of ``tree``.
+
+    Swept points beyond the mesh do not count (:meth:`MeshTree.interior_distance` with the
+    swept surface's own tree for the reciprocal test).
+    """
     sv, sf = sweep_surface(profile, closed, motion, eps / 10)
-    # vertices outside the swept surface's box grown by eps are farther than eps: not queried
+    swept = MeshTree(sv, sf)       # one tree of the swept surface for both directions
+    ds = tree.interior_distance(sv, swept, eps)
+    return SweptError(sv, swept, float(ds.max()) if len(ds) else float("inf"))
+
+
+def swept_coverage(mesh: SweepMesh, err: SweptError, eps: float, areas: Array | None = None) -> Fit:
+    """The mesh faces within ``eps`` of a swept surface and their share of the area (the second half).
+
+    Only the vertices in the swept surface's box grown by ``eps`` are queried (the others are
+    farther than ``eps``).
+    """
+    sv = err.vertices
     lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
     inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
-    swept = MeshTree(sv, sf)       # one tree of the swept surface for both directions
+    used = np.zeros(mesh.n_vertices, bool)      # only the vertices of the mesh's faces (it may be a part)
+    used[mesh.faces.reshape(-1)] = True
+    inside &= used
     dv = np.full(mesh.n_vertices, np.inf)
-    dv[inside] = swept.query(mesh.vertices[inside])[0]
+    dv[inside] = err.tree.query(mesh.vertices[inside])[0]
     near = dv <= eps
     faces = np.flatnonzero(near[mesh.faces].all(axis=1)).astype(np.int64)
-    ds = (tree if tree is not None else MeshTree(mesh.vertices, mesh.faces)).interior_distance(sv, swept, eps)
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     total = float(a.sum())
     cov = float(a[faces].sum() / total) if total > 0 else 0.0
-    return Fit(dv, faces, float(ds.max()) if len(ds) else float("inf"), cov)
+    return Fit(dv, faces, err.fit_error, cov)
 
 
 def kinematic_patches(mesh: SweepMesh, axis: KinematicAxis, params: SweepParams = DEFAULT,

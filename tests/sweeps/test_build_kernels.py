@@ -1,0 +1,100 @@
+"""The batched and compiled pieces of the general-sweep build (sweeps8) against plain references.
+
+Each batched function must give what its one-at-a-time definition gives: velocities rib by rib
+(Eq. 7), Kabsch map by map (including mirror data), the profile improvement as the mean of
+closest points found by brute force over every segment, and the motion exactly at its knots.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from auszug.sweeps.general import kabsch, kabsch_batch, rib_velocities, rib_velocity
+from auszug.sweeps.motion import Motion, screw_motion
+from auszug.sweeps.patches import _improve, improve_flat
+
+
+@pytest.mark.parametrize("with_normals", [False, True])
+@pytest.mark.parametrize("times", [None, [0.0, 0.5, 2.0, 2.25, 4.0]])
+def test_rib_velocities_are_the_velocity_of_each_rib(with_normals, times):
+    rng = np.random.default_rng(3)
+    parts = rng.normal(size=(5, 20, 3)) * 0.1 + np.arange(5)[:, None, None] * [0.05, 0.0, 0.02]
+    nr = rng.normal(size=(5, 20, 3))
+    nr /= np.linalg.norm(nr, axis=2, keepdims=True)
+    tt = np.arange(5.0) if times is None else np.asarray(times)
+    want = np.array([rib_velocity(parts[i], [(parts[j], tt[j] - tt[i]) for j in (i - 1, i + 1) if 0 <= j < 5],
+                                  nr[i] if with_normals else None) for i in range(5)])
+    got = rib_velocities(parts, nr if with_normals else None, times=None if times is None else tt)
+    assert np.allclose(got, want, rtol=1e-12, atol=1e-12)
+
+
+def test_kabsch_batch_is_kabsch_map_by_map_and_proper():
+    rng = np.random.default_rng(4)
+    p = rng.normal(size=(12, 3))
+    r0 = Rotation.random(6, random_state=5).as_matrix()
+    q = np.einsum("kij,nj->kni", r0, p) + rng.normal(size=(6, 1, 3)) + rng.normal(size=(6, 12, 3)) * 0.01
+    q[5] = p * [1.0, 1.0, -1.0]                                  # mirror data: still a proper rotation
+    r, t = kabsch_batch(p, q)
+    for k in range(6):
+        rk, tk = kabsch(p, q[k])
+        assert np.allclose(r[k], rk, atol=1e-12) and np.allclose(t[k], tk, atol=1e-12)
+    assert np.allclose(np.linalg.det(r), 1.0)
+    # per-pair form: p (k, n, 3)
+    r2, t2 = kabsch_batch(np.broadcast_to(p, q.shape), q)
+    assert np.allclose(r2, r, atol=1e-14) and np.allclose(t2, t, atol=1e-14)
+
+
+def _improve_reference(profile, pieces, reach, end_reach):
+    """Every profile point against every segment of every piece (numpy, no pruning)."""
+    acc = profile.copy()
+    count = np.ones(len(profile))
+    for q in pieces:
+        if len(q) < 2:
+            continue
+        a, b = q[:-1], q[1:]
+        ab = b - a
+        w = np.einsum("si,si->s", ab, ab)
+        f = np.clip(np.einsum("nsi,si->ns", profile[:, None] - a, ab) / np.where(w > 0, w, 1.0), 0.0, 1.0)
+        c = a + f[..., None] * ab                                 # (n, s, 3)
+        d = np.linalg.norm(profile[:, None] - c, axis=2)
+        j = np.argmin(d, axis=1)                                  # the first of equal distances
+        dj = d[np.arange(len(profile)), j]
+        cj = c[np.arange(len(profile)), j]
+        at_end = (np.linalg.norm(cj - q[0], axis=1) <= 1e-12) | (np.linalg.norm(cj - q[-1], axis=1) <= 1e-12)
+        ok = (dj <= reach) & (~at_end | (dj <= end_reach))
+        acc[ok] += cj[ok]
+        count[ok] += 1
+    return acc / count[:, None]
+
+
+@pytest.mark.parametrize("end_reach", [np.inf, 0.004, 0.0])
+def test_improve_is_the_mean_of_brute_force_closest_points(end_reach):
+    rng = np.random.default_rng(6)
+    s = np.linspace(0, 1, 60)
+    profile = np.stack([s, 0.1 * np.sin(6 * s), 0 * s], axis=1)
+    pieces = []
+    for k in range(12):                   # noisy copies, some long (many chunks), some short, some far
+        a, b = rng.integers(0, 60, 2)
+        a, b = min(a, b), max(a, b) + 1
+        q = profile[a:b] + rng.normal(size=(b - a, 3)) * 0.004 + (0.0 if k % 4 else [0, 0, 0.05])
+        q = np.repeat(q, 1 + k % 3, axis=0) if k % 5 == 0 else q        # repeated points: zero-length segments
+        pieces.append(q)
+    pieces.append(profile[:1].copy())                                   # a single point: ignored
+    want = _improve_reference(profile, pieces, 0.02, end_reach)
+    assert np.allclose(_improve(profile, False, pieces, end_reach), want, rtol=0, atol=1e-15)
+    starts = np.concatenate([[0], np.cumsum([len(q) for q in pieces])])
+    assert np.allclose(improve_flat(profile, np.concatenate(pieces), starts, end_reach), want, rtol=0, atol=1e-15)
+    assert not np.allclose(want, profile)                               # the pieces moved it
+
+
+def test_motion_at_its_knots_is_its_maps_exactly():
+    r, t = screw_motion([1.0, 0.2, 0.3], [0.0, 0.1, 0.0], 0.05, np.linspace(0.0, 2.0, 9))
+    m = Motion(np.linspace(0.0, 3.0, 9), r, t)
+    rr, tt = m.at(m.t)
+    assert np.array_equal(rr, m.rotation) and np.array_equal(tt, m.translation)
+    # between knots the screw motion: the middle of a screw's interval is the screw at the middle
+    r_mid, t_mid = screw_motion([1.0, 0.2, 0.3], [0.0, 0.1, 0.0], 0.05, [0.125])
+    rm, tm = m.at([0.1875])
+    assert np.allclose(rm[0], r_mid[0], atol=1e-12) and np.allclose(tm[0], t_mid[0], atol=1e-12)

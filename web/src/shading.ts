@@ -23,8 +23,8 @@ export function sceneLights(): THREE.Light[] {
   return [sky, sun, fill];
 }
 
-const VERTEX = /* glsl */ `
-#include <common>
+// The lights' uniforms (lightUniforms) and the irradiance they give a unit normal, for both shaders.
+const LIGHTING = /* glsl */ `
 uniform vec3 diffuse;
 uniform vec3 skyColor;
 uniform vec3 groundColor;
@@ -32,6 +32,14 @@ uniform vec3 sunDir;
 uniform vec3 sunColor;
 uniform vec3 fillDir;
 uniform vec3 fillColor;
+vec3 irradiance(vec3 n) {
+  return mix(groundColor, skyColor, 0.5 * n.y + 0.5)
+    + max(dot(n, sunDir), 0.0) * sunColor + max(dot(n, fillDir), 0.0) * fillColor;
+}`;
+
+const VERTEX = /* glsl */ `
+#include <common>
+${LIGHTING}
 varying vec3 vColor;
 void main() {
   mat4 m = modelMatrix;
@@ -39,9 +47,7 @@ void main() {
   m = m * instanceMatrix;
 #endif
   vec3 n = normalize(mat3(m) * normal);
-  vec3 irradiance = mix(groundColor, skyColor, 0.5 * n.y + 0.5)
-    + max(dot(n, sunDir), 0.0) * sunColor + max(dot(n, fillDir), 0.0) * fillColor;
-  vColor = diffuse * irradiance * RECIPROCAL_PI;
+  vColor = diffuse * irradiance(n) * RECIPROCAL_PI;
   gl_Position = projectionMatrix * viewMatrix * m * vec4(position, 1.0);
 }`;
 
@@ -88,21 +94,13 @@ const STRIP_VERTEX = /* glsl */ `
 #include <colorspace_pars_fragment>
 attribute vec3 axisTangent;
 attribute float across;
-uniform vec3 diffuse;
-uniform vec3 skyColor;
-uniform vec3 groundColor;
-uniform vec3 sunDir;
-uniform vec3 sunColor;
-uniform vec3 fillDir;
-uniform vec3 fillColor;
+${LIGHTING}
 varying vec3 vMinus;
 varying vec3 vMid;
 varying vec3 vPlus;
 varying float vU;
 vec3 shade(vec3 n) {
-  vec3 irradiance = mix(groundColor, skyColor, 0.5 * n.y + 0.5)
-    + max(dot(n, sunDir), 0.0) * sunColor + max(dot(n, fillDir), 0.0) * fillColor;
-  return sRGBTransferOETF(vec4(diffuse * irradiance * RECIPROCAL_PI, 1.0)).rgb;
+  return sRGBTransferOETF(vec4(diffuse * irradiance(n) * RECIPROCAL_PI, 1.0)).rgb;
 }
 void main() {
   mat4 m = modelMatrix;

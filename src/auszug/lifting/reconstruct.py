@@ -492,6 +492,16 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             pr.v[offset_slot[i]] = float(nrm[i] @ X[pla.points[i]].mean(0))
         pla.add_soft(E, idx, w, X, offset_slot)
 
+    def held_solve(name: str, applied: int = 0) -> SolveResult:
+        """A solve of fidelity and the kept soft cues subject to every hard cue held so far."""
+        E = pr.energy(params.w_a)
+        for f in soft_kept:
+            f(E)
+        C = pr.constraints()
+        for f in hard:
+            f(C)
+        return pr.run(name, E, C, applied=applied)
+
     # global symmetry: its cues hold from here on (the paper's sec. 4), before any class is resolved
     sym_glob = forced.symmetry
     if symmetry is not None:
@@ -501,14 +511,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             pla_apply(np.nonzero(forced.planar)[0])
         hard.append(lambda c: sym_glob.add(c, np.arange(len(sym_glob)), 1.0))
         hard.append(lambda c: pla.add_hard(c, pla_state["sel"], offset_slot))
-        E = pr.energy(params.w_a)
-        for f in soft_kept:
-            f(E)
-        C = pr.constraints()
-        for f in hard:
-            f(C)
         n_forced = int(forced.parallel.sum() + forced.orthogonal.sum() + forced.planar.sum()) + len(sym_glob)
-        ok &= pr.run("global symmetry", E, C, applied=n_forced).converged
+        ok &= held_solve("global symmetry", n_forced).converged
 
     par_applied = resolve("parallel", par, par_apply, lambda E, i, w: par.add(E, i, w), forced.parallel)
 
@@ -549,13 +553,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     if pending["applied"] and params.final_solve:
         # the last class's cues applied in its final round have not been held by a solve yet: one
         # more solve, every applied cue hard (parallelism and linearity soft with w_c, as before)
-        E = pr.energy(params.w_a)
-        for f in soft_kept:
-            f(E)
-        C = pr.constraints()
-        for f in hard:
-            f(C)
-        ok &= pr.run("final", E, C).converged
+        ok &= held_solve("final").converged
 
     X = pr.X().copy()
     for kind, fam, app in (("parallel", par, par_applied), ("orthogonal", orth, orth_applied),

@@ -481,6 +481,20 @@ def match_pairs(kappa, offs, pairs, eps, kfloor, min_len):  # pragma: no cover -
 # ------------------------------------------------------------------------------ closest points on polylines
 
 
+@njit(cache=True, inline="always")
+def _segment_closest(px, py, pz, polyline, j):  # pragma: no cover - compiled
+    """Squared distance from (px, py, pz) to segment j of ``polyline (n, 3)`` and the closest point."""
+    ax, ay, az = polyline[j, 0], polyline[j, 1], polyline[j, 2]
+    bx, by, bz = polyline[j + 1, 0] - ax, polyline[j + 1, 1] - ay, polyline[j + 1, 2] - az
+    w = bx * bx + by * by + bz * bz
+    f = 0.0
+    if w > 0:
+        f = ((px - ax) * bx + (py - ay) * by + (pz - az) * bz) / w
+        f = min(max(f, 0.0), 1.0)
+    qx, qy, qz = ax + f * bx, ay + f * by, az + f * bz
+    return (px - qx) ** 2 + (py - qy) ** 2 + (pz - qz) ** 2, qx, qy, qz
+
+
 @njit(cache=True)
 def polyline_closest(points, polyline):  # pragma: no cover - compiled
     """Distances (m,) and closest points (m, 3) of points (m, 3) on the segments of a polyline (n, 3)."""
@@ -491,15 +505,7 @@ def polyline_closest(points, polyline):  # pragma: no cover - compiled
         px, py, pz = points[i, 0], points[i, 1], points[i, 2]
         best = np.inf
         for j in range(len(polyline) - 1):
-            ax, ay, az = polyline[j, 0], polyline[j, 1], polyline[j, 2]
-            bx, by, bz = polyline[j + 1, 0] - ax, polyline[j + 1, 1] - ay, polyline[j + 1, 2] - az
-            w = bx * bx + by * by + bz * bz
-            f = 0.0
-            if w > 0:
-                f = ((px - ax) * bx + (py - ay) * by + (pz - az) * bz) / w
-                f = min(max(f, 0.0), 1.0)
-            qx, qy, qz = ax + f * bx, ay + f * by, az + f * bz
-            d = (px - qx) ** 2 + (py - qy) ** 2 + (pz - qz) ** 2
+            d, qx, qy, qz = _segment_closest(px, py, pz, polyline, j)
             if d < best:
                 best = d
                 cp[i, 0], cp[i, 1], cp[i, 2] = qx, qy, qz
@@ -577,15 +583,7 @@ def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cov
                         or pz < box[h, 2] or pz > box[h, 5]):
                     continue
                 for g in range(h * chunk, min((h + 1) * chunk, n_seg)):
-                    ax_, ay_, az_ = q[g, 0], q[g, 1], q[g, 2]
-                    bx, by, bz = q[g + 1, 0] - ax_, q[g + 1, 1] - ay_, q[g + 1, 2] - az_
-                    w = bx * bx + by * by + bz * bz
-                    f = 0.0
-                    if w > 0:
-                        f = ((px - ax_) * bx + (py - ay_) * by + (pz - az_) * bz) / w
-                        f = min(max(f, 0.0), 1.0)
-                    qx, qy, qz = ax_ + f * bx, ay_ + f * by, az_ + f * bz
-                    d2 = (px - qx) ** 2 + (py - qy) ** 2 + (pz - qz) ** 2
+                    d2, qx, qy, qz = _segment_closest(px, py, pz, q, g)
                     if d2 < best:
                         best = d2
                         cx, cy, cz = qx, qy, qz

@@ -206,3 +206,16 @@ def test_reader_gives_the_line_of_a_syntax_error():
         loads(text, "x.network.json")
     assert e.value.line == 5 and e.value.path == "x.network.json"
     assert str(e.value).startswith("x.network.json:5: not JSON")
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda b: b.update(fold=100000), r"basic_curves \(curve 0\): not a symmetry .*fold 100000 is above the limit"),
+    (lambda b: b.update(fold="four"), r"basic_curves \(curve 0\): not a symmetry .*whole number"),
+    (lambda b: b.update(center=[float("nan"), 0.0]), r"basic_curves \(curve 0\): not a symmetry .*finite"),
+    (lambda b: b.pop("mirror"), r"basic_curves \(curve 0\): not a symmetry \(KeyError"),
+])
+def test_a_bad_symmetry_in_basic_curves_is_a_format_error(edit, message):
+    doc = loads(dumps(build(_decorated_free_end_post(), samples=9), "synthetic.json"))
+    edit(doc["basic_curves"][0])
+    with pytest.raises(FormatError, match=message):
+        network_from_dict(doc, "x.network.json")

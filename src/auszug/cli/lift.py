@@ -32,12 +32,12 @@ if TYPE_CHECKING:
     from auszug.lifting import LiftResult
 
 HELP = "lift a 2D design sketch (.svg, .sketch.json) to a 3D curve network"
-#: ``lifting.CLASSES`` and ``lifting.DEFAULT_CLASSES``, for the help text (a test keeps them equal).
 #: Output endings written as a mesh of the lifted curves (the rest are network formats).
 MESH_SUFFIXES = (".glb", ".gltf", ".stl", ".ply")
 #: Mesh output defaults: a lifted piece is one cubic Bezier, so fewer steps than a drawing's member need.
 MESH_SEGMENTS = 48
 MESH_AROUND = 16
+#: ``lifting.CLASSES`` and ``lifting.DEFAULT_CLASSES``, for the help text (a test keeps them equal).
 CUE_CLASSES = ("parallel", "orthogonal", "symmetry", "linear", "planar", "plane")
 DEFAULT_CUES = ("parallel", "orthogonal", "planar")
 

@@ -38,7 +38,7 @@ import orjson
 from auszug.errors import AuszugError, FormatError
 from auszug.formats._registry import FileFormat, register
 from auszug.geometry.network import KINDS, CurveNetwork, Piece, as_curve_network
-from auszug.limits import check_text_size
+from auszug.limits import check_count, check_number, check_text_size
 
 __all__ = ["NetworkFile", "FORMAT", "VERSION", "VERSIONS", "KINDS", "to_dict", "dumps", "loads", "unpack",
            "exact_piece", "network_from_dict"]
@@ -389,13 +389,24 @@ def network_from_dict(doc: dict[str, Any], name: str = "<document>") -> CurveNet
         info = basics.get(b)
         if info is None:
             groups.append(SymmetryGroup(1))
-        else:
-            axis = info.get("axis")
-            groups.append(SymmetryGroup(int(info["fold"]), bool(info["mirror"]), tuple(info["center"]),
-                                        (0.0, 1.0) if axis is None else tuple(axis)))
+            continue
+        try:   # basic_curves is an extra key: checked here, with the drawings' limits
+            fold = info["fold"]
+            if not _integer(fold):
+                raise ValueError(f"fold must be a whole number, got {fold!r}")
+            check_count("fold", int(fold), "fold")
+            axis = (0.0, 1.0) if info.get("axis") is None else info["axis"]
+            cx, cy = (check_number("centre", float(v)) for v in info["center"])
+            ax, ay = (float(v) for v in axis)
+            groups.append(SymmetryGroup(int(fold), bool(info["mirror"]), (cx, cy), (ax, ay)))
+        except (KeyError, TypeError, ValueError, AuszugError) as e:
+            raise FormatError(f"basic_curves (curve {b}): not a symmetry ({type(e).__name__}: {e})", name) from None
     verts = [v for b in basics.values() for v in b.get("vertices", [])]
-    pts = np.asarray(verts, dtype=float) if verts else np.concatenate(
-        [np.asarray(c["points"], dtype=float)[:, :2] for c in doc["curves"]])
+    try:
+        pts = np.asarray(verts, dtype=float) if verts else np.concatenate(
+            [np.asarray(c["points"], dtype=float)[:, :2] for c in doc["curves"]])
+    except (TypeError, ValueError) as e:
+        raise FormatError(f"basic_curves: vertices must be [x, y] points ({e})", name) from None
     size = max(1e-9, float(np.abs(pts).max()))
     bottoms = tuple(float(lay["bottom"]) for lay in doc["layers"]) or (0.0,)
     return CurveNetwork(tuple(pieces), tuple(groups), tuple(layer_of[b] for b in range(n_basic)), bottoms,

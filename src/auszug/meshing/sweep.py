@@ -125,8 +125,7 @@ def sample_piece(piece: Piece, segments: int) -> list[CurveSamples]:
     top = piece.top
     if piece.depth is not None:  # a lifted sketch segment: a 3D cubic Bezier
         assert isinstance(top, CubicBezier)   # Piece.from_dict and the lifting package make it so
-        return [_sample_bezier3(np.concatenate([top.controls, np.asarray(piece.depth, float)[:, None]], axis=1),
-                                segments)]
+        return [_sample_bezier3(piece, top, segments)]
     if piece.side is None:  # level: constant height
         u = np.linspace(0.0, 1.0, max(1, segments) + 1)
         t = top.t_at_u(u)
@@ -191,26 +190,24 @@ def sample_piece(piece: Piece, segments: int) -> list[CurveSamples]:
     return runs
 
 
-def _sample_bezier3(c: Array, segments: int) -> CurveSamples:
-    """``segments`` steps along the 3D cubic Bezier with controls ``c`` (4, 3), even in arc length.
+def _sample_bezier3(piece: Piece, top: CubicBezier, segments: int) -> CurveSamples:
+    """``segments`` steps along a lifted sketch piece (a 3D cubic Bezier), even in arc length.
 
     The arc length is the chord length of a fine polygon (32 times ``segments``
-    chords); samples lie exactly on the curve.
+    chords); samples are the piece's own points (:meth:`Piece.point_t`), exactly
+    on the curve, and the tangents its derivative: the top view's and that of the
+    depths' Bernstein polynomial.
     """
     n = max(1, segments)
-
-    def point(t: Array) -> Array:
-        m = (1.0 - t)[:, None]
-        tt = t[:, None]
-        return m * m * m * c[0] + 3.0 * m * m * tt * c[1] + 3.0 * m * tt * tt * c[2] + tt * tt * tt * c[3]
+    dz = np.diff(np.asarray(piece.depth, dtype=float))
 
     def deriv(t: Array) -> Array:
-        m = (1.0 - t)[:, None]
-        tt = t[:, None]
-        return 3.0 * (m * m * (c[1] - c[0]) + 2.0 * m * tt * (c[2] - c[1]) + tt * tt * (c[3] - c[2]))
+        m = 1.0 - t
+        z = 3.0 * (m * m * dz[0] + 2.0 * m * t * dz[1] + t * t * dz[2])
+        return np.concatenate([top.derivative(t), z[:, None]], axis=1)
 
     fine = np.linspace(0.0, 1.0, 32 * n + 1)
-    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(point(fine), axis=0), axis=1))])
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(piece.point_t(fine), axis=0), axis=1))])
     if s[-1] <= TOL.zero:
         raise GeometryError("zero-length sketch piece")
     t = np.interp(np.linspace(0.0, s[-1], n + 1), s, fine)
@@ -220,9 +217,9 @@ def _sample_bezier3(c: Array, segments: int) -> CurveSamples:
     # a vanishing derivative (a handle on its end point): the chord's direction stands in
     bad = ln <= TOL.zero * max(1.0, s[-1])
     if bad.any():
-        d[bad] = (point(np.minimum(t[bad] + 1e-6, 1.0)) - point(np.maximum(t[bad] - 1e-6, 0.0)))
+        d[bad] = piece.point_t(np.minimum(t[bad] + 1e-6, 1.0)) - piece.point_t(np.maximum(t[bad] - 1e-6, 0.0))
         ln = np.linalg.norm(d, axis=1)
-    return CurveSamples(point(t), d / ln[:, None])
+    return CurveSamples(piece.point_t(t), d / ln[:, None])
 
 
 # -- the sweep kernel ---------------------------------------------------------------------------

@@ -7,11 +7,11 @@ import math
 import numpy as np
 import pytest
 from geometry_cases import angles, arcs, beziers, lines
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 
 from auszug.errors import GeometryError
-from auszug.geometry import SymmetryGroup
+from auszug.geometry import CubicBezier, SymmetryGroup
 
 centres = st.tuples(st.floats(-5, 5), st.floats(-5, 5))
 
@@ -131,6 +131,7 @@ def test_quarter_turns_are_exact():
 
 
 @given(groups(max_n=6), st.one_of(lines(), arcs(), beziers()), st.floats(0, 1))
+@example(SymmetryGroup(3), CubicBezier((0.0, 0.0), (1.0, 0.0), (0.0, 0.0), (1.0, 1e-11)), 0.0)   # a near-cusp at 0.5
 def test_transform_curve(g, curve, t):
     imgs = g.transform_curve(curve)
     assert len(imgs) == g.order and imgs[0] is curve
@@ -140,7 +141,11 @@ def test_transform_curve(g, curve, t):
         assert c.length() == pytest.approx(curve.length(), rel=1e-12)
         mirrored = g.element(i)[1]
         k0 = float(curve.curvature(0.5))
-        if np.isfinite(k0):
+        # curvature is |B' x B''| / |B'|^3: at a near-cusp (speed ~1e-11 of the curve's size, as
+        # hypothesis found for p0 = p2) the rotation's round-off changes it by orders of magnitude
+        size = max(curve.length(), 1e-300)
+        cusp = hasattr(curve, "speed") and float(curve.speed(0.5)) <= 1e-6 * size   # lines, arcs: none
+        if np.isfinite(k0) and not cusp:
             assert float(c.curvature(0.5)) == pytest.approx(-k0 if mirrored else k0,
                                                             rel=1e-6, abs=1e-6)
 

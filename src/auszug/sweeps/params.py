@@ -251,6 +251,11 @@ class SweepParams:
     min_sweep_length: float = 0.2
     patch_overlap: float = 0.8
     profile_fit_tolerance: float = 0.002
+    max_parts: int = 8
+    part_candidates: int = 128
+    part_min_points: int = 200
+    part_margin: float = 0.01
+    part_l_min: float = 0.03
 
     def __post_init__(self) -> None:
         checks = [
@@ -305,6 +310,12 @@ class SweepParams:
             ("min_sweep_length", self.min_sweep_length >= 0, ">= 0"),
             ("patch_overlap", 0 < self.patch_overlap <= 1, "in (0, 1]"),
             ("profile_fit_tolerance", 0 <= self.profile_fit_tolerance <= 0.1, "in [0, 0.1] (bounding-box diameters)"),
+            ("max_parts", _whole(self.max_parts) and 0 <= self.max_parts <= 64, "a whole number in 0..64"),
+            ("part_candidates", _whole(self.part_candidates) and 1 <= self.part_candidates <= 1024,
+             "a whole number in 1..1024"),
+            ("part_min_points", _whole(self.part_min_points) and self.part_min_points >= 1, "a whole number >= 1"),
+            ("part_margin", _real(self.part_margin) and 0 <= self.part_margin <= 0.5, "in [0, 0.5] (bounding-box diameters)"),
+            ("part_l_min", _real(self.part_l_min) and 0 < self.part_l_min <= 10, "in (0, 10] (bounding-box diameters)"),
         ]
         for name, ok, want in checks:
             if not ok:

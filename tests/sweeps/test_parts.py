@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from auszug.sweeps import DEFAULT, cut, detect, initial_planes, movability, normalise
+from auszug.sweeps import DEFAULT, cut, detect, initial_planes, normalise
 from auszug.sweeps.fixtures import extruded, revolved
 from auszug.sweeps.general import motion_planes
 from auszug.sweeps.kinematic import axis_angle

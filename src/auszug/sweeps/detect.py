@@ -225,7 +225,8 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         stages.extend(general)
 
     def passes(p: SweepPatch) -> bool:
-        return p.fit_error <= bound and p.coverage >= params.min_patch_area and sweep_length(p) >= params.min_sweep_length
+        return (p.fit_error <= bound and p.coverage >= params.min_patch_area
+                and sweep_length(p) >= params.min_sweep_length)
 
     free = np.ones(len(m.faces), bool)
     for p in raw:

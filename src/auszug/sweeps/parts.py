@@ -104,7 +104,7 @@ def unscrewed(states: Array, params: SweepParams = DEFAULT) -> Array:
     out = np.empty((len(states), 6))
     for i, c in enumerate(np.asarray(states, float)):
         kind, d, p, _ = motion_of(c, params)
-        out[i] = np.r_[0.0, 0.0, 0.0, d] if kind == "translation" else np.r_[d, np.cross(p, d)]
+        out[i] = np.r_[0.0, 0.0, 0.0, d] if p is None else np.r_[d, np.cross(p, d)]
     return out / np.linalg.norm(out, axis=1, keepdims=True)
 
 
@@ -323,7 +323,6 @@ def kinematic_parts(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepP
     if cuts.n_curves == 0 or params.max_parts == 0:
         return out, 0
     areas = face_areas(mesh.vertices, mesh.faces)
-    total = float(areas.sum())
     curve_of = np.repeat(np.arange(cuts.n_curves), np.diff(cuts.curve_start))
     # a cut point is explained when both faces of its edge are covered
     ef = mesh.edge_faces[cuts.edges]
@@ -333,12 +332,12 @@ def kinematic_parts(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepP
     # a curve whose normals hardly turn lies in a nearly flat strip, where every motion in its plane
     # glides: it neither votes nor counts (movability's min_spread, for whole curves)
     nn = np.einsum("ni,nj->nij", cuts.normals, cuts.normals)
-    spread = np.linalg.eigvalsh(np.add.reduceat(nn, cuts.curve_start[:-1], axis=0) / np.maximum(counts, 1)[:, None, None])
+    mean_nn = np.add.reduceat(nn, cuts.curve_start[:-1], axis=0) / np.maximum(counts, 1)[:, None, None]
+    spread = np.linalg.eigvalsh(mean_nn)
     open_curve &= spread[:, 1] >= params.min_spread
     ev = mov.eigenvalues
     voter = ev[:, 1] >= params.kinematic_gap * np.maximum(ev[:, 0], 1e-300)
-    mats = mov.matrices / np.maximum(counts, 1)[:, None, None]
-    part_params = params.with_(l_min=params.part_l_min, profile_cuts=params.profile_cuts)
+    part_params = params.with_(l_min=params.part_l_min)
     tried = 0
     while tried < params.max_parts:
         # candidates spread evenly over the open voters, drawn afresh as the open curves shrink

@@ -38,7 +38,10 @@ def test_random_bumps_are_no_sweep(eps, most):
     if most == 0.0:
         assert r.patches == ()
     assert r.stage("kinematic").numbers["kinematic"] == 0
-    assert [s.name for s in r.stages] == ["normalise", "cut", "kinematic", "match", "families", "motion", "fit"]
+    # nothing covers the bumps, so the kinematic parts are sought too, and none fits
+    assert [s.name for s in r.stages] == ["normalise", "cut", "kinematic", "match", "families", "motion", "parts",
+                                          "fit"]
+    assert r.stage("parts").numbers["fit"] == 0
 
 
 def test_patches_are_in_the_input_coordinates():

@@ -64,6 +64,9 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                    help="shortest movable run and match (default 0.2)")
     g.add_argument("--match-angle", type=_common.positive, default=None, metavar="DEG",
                    help="cuts whose planes meet at more than DEG are not matched (default 25)")
+    g.add_argument("--parts", type=_common.at_least(0), default=None, metavar="N",
+                   help="at most N motions tried for kinematic parts, 0 = none (default 8; beyond the paper: "
+                        "pieces that are each an extrusion or a surface of revolution, docs/sweeps.md)")
 
 
 def _params(args: argparse.Namespace) -> Any:
@@ -72,7 +75,7 @@ def _params(args: argparse.Namespace) -> Any:
     changes = {name: getattr(args, opt) for opt, name in (
         ("eps_prox", "eps_prox"), ("planes", "initial_plane_count"), ("percentile", "percentile"),
         ("refinements", "refinements"), ("eps_match", "eps_match"), ("l_min", "l_min"),
-        ("match_angle", "match_angle")) if getattr(args, opt) is not None}
+        ("match_angle", "match_angle"), ("parts", "max_parts")) if getattr(args, opt) is not None}
     return DEFAULT.with_(**changes)
 
 

@@ -600,3 +600,35 @@ def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cov
             acc[i, 2] += cz
             count[i] += 1.0
     return acc, count
+
+
+# ------------------------------------------------------------------------------ kinematic parts
+
+
+@njit(cache=True)
+def glide_shares(x, nrm, starts, states, beta, gamma, floor, thresh):  # pragma: no cover - compiled
+    """Per state ``(k, 6)`` and curve, the share of its points whose Alg. 1 weight exceeds ``thresh``.
+
+    ``starts (c + 1,)`` delimits the curves in ``x``, ``nrm`` ``(N, 3)``.
+    """
+    k, n_c = len(states), len(starts) - 1
+    out = np.zeros((k, n_c))
+    f2 = floor * floor
+    # 1 / (1 + beta f^gamma) > thresh  <=>  f < fmax (f >= 0, gamma > 0)
+    fmax = ((1.0 / thresh - 1.0) / beta) ** (1.0 / gamma)
+    for s in range(k):
+        c0, c1, c2 = states[s, 0], states[s, 1], states[s, 2]
+        b0, b1, b2 = states[s, 3], states[s, 4], states[s, 5]
+        for j in range(n_c):
+            a, b = starts[j], starts[j + 1]
+            good = 0
+            for i in range(a, b):
+                px, py, pz = x[i, 0], x[i, 1], x[i, 2]
+                vx = b0 + c1 * pz - c2 * py
+                vy = b1 + c2 * px - c0 * pz
+                vz = b2 + c0 * py - c1 * px
+                nv = nrm[i, 0] * vx + nrm[i, 1] * vy + nrm[i, 2] * vz
+                if nv * nv < fmax * (vx * vx + vy * vy + vz * vz + f2):
+                    good += 1
+            out[s, j] = good / max(b - a, 1)
+    return out

@@ -16,7 +16,11 @@ Stages (each also callable alone, see :mod:`auszug.sweeps`):
    glided under one turn that fit nothing, also tried as pure translations). The paper's
    adaptive plane refinement (:func:`~auszug.sweeps.search_planes`) is not run: its good planes,
    ranked by gliding energy, miss the profile planes (docs/sweeps.md);
-5. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
+5. ``parts`` (beyond the paper; only where the patches so far that pass the fit leave at least
+   ``min_patch_area`` of the mesh): :func:`~auszug.sweeps.parts.kinematic_parts`, the pieces that
+   are each a surface of revolution or an extrusion, such as a moulding's straight and arched
+   stretches along a window's border;
+6. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
    ``min_patch_area`` of the mesh are dropped; the rest are converted to the input's coordinates,
    each profile fitted with exact lines and arcs (``profile_fit_tolerance``, docs/sweeps.md section 6).
 
@@ -49,7 +53,7 @@ Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
 #: The stages in the order :func:`detect` runs them (the general ones only on non-kinematic meshes).
-STAGES = ("normalise", "cut", "kinematic", "match", "families", "motion", "fit")
+STAGES = ("normalise", "cut", "kinematic", "match", "families", "motion", "parts", "fit")
 
 Progress = Callable[[str, int, int], None]
 
@@ -220,9 +224,31 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         raw.extend(more)
         stages.extend(general)
 
+    def passes(p: SweepPatch) -> bool:
+        return (p.fit_error <= bound and p.coverage >= params.min_patch_area
+                and sweep_length(p) >= params.min_sweep_length)
+
+    free = np.ones(len(m.faces), bool)
+    for p in raw:
+        if passes(p):
+            free[p.faces] = False
+    if params.max_parts > 0 and areas.sum() > 0 and float(areas[free].sum() / areas.sum()) >= params.min_patch_area:
+        # what the whole-mesh consensus and the general sweeps leave: parts that are each a
+        # surface of revolution or an extrusion (beyond the paper, docs/sweeps.md)
+        from auszug.sweeps.parts import kinematic_parts
+
+        t = step("parts")
+        found, tried = kinematic_parts(m, cuts, mov, params, free, first_id=len(raw))
+        raw.extend(found)
+        fits = sum(passes(p) for p in found)
+        stages.append(Stage("parts", time.perf_counter() - t,
+                            f"{tried} motion(s) tried on the {float(areas[free].sum() / areas.sum()):.3f} of the area "
+                            f"left, {len(found)} part patch(es), {fits} within fit error {bound:.3g}, covering "
+                            f">= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}",
+                            {"tried": tried, "candidates": len(found), "fit": fits}))
+
     t = step("fit")
-    good = [p for p in raw if p.fit_error <= bound and p.coverage >= params.min_patch_area
-            and sweep_length(p) >= params.min_sweep_length]
+    good = [p for p in raw if passes(p)]
     kept: list[SweepPatch] = []
     taken = np.zeros(len(m.faces), bool)
     for p in sorted(good, key=lambda p: (-p.coverage, p.fit_error)):

@@ -197,6 +197,18 @@ class SweepParams:
         (:func:`auszug.sweeps.fit_profile`) and the fit kept when its Hausdorff distance to the
         polyline is at most this (bounding-box diameters; its pieces' vertices lie within a
         quarter of it of their line or circle). 0: no fit.
+    max_parts : int
+        Beyond the paper (:mod:`auszug.sweeps.parts`): at most this many motions are tried for
+        parts that are each an extrusion or a surface of revolution, on what the other patches
+        leave (0..64; 0: none).
+    part_candidates : int
+        Velocity states of single cuts scored per motion tried (1..1024).
+    part_min_points : int
+        A motion is tried only when its candidate moves at least this many cut points.
+    part_margin : float
+        Growth of a part's box and range around its gliding cut points (bounding-box diameters).
+    part_l_min : float
+        Shortest profile piece of a part (bounding-box diameters; ``l_min`` is for matching).
     """
 
     beta: float = 400.0
@@ -251,6 +263,11 @@ class SweepParams:
     min_sweep_length: float = 0.2
     patch_overlap: float = 0.8
     profile_fit_tolerance: float = 0.002
+    max_parts: int = 8
+    part_candidates: int = 128
+    part_min_points: int = 200
+    part_margin: float = 0.01
+    part_l_min: float = 0.03
 
     def __post_init__(self) -> None:
         checks = [
@@ -305,6 +322,13 @@ class SweepParams:
             ("min_sweep_length", self.min_sweep_length >= 0, ">= 0"),
             ("patch_overlap", 0 < self.patch_overlap <= 1, "in (0, 1]"),
             ("profile_fit_tolerance", 0 <= self.profile_fit_tolerance <= 0.1, "in [0, 0.1] (bounding-box diameters)"),
+            ("max_parts", _whole(self.max_parts) and 0 <= self.max_parts <= 64, "a whole number in 0..64"),
+            ("part_candidates", _whole(self.part_candidates) and 1 <= self.part_candidates <= 1024,
+             "a whole number in 1..1024"),
+            ("part_min_points", _whole(self.part_min_points) and self.part_min_points >= 1, "a whole number >= 1"),
+            ("part_margin", _real(self.part_margin) and 0 <= self.part_margin <= 0.5,
+             "in [0, 0.5] (bounding-box diameters)"),
+            ("part_l_min", _real(self.part_l_min) and 0 < self.part_l_min <= 10, "in (0, 10] (bounding-box diameters)"),
         ]
         for name, ok, want in checks:
             if not ok:

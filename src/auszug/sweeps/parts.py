@@ -1,0 +1,387 @@
+"""Kinematic parts: the pieces of a mesh that are each a surface of revolution or an extrusion.
+
+Beyond the paper. :func:`~auszug.sweeps.kinematic.kinematic_axis` asks whether *all* cuts glide
+under one motion; a Gothic moulding run along a window's border is no such surface as a whole
+(its jambs are extrusions, its arches surfaces of revolution about the arcs' centres, each with a
+motion of its own), and the general sweeps of sec. 2.3 need profiles of ``l_min`` (20 % of the
+diameter), which such a moulding's profile is not. Here the consensus is sought among subsets of
+the cuts, one motion after another (a sequential consensus, in the manner of RANSAC):
+
+1. candidates: the own velocity states of cuts not yet explained whose state is well determined
+   (second eigenvalue at least ``kinematic_gap`` times the first), at most ``part_candidates``
+   of them, spread evenly over the planes;
+2. each candidate is scored by the cut points of the unexplained curves that glide under it as
+   whole curves (at least ``kinematic_share`` of a curve's points with weight above 2/3, as for the
+   whole mesh); the best one is refitted to the curves that glide (the eigenvector of the smallest
+   eigenvalue of their summed movability matrices) and its gliding curves found again;
+3. the part is the mesh near what those curves span: the faces whose vertices lie, in the
+   motion's invariant coordinates (for a translation the plane normal to it, for a rotation
+   the radius and the height along the axis), within the gliding points' box, and in the
+   motion's parameter within the gliding points' range, each grown by ``part_margin``;
+4. :func:`~auszug.sweeps.patches.kinematic_patches` on that part, with profiles down to
+   ``part_l_min`` long, fitted against the part; the fit check and the area and sweep-length
+   filters of :func:`~auszug.sweeps.detect` decide what is kept;
+5. the gliding curves count as explained (kept or not) and the search goes on, at most
+   ``max_parts`` times, while some candidate moves at least ``part_min_points`` cut points.
+
+Screw motions are not sought as parts (only rotations and translations): a helical part's
+parameter range would need the winding of every face, and no fixture has one.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from auszug.sweeps._kernels import glide_shares
+from auszug.sweeps.cut import Cuts
+from auszug.sweeps.kinematic import KinematicAxis, motion_of
+from auszug.sweeps.mesh import SweepMesh
+from auszug.sweeps.motion import Motion, screw_motion
+from auszug.sweeps.movability import Movability
+from auszug.sweeps.params import DEFAULT, SweepParams
+from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas, fit_patch, kinematic_patches
+
+__all__ = ["gliding_shares", "kinematic_parts", "part_faces", "refined", "unscrewed"]
+
+Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+
+def gliding_shares(cuts: Cuts, states: Array, params: SweepParams = DEFAULT,
+                   curves: NDArray[np.bool_] | None = None) -> Array:
+    """Per velocity state and curve, the share of the curve's points that glide under it.
+
+    Parameters
+    ----------
+    cuts : Cuts
+    states : (k, 6) float array
+        Velocity states ``(c, c_bar)`` (normalised mesh coordinates).
+    params : SweepParams
+        ``beta``, ``gamma``, ``speed_floor`` and ``weight_threshold`` (Alg. 1's weight).
+    curves : (c,) bool array, optional
+        Only these curves are evaluated (the others get share 0).
+
+    Returns
+    -------
+    (k, c) float array
+        Shares in [0, 1].
+    """
+    s = np.atleast_2d(np.asarray(states, float))
+    pick = np.ones(cuts.n_curves, bool) if curves is None else np.asarray(curves, bool)
+    out = np.zeros((len(s), cuts.n_curves))
+    if not pick.any():
+        return out
+    sizes = np.diff(cuts.curve_start)
+    at = np.repeat(pick, sizes)
+    starts = np.concatenate([[0], np.cumsum(sizes[pick])]).astype(np.int64)
+    sub = glide_shares(np.ascontiguousarray(cuts.points[at]), np.ascontiguousarray(cuts.normals[at]), starts,
+                       np.ascontiguousarray(s), float(params.beta), float(params.gamma), float(params.speed_floor),
+                       float(params.weight_threshold))
+    out[:, pick] = sub
+    return out
+
+
+def _axis(c: Array, params: SweepParams) -> KinematicAxis:
+    kind, direction, point, pitch = motion_of(c, params)
+    return KinematicAxis(kind, c, direction, point, pitch, 0, 0.0, float("nan"))
+
+
+def unscrewed(states: Array, params: SweepParams = DEFAULT) -> Array:
+    """Velocity states ``(k, 6)`` made pure rotations or translations (unit norm).
+
+    A translation (by :func:`~auszug.sweeps.kinematic.motion_of`'s test) keeps only ``c_bar``;
+    anything else becomes the rotation about its screw axis: ``(d, p x d)`` for the axis through
+    ``p`` along ``d``, normalised.
+
+    Examples
+    --------
+    >>> np.round(unscrewed(np.array([[0, 0, 1.0, 0, 0, 0.3]])), 6).tolist()
+    [[0.0, 0.0, 1.0, 0.0, 0.0, 0.0]]
+    """
+    out = np.empty((len(states), 6))
+    for i, c in enumerate(np.asarray(states, float)):
+        kind, d, p, _ = motion_of(c, params)
+        out[i] = np.r_[0.0, 0.0, 0.0, d] if p is None else np.r_[d, np.cross(p, d)]
+    return out / np.linalg.norm(out, axis=1, keepdims=True)
+
+
+def refined(state: Array, points: Array, normals: Array, params: SweepParams = DEFAULT) -> Array:
+    """A rotation or translation state ``(6,)`` refitted to cut points ``(n, 3)`` with normals ``(n, 3)``.
+
+    Robust least squares (scipy's ``least_squares``, Cauchy loss at scale 0.02) of the cosines
+    between the velocity and the surface normal over the axis' direction and point (4 unknowns)
+    or the translation's direction (2): the motion stays a pure rotation or translation, which the
+    summed movability matrices' eigenvector, a screw in general, does not.
+    """
+    from scipy.optimize import least_squares
+
+    axis = _axis(state, params)
+    d0 = axis.direction
+    e1, e2 = _frame(d0)
+    if axis.kind == "translation":
+        def res_t(z: Array) -> Array:
+            d = d0 + z[0] * e1 + z[1] * e2
+            return np.asarray(normals @ (d / np.linalg.norm(d)))
+
+        z = least_squares(res_t, np.zeros(2), loss="cauchy", f_scale=0.02, x_scale=0.1).x
+        d = d0 + z[0] * e1 + z[1] * e2
+        return np.r_[0.0, 0.0, 0.0, d / np.linalg.norm(d)]
+    p0 = axis.point
+    assert p0 is not None
+
+    def geometry(z: Array) -> tuple[Array, Array]:
+        d = d0 + z[0] * e1 + z[1] * e2
+        return d / np.linalg.norm(d), p0 + z[2] * e1 + z[3] * e2
+
+    def res_r(z: Array) -> Array:
+        d, p = geometry(z)
+        v = np.cross(d, points - p)
+        return np.asarray(np.einsum("ij,ij->i", normals, v) / np.sqrt(np.einsum("ij,ij->i", v, v)
+                                                                    + params.speed_floor**2))
+
+    z = least_squares(res_r, np.zeros(4), loss="cauchy", f_scale=0.02, x_scale=0.1).x
+    d, p = geometry(z)
+    c = np.r_[d, np.cross(p, d)]
+    return c / np.linalg.norm(c)
+
+
+def _frame(d: Array) -> tuple[Array, Array]:
+    a = np.array([1.0, 0, 0]) if abs(d[0]) < 0.9 else np.array([0, 1.0, 0])
+    e1 = np.cross(d, a)
+    e1 /= np.linalg.norm(e1)
+    return e1, np.cross(d, e1)
+
+
+def _coordinates(axis: KinematicAxis, x: Array) -> tuple[Array, Array, float]:
+    """Invariant coordinates ``(n, 2)``, the parameter ``(n,)`` (length or angle) and a length per unit of it."""
+    d = axis.direction
+    e1, e2 = _frame(d)
+    if axis.kind == "translation":
+        return np.column_stack([x @ e1, x @ e2]), x @ d, 1.0
+    assert axis.point is not None
+    y = x - axis.point
+    h = y @ d
+    a, b = y @ e1, y @ e2
+    r = np.hypot(a, b)
+    return np.column_stack([r, h]), np.arctan2(b, a), max(float(np.median(r)), 1e-9)
+
+
+def _range(t: Array, angular: bool) -> tuple[float, float]:
+    """The smallest interval (for angles: arc, as ``(start, length)``) holding the values ``t``."""
+    if not angular:
+        return float(t.min()), float(np.ptp(t))
+    phi = np.sort(np.mod(t, 2 * np.pi))
+    gaps = np.diff(np.concatenate([phi, phi[:1] + 2 * np.pi]))
+    g = int(np.argmax(gaps))
+    return float(phi[(g + 1) % len(phi)]), float(2 * np.pi - gaps[g])
+
+
+def part_faces(mesh: SweepMesh, axis: KinematicAxis, points: Array, margin: float,
+               faces: IntArray | None = None) -> IntArray:
+    """The faces near what ``points`` span under a rotation or translation (step 3 of the module's text).
+
+    Parameters
+    ----------
+    mesh : SweepMesh
+    axis : KinematicAxis
+        A rotation or a translation.
+    points : (n, 3) float array
+        The gliding cut points (normalised coordinates).
+    margin : float
+        Growth of the box and the range (bounding-box diameters).
+    faces : (m,) int array, optional
+        The candidate faces (default all).
+
+    Returns
+    -------
+    (k,) int array
+        Indices into ``mesh.faces``, ascending.
+    """
+    cand = np.arange(len(mesh.faces), dtype=np.int64) if faces is None else np.asarray(faces, np.int64)
+    q, t, unit = _coordinates(axis, points)
+    lo, hi = q.min(axis=0) - margin, q.max(axis=0) + margin
+    angular = axis.kind != "translation"
+    start, length = _range(t, angular)
+    grow = margin / unit
+    vq, vt, _ = _coordinates(axis, mesh.vertices)
+    inside = np.all((vq >= lo) & (vq <= hi), axis=1)
+    rel = np.mod(vt - start + grow, 2 * np.pi) if angular else vt - start + grow
+    inside &= (rel >= 0) & (rel <= length + 2 * grow)
+    return cand[inside[mesh.faces[cand]].all(axis=1)]
+
+
+def _submesh(mesh: SweepMesh, keep: IntArray) -> SweepMesh:
+    """The mesh restricted to the faces ``keep`` (same vertex array; edges and index maps selected)."""
+    used = np.zeros(len(mesh.edges), bool)
+    used[mesh.face_edges[keep]] = True
+    used_edges = np.flatnonzero(used)
+    edge_index = np.full(len(mesh.edges), -1, np.int64)
+    edge_index[used_edges] = np.arange(len(used_edges))
+    face_index = np.full(len(mesh.faces) + 1, -1, np.int64)    # [-1] stays -1: a missing face
+    face_index[keep] = np.arange(len(keep))
+    return replace(mesh, faces=mesh.faces[keep], edges=mesh.edges[used_edges],
+                   edge_faces=face_index[mesh.edge_faces[used_edges]],
+                   face_edges=edge_index[mesh.face_edges[keep]])
+
+
+def _trimmed(mesh: SweepMesh, tree: MeshTree, axis: KinematicAxis, p: SweepPatch,
+             params: SweepParams) -> SweepPatch | None:
+    """The patch over the longest range of its motion where the moved profile stays on the mesh.
+
+    A part's range is what its box spans, which may hold a corner where the moulding turns: rings
+    of the profile (about ``eps_prox`` apart) are kept where all their points lie within
+    ``eps_prox`` of the mesh, the longest such run of rings is the patch's range, and the patch is
+    fitted again over it. None if no ring fits or the profile's centroid travels less than
+    ``min_sweep_length`` over that run (:func:`~auszug.sweeps.detect` would drop the patch).
+    """
+    t = p.motion.t
+    step = params.eps_prox
+    scale = float(np.ptp(t)) * (1.0 if axis.kind == "translation" else max(float(np.max(np.linalg.norm(
+        p.profile - (axis.point if axis.point is not None else 0.0), axis=1))), 1e-9))
+    k = int(min(max(8, np.ceil(scale / step)), 4096))
+    ts = np.linspace(t[0], t[-1], k)
+    rings = p.motion.apply(p.profile, ts)
+    d = tree.query(rings.reshape(-1, 3))[0].reshape(k, -1)
+    ok = d.max(axis=1) <= params.eps_prox
+    if not ok.any():
+        return None
+    # longest run of fitting rings
+    edges = np.diff(np.concatenate([[0], ok.astype(np.int8), [0]]))
+    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    j = int(np.argmax(ends - starts))
+    a, b = ts[starts[j]], ts[ends[j] - 1]
+    centre = rings.mean(axis=1)
+    swept = float(np.linalg.norm(np.diff(centre[starts[j]:ends[j]], axis=0), axis=1).sum())
+    if not b > a or swept < params.min_sweep_length:
+        return None         # detect drops a patch sweeping less
+    if a == t[0] and b == t[-1]:
+        return p
+    m = max(8, params.motion_samples)
+    tk = np.linspace(0.0, b - a, m)
+    rot, tr = screw_motion(axis.direction, axis.point, axis.pitch if axis.kind == "screw" else 0.0, tk)
+    motion = Motion(tk, rot, tr)
+    r0, t0 = p.motion.at(np.array([a]))
+    profile = p.profile @ r0[0].T + t0[0]
+    fit = fit_patch(mesh, profile, p.closed, motion, params, tree=tree)
+    return SweepPatch(p.id, p.kind, profile, p.closed, motion, fit.faces, fit.fit_error, fit.coverage)
+
+
+def _good_cover(patches: list[SweepPatch], params: SweepParams) -> float:
+    return sum(p.coverage for p in patches if p.fit_error <= params.fit_factor * params.eps_prox)
+
+
+def _part_patches(mesh: SweepMesh, axis: KinematicAxis, pts: Array, free: NDArray[np.bool_], areas: Array,
+                  part_params: SweepParams, params: SweepParams) -> list[SweepPatch]:
+    """The trimmed kinematic patches of the part that ``pts`` span under ``axis`` (faces of ``mesh``)."""
+    keep = part_faces(mesh, axis, pts, params.part_margin, np.flatnonzero(free))
+    if len(keep) == 0 or float(areas[keep].sum()) < params.min_patch_area * float(areas.sum()):
+        return []           # too small to be kept whatever fits
+    sub = _submesh(mesh, keep)
+    sub_tree = MeshTree(sub.vertices, sub.faces)
+    total = float(areas.sum())
+    out = []
+    for p in kinematic_patches(sub, axis, part_params):
+        q = _trimmed(sub, sub_tree, axis, p, part_params)
+        if q is None:
+            continue
+        faces = keep[q.faces]
+        cov = float(areas[faces].sum() / total) if total > 0 else 0.0
+        out.append(replace(q, faces=faces, coverage=cov))
+    return out
+
+
+def kinematic_parts(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams = DEFAULT,
+                    free: NDArray[np.bool_] | None = None, first_id: int = 0) -> tuple[list[SweepPatch], int]:
+    """Rotation and translation patches of the parts of a mesh (normalised coordinates), fitted, not filtered.
+
+    Parameters
+    ----------
+    mesh : SweepMesh
+    cuts, mov : Cuts, Movability
+        The initial planes' cuts and their movability.
+    params : SweepParams
+        ``max_parts``, ``part_candidates``, ``part_min_points``, ``part_margin``, ``part_l_min``
+        and the kinematic and fit parameters.
+    free : (m,) bool array, optional
+        Faces not yet covered (default all): cut points on covered faces are explained already, and
+        parts hold free faces only.
+    first_id : int
+        Id of the first patch.
+
+    Returns
+    -------
+    patches : list of SweepPatch
+        Faces index ``mesh.faces``; coverage is the share of the whole mesh's area.
+    tried : int
+        Motions tried (parts found, kept or not).
+    """
+    free_f = np.ones(len(mesh.faces), bool) if free is None else np.array(free, bool)
+    out: list[SweepPatch] = []
+    if cuts.n_curves == 0 or params.max_parts == 0:
+        return out, 0
+    areas = face_areas(mesh.vertices, mesh.faces)
+    curve_of = np.repeat(np.arange(cuts.n_curves), np.diff(cuts.curve_start))
+    # a cut point is explained when both faces of its edge are covered
+    ef = mesh.edge_faces[cuts.edges]
+    covered_pt = np.where(ef >= 0, ~free_f[np.maximum(ef, 0)], True).all(axis=1)
+    counts = np.diff(cuts.curve_start)
+    open_curve = np.add.reduceat((~covered_pt).astype(np.int64), cuts.curve_start[:-1]) > counts // 2
+    # a curve whose normals hardly turn lies in a nearly flat strip, where every motion in its plane
+    # glides: it neither votes nor counts (movability's min_spread, for whole curves)
+    nn = np.einsum("ni,nj->nij", cuts.normals, cuts.normals)
+    mean_nn = np.add.reduceat(nn, cuts.curve_start[:-1], axis=0) / np.maximum(counts, 1)[:, None, None]
+    spread = np.linalg.eigvalsh(mean_nn)
+    open_curve &= spread[:, 1] >= params.min_spread
+    ev = mov.eigenvalues
+    voter = ev[:, 1] >= params.kinematic_gap * np.maximum(ev[:, 0], 1e-300)
+    part_params = params.with_(l_min=params.part_l_min)
+    tried = 0
+    while tried < params.max_parts:
+        # candidates spread evenly over the open voters, drawn afresh as the open curves shrink
+        cand = np.flatnonzero(voter & open_curve)
+        if len(cand) == 0:
+            break
+        cand = cand[np.unique(np.linspace(0, len(cand) - 1, min(len(cand), params.part_candidates)).astype(int))]
+        states = unscrewed(mov.velocity[cand], params)
+        share = gliding_shares(cuts, states, params, open_curve)
+        score = (share >= params.kinematic_share) @ counts
+        best = int(np.argmax(score))
+        if score[best] < params.part_min_points:
+            break
+        glide = (share[best] >= params.kinematic_share) & open_curve
+        # refit to the gliding curves, then find them again under the refitted motion
+        # refitted as a pure rotation or translation to the curves that glide, while that keeps at
+        # least 80 % of them gliding (a candidate from one short cut may be tilted by degrees and
+        # still glide more curves, within Alg. 1's tolerance)
+        c = states[best]
+        for _ in range(3):
+            sel = glide[curve_of]
+            c2 = refined(c, cuts.points[sel], cuts.normals[sel], params)
+            g2 = (gliding_shares(cuts, c2[None], params)[0] >= params.kinematic_share) & open_curve
+            if g2 @ counts < 0.8 * (glide @ counts):
+                break
+            c, glide = c2, g2 | glide
+        tried += 1
+        open_curve &= ~glide
+        axis = _axis(c, params)
+        if axis.kind == "screw":
+            continue
+        pts = cuts.points[glide[curve_of] & ~covered_pt]
+        if len(pts) < params.part_min_points:
+            continue
+        found = _part_patches(mesh, axis, pts, free_f, areas, part_params, params)
+        if axis.kind == "rotation":
+            # cuts of a piece of an extrusion whose profile is partly round glide under the rotation
+            # about a line along it too: the translation along the axis is tried, the larger cover wins
+            slide = _axis(np.r_[0.0, 0.0, 0.0, axis.direction], params)
+            other = _part_patches(mesh, slide, pts, free_f, areas, part_params, params)
+            if _good_cover(other, params) > _good_cover(found, params):
+                found = other
+        for p in found:
+            if p.fit_error <= params.fit_factor * params.eps_prox:
+                free_f[p.faces] = False
+            out.append(replace(p, id=first_id + len(out)))
+    return out, tried

@@ -1,0 +1,150 @@
+"""Kinematic parts (auszug.sweeps.parts): a moulding along a window's border, found piece by piece.
+
+The fixture is the one of test_tracery_border.py: ``tracery.build("fig20a")``'s arch region with
+the ``fig18`` profile lofted along its border (the sill and two jambs, lines; two arcs meeting at
+the apex). Each line's stretch is an extrusion along it, each arc's a surface of revolution about
+the axis through its centre normal to the window; the truth comes from the tracery's own curves.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from auszug.sweeps import DEFAULT, cut, detect, initial_planes, normalise
+from auszug.sweeps.fixtures import extruded, revolved
+from auszug.sweeps.general import motion_planes
+from auszug.sweeps.kinematic import axis_angle
+from auszug.sweeps.parts import gliding_shares, part_faces, refined, unscrewed
+from auszug.sweeps.planes import plane_recall
+
+from .test_tracery_border import _border
+
+
+@cache
+def _report():
+    v, f, *_ = _border()
+    return detect((v, f))
+
+
+def _arc_centres():
+    """The border arcs' centres ``(2, 2)`` in the fixture's normalised frame.
+
+    ``_border`` gives every border curve's middle point normalised; the tracery gives them in the
+    window's units: two of them fix the scale and the shift."""
+    from auszug.tracery import build
+
+    _, _, _, _, where, _, _ = _border()
+    curves = build("fig20a").regions[0].curves
+    raw = np.array([c.point(np.array([0.5]))[0] for c in curves])
+    norm = np.array([p for p, _, _, _ in where])
+    scale = float(np.linalg.norm(raw[0] - raw[1]) / np.linalg.norm(norm[0] - norm[1]))
+    shift = raw[0] - norm[0] * scale
+    assert np.allclose(norm * scale + shift, raw, atol=1e-9 * scale)
+    return np.array([(np.asarray(c.center, float) - shift) / scale for c in curves if type(c).__name__ == "Arc"])
+
+
+def _rotation_axis(p):
+    """Unit direction and a point of a rotation patch's axis (from its last map)."""
+    r, t = p.motion.at(np.array([p.motion.t[-1]]))
+    d = Rotation.from_matrix(r[0]).as_rotvec()
+    point = np.linalg.lstsq(np.eye(3) - r[0], t[0], rcond=None)[0]
+    return d / np.linalg.norm(d), point
+
+
+def _translation(p):
+    _, t = p.motion.at(np.array([p.motion.t[-1]]))
+    return t[0] / np.linalg.norm(t[0])
+
+
+def test_the_border_is_found_as_five_kinematic_parts():
+    """Default parameters (before kinematic parts: no patch): jambs and sill as translations along
+    the lines, within 0.2 deg; the arcs as rotations about the window's normal through their centres."""
+    _, _, _, _, where, _, planes = _border()
+    r = _report()
+    assert r.coverage >= 0.95
+    assert sorted(p.kind for p in r.patches) == ["rotation", "rotation", "translation", "translation", "translation"]
+    assert all(p.fit_error <= 2 * DEFAULT.eps_prox for p in r.patches)
+    assert r.stage("parts").numbers["fit"] >= 5
+    lines = np.array([[tg[0], tg[1], 0.0] for _, tg, _, line in where if line])
+    dirs = np.array([_translation(p) for p in r.patches if p.kind == "translation"])
+    assert axis_angle(dirs[:, None], lines[None]).min(axis=1).max() <= 0.2
+    assert sorted(int(np.argmax(np.abs(d))) for d in dirs) == [0, 1, 1]     # the sill along x, the jambs along y
+    centres = _arc_centres()
+    axes = [_rotation_axis(p) for p in r.patches if p.kind == "rotation"]
+    for d, _ in axes:
+        assert float(axis_angle(d, [0, 0, 1])) <= 0.2
+    off = sorted(float(np.linalg.norm(point[:2] - c)) for _, point in axes for c in centres)
+    assert off[0] <= 2e-3 and off[1] <= 2e-3                              # each axis through a centre
+    near = [min(range(2), key=lambda k, q=q: np.linalg.norm(q[:2] - centres[k])) for _, q in axes]
+    assert sorted(near) == [0, 1]                                         # one per arc
+    # the true profile planes (the border's normal planes over the middle 80 % of each curve) found
+    found = [motion_planes(p.profile, p.motion, per_knot=32) for p in r.patches]
+    assert plane_recall(planes, np.vstack([q[0] for q in found]), np.concatenate([q[1] for q in found])) >= 0.95
+
+
+def test_border_profiles_are_the_lofted_profile():
+    """Each patch's profile has the profile's length within the loft's chord tolerance."""
+    _, _, prof, _, _, chord, _ = _border()
+    length = float(np.linalg.norm(np.diff(prof, axis=0), axis=1).sum())
+    for p in _report().patches:
+        got = float(np.linalg.norm(np.diff(p.profile, axis=0), axis=1).sum())
+        assert got == pytest.approx(length, abs=0.1 * length)
+
+
+def test_parts_off_gives_no_patch_on_the_border():
+    v, f, *_ = _border()
+    r = detect((v, f), DEFAULT.with_(max_parts=0))
+    assert r.patches == () and r.stage("parts") is None
+
+
+def test_unscrewed_keeps_rotations_and_translations():
+    rot = np.r_[0.0, 0.0, 1.0, np.cross([0.2, 0.1, 0.0], [0.0, 0.0, 1.0])]
+    tr = np.r_[0.0, 0.0, 0.0, 0.6, 0.8, 0.0]
+    out = unscrewed(np.array([rot, tr]))
+    assert np.allclose(out[0], rot / np.linalg.norm(rot), atol=1e-12)
+    assert np.allclose(out[1], tr, atol=1e-12)
+    # a screw about the same axis loses its pitch, nothing else
+    screw = rot + np.r_[0.0, 0.0, 0.0, 0.0, 0.0, 0.05]
+    assert np.allclose(unscrewed(screw[None])[0], rot / np.linalg.norm(rot), atol=1e-12)
+
+
+@pytest.mark.parametrize("name", ["revolved", "extruded"])
+def test_refined_recovers_the_true_motion_from_a_tilted_start(name):
+    """From a start 3 deg off, the robust refit returns the fixture's axis within 0.05 deg."""
+    fx = {"revolved": revolved, "extruded": extruded}[name](n_profile=40, n_path=60)
+    m = normalise(fx.vertices, fx.faces)
+    c = cut(m, *initial_planes(m.vertices, 3, 0.1))
+    truth_d = fx.axis_direction
+    tilt = Rotation.from_rotvec(np.radians(3.0) * np.array([1.0, 0, 0])).as_matrix()
+    if name == "extruded":
+        start = np.r_[0.0, 0.0, 0.0, tilt @ truth_d]
+    else:
+        p = (np.asarray(fx.axis_point, float) - m.centre) / m.scale
+        d = tilt @ truth_d
+        start = np.r_[d, np.cross(p, d)]
+    got = refined(start / np.linalg.norm(start), c.points, c.normals)
+    d_got = got[3:] if name == "extruded" else got[:3]
+    assert float(axis_angle(d_got, truth_d)) <= 0.05
+    share = gliding_shares(c, got[None])[0]
+    assert np.mean(share >= DEFAULT.kinematic_share) >= 0.95
+
+
+def test_part_faces_is_the_box_and_range_of_the_points():
+    """A translation part of the extrusion: the faces whose vertices lie within the points' span."""
+    fx = extruded(n_profile=40, n_path=60)
+    m = normalise(fx.vertices, fx.faces)
+    d = fx.axis_direction / np.linalg.norm(fx.axis_direction)
+    axis = unscrewed(np.r_[0.0, 0.0, 0.0, d][None])[0]
+    from auszug.sweeps.parts import _axis
+
+    ka = _axis(axis, DEFAULT)
+    s = m.vertices @ d
+    lo, hi = np.quantile(s, [0.25, 0.75])
+    pts = m.vertices[(s >= lo) & (s <= hi)]
+    faces = part_faces(m, ka, pts, 0.0)
+    inside = (s >= lo - 1e-12) & (s <= hi + 1e-12)
+    assert np.array_equal(faces, np.flatnonzero(inside[m.faces].all(axis=1)))

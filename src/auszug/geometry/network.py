@@ -784,12 +784,16 @@ class CurveNetwork:
                         n * sum(self.groups[p.basic].order for p in self.pieces), "network_points")
             # the Beziers' parameters at equal arc-length steps all at once (t_at_u_many: the
             # same tables and Newton steps as each piece's sample_uniform, without numpy's cost per call)
-            bez = [i for i, p in enumerate(self.pieces) if isinstance(p.top, CubicBezier)]
-            ts = dict(zip(bez, t_at_u_many([self.pieces[i].top for i in bez],   # type: ignore[misc]
-                                           np.array([np.linspace(0.0, self.pieces[i].u_end, n) for i in bez])
-                                           .reshape(len(bez), n)), strict=True)) if bez else {}
+            bez = [(i, p.top) for i, p in enumerate(self.pieces) if isinstance(p.top, CubicBezier)]
+            t_of: dict[int, NDArray[np.float64]] = {}
+            if bez:
+                u = np.array([np.linspace(0.0, self.pieces[i].u_end, n) for i, _ in bez])
+                t_of = dict(zip((i for i, _ in bez), t_at_u_many([c for _, c in bez], u), strict=True))
             for i, p in enumerate(self.pieces):
-                pts = p.points[[0, -1]] if p.top is None else p.point_t(ts[i]) if i in ts else p.sample_uniform(n)
+                if p.top is None:
+                    pts = p.points[[0, -1]]
+                else:
+                    pts = p.point_t(t_of[i]) if i in t_of else p.sample_uniform(n)
                 pts.setflags(write=False)
                 pieces.append(replace(p, points=pts))
             return replace(self, pieces=tuple(pieces), features=(), tolerance=None)

@@ -15,6 +15,7 @@ from scipy.optimize import minimize_scalar
 
 from auszug.errors import GeometryError
 from auszug.geometry import CubicBezier, cross2
+from auszug.geometry.bezier import _speed_extrema_many, t_at_u_many
 
 ts = st.floats(0.0, 1.0)
 
@@ -250,3 +251,41 @@ def test_to_dict():
     }
     c = CubicBezier(b.to_dict()["start"], *b.to_dict()["handles"], b.to_dict()["end"])
     assert c.controls.tolist() == b.controls.tolist()
+
+
+# -- many curves at once -------------------------------------------------------------------
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(beziers(), min_size=1, max_size=12), st.lists(ts, min_size=1, max_size=9))
+def test_t_at_u_many_is_t_at_u_of_each(bs, us):
+    """The batched arc-length inversion is each curve's own, to the order BLAS sums the Gauss-Legendre terms."""
+    u = np.array([0.0, *us, 1.0])
+    fresh = [CubicBezier(*b.controls) for b in bs]     # no table yet: t_at_u_many builds them
+    got = t_at_u_many(fresh, u)
+    assert got.shape == (len(bs), len(u))
+    for b, f, row in zip(bs, fresh, got, strict=True):
+        assert np.abs(row - b.t_at_u(u)).max() <= 4e-15
+        assert row[0] == 0.0 and row[-1] == 1.0
+        kb, cb = b._table
+        kf, cf = f._table                               # the table t_at_u_many stored
+        assert np.array_equal(kb, kf)
+        assert np.abs(cb - cf).max() <= 4e-15 * cb[-1]
+        assert np.array_equal(_speed_extrema_many([b])[0], b._speed_extrema())
+    rows = t_at_u_many(fresh, np.tile(u, (len(bs), 1))[:, ::-1])   # one row per curve
+    assert np.array_equal(rows, got[:, ::-1])
+
+
+def test_t_at_u_many_degenerate_and_empty():
+    cusp = CubicBezier((0, 1), (0, 0), (0, 0), (0, 1))
+    straight = CubicBezier((0, 0), (1, 0), (2, 0), (3, 0))
+    retracted = CubicBezier((0, 0), (0, 0), (1, 1), (1, 1))
+    bs = [cusp, straight, retracted]
+    ex = _speed_extrema_many(bs)
+    assert [e.tolist() for e in ex] == [b._speed_extrema().tolist() for b in bs]
+    t = t_at_u_many([CubicBezier(*b.controls) for b in bs], [0.0, 0.25, 0.5, 1.0])
+    assert t[1].tolist() == pytest.approx([0.0, 0.25, 0.5, 1.0], abs=1e-15)
+    assert t[0, 2] == pytest.approx(0.5, abs=1e-12)
+    assert t_at_u_many([], [0.5]).shape == (0, 1)
+    with pytest.raises(GeometryError):
+        t_at_u_many(bs, np.zeros((2, 3)))

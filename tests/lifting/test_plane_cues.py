@@ -147,3 +147,26 @@ def test_vase_parallels_come_out_parallel():
     err, sign = depth_rmse(tr, r)
     assert sign == 1 and err <= 0.028          # measured 2.76 %
     assert DEFAULT.plane_cluster_deg == 15.0
+
+
+def test_planar_normals_batched_are_each_candidates_own_svd():
+    """The batched normals (one SVD per group of equal-length candidates, no full left factor) are, bit
+    for bit, the smallest right singular vectors of each candidate's centred points; each is a unit
+    vector orthogonal to an exactly planar candidate's chords."""
+    rng = np.random.default_rng(7)
+    X = rng.normal(size=(400, 3))
+    sizes = [4, 16, 16, 7, 292, 4, 16, 3]
+    pts = tuple(rng.choice(400, size=m, replace=False) for m in sizes)
+    pla = Planar(pts, np.arange(len(pts)), np.arange(len(pts)), tuple(f"c{i}" for i in range(len(pts))))
+    got = pla.normals(X)
+    for p, nrm in zip(pts, got, strict=True):
+        Y = X[p] - X[p].mean(0)
+        assert np.array_equal(nrm, np.linalg.svd(Y, full_matrices=True)[2][-1])
+    flat = X.copy()
+    flat[pts[4], 2] = 0.5 * flat[pts[4], 0] - 0.25       # candidate 4 exactly in a plane
+    n4 = pla.normals(flat)[4]
+    assert abs(np.linalg.norm(n4) - 1.0) < 1e-15
+    assert np.abs((flat[pts[4]] - flat[pts[4]].mean(0)) @ n4).max() < 1e-14
+    assert pla.angles(flat)[4] < 1e-6
+    empty = Planar((), np.zeros(0, np.intp), np.zeros(0, np.intp), ())
+    assert empty.normals(X).shape == (0, 3) and empty.angles(X).shape == (0,)

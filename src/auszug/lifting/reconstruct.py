@@ -377,15 +377,21 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         return pr.run("baseline", E, C, candidate=True)
 
     first_v: Array | None = None   # the first seed's propagation, when its baseline was skipped
-    for i, k in enumerate(pr.seeds):
-        pr.v = _initial(g, pr.n, pr.smooth, int(k))
+    # every seed propagated with the paper's over-emphasised parallelism, then (unless two of those reached
+    # the same minimum) every seed again with the baseline's own parallel weight (lift-acc, docs/lifting.md)
+    starts = [(int(k), params.w_p_propagate, f"seed {int(k)}") for k in pr.seeds]
+    w2 = params.w_p_propagate_second
+    if w2 > 0 and w2 != params.w_p_propagate:
+        starts += [(int(k), w2, f"seed {int(k)} (w_p {w2:g})") for k in pr.seeds]
+    for i, (k, w_prop, label) in enumerate(starts):
+        pr.v = _initial(g, pr.n, pr.smooth, k)
         pr.lam = None
         pr.stages = list(start_stages)
         E = pr.energy(params.w_a_baseline)
-        par.add(E, all_par, params.w_p_propagate * wfac)
+        par.add(E, all_par, w_prop * wfac)
         C = pr.constraints()
-        pr.smooth.add(C, np.array([int(k)]), 1.0)
-        r1 = pr.run(f"seed {int(k)}", E, C, candidate=True)
+        pr.smooth.add(C, np.array([k]), 1.0)
+        r1 = pr.run(label, E, C, candidate=True)
         if not r1.converged:
             # a seed whose propagation does not converge is discarded whatever its baseline does, so that
             # solve is skipped (it is run at the end only if no seed converges: the first seed's is kept)

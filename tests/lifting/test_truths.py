@@ -325,7 +325,7 @@ def test_the_wrinkle_is_lifted_as_an_extrusion_with_less_foreshortening():
     """An extrusion seen orthographically is a one-parameter family of exact interpretations: the rulings' slope
     out of the page, the sections in the planes normal to them; every member has the same accuracy, variation
     and orthogonality, and the foreshortening term picks one. Over the 43 generic views the lifted rulings lie
-    27-46 deg out of the page, the truth's 31-75 deg (benchmarks/RESULTS.md, lift-acc). Seen from (25, 0) the
+    27-51 deg out of the page, the truth's 32-75 deg (benchmarks/RESULTS.md, lift-acc). Seen from (25, 0) the
     truth's rulings are 65 deg out of the page, the lift's 36 deg: below 45 deg a receding horizontal reads as
     a vertical in ``from_above``'s sin(4 phi), so the rule takes the mirror; that lift is 16.7 % off at its best
     sign. The wrong signs of the wrinkle (24 of 43 views) are this depth scale, not the rule."""

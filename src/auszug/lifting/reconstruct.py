@@ -341,7 +341,10 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        smooth crossing. Stages 1-2 run from up to :data:`SEEDS` seed crossings,
        the lowest converged baseline kept; a seed that does not converge is
        discarded, and once two seeds reach the same minimum (energies within
-       :data:`SAME_MINIMUM`) the others are skipped;
+       :data:`SAME_MINIMUM`) the others are skipped. If none do, every seed is
+       propagated once more with w_p = ``params.w_p_propagate_second`` (0.1;
+       our addition: over mostly false candidates w_p = 5 can lead to a worse
+       basin) and the same rules go on over these starts;
     3. one progressive resolution per cue class of :data:`CLASSES`, with
        w_a = 1: each round minimises fidelity + w_c sum L(alpha) C^2 over the
        undecided cues, subject to the applied ones; L = 1 applies a cue

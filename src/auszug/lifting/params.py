@@ -47,10 +47,11 @@ class LiftParams:
     w_p_propagate : float
         Parallelism weight while the seed crossing's lift is propagated (5).
     w_p_propagate_second : float
-        *Our addition* (0: off): every seed is propagated a second time with
-        this parallelism weight (default: the baseline's 0.1), after the
-        propagations with ``w_p_propagate`` unless two of those reached the
-        same minimum; the lowest converged baseline energy is kept as before.
+        *Our addition* (0: off): every seed whose propagation with
+        ``w_p_propagate`` converged is propagated a second time with this
+        parallelism weight (default: the baseline's 0.1), after all of those,
+        unless two of them reached the same minimum or none of their baselines
+        converged; the lowest converged baseline energy is kept as before.
         Over-emphasised parallelism over mostly false candidates can lead the
         baseline into a worse basin: on the rib-vault truth (one seed, 53 of
         73 parallel candidates false) 0.0378 against 0.0341, the minimum of

@@ -18,6 +18,13 @@ Usage (from the repository root)::
 
     python -m benchmarks.eval_lifting noise [--truths a,b] [--cues default|none] [--markdown]
     python -m benchmarks.eval_lifting views [--truths a,b] [--cues none|default]
+    python -m benchmarks.eval_lifting energy [--truths a,b]
+
+``energy`` (branch lift-acc): the baseline energy term by term (accuracy, minimal variation,
+foreshortening, soft parallelism) at the truth, at the baseline lift, and at the minimum of the
+truth's own basin (the baseline solved from the truth), with and without the soft parallelism
+(``w_p_baseline = 0``): whether a large error is the energy's (the lift's minimum is lower than the
+truth's basin) or the seeding's (the truth's basin is lower and the seeds miss it).
 """
 
 from __future__ import annotations
@@ -30,7 +37,7 @@ import time
 import numpy as np
 
 from auszug.errors import GeometryError
-from auszug.lifting import DEFAULT_CLASSES, lift
+from auszug.lifting import DEFAULT, DEFAULT_CLASSES, LiftParams, lift
 from tests.lifting import truth as T
 
 NOISES = (0.0, 0.005, 0.01)
@@ -155,16 +162,36 @@ def views_table(names: list[str], classes: tuple[str, ...], out) -> None:
     print(f"\nwrong sign: {wrong_total} of {total} lifts ({100 * wrong_total / max(total, 1):.1f} %)", file=out)
 
 
+def energy_table(names: list[str], out) -> None:
+    """The baseline energy by term at the truth, at the lift and at the truth's own basin (docs/lifting.md)."""
+    print("| truth | w_p | energy: truth (acc, var, fore, par) | lift: energy, depth RMSE | truth's basin: energy, "
+          "depth RMSE | lowest |", file=out)
+    print("|---|---|---|---|---|---|", file=out)
+    for name in names:
+        tr = T.make(name)
+        for wp in (DEFAULT.w_p_baseline, 0.0):
+            d = T.baseline_energies(tr, LiftParams(w_p_baseline=wp))
+            t = d["truth"]
+            lowest = "lift" if d["lift_energy"] <= d["basin_energy"] * (1 + 1e-9) else "truth's basin"
+            print(f"| {name} | {wp:g} | {sum(t.values()):.3g} ({t['accuracy']:.2g}, {t['variation']:.2g}, "
+                  f"{t['foreshortening']:.2g}, {t['parallel']:.2g}) | {d['lift_energy']:.3g}, "
+                  f"{100 * d['lift_rmse']:.2f} % | {d['basin_energy']:.3g}, {100 * d['basin_rmse']:.2f} % | {lowest} |",
+                  file=out, flush=True)
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("mode", choices=("noise", "views"))
+    ap.add_argument("mode", choices=("noise", "views", "energy"))
     ap.add_argument("--truths", default=",".join(T.TRUTHS))
     ap.add_argument("--cues", default="default", choices=("default", "none"))
     a = ap.parse_args(argv)
     classes = DEFAULT_CLASSES if a.cues == "default" else ()
     names = a.truths.split(",")
     print(f"cues: {a.cues}; load {os.getloadavg()[0]:.1f} at start", file=sys.stdout)
-    (noise_table if a.mode == "noise" else views_table)(names, classes, sys.stdout)
+    if a.mode == "energy":
+        energy_table(names, sys.stdout)
+    else:
+        (noise_table if a.mode == "noise" else views_table)(names, classes, sys.stdout)
     print(f"load {os.getloadavg()[0]:.1f} at the end", file=sys.stdout)
     return 0
 

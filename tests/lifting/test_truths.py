@@ -141,9 +141,11 @@ LIFTED = [
     ("spiral", 0.3530, {"parallel": (5, 13, 5)}),                      # measured 34.31 %
     ("saddle", 0.0770, {"parallel": (12, 24, 12), "planar": (8, 8, 8)}),  # measured 7.45 %
     ("wrinkle", 0.0925, {"parallel": (22, 22, 22), "planar": (3, 3, 3)}),  # measured 8.95 %
-    # the cross: 16.21 % with one solve unconverged on the solver before lifting-speed; with its LDL^T +
-    # GMRES solver every solve converges, to another minimum: 22.11 %, no corner applied
-    ("cross", 0.2280, {"parallel": (20, 70, 20), "orthogonal": (0, 0, 12), "planar": (6, 6, 6)}),
+    # the cross: 22.11 % on main (lifting-speed's solver, every solve converged, no corner applied); since
+    # lift-acc every seed is also propagated with w_p = 0.1 and the baseline reaches the truth's own basin
+    # (energy 0.0341 against 0.0378): 16.21 %, 16 corners applied (8 true), the planar round unconverged
+    # (residual 1.6e-9 > 1e-10)
+    ("cross", 0.1670, {"parallel": (20, 70, 20), "orthogonal": (8, 16, 12), "planar": (6, 6, 6)}),
     ("turret", 0.1060, {"parallel": (22, 24, 22), "orthogonal": (8, 12, 10)}),  # measured 10.28 %
 ]
 
@@ -186,8 +188,9 @@ def test_one_percent_noise_within_twice_the_noise_free_error(name):
 
     Measured at 1 % (seeds 0, 1, 2) against noise-free: spiral 27.5 (a solve unconverged, wrong sign),
     33.5, 28.3 against 34.3 %; saddle 8.30, 7.09, 4.80 against 7.45 %; wrinkle 4.07, 6.85, 8.31 against
-    8.95 %; cross refused (seed 0), 13.1 (wrong sign), 22.2 against 16.2 %; turret 11.5, 11.8, 17.0
-    against 10.3 %. Met everywhere, but only because the noise-free errors are large."""
+    8.95 %; cross refused (seed 0), 13.1 (wrong sign), 22.2 against 16.2 % (since lift-acc: refused, 13.1
+    (wrong sign), 35.6 against 16.2 %: seed 2 misses the target; on main 22.1 % noise-free); turret 11.5,
+    11.8, 17.0 against 10.3 %. Met at seed 1 everywhere, but only because the noise-free errors are large."""
     tr0, r0 = _clean(name)
     err0, _ = T.depth_rmse(tr0, r0)
     tr = T.make(name, noise=0.01, seed=1)
@@ -267,3 +270,108 @@ def test_the_final_solve_meets_every_applied_hard_cue():
     err, sign = T.depth_rmse(tr, r1)
     assert sign == 1 and err <= 0.0285
     assert r1.stages[-1].name == "final" and all(s.name != "final" for s in r0.stages)
+
+
+# Structural diagnosis (branch lift-acc, docs/lifting.md "Structural diagnosis"): where the large errors of
+# the spiral, the cross and the wrinkle come from.
+
+
+@pytest.mark.parametrize("name", list(T.TRUTHS))
+def test_the_baseline_reaches_the_truths_own_basin_or_a_lower_minimum(name):
+    """The baseline solved from the truth (the truth's own basin) never finds less energy than the lift does,
+    with the soft parallelism and without it: the large errors are the energy's, not the seeding's. Before
+    lift-acc the rib vault's one seed, propagated with w_p = 5 over 73 parallel candidates of which 53 are
+    false, missed its basin: 0.0378 against 0.0341 (w_p = 0: 0.0052 against 0.000146); every seed is now
+    also propagated with w_p = 0.1 (``LiftParams.w_p_propagate_second``)."""
+    for wp in (DEFAULT.w_p_baseline, 0.0):
+        d = T.baseline_energies(T.make(name), LiftParams(w_p_baseline=wp))
+        assert d["basin_converged"]
+        assert d["lift_energy"] <= d["basin_energy"] * (1 + 1e-6), (wp, d["lift_energy"], d["basin_energy"])
+
+
+def test_the_spirals_truth_is_not_the_baselines_minimum():
+    """The helical stair. With the soft parallelism the truth's own basin is 8.65 % off (depth RMSE at the
+    control points) at twice the lift's energy (0.0639 against 0.0321): at the truth the soft parallelism
+    costs 0.14, 260 times the minimal variation, on the 14 false ruling pairs (37.5 deg apart in 3D,
+    16-28 deg in 2D) and on near-parallel helix tangents seen nearly edge-on (76 deg out of the page: the
+    2D-normalised residual ``a / |a_2d| - b / |b_2d|`` of two tangents 6 deg apart is then 1.0). Without it the
+    basin is 1.06 % off, but a minimum 35.8 % off is lower (0.00055 against 0.00061): the helices' torsion
+    costs minimal variation (5.3e-4 at the truth)."""
+    tr = T.make("spiral")
+    d = T.baseline_energies(tr)
+    t = d["truth"]
+    assert t["parallel"] > 200 * t["variation"] > 0 and t["accuracy"] < 1e-20
+    assert 0.08 < d["basin_rmse"] < 0.095 and d["lift_rmse"] > 0.3
+    assert 1.8 * d["lift_energy"] < d["basin_energy"]
+    d0 = T.baseline_energies(tr, LiftParams(w_p_baseline=0.0))
+    assert d0["basin_rmse"] < 0.0115 and d0["lift_rmse"] > 0.3
+    assert d0["lift_energy"] < 0.95 * d0["basin_energy"]
+
+
+def test_the_cross_depth_is_left_free_by_its_one_smooth_crossing():
+    """The rib vault's ribs are planar circular arcs, affine images of their drawings, so the truth has zero
+    accuracy and variation; with one smooth crossing so does a lift 13 % off: without foreshortening and soft
+    parallelism the depth is a family of exact interpretations (energy 5e-30), and only those two terms and
+    the cues choose a member. The soft parallelism costs the truth 1.06 (53 false candidates at the corners,
+    where five strokes meet, 14-104 deg apart in 3D and 2-30 deg in 2D)."""
+    d = T.baseline_energies(T.make("cross"), LiftParams(w_p_baseline=0.0, w_f=0.0))
+    t = d["truth"]
+    assert t["accuracy"] + t["variation"] < 1e-20
+    assert d["lift_energy"] < 1e-20 and d["lift_rmse"] > 0.1
+    assert T.baseline_energies(T.make("cross"))["truth"]["parallel"] > 1.0
+
+
+def test_the_wrinkle_is_lifted_as_an_extrusion_with_less_foreshortening():
+    """An extrusion seen orthographically is a one-parameter family of exact interpretations: the rulings' slope
+    out of the page, the sections in the planes normal to them; every member has the same accuracy, variation
+    and orthogonality, and the foreshortening term picks one. Over the 43 generic views the lifted rulings lie
+    27-51 deg out of the page, the truth's 32-75 deg (benchmarks/RESULTS.md, lift-acc). Seen from (25, 0) the
+    truth's rulings are 65 deg out of the page, the lift's 36 deg: below 45 deg a receding horizontal reads as
+    a vertical in ``from_above``'s sin(4 phi), so the rule takes the mirror; that lift is 16.7 % off at its best
+    sign. The wrong signs of the wrinkle (24 of 43 views) are this depth scale, not the rule."""
+    from auszug.lifting import from_above
+
+    tr = T.make("wrinkle", 25.0, 0.0)
+    r = lift(tr.sketch)
+    err, sign = T.depth_rmse(tr, r)
+    g = r.graphs[0]
+    X, Xt = r.points[0] / g.scale, T.truth_xyz(tr, g)
+
+    def chord(P, s):
+        ch = g.chains[s]
+        return P[int(g.segments[ch[-1], 3])] - P[int(g.segments[ch[0], 0])]
+
+    rulings = [s for s, t in enumerate(g.strokes) if t.id in {"c3", "c4", "c5", "c6", "c7"}]
+    u = np.array([chord(X, s) for s in rulings])
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    assert np.abs(u @ u.T).min() > np.cos(np.radians(0.01))              # the rulings are parallel
+    for s in (0, 1, 2):                                                    # the sections planar, normal to them
+        P = X[np.unique(g.segments[g.chains[s]])]
+        sv = np.linalg.svd(P - P.mean(0))
+        assert sv[1][-1] < 1e-5 and abs(sv[2][-1] @ u[0]) > np.cos(np.radians(0.01))
+
+    def out_of_page(v):
+        return np.degrees(np.arctan2(abs(v[2]), np.linalg.norm(v[:2])))
+
+    assert 30 < out_of_page(u[0]) < 40 and np.isclose(np.mean([out_of_page(chord(Xt, s)) for s in rulings]), 65.0)
+    assert from_above(np.concatenate(tr.chains3d)) > 0.98 and from_above(r.points[0][g.segments]) > 0.5
+    assert sign == -1 and 0.16 < err < 0.175
+
+
+def test_the_second_propagation_reaches_the_vaults_lower_basin():
+    """``LiftParams.w_p_propagate_second``: the rib vault has one smooth crossing, so one seed; propagated with
+    the paper's w_p = 5 its baseline stops at energy 0.0378 (flat: every depth 0), propagated again with
+    w_p = 0.1 at 0.0341, the minimum of the truth's own basin, which is kept. Off (0), the lift is main's."""
+    tr = T.make("cross")
+
+    def baselines(r):
+        return [s.energy for s in r.stages if s.name == "baseline" and s.converged and not s.discarded]
+
+    r0 = lift(tr.sketch, params=LiftParams(w_p_propagate_second=0.0), classes=())
+    r1 = lift(tr.sketch, classes=())
+    assert [s.name for s in r0.stages] == ["seed 0", "baseline"]
+    assert [s.name for s in r1.stages] == ["seed 0", "baseline", "seed 0 (w_p 0.1)", "baseline"]
+    assert np.ptp(r0.points[0][:, 2]) < 1e-9 * tr.diagonal()
+    e0, e1 = min(baselines(r0)), min(baselines(r1))
+    assert e1 < 0.95 * e0 and np.isclose(e1, baselines(r1)[1])
+    assert T.depth_rmse(tr, r1)[0] < T.depth_rmse(tr, r0)[0]

@@ -610,3 +610,71 @@ def cue_scores(result, lab: dict[str, np.ndarray]) -> dict[str, tuple[int, int, 
         f1 = 2 * tp / (na + nt) if na + nt else 1.0
         out[k] = (tp, na, nt, f1)
     return out
+
+
+def _cp_rmse(X: np.ndarray, Y: np.ndarray) -> float:
+    """Depth RMSE between two sets of graph points (graph units: relative to the diagonal), best offset and sign."""
+    a = X[:, 2] - X[:, 2].mean()
+    b = Y[:, 2] - Y[:, 2].mean()
+    return float(min(np.sqrt(np.mean((a - b) ** 2)), np.sqrt(np.mean((a + b) ** 2))))
+
+
+def baseline_energies(truth: Truth, params=None) -> dict:
+    """The baseline energy (paper sec. 5.3) of a one-layer truth, term by term, at three places.
+
+    - ``truth``: at the truth's control points (its smooth crossings orthogonal and G1 joints at the
+      sketch's ratios, so it is feasible), per term: ``accuracy`` (w_a = ``params.w_a_baseline``),
+      ``variation``, ``foreshortening`` and ``parallel`` (the soft w_p = w_p_baseline exp(-a^2 / s^2)
+      over every parallel candidate);
+    - ``lift_energy``, ``lift_rmse``: the lowest converged baseline of ``lift(..., classes=())``;
+    - ``basin_energy``, ``basin_rmse``: the minimum the baseline solve reaches when started at the
+      truth (the truth's own basin), and ``basin_converged``.
+
+    RMSEs are of the depths at the graph's control points, relative to the diagonal, best offset and sign.
+    """
+    from dataclasses import replace
+
+    from auszug.lifting import DEFAULT, layer_graphs, lift
+    from auszug.lifting import cues as cu
+    from auszug.lifting.solver import Poly2, solve
+    from auszug.lifting.terms import fidelity, structure
+
+    p = DEFAULT if params is None else params
+    (_, g), = layer_graphs(truth.sketch, p)
+    N = len(g.points)
+    n = 3 * (N + len(g.chains)) + len(g.chains)
+    par = cu.parallel_cues(g, p)
+    wp = p.w_p_baseline * np.exp(-(par.angle2d**2) / p.sigma_p_deg**2)
+    wa = p.w_a_baseline
+    terms = {"accuracy": fidelity(g, n, replace(p, w_v=0.0, w_f=0.0), wa),
+             "variation": fidelity(g, n, replace(p, w_f=0.0), 0.0),
+             "foreshortening": fidelity(g, n, replace(p, w_v=0.0), 0.0)}
+    P = Poly2(n)
+    par.add(P, np.arange(len(par)), wp)
+    terms["parallel"] = P
+    smooth = cu.smooth_orthogonal(g)
+    X = truth_xyz(truth, g)
+    pin = int(smooth.p[0])
+    X[:, 2] -= X[pin, 2]
+    v = np.zeros(n)
+    v[: 3 * N] = X.ravel()
+
+    def value(Q: Poly2, x: np.ndarray) -> float:
+        return float((Q.weights * Q.value(x) ** 2).sum())
+
+    at_truth = {k: value(Q, v) for k, Q in terms.items()}
+    E = fidelity(g, n, p, wa)
+    par.add(E, np.arange(len(par)), wp)
+    cols = np.arange(3 * N, n)       # the normals and plane offsets no baseline row uses: held where they are
+    E.add(np.zeros(len(cols)), 1e-8, lin=(np.arange(len(cols)), cols, np.ones(len(cols))))
+    C = structure(g, n, p, pin)
+    smooth.add(C, np.arange(len(smooth)), 1.0)
+    r = solve(E, C, v, None, iterations=p.newton_iterations, tol=p.newton_tol, kkt_reg=p.kkt_reg,
+              hessian_reg=p.hessian_reg)
+    res = lift(truth.sketch, params=p, classes=())
+    Xl = res.points[0].copy()
+    Xl[:, 2] /= g.scale
+    e_lift = min(s.energy for s in res.stages if s.name == "baseline" and s.converged and not s.discarded)
+    return {"truth": at_truth, "lift_energy": e_lift, "lift_rmse": _cp_rmse(Xl, X),
+            "basin_energy": r.energy, "basin_rmse": _cp_rmse(r.v[: 3 * N].reshape(N, 3), X),
+            "basin_converged": r.converged}

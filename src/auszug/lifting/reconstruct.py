@@ -341,7 +341,11 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        smooth crossing. Stages 1-2 run from up to :data:`SEEDS` seed crossings,
        the lowest converged baseline kept; a seed that does not converge is
        discarded, and once two seeds reach the same minimum (energies within
-       :data:`SAME_MINIMUM`) the others are skipped;
+       :data:`SAME_MINIMUM`) the others are skipped. If none do and one of
+       their baselines converged, every seed whose propagation converged is
+       propagated once more with w_p = ``params.w_p_propagate_second`` (0.1;
+       our addition: over mostly false candidates w_p = 5 can lead to a worse
+       basin) and the same rules go on over these starts;
     3. one progressive resolution per cue class of :data:`CLASSES`, with
        w_a = 1: each round minimises fidelity + w_c sum L(alpha) C^2 over the
        undecided cues, subject to the applied ones; L = 1 applies a cue
@@ -377,22 +381,38 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         return pr.run("baseline", E, C, candidate=True)
 
     first_v: Array | None = None   # the first seed's propagation, when its baseline was skipped
-    for i, k in enumerate(pr.seeds):
-        pr.v = _initial(g, pr.n, pr.smooth, int(k))
+    # every seed propagated with the paper's over-emphasised parallelism; then, unless two of those reached the
+    # same minimum and provided one of their baselines converged, every seed whose propagation converged again
+    # with the baseline's own parallel weight (lift-acc, docs/lifting.md)
+    starts = [(int(k), params.w_p_propagate, f"seed {int(k)}") for k in pr.seeds]
+    n_first = len(starts)
+    w2 = params.w_p_propagate_second
+    propagated: list[int] = []
+    i = 0
+    while True:
+        if i == n_first and w2 > 0 and w2 != params.w_p_propagate and best is not None and np.isfinite(best[0]):
+            starts += [(k_, w2, f"seed {k_} (w_p {w2:g})") for k_ in propagated]
+        if i >= len(starts):
+            break
+        k, w_prop, label = starts[i]
+        i += 1
+        pr.v = _initial(g, pr.n, pr.smooth, k)
         pr.lam = None
         pr.stages = list(start_stages)
         E = pr.energy(params.w_a_baseline)
-        par.add(E, all_par, params.w_p_propagate * wfac)
+        par.add(E, all_par, w_prop * wfac)
         C = pr.constraints()
-        pr.smooth.add(C, np.array([int(k)]), 1.0)
-        r1 = pr.run(f"seed {int(k)}", E, C, candidate=True)
+        pr.smooth.add(C, np.array([k]), 1.0)
+        r1 = pr.run(label, E, C, candidate=True)
         if not r1.converged:
             # a seed whose propagation does not converge is discarded whatever its baseline does, so that
             # solve is skipped (it is run at the end only if no seed converges: the first seed's is kept)
-            if i == 0:
+            if i == 1:
                 first_v = pr.v.copy()
             start_stages = list(pr.stages)
             continue
+        if i <= n_first:
+            propagated.append(k)
         r2 = baseline()
         score = r2.energy if r2.converged else np.inf
         start_stages = list(pr.stages)

@@ -205,8 +205,11 @@ def part_faces(mesh: SweepMesh, axis: KinematicAxis, points: Array, margin: floa
 
 def _part(mesh: SweepMesh, axis: KinematicAxis, points: Array, margin: float,
           faces: IntArray | None = None) -> tuple[IntArray, float, float, Array]:
-    """:func:`part_faces`, the part's parameter range (start, length, grown by the margin) and
-    every vertex's parameter relative to that start ``(n,)``."""
+    """:func:`part_faces`, and the part's parameter range and every vertex's parameter in it.
+
+    Returns the faces, the range's start and length (grown by the margin) and every vertex's
+    parameter relative to that start ``(n,)``.
+    """
     cand = np.arange(len(mesh.faces), dtype=np.int64) if faces is None else np.asarray(faces, np.int64)
     q, t, unit = _coordinates(axis, points)
     lo, hi = q.min(axis=0) - margin, q.max(axis=0) + margin
@@ -327,8 +330,13 @@ def _trimmed(mesh: SweepMesh, tree: MeshTree, axis: KinematicAxis, p: SweepPatch
     return SweepPatch(p.id, p.kind, profile, closed, motion, fit.faces, fit.fit_error, fit.coverage)
 
 
-def _good_cover(patches: list[SweepPatch], params: SweepParams) -> float:
-    return sum(p.coverage for p in patches if p.fit_error <= params.fit_factor * params.eps_prox)
+def _good_cover(patches: list[SweepPatch], params: SweepParams, areas: Array) -> float:
+    """Area of the union of the faces of the patches that fit."""
+    on = np.zeros(len(areas), bool)
+    for p in patches:
+        if p.fit_error <= params.fit_factor * params.eps_prox:
+            on[p.faces] = True
+    return float(areas[on].sum())
 
 
 def _part_patches(mesh: SweepMesh, axis: KinematicAxis, pts: Array, free: NDArray[np.bool_], areas: Array,
@@ -338,8 +346,9 @@ def _part_patches(mesh: SweepMesh, axis: KinematicAxis, pts: Array, free: NDArra
     :func:`kinematic_patches` takes its profile cut in the middle of the part and, when
     ``part_slices`` is above 1, in the middle of each of that many equal slices of its range (a
     part may hold stretches that are no sweep under its motion, where the one middle cut would
-    fall); each profile is trimmed over the whole part's range. Patches of different slices may be the same sweep: the fit stage of
-    :func:`~auszug.sweeps.detect` keeps one (``patch_overlap``).
+    fall); each profile is trimmed over the whole part's range. Patches of different slices may
+    be the same sweep: the fit stage of :func:`~auszug.sweeps.detect` keeps one
+    (``patch_overlap``).
     """
     keep, start, length, rel = _part(mesh, axis, pts, params.part_margin, np.flatnonzero(free))
     total = float(areas.sum())
@@ -460,7 +469,7 @@ def kinematic_parts(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepP
             # about a line along it too: the translation along the axis is tried, the larger cover wins
             slide = _axis(np.r_[0.0, 0.0, 0.0, axis.direction], params)
             other = _part_patches(mesh, slide, pts, free_f, areas, part_params, params)
-            if _good_cover(other, params) > _good_cover(found, params):
+            if _good_cover(other, params, areas) > _good_cover(found, params, areas):
                 found = other
         # the faces of a fitted patch stay open to later motions: a motion that only approximates
         # a stretch (a rotation of large radius over a straight sill) may fit it first, and the

@@ -148,3 +148,32 @@ def test_part_faces_is_the_box_and_range_of_the_points():
     faces = part_faces(m, ka, pts, 0.0)
     inside = (s >= lo - 1e-12) & (s <= hi + 1e-12)
     assert np.array_equal(faces, np.flatnonzero(inside[m.faces].all(axis=1)))
+
+
+def test_fitting_block_is_the_largest_all_true_block():
+    """Against a brute force over every block of small random matrices (widths random)."""
+    from auszug.sweeps.parts import fitting_block
+
+    rng = np.random.default_rng(5)
+    for trial in range(60):
+        k, n = int(rng.integers(1, 9)), int(rng.integers(2, 8))
+        ok = rng.random((k, n)) < (0.5 + 0.4 * rng.random())
+        w = rng.random(n - 1) + 0.05
+        min_width = float(rng.choice([0.0, 0.5]))
+        pos = np.concatenate([[0.0], np.cumsum(w)])
+        best = 0.0
+        for r0 in range(k):
+            for r1 in range(r0, k):
+                for c0 in range(n):
+                    for c1 in range(c0 + 1, n):
+                        width = pos[c1] - pos[c0]
+                        if width >= min_width and ok[r0:r1 + 1, c0:c1 + 1].all():
+                            best = max(best, (r1 - r0 + 1) * width)
+        got = fitting_block(ok, w, min_width)
+        if best == 0.0:
+            assert got is None, trial
+            continue
+        r0, r1, c0, c1 = got
+        assert ok[r0:r1 + 1, c0:c1 + 1].all() and c1 > c0
+        assert pos[c1] - pos[c0] >= min_width
+        assert (r1 - r0 + 1) * (pos[c1] - pos[c0]) == pytest.approx(best, rel=1e-12), trial

@@ -209,6 +209,8 @@ class SweepParams:
         Growth of a part's box and range around its gliding cut points (bounding-box diameters).
     part_l_min : float
         Shortest profile piece of a part (bounding-box diameters; ``l_min`` is for matching).
+    part_slices : int
+        A part's range is cut in this many slices, each with its own profile cut (1..16).
     """
 
     beta: float = 400.0
@@ -268,6 +270,7 @@ class SweepParams:
     part_min_points: int = 200
     part_margin: float = 0.01
     part_l_min: float = 0.03
+    part_slices: int = 1
 
     def __post_init__(self) -> None:
         checks = [
@@ -329,6 +332,7 @@ class SweepParams:
             ("part_margin", _real(self.part_margin) and 0 <= self.part_margin <= 0.5,
              "in [0, 0.5] (bounding-box diameters)"),
             ("part_l_min", _real(self.part_l_min) and 0 < self.part_l_min <= 10, "in (0, 10] (bounding-box diameters)"),
+            ("part_slices", _whole(self.part_slices) and 1 <= self.part_slices <= 16, "a whole number in 1..16"),
         ]
         for name, ok, want in checks:
             if not ok:

@@ -44,7 +44,7 @@ from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
 from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas, fit_patch, kinematic_patches
 
-__all__ = ["gliding_shares", "kinematic_parts", "part_faces", "refined", "unscrewed"]
+__all__ = ["fitting_block", "gliding_shares", "kinematic_parts", "part_faces", "refined", "unscrewed"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -200,6 +200,16 @@ def part_faces(mesh: SweepMesh, axis: KinematicAxis, points: Array, margin: floa
     (k,) int array
         Indices into ``mesh.faces``, ascending.
     """
+    return _part(mesh, axis, points, margin, faces)[0]
+
+
+def _part(mesh: SweepMesh, axis: KinematicAxis, points: Array, margin: float,
+          faces: IntArray | None = None) -> tuple[IntArray, float, float, Array]:
+    """:func:`part_faces`, and the part's parameter range and every vertex's parameter in it.
+
+    Returns the faces, the range's start and length (grown by the margin) and every vertex's
+    parameter relative to that start ``(n,)``.
+    """
     cand = np.arange(len(mesh.faces), dtype=np.int64) if faces is None else np.asarray(faces, np.int64)
     q, t, unit = _coordinates(axis, points)
     lo, hi = q.min(axis=0) - margin, q.max(axis=0) + margin
@@ -210,7 +220,7 @@ def part_faces(mesh: SweepMesh, axis: KinematicAxis, points: Array, margin: floa
     inside = np.all((vq >= lo) & (vq <= hi), axis=1)
     rel = np.mod(vt - start + grow, 2 * np.pi) if angular else vt - start + grow
     inside &= (rel >= 0) & (rel <= length + 2 * grow)
-    return cand[inside[mesh.faces[cand]].all(axis=1)]
+    return cand[inside[mesh.faces[cand]].all(axis=1)], start - grow, length + 2 * grow, rel
 
 
 def _submesh(mesh: SweepMesh, keep: IntArray) -> SweepMesh:
@@ -227,69 +237,150 @@ def _submesh(mesh: SweepMesh, keep: IntArray) -> SweepMesh:
                    face_edges=edge_index[mesh.face_edges[keep]])
 
 
-def _trimmed(mesh: SweepMesh, tree: MeshTree, axis: KinematicAxis, p: SweepPatch,
-             params: SweepParams) -> SweepPatch | None:
-    """The patch over the longest range of its motion where the moved profile stays on the mesh.
+def fitting_block(ok: NDArray[np.bool_], widths: Array, min_width: float = 0.0,
+                  max_starts: int = 128) -> tuple[int, int, int, int] | None:
+    """The largest block of a boolean matrix that is all True, by rows x summed column widths.
 
-    A part's range is what its box spans, which may hold a corner where the moulding turns: rings
-    of the profile (about ``eps_prox`` apart) are kept where all their points lie within
-    ``eps_prox`` of the mesh, the longest such run of rings is the patch's range, and the patch is
-    fitted again over it. None if no ring fits or the profile's centroid travels less than
-    ``min_sweep_length`` over that run (:func:`~auszug.sweeps.detect` would drop the patch).
+    Parameters
+    ----------
+    ok : (k, n) bool array
+        ``ok[r, c]``: profile point ``c`` moved to ring ``r`` lies on the mesh.
+    widths : (n - 1,) float array
+        Lengths of the profile's segments (between columns ``c`` and ``c + 1``).
+    min_width : float
+        Blocks narrower than this (summed widths) do not count.
+    max_starts : int
+        At most this many first columns are tried, spread evenly (``n`` may be large).
+
+    Returns
+    -------
+    (r0, r1, c0, c1) or None
+        Rows ``r0..r1`` and columns ``c0..c1`` (inclusive, ``c1 > c0``), or None when no block of
+        two or more columns and ``min_width`` is all True.
+
+    Examples
+    --------
+    >>> ok = np.array([[1, 1, 1, 0], [1, 1, 1, 1], [0, 1, 1, 1], [0, 1, 1, 1]], bool)
+    >>> fitting_block(ok, np.ones(3))
+    (1, 3, 1, 3)
     """
-    t = p.motion.t
-    step = params.eps_prox
-    scale = float(np.ptp(t)) * (1.0 if axis.kind == "translation" else max(float(np.max(np.linalg.norm(
-        p.profile - (axis.point if axis.point is not None else 0.0), axis=1))), 1e-9))
-    k = int(min(max(8, np.ceil(scale / step)), 4096))
-    ts = np.linspace(t[0], t[-1], k)
-    rings = p.motion.apply(p.profile, ts)
-    d = tree.query(rings.reshape(-1, 3))[0].reshape(k, -1)
-    ok = d.max(axis=1) <= params.eps_prox
-    if not ok.any():
+    k, n = ok.shape
+    if n < 2 or k == 0:
         return None
-    # longest run of fitting rings
-    edges = np.diff(np.concatenate([[0], ok.astype(np.int8), [0]]))
-    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
-    j = int(np.argmax(ends - starts))
-    a, b = ts[starts[j]], ts[ends[j] - 1]
-    centre = rings.mean(axis=1)
-    swept = float(np.linalg.norm(np.diff(centre[starts[j]:ends[j]], axis=0), axis=1).sum())
+    pos = np.concatenate([[0.0], np.cumsum(widths)])
+    rows = np.arange(k)[:, None]
+    best: tuple[float, tuple[int, int, int, int] | None] = (0.0, None)
+    for c0 in np.unique(np.linspace(0, n - 2, min(n - 1, max_starts)).astype(int)):
+        acc = np.logical_and.accumulate(ok[:, c0:], axis=1)[:, 1:]      # (k, n - c0 - 1): columns c0..c1
+        last_bad = np.maximum.accumulate(np.where(acc, -1, rows), axis=0)
+        run = rows - last_bad                                           # consecutive good rows ending here
+        end = np.argmax(run, axis=0)
+        length = run[end, np.arange(run.shape[1])]
+        width = pos[c0 + 1:] - pos[c0]
+        area = np.where(width >= min_width, length * width, 0.0)
+        j = int(np.argmax(area))
+        if area[j] > best[0]:
+            r1 = int(end[j])
+            best = (float(area[j]), (r1 - int(length[j]) + 1, r1, int(c0), int(c0) + 1 + j))
+    return best[1]
+
+
+def _trimmed(mesh: SweepMesh, tree: MeshTree, axis: KinematicAxis, p: SweepPatch, params: SweepParams,
+             t_range: tuple[float, float] | None = None) -> SweepPatch | None:
+    """The patch over the largest stretch of profile and motion where the moved profile stays on the mesh.
+
+    A part's range is what its box spans, which may hold a corner where the moulding turns, and its
+    profile cut may run on beyond the moulding (over a wall's face, into tracery beside it): the
+    profile's points are moved by the part's motion to rings about ``eps_prox`` apart (at most 1024)
+    over ``t_range`` (parameters relative to the profile's own, default the patch's motion range),
+    each point on each ring kept when within ``eps_prox`` of the mesh, and the largest block of kept
+    points (:func:`fitting_block`: a run of rings times a run of profile points at least ``l_min``
+    long) is the patch, fitted again over it. None if there is none or the profile's centroid
+    travels less than ``min_sweep_length`` over it (:func:`~auszug.sweeps.detect` would drop the
+    patch).
+    """
+    lo, hi = (float(p.motion.t[0]), float(p.motion.t[-1])) if t_range is None else t_range
+    pitch = axis.pitch if axis.kind == "screw" else 0.0
+    scale = (hi - lo) * (1.0 if axis.kind == "translation" else max(float(np.max(np.linalg.norm(
+        p.profile - (axis.point if axis.point is not None else 0.0), axis=1))), 1e-9))
+    k = int(min(max(8, np.ceil(scale / params.eps_prox)), 1024))
+    ts = np.linspace(lo, hi, k)
+    rot, tr = screw_motion(axis.direction, axis.point, pitch, ts)
+    rings = np.einsum("kij,nj->kni", rot, p.profile) + tr[:, None, :]
+    d = tree.query(rings.reshape(-1, 3))[0].reshape(k, -1)
+    ok = d <= params.eps_prox
+    closed = p.closed and bool(ok.all())
+    prof = np.vstack([p.profile, p.profile[:1]]) if closed else p.profile
+    if closed:
+        ok = np.hstack([ok, ok[:, :1]])
+    block = fitting_block(ok, np.linalg.norm(np.diff(prof, axis=0), axis=1), params.l_min)
+    if block is None:
+        return None
+    r0, r1, c0, c1 = block
+    sub = p.profile if closed else prof[c0:c1 + 1]
+    centre = rings[r0:r1 + 1, c0:c1 + 1].mean(axis=1)
+    swept = float(np.linalg.norm(np.diff(centre, axis=0), axis=1).sum())
+    a, b = float(ts[r0]), float(ts[r1])
     if not b > a or swept < params.min_sweep_length:
         return None         # detect drops a patch sweeping less
-    if a == t[0] and b == t[-1]:
-        return p
-    m = max(8, params.motion_samples)
-    tk = np.linspace(0.0, b - a, m)
-    rot, tr = screw_motion(axis.direction, axis.point, axis.pitch if axis.kind == "screw" else 0.0, tk)
-    motion = Motion(tk, rot, tr)
-    r0, t0 = p.motion.at(np.array([a]))
-    profile = p.profile @ r0[0].T + t0[0]
-    fit = fit_patch(mesh, profile, p.closed, motion, params, tree=tree)
-    return SweepPatch(p.id, p.kind, profile, p.closed, motion, fit.faces, fit.fit_error, fit.coverage)
+    tk = np.linspace(0.0, b - a, max(8, params.motion_samples))
+    motion = Motion(tk, *screw_motion(axis.direction, axis.point, pitch, tk))
+    profile = sub @ rot[r0].T + tr[r0]
+    fit = fit_patch(mesh, profile, closed, motion, params, tree=tree)
+    return SweepPatch(p.id, p.kind, profile, closed, motion, fit.faces, fit.fit_error, fit.coverage)
 
 
-def _good_cover(patches: list[SweepPatch], params: SweepParams) -> float:
-    return sum(p.coverage for p in patches if p.fit_error <= params.fit_factor * params.eps_prox)
+def _good_cover(patches: list[SweepPatch], params: SweepParams, areas: Array) -> float:
+    """Area of the union of the faces of the patches that fit."""
+    on = np.zeros(len(areas), bool)
+    for p in patches:
+        if p.fit_error <= params.fit_factor * params.eps_prox:
+            on[p.faces] = True
+    return float(areas[on].sum())
 
 
 def _part_patches(mesh: SweepMesh, axis: KinematicAxis, pts: Array, free: NDArray[np.bool_], areas: Array,
                   part_params: SweepParams, params: SweepParams) -> list[SweepPatch]:
-    """The trimmed kinematic patches of the part that ``pts`` span under ``axis`` (faces of ``mesh``)."""
-    keep = part_faces(mesh, axis, pts, params.part_margin, np.flatnonzero(free))
-    if len(keep) == 0 or float(areas[keep].sum()) < params.min_patch_area * float(areas.sum()):
+    """The trimmed kinematic patches of the part that ``pts`` span under ``axis`` (faces of ``mesh``).
+
+    :func:`kinematic_patches` takes its profile cut in the middle of the part and, when
+    ``part_slices`` is above 1, in the middle of each of that many equal slices of its range (a
+    part may hold stretches that are no sweep under its motion, where the one middle cut would
+    fall); each profile is trimmed over the whole part's range. Patches of different slices may
+    be the same sweep: the fit stage of :func:`~auszug.sweeps.detect` keeps one
+    (``patch_overlap``).
+    """
+    keep, start, length, rel = _part(mesh, axis, pts, params.part_margin, np.flatnonzero(free))
+    total = float(areas.sum())
+    if len(keep) == 0 or float(areas[keep].sum()) < params.min_patch_area * total:
         return []           # too small to be kept whatever fits
     sub = _submesh(mesh, keep)
     sub_tree = MeshTree(sub.vertices, sub.faces)
-    total = float(areas.sum())
+    d = axis.direction / np.linalg.norm(axis.direction)
+    e1, e2 = _frame(d)
     out = []
-    for p in kinematic_patches(sub, axis, part_params):
-        q = _trimmed(sub, sub_tree, axis, p, part_params)
-        if q is None:
+    n = params.part_slices
+    for i in range(n + 1 if n > 1 else 1):
+        # the whole part first, then its slices
+        inside = (rel >= (i - 1) * length / n) & (rel <= i * length / n)
+        piece = keep[inside[mesh.faces[keep]].all(axis=1)] if i > 0 else keep
+        if len(piece) == 0:
             continue
-        faces = keep[q.faces]
-        cov = float(areas[faces].sum() / total) if total > 0 else 0.0
-        out.append(replace(q, faces=faces, coverage=cov))
+        for p in kinematic_patches(_submesh(mesh, piece) if i > 0 else sub, axis, part_params):
+            # the profile's own parameter, relative to the part's start
+            c = p.profile.mean(axis=0)
+            if axis.kind == "translation":
+                t0 = float(c @ d) - start
+            else:
+                assert axis.point is not None
+                y = c - axis.point
+                t0 = float(np.mod(np.arctan2(y @ e2, y @ e1) - start, 2 * np.pi))
+            q = _trimmed(sub, sub_tree, axis, p, part_params, (-t0, length - t0))
+            if q is None:
+                continue
+            faces = keep[q.faces]
+            cov = float(areas[faces].sum() / total) if total > 0 else 0.0
+            out.append(replace(q, faces=faces, coverage=cov))
     return out
 
 
@@ -378,10 +469,11 @@ def kinematic_parts(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepP
             # about a line along it too: the translation along the axis is tried, the larger cover wins
             slide = _axis(np.r_[0.0, 0.0, 0.0, axis.direction], params)
             other = _part_patches(mesh, slide, pts, free_f, areas, part_params, params)
-            if _good_cover(other, params) > _good_cover(found, params):
+            if _good_cover(other, params, areas) > _good_cover(found, params, areas):
                 found = other
+        # the faces of a fitted patch stay open to later motions: a motion that only approximates
+        # a stretch (a rotation of large radius over a straight sill) may fit it first, and the
+        # fit stage of detect keeps the patch that covers more (patch_overlap)
         for p in found:
-            if p.fit_error <= params.fit_factor * params.eps_prox:
-                free_f[p.faces] = False
             out.append(replace(p, id=first_id + len(out)))
     return out, tried

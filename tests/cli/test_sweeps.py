@@ -123,6 +123,8 @@ def test_two_million_triangles_refused_without_running_out_of_memory():
     (["--planes", "3"], ">= 10"),
     (["-o", "x.json"], "x.json"),
     (["--png", "x.gif"], "x.gif"),
+    (["--parts", "65"], "max_parts = 65: expected a whole number in 0..64"),
+    (["--parts", "-1"], ">= 0"),
 ])
 def test_bad_options_exit_2(cli, tmp_path, args, message):
     src = tmp_path / "a.stl"
@@ -180,3 +182,15 @@ def test_atomic_write_all_removes_what_it_renamed_when_a_later_rename_fails(tmp_
         atomic_write_all([(tmp_path / "a.json", "{}"), (tmp_path / "b.png", b"png")])
     assert e.value.filename == str(tmp_path / "b.png")
     assert files_in(tmp_path) == []
+
+
+def test_parts_option_is_recorded_in_the_result(cli, tmp_path):
+    """``--parts N`` sets ``max_parts``; the result file carries it and reads it back."""
+    src = tmp_path / "a.stl"
+    save(_mesh("extruded"), src, kind="mesh")
+    out = tmp_path / "a.sweeps.json"
+    r = cli("sweeps", src, "-o", out, "--parts", "3", "--quiet")
+    assert r.code == 0, r.err
+    rep = load(out, kind="sweeps")
+    assert rep.params.max_parts == 3
+    assert [p.kind for p in rep.patches] == ["translation"]

@@ -124,6 +124,22 @@ def _to_input(p: SweepPatch, m: SweepMesh, new_id: int, tolerance: float) -> Swe
                       None if fit is None else fit.scaled(m.scale, m.centre))
 
 
+def _fits(p: SweepPatch, params: SweepParams) -> bool:
+    """A candidate the fit stage keeps (before overlaps are dropped)."""
+    return (p.fit_error <= params.fit_factor * params.eps_prox and p.coverage >= params.min_patch_area
+            and sweep_length(p) >= params.min_sweep_length)
+
+
+def _covered(patches: list[SweepPatch], areas: Array, params: SweepParams) -> float:
+    """Share of the area ``areas (m,)`` covered by the union of the candidates that fit (:func:`_fits`)."""
+    covered = np.zeros(len(areas), bool)
+    for p in patches:
+        if _fits(p, params):
+            covered[p.faces] = True
+    total = float(areas.sum())
+    return float(areas[covered].sum()) / total if total > 0 else 0.0
+
+
 def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None = None,
            source: str = "") -> SweepReport:
     """Find the sweep patches of a triangle mesh.
@@ -219,10 +235,18 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         more, general = general_stages(m, cuts, mov, params, step, translations=kinematic)
         raw.extend(more)
         stages.extend(general)
+        w = params.coarse_window
+        if w > 0 and w != params.curvature_window and _covered(raw, areas, params) < params.coarse_below:
+            # the short window's turning angles were mostly noise (or matched only short pieces):
+            # the curvature plots again over the coarse window; the fit stage keeps the best of both
+            more, general = general_stages(m, cuts, mov, params.with_(curvature_window=w), step,
+                                           translations=kinematic)
+            raw.extend(more)
+            stages.extend(Stage(s.name, s.seconds, f"coarse pass (curvature over {w:g}): {s.summary}",
+                                {**s.numbers, "curvature_window": w}) for s in general)
 
     t = step("fit")
-    good = [p for p in raw if p.fit_error <= bound and p.coverage >= params.min_patch_area
-            and sweep_length(p) >= params.min_sweep_length]
+    good = [p for p in raw if _fits(p, params)]
     kept: list[SweepPatch] = []
     taken = np.zeros(len(m.faces), bool)
     for p in sorted(good, key=lambda p: (-p.coverage, p.fit_error)):

@@ -190,6 +190,10 @@ class SweepParams:
     translation_steps : int
         At most this many parallel cuts on each side of a translational sweep's first cut (at
         most ``LIMITS.sweep_steps``; default 400: 8 diameters at the default spacing).
+    chord_slack : float
+        A translational sweep re-found in planes normal to the chord of its path replaces the one in
+        the general sweep's (tilted) profile plane when it covers at least the old coverage less
+        this (:func:`~auszug.sweeps.general.translational_patch`; default 0.02).
     max_match_runs : int
         At most this many movable runs of the initial planes, longest first, are matched (the
         paper's N_match, good runs only, is 144-229 in Fig. 15).
@@ -258,6 +262,7 @@ class SweepParams:
     end_gap: float = 0.5
     translation_step: float = 0.02
     translation_steps: int = 400
+    chord_slack: float = 0.02
     max_match_runs: int = 600
     max_families: int = 6
     min_sweep_length: float = 0.2
@@ -316,6 +321,7 @@ class SweepParams:
              "in [1e-4, 0.5] (bounding-box diameters)"),
             ("translation_steps", _whole(self.translation_steps) and 1 <= self.translation_steps <= LIMITS.sweep_steps,
              f"a whole number in 1..{LIMITS.sweep_steps} (auszug.limits.LIMITS.sweep_steps)"),
+            ("chord_slack", _real(self.chord_slack) and 0 <= self.chord_slack <= 1, "in [0, 1] (a share of the area)"),
             ("max_match_runs", 2 <= self.max_match_runs <= 100000, "in 2..100000"),
             ("max_families", 0 <= self.max_families <= 1000, "in 0..1000"),
             ("min_sweep_length", self.min_sweep_length >= 0, ">= 0"),

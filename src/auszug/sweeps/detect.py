@@ -15,7 +15,10 @@ Stages (each also callable alone, see :mod:`auszug.sweeps`):
    fit check; each fitted sweep grown along its path and across its profile, and, when the cuts
    glided under one turn that fit nothing, also tried as pure translations). The paper's
    adaptive plane refinement (:func:`~auszug.sweeps.search_planes`) is not run: its good planes,
-   ranked by gliding energy, miss the profile planes (docs/sweeps.md);
+   ranked by gliding energy, miss the profile planes (docs/sweeps.md). When the sweeps found
+   cover less than ``coarse_below`` of the mesh, match, families and motion run once more with
+   the curvature averaged over ``coarse_window`` (noisy cuts), and the fit stage ranks the
+   candidates of both passes together;
 5. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
    ``min_patch_area`` of the mesh are dropped; the rest are converted to the input's coordinates,
    each profile fitted with exact lines and arcs (``profile_fit_tolerance``, docs/sweeps.md section 6).

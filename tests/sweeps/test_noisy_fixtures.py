@@ -1,5 +1,6 @@
-"""The rows of the fixture matrix (issue 11, section 3) met by the coarse matching pass and the
-translational sweep across holes: the letter G along the cubic at sigma 5e-4 and 1e-3, and the
+"""The rows of the fixture matrix (issue 11, section 3) met by the coarse matching pass, the
+re-slicing that leaves points over a hole alone, and the translational sweep across holes: the
+letter G along the cubic at sigma 5e-4 and 1e-3 and with the hole (clean and at 5e-4), and the
 double translational arch at sigma 1e-3, with the hole (clean and at 5e-4) and decimated to 6000
 triangles. Targets: coverage >= 0.95 clean, >= 0.85 noisy; plane recall (true profile planes within
 2 deg and 0.005 found) >= 0.95 clean, >= 0.85 at sigma 5e-4 (none is set at 1e-3: asserted at 0.85)."""
@@ -23,6 +24,8 @@ PARAMS = DEFAULT.with_(eps_prox=0.005)
 def _fixture(name):
     return {"letter_g 5e-4": lambda: letter_g_along_cubic(sigma=5e-4),
             "letter_g 1e-3": lambda: letter_g_along_cubic(sigma=1e-3),
+            "letter_g hole": lambda: with_hole(letter_g_along_cubic()),
+            "letter_g hole 5e-4": lambda: with_hole(letter_g_along_cubic(sigma=5e-4)),
             "arch 1e-3": lambda: double_translational(sigma=1e-3),
             "arch hole": lambda: with_hole(double_translational()),
             "arch hole 5e-4": lambda: with_hole(double_translational(sigma=5e-4)),
@@ -39,6 +42,11 @@ def _length(p):
     return float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum())
 
 
+def _recall(fx, r):
+    planes = [motion_planes(p.profile, p.motion, 8) for p in r.patches]
+    return plane_recall(fx.planes, np.vstack([n for n, _ in planes]), np.concatenate([d for _, d in planes]))
+
+
 @pytest.mark.parametrize("name, coverage, recall", [
     ("letter_g 5e-4", 0.85, 0.85),     # measured 0.997, 1.00 (main: 0.748, 0.52)
     ("letter_g 1e-3", 0.85, 0.85),     # measured 0.995, 0.93 (main: no patch)
@@ -52,10 +60,29 @@ def test_noisy_letter_g_is_found_by_the_coarse_pass(name, coverage, recall):
     assert r.patches and all(p.kind == "general" for p in r.patches)
     assert all(p.fit_error <= PARAMS.fit_factor * PARAMS.eps_prox for p in r.patches)
     assert r.coverage >= coverage
-    planes = [motion_planes(p.profile, p.motion, 8) for p in r.patches]
-    rec = plane_recall(fx.planes, np.vstack([n for n, _ in planes]), np.concatenate([d for _, d in planes]))
-    assert rec >= recall
+    assert _recall(fx, r) >= recall
     best = max(r.patches, key=lambda p: p.coverage)
+    assert _length(best.profile) >= 0.9 * fx.profile_length
+
+
+@pytest.mark.parametrize("name, coverage, recall", [
+    ("letter_g hole", 0.95, 0.95),        # measured 0.999, 1.00 (main: 0.915, 0.93)
+    ("letter_g hole 5e-4", 0.85, 0.85),   # measured 0.997, 0.98 (main: 0.893, 0.90)
+])
+def test_holed_letter_g_is_one_sweep_across_the_hole(name, coverage, recall):
+    """Re-slicing across the hole, the points over it found their closest cut points on another part
+    of the G (its arc's end beside the bar, 0.06 away, not at a cut curve's end) and the profile
+    carried that piece along the whole sweep (main: a jump of 0.061 between two profile samples, the
+    arc's first 9 of 80 columns uncovered). Now such points keep the moved profile's place: one
+    patch, its profile the whole G in one piece."""
+    fx, r = _run(name)
+    assert r.patches and all(p.fit_error <= PARAMS.fit_factor * PARAMS.eps_prox for p in r.patches)
+    assert r.coverage >= coverage
+    assert _recall(fx, r) >= recall
+    best = max(r.patches, key=lambda p: p.coverage)
+    assert best.coverage >= coverage
+    steps = np.linalg.norm(np.diff(best.profile, axis=0), axis=1)
+    assert steps.max() <= 3 * np.median(steps)                          # one piece: no jump
     assert _length(best.profile) >= 0.9 * fx.profile_length
 
 

@@ -424,13 +424,14 @@ def profile_planes(profile: Array, motion: Motion, t: ArrayLike) -> tuple[Array,
 
 
 def reslice(mesh: SweepMesh, profile: Array, motion: Motion, tol: float = np.inf,
-            t: ArrayLike | None = None) -> Array | None:
+            t: ArrayLike | None = None, far: float = np.inf) -> Array | None:
     """New ribs ``(k, n, 3)`` at the motion's integer parameters (or at ``t (k,)``); None if a plane misses the mesh.
 
     The mesh is cut by the profile planes (:func:`profile_planes`) there; sample ``j`` of a rib is
     the closest point to the moved profile's point ``j`` on the plane's cut curves, or the moved
     point itself where that closest point is an end of a cut curve farther than ``tol`` (beyond
-    the mesh: over a hole or past its end).
+    the mesh: over a hole or past its end), or farther than ``far`` from the cut at all (over a
+    hole, a closest point on another part of the profile: the letter G's arc end beside its bar).
     """
     if t is None:
         ts = motion.domain[0] + np.arange(int(round(motion.domain[1] - motion.domain[0])) + 1, dtype=float)
@@ -447,9 +448,17 @@ def reslice(mesh: SweepMesh, profile: Array, motion: Motion, tol: float = np.inf
             return None
         dist, cp, at_end = got
         # beyond the mesh (closest cut point an end of a cut curve, and far): the moved profile's point
-        beyond = at_end & (dist > tol)
+        beyond = (at_end & (dist > tol)) | (dist > far)
         out.append(np.where(beyond[:, None], x[i], cp))
     return np.stack(out)
+
+
+def _far(params: SweepParams) -> float:
+    """Re-slicing: a moved profile point farther than this from the cut has no partner there.
+
+    ``4 grow_tolerance eps_prox``, the first round's reach of a grown rib (:func:`grow_ribs`).
+    """
+    return 4 * params.grow_tolerance * params.eps_prox
 
 
 def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
@@ -483,7 +492,7 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
         if i == 0 and n_rounds > 1:
             # the ribs as found are cuts by planes up to 8 deg off the profile planes: their motion
             # only serves to re-slice (fitted, they missed the mesh by 2-6e-3, re-sliced by 0.6-1.9e-3)
-            again = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times)
+            again = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times, _far(params))
             if again is not None:
                 ribs = again
                 continue
@@ -493,7 +502,7 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
         if best is None or err.fit_error < best[3].fit_error:
             best = (profile, motion, vel, err)
         if i + 1 < n_rounds:
-            ribs = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times)
+            ribs = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times, _far(params))
     assert best is not None
     fit = swept_coverage(mesh, best[3], params.eps_prox, a)
     return GeneralSweep(best[0], best[1], best[2], fit.fit_error, fit.coverage, fit.faces)
@@ -895,7 +904,7 @@ def grow_ribs(mesh: SweepMesh, profile: Array, motion: Motion, params: SweepPara
     ahead = grow(list(maps))
     behind = grow(list(maps[::-1]))
     # the motion's own ribs re-cut as well: the profile may have grown beyond what it was fitted to
-    again = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, tu)
+    again = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, tu, _far(params))
     middle = list(again) if again is not None else [profile @ m[0].T + m[1] for m in maps]
     t_mid = np.arange(len(middle), dtype=float)
     t_ahead = t_mid[-1] + np.cumsum([h for _, h in ahead])

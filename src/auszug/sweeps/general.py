@@ -430,8 +430,12 @@ def reslice(mesh: SweepMesh, profile: Array, motion: Motion, tol: float = np.inf
     The mesh is cut by the profile planes (:func:`profile_planes`) there; sample ``j`` of a rib is
     the closest point to the moved profile's point ``j`` on the plane's cut curves, or the moved
     point itself where that closest point is an end of a cut curve farther than ``tol`` (beyond
-    the mesh: over a hole or past its end), or farther than ``far`` from the cut at all (over a
-    hole, a closest point on another part of the profile: the letter G's arc end beside its bar).
+    the mesh: over a hole or past its end). In the inner ribs (all but two at each end), the
+    samples farther than ``far`` from the cut are the moved profile's points too: over a hole they
+    found closest points on another part of the profile (the letter G's arc end beside its bar,
+    0.06 away, not at a curve's end). The two end ribs at each end lie where the mesh ends, and
+    their far samples stay on the cut (taken as the moved profile's points there too, the clean
+    cubic's fit error rose from 8.5e-4 to 2.4e-3).
     """
     if t is None:
         ts = motion.domain[0] + np.arange(int(round(motion.domain[1] - motion.domain[0])) + 1, dtype=float)
@@ -448,8 +452,11 @@ def reslice(mesh: SweepMesh, profile: Array, motion: Motion, tol: float = np.inf
             return None
         dist, cp, at_end = got
         # beyond the mesh (closest cut point an end of a cut curve, and far): the moved profile's point
-        beyond = (at_end & (dist > tol)) | (dist > far)
-        out.append(np.where(beyond[:, None], x[i], cp))
+        beyond = at_end & (dist > tol)
+        rib = np.where(beyond[:, None], x[i], cp)
+        if far < np.inf and 2 <= i < k - 2:
+            rib = np.where((beyond | (dist > far))[:, None], x[i], cp)
+        out.append(rib)
     return np.stack(out)
 
 

@@ -35,6 +35,9 @@ STEP = 0.02     # rib step of the seed motion (bounding-box diameters)
     ("rib_jump", 1.0), ("rib_jump", 0.5), ("rib_jump", float("nan")),
     ("translation_step", 0.0), ("translation_step", -0.02), ("translation_step", 0.6),
     ("translation_steps", 0), ("translation_steps", LIMITS.sweep_steps + 1), ("translation_steps", 3.0),
+    ("coarse_window", 0.005), ("coarse_window", -0.08), ("coarse_window", float("nan")), ("coarse_window", "0.08"),
+    ("coarse_below", -0.1), ("coarse_below", 1.5), ("coarse_below", None),
+    ("chord_slack", -0.01), ("chord_slack", 1.5), ("chord_slack", float("inf")),
 ])
 def test_bad_growth_settings_are_refused_with_what_was_expected(name, value):
     with pytest.raises(GeometryError, match=rf"sweep parameter {name} = .*: expected "):

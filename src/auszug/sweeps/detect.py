@@ -15,7 +15,10 @@ Stages (each also callable alone, see :mod:`auszug.sweeps`):
    fit check; each fitted sweep grown along its path and across its profile, and, when the cuts
    glided under one turn that fit nothing, also tried as pure translations). The paper's
    adaptive plane refinement (:func:`~auszug.sweeps.search_planes`) is not run: its good planes,
-   ranked by gliding energy, miss the profile planes (docs/sweeps.md);
+   ranked by gliding energy, miss the profile planes (docs/sweeps.md). When the sweeps found
+   cover less than ``coarse_below`` of the mesh, match, families and motion run once more with
+   the curvature averaged over ``coarse_window`` (noisy cuts), and the fit stage ranks the
+   candidates of both passes together;
 5. ``parts`` (beyond the paper; only where the patches so far that pass the fit leave at least
    ``min_patch_area`` of the mesh): :func:`~auszug.sweeps.parts.kinematic_parts`, the pieces that
    are each a surface of revolution or an extrusion, such as a moulding's straight and arched
@@ -128,6 +131,22 @@ def _to_input(p: SweepPatch, m: SweepMesh, new_id: int, tolerance: float) -> Swe
                       None if fit is None else fit.scaled(m.scale, m.centre))
 
 
+def _fits(p: SweepPatch, params: SweepParams) -> bool:
+    """A candidate the fit stage keeps (before overlaps are dropped)."""
+    return (p.fit_error <= params.fit_factor * params.eps_prox and p.coverage >= params.min_patch_area
+            and sweep_length(p) >= params.min_sweep_length)
+
+
+def _covered(patches: list[SweepPatch], areas: Array, params: SweepParams) -> float:
+    """Share of the area ``areas (m,)`` covered by the union of the candidates that fit (:func:`_fits`)."""
+    covered = np.zeros(len(areas), bool)
+    for p in patches:
+        if _fits(p, params):
+            covered[p.faces] = True
+    total = float(areas.sum())
+    return float(areas[covered].sum()) / total if total > 0 else 0.0
+
+
 def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None = None,
            source: str = "") -> SweepReport:
     """Find the sweep patches of a triangle mesh.
@@ -223,14 +242,19 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         more, general = general_stages(m, cuts, mov, params, step, translations=kinematic)
         raw.extend(more)
         stages.extend(general)
-
-    def passes(p: SweepPatch) -> bool:
-        return (p.fit_error <= bound and p.coverage >= params.min_patch_area
-                and sweep_length(p) >= params.min_sweep_length)
+        w = params.coarse_window
+        if w > 0 and w != params.curvature_window and _covered(raw, areas, params) < params.coarse_below:
+            # the short window's turning angles were mostly noise (or matched only short pieces):
+            # the curvature plots again over the coarse window; the fit stage keeps the best of both
+            more, general = general_stages(m, cuts, mov, params.with_(curvature_window=w), step,
+                                           translations=kinematic)
+            raw.extend(more)
+            stages.extend(Stage(s.name, s.seconds, f"coarse pass (curvature over {w:g}): {s.summary}",
+                                {**s.numbers, "curvature_window": w}) for s in general)
 
     free = np.ones(len(m.faces), bool)
     for p in raw:
-        if passes(p):
+        if _fits(p, params):
             free[p.faces] = False
     if params.max_parts > 0 and areas.sum() > 0 and float(areas[free].sum() / areas.sum()) >= params.min_patch_area:
         # what the whole-mesh consensus and the general sweeps leave: parts that are each a
@@ -240,7 +264,7 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         t = step("parts")
         found, tried = kinematic_parts(m, cuts, mov, params, free, first_id=len(raw))
         raw.extend(found)
-        fits = sum(passes(p) for p in found)
+        fits = sum(_fits(p, params) for p in found)
         stages.append(Stage("parts", time.perf_counter() - t,
                             f"{tried} motion(s) tried on the {float(areas[free].sum() / areas.sum()):.3f} of the area "
                             f"left, {len(found)} part patch(es), {fits} within fit error {bound:.3g}, covering "
@@ -248,7 +272,7 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
                             {"tried": tried, "candidates": len(found), "fit": fits}))
 
     t = step("fit")
-    good = [p for p in raw if passes(p)]
+    good = [p for p in raw if _fits(p, params)]
     kept: list[SweepPatch] = []
     taken = np.zeros(len(m.faces), bool)
     for p in sorted(good, key=lambda p: (-p.coverage, p.fit_error)):

@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
-from auszug.sweeps._kernels import improve_sums
+from auszug.sweeps._kernels import improve_sums, ring_grid_boxes, ring_grid_nearest
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import KinematicAxis
 from auszug.sweeps.mesh import SweepMesh
@@ -43,7 +43,7 @@ if TYPE_CHECKING:
     from auszug.meshing.sweepmodel import Sweep
     from auszug.sweeps.profilefit import FittedProfile
 
-__all__ = ["SweepPatch", "Fit", "MeshTree", "kinematic_patches", "fit_patch", "face_areas", "sweep_surface",
+__all__ = ["SweepPatch", "Fit", "MeshTree", "RingTree", "kinematic_patches", "fit_patch", "face_areas", "sweep_surface",
            "closest_distance", "polyline_hausdorff", "SweptError", "swept_error", "swept_coverage", "improve_flat"]
 
 Array = NDArray[np.float64]
@@ -128,8 +128,8 @@ class Fit:
     Attributes
     ----------
     vertex_distance : (n_vertices,) float array
-        Distance of every mesh vertex to the swept surface (inf outside its bounding box grown
-        by ``eps_prox``, and at vertices of no face of the mesh, which may be a part).
+        Distance of every mesh vertex to the swept surface where at most ``eps_prox`` (inf where
+        farther, and at vertices of no face of the mesh, which may be a part).
     faces : (m,) int array
         Faces whose three vertices are within ``eps_prox``.
     fit_error : float
@@ -219,14 +219,16 @@ class MeshTree:
         out: IntArray = self._bnd
         return out
 
-    def interior_distance(self, points: ArrayLike, surface: MeshTree | tuple[Array, IntArray] | None = None,
+    def interior_distance(self, points: ArrayLike,
+                          surface: MeshTree | RingTree | tuple[Array, IntArray] | None = None,
                           tol: float = 0.0) -> Array:
         """Distances ``(n,)`` to the mesh, 0 where a point lies beyond the mesh.
 
         A point whose closest point is on the mesh's boundary lies beyond the mesh (past its end or
         over a hole), where the mesh says nothing; the fit check does not count it against a sweep.
 
-        With ``surface``, the swept surface ``(V (k, 3), F (m, 3))`` (or its tree) the points lie on, a point
+        With ``surface``, the swept surface ``(V (k, 3), F (m, 3))`` (or its tree, or its
+        :class:`RingTree`) the points lie on, a point
         farther than ``tol`` from the mesh also counts as beyond it when its closest mesh point lies
         on *another part* of that surface: within ``tol`` of it, and there at least half the
         point's distance away from the point (the reciprocal closest-point test of registration
@@ -248,10 +250,12 @@ class MeshTree:
             gap = np.linalg.norm(c[:, None, :] - (a + f[..., None] * ab), axis=2)
             on = (has & (gap <= 1e-9)).any(axis=1)
             out = np.where(on, 0.0, d)
-        if surface is not None and (isinstance(surface, MeshTree) or len(surface[1])):
+        if surface is not None and (not isinstance(surface, tuple) or len(surface[1])):
             far = np.flatnonzero(out > tol)
             if len(far):
-                if isinstance(surface, MeshTree):
+                if isinstance(surface, RingTree):
+                    ds, _, back = surface.query(c[far], tol)      # only the distances within tol count
+                elif isinstance(surface, MeshTree):
                     ds, _, back = surface.query(c[far])
                 else:
                     ds, back = closest_distance(c[far], surface[0], surface[1])
@@ -259,6 +263,56 @@ class MeshTree:
                 out = out.copy()
                 out[far[other]] = 0.0
         return out
+
+
+class RingTree:
+    """Closest points on a swept surface stored as rings of a profile (:func:`ring_faces`), compiled.
+
+    The quads between consecutive rings and their 2 x 2 blocks, level by level, carry bounding
+    boxes (built in one pass, no tree to balance); a query descends them nearer box first and
+    prunes boxes farther than the best distance so far: exact, like :class:`MeshTree` on
+    ``(rings.reshape(-1, 3), ring_faces(k, n, closed))``, and a query within a ``bound`` prunes
+    from the start.
+
+    Parameters
+    ----------
+    rings : (k, n, 3) float array
+        ``k >= 2`` rings of ``n >= 2`` points.
+    closed : bool
+        Closed rings (the last point joins the first).
+
+    Examples
+    --------
+    >>> rings = np.array([[[0, 0, 0], [1, 0, 0]], [[0, 1, 0], [1, 1, 0.0]]])
+    >>> d, f, c = RingTree(rings, False).query([[0.25, 0.5, 2.0], [3.0, 0.5, 0.0]], bound=2.5)
+    >>> d.tolist(), f.tolist(), c[0].tolist()
+    ([2.0, inf], [1, -1], [0.25, 0.5, 0.0])
+    """
+
+    def __init__(self, rings: ArrayLike, closed: bool = False) -> None:
+        self.rings = np.ascontiguousarray(np.asarray(rings, float))
+        if self.rings.ndim != 3 or self.rings.shape[0] < 2 or self.rings.shape[1] < 2 or self.rings.shape[2] != 3:
+            raise ValueError(f"rings: expected a (k, n, 3) array with k, n >= 2, got shape {self.rings.shape}")
+        self.closed = bool(closed)
+        self._box, self._off, self._shape = ring_grid_boxes(self.rings, self.closed)
+
+    @property
+    def vertices(self) -> Array:
+        """The rings' points ``(k n, 3)``, ring after ring."""
+        return self.rings.reshape(-1, 3)
+
+    @property
+    def faces(self) -> IntArray:
+        """The triangles ``(f, 3)`` (:func:`ring_faces`)."""
+        return ring_faces(self.rings.shape[0], self.rings.shape[1], self.closed)
+
+    def query(self, points: ArrayLike, bound: float = np.inf) -> tuple[Array, IntArray, Array]:
+        """Distances ``(q,)``, closest faces ``(q,)`` and points ``(q, 3)``; inf, -1 and 0 beyond ``bound``."""
+        p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
+        if len(p) == 0:
+            return np.zeros(0), np.zeros(0, np.int64), np.zeros((0, 3))
+        d, f, c = ring_grid_nearest(self.rings, self.closed, self._box, self._off, self._shape, p, float(bound))
+        return d, f, c
 
 
 def polyline_hausdorff(a: ArrayLike, b: ArrayLike, closed_a: bool = False, closed_b: bool = False) -> float:
@@ -496,14 +550,14 @@ class SweptError:
     ----------
     vertices : (k, 3) float array
         The swept surface's vertices (rings of the profile, :func:`sweep_surface`).
-    tree : MeshTree
+    tree : RingTree
         Closest points on the swept surface.
     fit_error : float
         Largest distance of the vertices to the mesh (:meth:`MeshTree.interior_distance`).
     """
 
     vertices: Array
-    tree: MeshTree
+    tree: RingTree
     fit_error: float
 
 
@@ -513,8 +567,8 @@ def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: 
     Swept points beyond the mesh do not count (:meth:`MeshTree.interior_distance` with the
     swept surface's own tree for the reciprocal test).
     """
-    sv, sf = sweep_surface(profile, closed, motion, eps / 10)
-    swept = MeshTree(sv, sf)       # one tree of the swept surface for both directions
+    sv, _ = sweep_surface(profile, closed, motion, eps / 10)
+    swept = RingTree(sv.reshape(-1, len(profile), 3), closed)     # one tree of the swept surface for both directions
     ds = tree.interior_distance(sv, swept, eps)
     return SweptError(sv, swept, float(ds.max()) if len(ds) else float("inf"))
 
@@ -523,7 +577,7 @@ def swept_coverage(mesh: SweepMesh, err: SweptError, eps: float, areas: Array | 
     """The mesh faces within ``eps`` of a swept surface and their share of the area (the second half).
 
     Only the vertices in the swept surface's box grown by ``eps`` are queried (the others are
-    farther than ``eps``).
+    farther than ``eps``), each within ``eps`` (:meth:`RingTree.query` with that bound).
     """
     sv = err.vertices
     lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
@@ -532,7 +586,7 @@ def swept_coverage(mesh: SweepMesh, err: SweptError, eps: float, areas: Array | 
     used[mesh.faces.reshape(-1)] = True
     inside &= used
     dv = np.full(mesh.n_vertices, np.inf)
-    dv[inside] = err.tree.query(mesh.vertices[inside])[0]
+    dv[inside] = err.tree.query(mesh.vertices[inside], eps)[0]
     near = dv <= eps
     faces = np.flatnonzero(near[mesh.faces].all(axis=1)).astype(np.int64)
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas

@@ -517,29 +517,54 @@ def polyline_closest(points, polyline):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def curves_to_profiles(pts, curve_start, curve_plane, moved, reach):  # pragma: no cover - compiled
-    """Distance (m,) of every cut point to the polyline ``moved[plane] (n, 3)`` of its curve's plane.
+def curves_near_profiles(pts, curve_start, curve_plane, moved, reach):  # pragma: no cover - compiled
+    """Whether every cut point (m,) is within ``reach`` of the polyline ``moved[plane] (n, 3)`` of its curve's plane.
 
     ``pts (m, 3)`` are the points of all curves, curve ``j`` being ``pts[curve_start[j]:curve_start[j + 1]]``;
-    ``moved (k, n, 3)`` one polyline per plane. Points outside the polyline's box grown by
-    ``reach`` are farther than ``reach`` and get inf without a search. One pass over all curves.
+    ``moved (k, n, 3)`` one polyline per plane. The same as the distance to the polyline
+    (:func:`polyline_closest`) being at most ``reach``: each polyline is searched in chunks of 8
+    segments, a chunk only when its box grown by ``reach`` holds the point, and the search stops
+    at the first segment within ``reach`` (the square root is monotone, so a segment's distance
+    is at most ``reach`` exactly when the least one is). One pass over all curves.
     """
-    out = np.full(len(pts), np.inf)
-    k = moved.shape[0]
-    box = np.empty((k, 6))
+    out = np.zeros(len(pts), np.bool_)
+    k, n = moved.shape[0], moved.shape[1]
+    chunk = 8
+    n_seg = n - 1
+    n_chunk = max(1, (n_seg + chunk - 1) // chunk)
+    box = np.empty((k, n_chunk, 6))
     for p in range(k):
-        for ax in range(3):
-            box[p, ax] = moved[p, :, ax].min() - reach
-            box[p, 3 + ax] = moved[p, :, ax].max() + reach
+        for h in range(n_chunk):
+            s0, s1 = h * chunk, min((h + 1) * chunk, n_seg)       # segments s0 .. s1 - 1: points s0 .. s1
+            s1 = max(s1, s0)
+            for ax in range(3):
+                lo, hi = np.inf, -np.inf
+                for r in range(s0, min(s1 + 1, n)):
+                    lo = min(lo, moved[p, r, ax])
+                    hi = max(hi, moved[p, r, ax])
+                box[p, h, ax] = lo - reach
+                box[p, h, 3 + ax] = hi + reach
     for j in range(len(curve_start) - 1):
         p = curve_plane[j]
         line = moved[p]
         for i in range(curve_start[j], curve_start[j + 1]):
             x0, x1, x2 = pts[i, 0], pts[i, 1], pts[i, 2]
-            if x0 < box[p, 0] or x0 > box[p, 3] or x1 < box[p, 1] or x1 > box[p, 4] or x2 < box[p, 2] or x2 > box[p, 5]:
+            if n == 1:
+                out[i] = np.sqrt((x0 - line[0, 0]) ** 2 + (x1 - line[0, 1]) ** 2 + (x2 - line[0, 2]) ** 2) <= reach
                 continue
-            d, _ = polyline_closest(pts[i:i + 1], line)
-            out[i] = d[0]
+            found = False
+            for h in range(n_chunk):
+                if (x0 < box[p, h, 0] or x0 > box[p, h, 3] or x1 < box[p, h, 1] or x1 > box[p, h, 4]
+                        or x2 < box[p, h, 2] or x2 > box[p, h, 5]):
+                    continue
+                for g in range(h * chunk, min((h + 1) * chunk, n_seg)):
+                    d2, _, _, _ = _segment_closest(x0, x1, x2, line, g)
+                    if np.sqrt(d2) <= reach:
+                        found = True
+                        break
+                if found:
+                    break
+            out[i] = found
     return out
 
 
@@ -1053,3 +1078,206 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
     curve_start[n_curves] = pos
     return pts[:pos].copy(), nrm[:pos].copy(), eid[:pos].copy(), curve_start, planes[:n_curves].copy(), \
         closed_out[:n_curves].copy()
+
+
+# ------------------------------------------------------------------------------------ sub-meshes
+
+
+@njit(cache=True)
+def box_submesh(v, faces, edge_faces, face_edges, lo, hi):  # pragma: no cover - compiled
+    """The faces whose three vertices lie in the box ``[lo, hi]``, their edges, and the part's index maps.
+
+    Returns the kept faces ``(f,)`` and edges ``(e,)`` (increasing), the part's ``edge_faces (e, 2)``
+    (-1 for a face not kept) and ``face_edges (f, 3)`` (indices into the kept edges).
+    """
+    n_v = len(v)
+    inside = np.empty(n_v, np.bool_)
+    for i in range(n_v):
+        inside[i] = (lo[0] <= v[i, 0] <= hi[0]) and (lo[1] <= v[i, 1] <= hi[1]) and (lo[2] <= v[i, 2] <= hi[2])
+    n_f = len(faces)
+    face_index = np.full(n_f, -1, np.int64)
+    n_keep = 0
+    for f in range(n_f):
+        if inside[faces[f, 0]] and inside[faces[f, 1]] and inside[faces[f, 2]]:
+            face_index[f] = n_keep
+            n_keep += 1
+    keep = np.empty(n_keep, np.int64)
+    n_e = len(edge_faces)
+    edge_index = np.full(n_e, -1, np.int64)
+    for f in range(n_f):
+        if face_index[f] >= 0:
+            keep[face_index[f]] = f
+            for k in range(3):
+                edge_index[face_edges[f, k]] = 0
+    n_used = 0
+    for e in range(n_e):
+        if edge_index[e] == 0:
+            edge_index[e] = n_used
+            n_used += 1
+    used = np.empty(n_used, np.int64)
+    ef = np.empty((n_used, 2), np.int64)
+    for e in range(n_e):
+        r = edge_index[e]
+        if r >= 0:
+            used[r] = e
+            for k in range(2):
+                g = edge_faces[e, k]
+                ef[r, k] = face_index[g] if g >= 0 else -1
+    fe = np.empty((n_keep, 3), np.int64)
+    for r in range(n_keep):
+        for k in range(3):
+            fe[r, k] = edge_index[face_edges[keep[r], k]]
+    return keep, used, ef, fe
+
+
+# ------------------------------------------------------------------- closest points on a triangle mesh
+
+
+@njit(cache=True)
+def _spread_bits(x):  # pragma: no cover - compiled
+    """The 10 low bits of ``x`` spread to every third bit (Morton codes)."""
+    x &= 0x3FF
+    x = (x | (x << 16)) & 0x030000FF
+    x = (x | (x << 8)) & 0x0300F00F
+    x = (x | (x << 4)) & 0x030C30C3
+    x = (x | (x << 2)) & 0x09249249
+    return x
+
+
+@njit(cache=True)
+def face_tree_build(v, faces, leaf):  # pragma: no cover - compiled
+    """A bounding-box hierarchy of triangles: faces in Morton order of their centroids, ``leaf`` per leaf.
+
+    Returns the face order ``(m,)``, the triangles in that order ``(m, 3, 3)``, and the boxes
+    ``(total, 6)`` of the leaves and of pairs of nodes level by level (each level's first row
+    ``(L + 1,)``, its node count ``(L,)``), up to one box.
+    """
+    m = len(faces)
+    cen = np.empty((m, 3))
+    lo = np.full(3, np.inf)
+    hi = np.full(3, -np.inf)
+    for f in range(m):
+        for ax in range(3):
+            c = (v[faces[f, 0], ax] + v[faces[f, 1], ax] + v[faces[f, 2], ax]) / 3.0
+            cen[f, ax] = c
+            lo[ax] = min(lo[ax], c)
+            hi[ax] = max(hi[ax], c)
+    code = np.empty(m, np.int64)
+    for f in range(m):
+        q = np.zeros(3, np.int64)
+        for ax in range(3):
+            span = hi[ax] - lo[ax]
+            q[ax] = int(1023.0 * (cen[f, ax] - lo[ax]) / span) if span > 0 else 0
+        code[f] = (_spread_bits(q[0]) << 2) | (_spread_bits(q[1]) << 1) | _spread_bits(q[2])
+    order = np.argsort(code, kind="mergesort")
+    tri = np.empty((m, 3, 3))
+    for o in range(m):
+        f = order[o]
+        for k in range(3):
+            for ax in range(3):
+                tri[o, k, ax] = v[faces[f, k], ax]
+    counts = [(m + leaf - 1) // leaf]
+    while counts[-1] > 1:
+        counts.append((counts[-1] + 1) // 2)
+    n_lev = len(counts)
+    size = np.empty(n_lev, np.int64)
+    off = np.zeros(n_lev + 1, np.int64)
+    for lv in range(n_lev):
+        size[lv] = counts[lv]
+        off[lv + 1] = off[lv] + counts[lv]
+    box = np.empty((off[n_lev], 6))
+    for r in range(size[0]):
+        for ax in range(3):
+            box[r, ax], box[r, 3 + ax] = np.inf, -np.inf
+        for o in range(r * leaf, min((r + 1) * leaf, m)):
+            for k in range(3):
+                for ax in range(3):
+                    box[r, ax] = min(box[r, ax], tri[o, k, ax])
+                    box[r, 3 + ax] = max(box[r, 3 + ax], tri[o, k, ax])
+    for lv in range(1, n_lev):
+        for r in range(size[lv]):
+            row = off[lv] + r
+            a = off[lv - 1] + 2 * r
+            b = a + 1 if 2 * r + 1 < size[lv - 1] else a
+            for ax in range(3):
+                box[row, ax] = min(box[a, ax], box[b, ax])
+                box[row, 3 + ax] = max(box[a, 3 + ax], box[b, 3 + ax])
+    return order, tri, box, off, size
+
+
+@njit(cache=True)
+def face_tree_nearest(order, tri, box, off, size, leaf, points, bound):  # pragma: no cover - compiled
+    """Closest points on the triangles of :func:`face_tree_build` within ``bound`` (exact).
+
+    Returns distances ``(q,)`` (inf beyond ``bound``), face indices ``(q,)`` (-1 there) and
+    closest points ``(q, 3)``. Depth first, the nearer child first, boxes farther than the best
+    distance so far pruned. Each point starts from the previous point's closest point (an upper
+    bound of its distance: points given in order along a surface are found with few boxes).
+    """
+    m = len(order)
+    n_lev = len(size)
+    q = len(points)
+    dist = np.full(q, np.inf)
+    face = np.full(q, -1, np.int64)
+    cp = np.zeros((q, 3))
+    stack_l = np.empty(2 * n_lev + 2, np.int64)
+    stack_r = np.empty(2 * n_lev + 2, np.int64)
+    b2 = bound * bound
+    last = -1
+    for p in range(q):
+        px, py, pz = points[p, 0], points[p, 1], points[p, 2]
+        best = b2
+        found = False
+        bx, by, bz = 0.0, 0.0, 0.0
+        bo = -1
+        if last >= 0:      # the previous point's triangle: an upper bound to start from
+            t = tri[last]
+            d2, qx, qy, qz = _triangle_closest(px, py, pz, t[0, 0], t[0, 1], t[0, 2], t[1, 0], t[1, 1], t[1, 2],
+                                               t[2, 0], t[2, 1], t[2, 2])
+            if d2 <= best:
+                best, found, bx, by, bz, bo = d2, True, qx, qy, qz, last
+        top = n_lev - 1
+        stack_l[0], stack_r[0] = top, 0
+        sp = 1
+        while sp > 0:
+            sp -= 1
+            lv, r = stack_l[sp], stack_r[sp]
+            if _box_sq(px, py, pz, box, off[lv] + r) > best:
+                continue
+            if lv == 0:
+                for o in range(r * leaf, min((r + 1) * leaf, m)):
+                    if o == bo:
+                        continue
+                    t = tri[o]
+                    d2, qx, qy, qz = _triangle_closest(px, py, pz, t[0, 0], t[0, 1], t[0, 2], t[1, 0], t[1, 1],
+                                                       t[1, 2], t[2, 0], t[2, 1], t[2, 2])
+                    if d2 < best or (not found and d2 <= best):
+                        best, found, bx, by, bz, bo = d2, True, qx, qy, qz, o
+                continue
+            a = 2 * r
+            if a + 1 < size[lv - 1]:
+                da = _box_sq(px, py, pz, box, off[lv - 1] + a)
+                db = _box_sq(px, py, pz, box, off[lv - 1] + a + 1)
+                if da <= db:
+                    if db <= best:
+                        stack_l[sp], stack_r[sp] = lv - 1, a + 1
+                        sp += 1
+                    if da <= best:
+                        stack_l[sp], stack_r[sp] = lv - 1, a
+                        sp += 1
+                else:
+                    if da <= best:
+                        stack_l[sp], stack_r[sp] = lv - 1, a
+                        sp += 1
+                    if db <= best:
+                        stack_l[sp], stack_r[sp] = lv - 1, a + 1
+                        sp += 1
+            else:
+                stack_l[sp], stack_r[sp] = lv - 1, a
+                sp += 1
+        if found:
+            dist[p] = np.sqrt(best)
+            face[p] = order[bo]
+            cp[p, 0], cp[p, 1], cp[p, 2] = bx, by, bz
+            last = bo
+    return dist, face, cp

@@ -51,7 +51,7 @@ from typing import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from auszug.sweeps._kernels import curves_to_profiles, polyline_closest
+from auszug.sweeps._kernels import box_submesh, curves_near_profiles, polyline_closest
 from auszug.sweeps.cut import Cuts, EdgeGrid, cut, cut_near
 from auszug.sweeps.matching import CurvaturePlots, Family, Ribs, curvature_plots, families, match_cuts, order_ribs
 from auszug.sweeps.mesh import SweepMesh
@@ -360,7 +360,7 @@ def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float,
     c = cut_near(mesh, normals, offsets, np.hstack([moved.min(axis=1) - reach, moved.max(axis=1) + reach]), grid)
     if c.n_curves == 0:
         return np.zeros((0, 3)), np.zeros(1, np.int64)
-    near = curves_to_profiles(c.points, c.curve_start, c.curve_plane, np.ascontiguousarray(moved), reach) <= reach
+    near = curves_near_profiles(c.points, c.curve_start, c.curve_plane, np.ascontiguousarray(moved), reach)
     # each stretch of a curve near the moved profile is a piece of its own: joined, a curve
     # broken by a hole in the mesh would bridge the hole by a chord
     curve_of = np.repeat(np.arange(c.n_curves), np.diff(c.curve_start))
@@ -531,18 +531,10 @@ def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, I
     from dataclasses import replace
 
     lo, hi = points.reshape(-1, 3).min(axis=0) - margin, points.reshape(-1, 3).max(axis=0) + margin
-    inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
-    keep = np.flatnonzero(inside[mesh.faces].all(axis=1)).astype(np.int64)
-    used = np.zeros(len(mesh.edges), bool)
-    used[mesh.face_edges[keep]] = True
-    used_edges = np.flatnonzero(used)
-    edge_index = np.full(len(mesh.edges), -1, np.int64)
-    edge_index[used_edges] = np.arange(len(used_edges))
-    face_index = np.full(len(mesh.faces) + 1, -1, np.int64)    # [-1] stays -1: a missing face
-    face_index[keep] = np.arange(len(keep))
-    return replace(mesh, faces=mesh.faces[keep], edges=mesh.edges[used_edges],
-                   edge_faces=face_index[mesh.edge_faces[used_edges]],
-                   face_edges=edge_index[mesh.face_edges[keep]]), keep
+    keep, used, edge_faces, face_edges = box_submesh(mesh.vertices, mesh.faces, mesh.edge_faces, mesh.face_edges,
+                                                     lo, hi)
+    return replace(mesh, faces=mesh.faces[keep], edges=mesh.edges[used], edge_faces=edge_faces,
+                   face_edges=face_edges), keep
 
 
 def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams, step: Callable[[str], float],

@@ -588,7 +588,7 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     areas = face_areas(mesh.vertices, mesh.faces)
     total = float(areas.sum())
     out: list[SweepPatch] = []
-    tree = MeshTree(mesh.vertices, mesh.faces)
+    tree = MeshTree.of(mesh)
     grown = np.zeros(len(mesh.faces), bool)
     skipped = 0
     # a family's ordered ribs may jump across a gap (parallel cuts of two parallel stretches of a

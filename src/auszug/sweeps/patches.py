@@ -197,6 +197,20 @@ class MeshTree:
         self._tree = igl.AABB()
         self._tree.init(self.vertices, self.faces)
 
+    @classmethod
+    def of(cls, mesh: SweepMesh) -> "MeshTree":
+        """The tree of a whole :class:`~auszug.sweeps.mesh.SweepMesh`, its boundary edges from the mesh's topology.
+
+        The same as ``MeshTree(mesh.vertices, mesh.faces)``, without counting the edges' faces
+        again (an edge with one face is a boundary edge).
+        """
+        tree = cls(mesh.vertices, mesh.faces)
+        f = tree.faces
+        e = np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1)        # (m, 3, 2), as face_edges
+        single = (mesh.edge_faces[mesh.face_edges] < 0).any(axis=2)            # (m, 3)
+        tree._bnd = np.where(single[:, :, None], e, -1)
+        return tree
+
     def query(self, points: ArrayLike) -> tuple[Array, IntArray, Array]:
         """Distances ``(n,)``, closest faces ``(n,)`` and closest points ``(n, 3)``."""
         p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
@@ -626,7 +640,7 @@ def kinematic_patches(mesh: SweepMesh, axis: KinematicAxis, params: SweepParams 
     rot, tr = kin.motion(t_knots)
     motion = Motion(t_knots, rot, tr)
     areas = face_areas(mesh.vertices, mesh.faces)
-    tree = MeshTree(mesh.vertices, mesh.faces)
+    tree = MeshTree.of(mesh)
     # the middle cut and the further cuts for the profile improvement, inside the range, nearest the
     # middle first; each cut's pieces (within a quarter turn of its parameter for rotations)
     t_more = np.linspace(0.0, span, params.profile_cuts + 2)[1:-1]

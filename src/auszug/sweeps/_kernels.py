@@ -634,70 +634,71 @@ def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cov
 def _triangle_closest(px, py, pz, ax, ay, az, bx, by, bz, cx, cy, cz):  # pragma: no cover - compiled
     """Squared distance from p to triangle abc and the closest point.
 
-    By the Voronoi regions of the vertices, edges and face in barycentric terms; a degenerate
-    triangle falls to its edges.
+    By the Voronoi regions of the vertices, edges and face in barycentric terms; a triangle with
+    a zero-length edge (every denominator below is an edge's squared length or the area) or no
+    area falls to its edges.
     """
     abx, aby, abz = bx - ax, by - ay, bz - az
     acx, acy, acz = cx - ax, cy - ay, cz - az
-    apx, apy, apz = px - ax, py - ay, pz - az
-    d1 = abx * apx + aby * apy + abz * apz
-    d2 = acx * apx + acy * apy + acz * apz
-    if d1 <= 0.0 and d2 <= 0.0:
-        qx, qy, qz = ax, ay, az
-    else:
+    bcx, bcy, bcz = cx - bx, cy - by, cz - bz
+    flat = (abx * abx + aby * aby + abz * abz == 0.0 or acx * acx + acy * acy + acz * acz == 0.0
+            or bcx * bcx + bcy * bcy + bcz * bcz == 0.0)
+    qx, qy, qz = ax, ay, az
+    if not flat:
+        apx, apy, apz = px - ax, py - ay, pz - az
+        d1 = abx * apx + aby * apy + abz * apz
+        d2 = acx * apx + acy * apy + acz * apz
         bpx, bpy, bpz = px - bx, py - by, pz - bz
         d3 = abx * bpx + aby * bpy + abz * bpz
         d4 = acx * bpx + acy * bpy + acz * bpz
-        if d3 >= 0.0 and d4 <= d3:
+        cpx, cpy, cpz = px - cx, py - cy, pz - cz
+        d5 = abx * cpx + aby * cpy + abz * cpz
+        d6 = acx * cpx + acy * cpy + acz * cpz
+        vc = d1 * d4 - d3 * d2
+        vb = d5 * d2 - d1 * d6
+        va = d3 * d6 - d5 * d4
+        if d1 <= 0.0 and d2 <= 0.0:
+            qx, qy, qz = ax, ay, az
+        elif d3 >= 0.0 and d4 <= d3:
             qx, qy, qz = bx, by, bz
+        elif vc <= 0.0 and d1 >= 0.0 and d3 <= 0.0 and d1 - d3 > 0.0:
+            v = d1 / (d1 - d3)
+            qx, qy, qz = ax + v * abx, ay + v * aby, az + v * abz
+        elif d6 >= 0.0 and d5 <= d6:
+            qx, qy, qz = cx, cy, cz
+        elif vb <= 0.0 and d2 >= 0.0 and d6 <= 0.0 and d2 - d6 > 0.0:
+            w = d2 / (d2 - d6)
+            qx, qy, qz = ax + w * acx, ay + w * acy, az + w * acz
+        elif va <= 0.0 and (d4 - d3) >= 0.0 and (d5 - d6) >= 0.0 and (d4 - d3) + (d5 - d6) > 0.0:
+            w = (d4 - d3) / ((d4 - d3) + (d5 - d6))
+            qx, qy, qz = bx + w * bcx, by + w * bcy, bz + w * bcz
+        elif va + vb + vc > 0.0:
+            s = va + vb + vc
+            v = vb / s
+            w = vc / s
+            qx, qy, qz = ax + abx * v + acx * w, ay + aby * v + acy * w, az + abz * v + acz * w
         else:
-            vc = d1 * d4 - d3 * d2
-            if vc <= 0.0 and d1 >= 0.0 and d3 <= 0.0:
-                v = d1 / (d1 - d3)
-                qx, qy, qz = ax + v * abx, ay + v * aby, az + v * abz
+            flat = True
+    if flat:       # the nearest point of the three edges
+        best = np.inf
+        for e in range(3):
+            if e == 0:
+                ux, uy, uz, wx, wy, wz = ax, ay, az, bx, by, bz
+            elif e == 1:
+                ux, uy, uz, wx, wy, wz = bx, by, bz, cx, cy, cz
             else:
-                cpx, cpy, cpz = px - cx, py - cy, pz - cz
-                d5 = abx * cpx + aby * cpy + abz * cpz
-                d6 = acx * cpx + acy * cpy + acz * cpz
-                if d6 >= 0.0 and d5 <= d6:
-                    qx, qy, qz = cx, cy, cz
-                else:
-                    vb = d5 * d2 - d1 * d6
-                    if vb <= 0.0 and d2 >= 0.0 and d6 <= 0.0:
-                        w = d2 / (d2 - d6)
-                        qx, qy, qz = ax + w * acx, ay + w * acy, az + w * acz
-                    else:
-                        va = d3 * d6 - d5 * d4
-                        if va <= 0.0 and (d4 - d3) >= 0.0 and (d5 - d6) >= 0.0:
-                            w = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-                            qx, qy, qz = bx + w * (cx - bx), by + w * (cy - by), bz + w * (cz - bz)
-                        else:
-                            s = va + vb + vc
-                            if s > 0.0:
-                                v = vb / s
-                                w = vc / s
-                                qx, qy, qz = ax + abx * v + acx * w, ay + aby * v + acy * w, az + abz * v + acz * w
-                            else:   # degenerate (zero area, not caught above): the nearest of its edges
-                                best = np.inf
-                                qx, qy, qz = ax, ay, az
-                                for e in range(3):
-                                    if e == 0:
-                                        ux, uy, uz, wx, wy, wz = ax, ay, az, bx, by, bz
-                                    elif e == 1:
-                                        ux, uy, uz, wx, wy, wz = bx, by, bz, cx, cy, cz
-                                    else:
-                                        ux, uy, uz, wx, wy, wz = cx, cy, cz, ax, ay, az
-                                    ex, ey, ez = wx - ux, wy - uy, wz - uz
-                                    ee = ex * ex + ey * ey + ez * ez
-                                    f = 0.0
-                                    if ee > 0:
-                                        f = ((px - ux) * ex + (py - uy) * ey + (pz - uz) * ez) / ee
-                                        f = min(max(f, 0.0), 1.0)
-                                    rx, ry, rz = ux + f * ex, uy + f * ey, uz + f * ez
-                                    dd = (px - rx) ** 2 + (py - ry) ** 2 + (pz - rz) ** 2
-                                    if dd < best:
-                                        best = dd
-                                        qx, qy, qz = rx, ry, rz
+                ux, uy, uz, wx, wy, wz = cx, cy, cz, ax, ay, az
+            ex, ey, ez = wx - ux, wy - uy, wz - uz
+            ee = ex * ex + ey * ey + ez * ez
+            f = 0.0
+            if ee > 0:
+                f = ((px - ux) * ex + (py - uy) * ey + (pz - uz) * ez) / ee
+                f = min(max(f, 0.0), 1.0)
+            rx, ry, rz = ux + f * ex, uy + f * ey, uz + f * ez
+            dd = (px - rx) ** 2 + (py - ry) ** 2 + (pz - rz) ** 2
+            if dd < best:
+                best = dd
+                qx, qy, qz = rx, ry, rz
     return (px - qx) ** 2 + (py - qy) ** 2 + (pz - qz) ** 2, qx, qy, qz
 
 

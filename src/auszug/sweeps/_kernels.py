@@ -764,7 +764,9 @@ def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma:
     Returns distances ``(q,)`` (inf where the surface is farther than ``bound``), face indices
     ``(q,)`` (-1 there; numbered as ``ring_faces``) and closest points ``(q, 3)``. A depth-first
     search of the box levels of :func:`ring_grid_boxes`, nearer children first, pruning boxes
-    farther than the best distance so far (``bound`` at the start): exact.
+    farther than the best distance so far (``bound`` at the start): exact. Each point starts from
+    the triangle of the previous point found (points given in order along a surface, such as a
+    mesh's vertices, need few boxes then).
     """
     n = rings.shape[1]
     m = n if closed else n - 1
@@ -780,6 +782,7 @@ def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma:
     ci_ = np.empty(4, np.int64)
     cj_ = np.empty(4, np.int64)
     b2 = bound * bound
+    last = -1
     for p in range(q):
         px, py, pz = points[p, 0], points[p, 1], points[p, 2]
         best = b2
@@ -789,6 +792,19 @@ def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma:
         top = n_lev - 1
         if _box_sq(px, py, pz, box, off[top]) > best:
             continue
+        if last >= 0:      # the previous point's triangle first: its distance bounds the search
+            qd = last // 2
+            i, j, t = qd // m, qd % m, last % 2
+            j1 = (j + 1) % n
+            a0 = rings[i, j]
+            if t == 0:
+                b0, c0 = rings[i, j1], rings[i + 1, j1]
+            else:
+                b0, c0 = rings[i + 1, j1], rings[i + 1, j]
+            d2, qx, qy, qz = _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2],
+                                               c0[0], c0[1], c0[2])
+            if d2 <= best:
+                best, found, bx, by, bz, bf = d2, True, qx, qy, qz, last
         sp = 0
         stack_l[0], stack_i[0], stack_j[0] = top, 0, 0
         sp = 1
@@ -805,13 +821,16 @@ def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma:
                         b0, c0 = rings[i, j1], rings[i + 1, j1]
                     else:
                         b0, c0 = rings[i + 1, j1], rings[i + 1, j]
+                    fi = 2 * (i * m + j) + t
+                    if fi == bf:
+                        continue
                     d2, qx, qy, qz = _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2],
                                                        c0[0], c0[1], c0[2])
                     if d2 < best or (not found and d2 <= best):
                         best = d2
                         found = True
                         bx, by, bz = qx, qy, qz
-                        bf = 2 * (i * m + j) + t
+                        bf = fi
                 continue
             # children, nearest pushed last (popped first)
             nc = 0
@@ -834,6 +853,7 @@ def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma:
             dist[p] = np.sqrt(best)
             face[p] = bf
             cp[p, 0], cp[p, 1], cp[p, 2] = bx, by, bz
+            last = bf
     return dist, face, cp
 
 
@@ -1129,156 +1149,3 @@ def box_submesh(v, faces, edge_faces, face_edges, lo, hi):  # pragma: no cover -
         for k in range(3):
             fe[r, k] = edge_index[face_edges[keep[r], k]]
     return keep, used, ef, fe
-
-
-# ------------------------------------------------------------------- closest points on a triangle mesh
-
-
-@njit(cache=True)
-def _spread_bits(x):  # pragma: no cover - compiled
-    """The 10 low bits of ``x`` spread to every third bit (Morton codes)."""
-    x &= 0x3FF
-    x = (x | (x << 16)) & 0x030000FF
-    x = (x | (x << 8)) & 0x0300F00F
-    x = (x | (x << 4)) & 0x030C30C3
-    x = (x | (x << 2)) & 0x09249249
-    return x
-
-
-@njit(cache=True)
-def face_tree_build(v, faces, leaf):  # pragma: no cover - compiled
-    """A bounding-box hierarchy of triangles: faces in Morton order of their centroids, ``leaf`` per leaf.
-
-    Returns the face order ``(m,)``, the triangles in that order ``(m, 3, 3)``, and the boxes
-    ``(total, 6)`` of the leaves and of pairs of nodes level by level (each level's first row
-    ``(L + 1,)``, its node count ``(L,)``), up to one box.
-    """
-    m = len(faces)
-    cen = np.empty((m, 3))
-    lo = np.full(3, np.inf)
-    hi = np.full(3, -np.inf)
-    for f in range(m):
-        for ax in range(3):
-            c = (v[faces[f, 0], ax] + v[faces[f, 1], ax] + v[faces[f, 2], ax]) / 3.0
-            cen[f, ax] = c
-            lo[ax] = min(lo[ax], c)
-            hi[ax] = max(hi[ax], c)
-    code = np.empty(m, np.int64)
-    for f in range(m):
-        q = np.zeros(3, np.int64)
-        for ax in range(3):
-            span = hi[ax] - lo[ax]
-            q[ax] = int(1023.0 * (cen[f, ax] - lo[ax]) / span) if span > 0 else 0
-        code[f] = (_spread_bits(q[0]) << 2) | (_spread_bits(q[1]) << 1) | _spread_bits(q[2])
-    order = np.argsort(code, kind="mergesort")
-    tri = np.empty((m, 3, 3))
-    for o in range(m):
-        f = order[o]
-        for k in range(3):
-            for ax in range(3):
-                tri[o, k, ax] = v[faces[f, k], ax]
-    counts = [(m + leaf - 1) // leaf]
-    while counts[-1] > 1:
-        counts.append((counts[-1] + 1) // 2)
-    n_lev = len(counts)
-    size = np.empty(n_lev, np.int64)
-    off = np.zeros(n_lev + 1, np.int64)
-    for lv in range(n_lev):
-        size[lv] = counts[lv]
-        off[lv + 1] = off[lv] + counts[lv]
-    box = np.empty((off[n_lev], 6))
-    for r in range(size[0]):
-        for ax in range(3):
-            box[r, ax], box[r, 3 + ax] = np.inf, -np.inf
-        for o in range(r * leaf, min((r + 1) * leaf, m)):
-            for k in range(3):
-                for ax in range(3):
-                    box[r, ax] = min(box[r, ax], tri[o, k, ax])
-                    box[r, 3 + ax] = max(box[r, 3 + ax], tri[o, k, ax])
-    for lv in range(1, n_lev):
-        for r in range(size[lv]):
-            row = off[lv] + r
-            a = off[lv - 1] + 2 * r
-            b = a + 1 if 2 * r + 1 < size[lv - 1] else a
-            for ax in range(3):
-                box[row, ax] = min(box[a, ax], box[b, ax])
-                box[row, 3 + ax] = max(box[a, 3 + ax], box[b, 3 + ax])
-    return order, tri, box, off, size
-
-
-@njit(cache=True)
-def face_tree_nearest(order, tri, box, off, size, leaf, points, bound):  # pragma: no cover - compiled
-    """Closest points on the triangles of :func:`face_tree_build` within ``bound`` (exact).
-
-    Returns distances ``(q,)`` (inf beyond ``bound``), face indices ``(q,)`` (-1 there) and
-    closest points ``(q, 3)``. Depth first, the nearer child first, boxes farther than the best
-    distance so far pruned. Each point starts from the previous point's closest point (an upper
-    bound of its distance: points given in order along a surface are found with few boxes).
-    """
-    m = len(order)
-    n_lev = len(size)
-    q = len(points)
-    dist = np.full(q, np.inf)
-    face = np.full(q, -1, np.int64)
-    cp = np.zeros((q, 3))
-    stack_l = np.empty(2 * n_lev + 2, np.int64)
-    stack_r = np.empty(2 * n_lev + 2, np.int64)
-    b2 = bound * bound
-    last = -1
-    for p in range(q):
-        px, py, pz = points[p, 0], points[p, 1], points[p, 2]
-        best = b2
-        found = False
-        bx, by, bz = 0.0, 0.0, 0.0
-        bo = -1
-        if last >= 0:      # the previous point's triangle: an upper bound to start from
-            t = tri[last]
-            d2, qx, qy, qz = _triangle_closest(px, py, pz, t[0, 0], t[0, 1], t[0, 2], t[1, 0], t[1, 1], t[1, 2],
-                                               t[2, 0], t[2, 1], t[2, 2])
-            if d2 <= best:
-                best, found, bx, by, bz, bo = d2, True, qx, qy, qz, last
-        top = n_lev - 1
-        stack_l[0], stack_r[0] = top, 0
-        sp = 1
-        while sp > 0:
-            sp -= 1
-            lv, r = stack_l[sp], stack_r[sp]
-            if _box_sq(px, py, pz, box, off[lv] + r) > best:
-                continue
-            if lv == 0:
-                for o in range(r * leaf, min((r + 1) * leaf, m)):
-                    if o == bo:
-                        continue
-                    t = tri[o]
-                    d2, qx, qy, qz = _triangle_closest(px, py, pz, t[0, 0], t[0, 1], t[0, 2], t[1, 0], t[1, 1],
-                                                       t[1, 2], t[2, 0], t[2, 1], t[2, 2])
-                    if d2 < best or (not found and d2 <= best):
-                        best, found, bx, by, bz, bo = d2, True, qx, qy, qz, o
-                continue
-            a = 2 * r
-            if a + 1 < size[lv - 1]:
-                da = _box_sq(px, py, pz, box, off[lv - 1] + a)
-                db = _box_sq(px, py, pz, box, off[lv - 1] + a + 1)
-                if da <= db:
-                    if db <= best:
-                        stack_l[sp], stack_r[sp] = lv - 1, a + 1
-                        sp += 1
-                    if da <= best:
-                        stack_l[sp], stack_r[sp] = lv - 1, a
-                        sp += 1
-                else:
-                    if da <= best:
-                        stack_l[sp], stack_r[sp] = lv - 1, a
-                        sp += 1
-                    if db <= best:
-                        stack_l[sp], stack_r[sp] = lv - 1, a + 1
-                        sp += 1
-            else:
-                stack_l[sp], stack_r[sp] = lv - 1, a
-                sp += 1
-        if found:
-            dist[p] = np.sqrt(best)
-            face[p] = order[bo]
-            cp[p, 0], cp[p, 1], cp[p, 2] = bx, by, bz
-            last = bo
-    return dist, face, cp

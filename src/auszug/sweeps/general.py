@@ -420,8 +420,10 @@ def profile_planes(profile: Array, motion: Motion, t: ArrayLike) -> tuple[Array,
     h = 1e-3 * max(hi - lo, 1e-12)
     tc = np.clip(tt, lo + h, hi - h)
     centroid = profile.mean(axis=0)[None]
-    x = motion.apply(centroid, tt)[:, 0]
-    v = (motion.apply(centroid, tc + h) - motion.apply(centroid, tc - h))[:, 0] / (2 * h)
+    q = len(tt)
+    y = motion.apply(centroid, np.concatenate([tt, tc + h, tc - h]))[:, 0]    # one evaluation of the motion
+    x = y[:q]
+    v = (y[q:2 * q] - y[2 * q:]) / (2 * h)
     n = v / np.maximum(np.linalg.norm(v, axis=1, keepdims=True), 1e-300)
     return n, np.einsum("qi,qi->q", n, x)
 

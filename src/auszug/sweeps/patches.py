@@ -207,7 +207,7 @@ class MeshTree:
         tree = cls(mesh.vertices, mesh.faces)
         f = tree.faces
         e = np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1)        # (m, 3, 2), as face_edges
-        single = (mesh.edge_faces[mesh.face_edges] < 0).any(axis=2)            # (m, 3)
+        single: NDArray[np.bool_] = np.any(mesh.edge_faces[mesh.face_edges] < 0, axis=2)     # (m, 3)
         tree._bnd = np.where(single[:, :, None], e, -1)
         return tree
 

@@ -14,10 +14,12 @@ directly from :func:`~auszug.sweeps.kinematic_axis`:
 - the **motion**: the exact kinematic motion at ``motion_samples`` (>= 8) parameters.
 
 The fit check (:func:`fit_patch`) meshes the swept surface (rings of the profile at parameters
-dense enough that chords stay within ``eps_prox / 10``), takes closest points both ways with
-libigl (``point_mesh_squared_distance``): the faces covered are the mesh faces whose three
-vertices lie within ``eps_prox`` of the swept surface, the fit error the largest distance of the
-swept surface's points to the mesh, and coverage the covered faces' share of the mesh's area.
+dense enough that chords stay within ``eps_prox / 10``), takes closest points both ways (the
+swept points on the mesh with libigl's tree, :class:`MeshTree`; the mesh's vertices on the swept
+surface with the compiled :class:`RingTree` of its rings, within ``eps_prox``): the faces covered
+are the mesh faces whose three vertices lie within ``eps_prox`` of the swept surface, the fit
+error the largest distance of the swept surface's points to the mesh, and coverage the covered
+faces' share of the mesh's area.
 
 All in normalised coordinates (bounding-box diameter 1); :func:`auszug.sweeps.detect` converts
 the accepted patches to the input's coordinates.

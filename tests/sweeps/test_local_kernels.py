@@ -139,3 +139,49 @@ def test_mesh_tree_of_a_mesh_has_the_boundary_edges_counted_from_its_faces():
     mesh = _mesh(hole=True)
     assert np.array_equal(MeshTree.of(mesh)._boundary_edges(), MeshTree(mesh.vertices, mesh.faces)._boundary_edges())
     assert (MeshTree.of(mesh)._boundary_edges() >= 0).any()
+
+
+def test_swept_error_with_upper_bounds_is_the_fit_error_without():
+    from auszug.sweeps.motion import Motion, screw_motion
+    from auszug.sweeps.patches import swept_error
+
+    mesh = _mesh(hole=True)
+    tree = MeshTree.of(mesh)
+    rng = np.random.default_rng(14)
+    # a profile near the mesh, moved by a screw: some swept points near the mesh, some beyond it
+    profile = mesh.vertices[np.unique(mesh.faces)][:40] + rng.normal(size=(40, 3)) * 0.002
+    r, t = screw_motion([0.2, 1.0, 0.1], [0.0, 0.0, 0.0], 0.01, np.linspace(0.0, 0.3, 9))
+    motion = Motion(np.arange(9.0), r, t)
+    want = swept_error(profile, False, motion, 0.005, tree)
+    x = motion.apply(profile, motion.t)
+    d = tree.query(x.reshape(-1, 3))[0].reshape(9, 40)
+    for slack in (0.0, 1e-4, 1e-2):
+        upper = d + rng.uniform(0.0, slack, size=d.shape)
+        upper[rng.random(d.shape) < 0.1] = np.inf
+        got = swept_error(profile, False, motion, 0.005, tree, upper)
+        assert got.fit_error == want.fit_error
+        assert np.array_equal(got.vertices, want.vertices)
+    assert want.fit_error > 0
+
+
+def test_improve_bounded_bounds_the_improved_points_distances_to_each_keys_pieces():
+    from auszug.sweeps.patches import improve_bounded, improve_flat
+
+    rng = np.random.default_rng(15)
+    s = np.linspace(0, 1, 50)
+    profile = np.stack([s, 0.1 * np.sin(6 * s), 0 * s], axis=1)
+    pieces, keys = [], []
+    for k in range(10):
+        a, b = sorted(rng.integers(0, 50, 2))
+        q = profile[a:b + 2] + rng.normal(size=(len(profile[a:b + 2]), 3)) * 0.004
+        pieces.append(q)
+        keys.append(k % 3)
+    starts = np.concatenate([[0], np.cumsum([len(q) for q in pieces])])
+    pts = np.concatenate(pieces)
+    got, bound = improve_bounded(profile, pts, starts, np.array(keys), 3, 0.004)
+    assert np.array_equal(got, improve_flat(profile, pts, starts, 0.004))
+    for key in range(3):
+        d = np.min([_kernels.polyline_closest(got, q)[0] for q, kk in zip(pieces, keys, strict=True)
+                    if kk == key], axis=0)
+        assert np.all(d <= bound[key] + 1e-15)
+        assert np.isfinite(bound[key]).any()

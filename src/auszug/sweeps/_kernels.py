@@ -569,8 +569,12 @@ def curves_near_profiles(pts, curve_start, curve_plane, moved, reach):  # pragma
 
 
 @njit(cache=True)
-def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cover - compiled
+def improve_sums(profile, pts, piece_start, reach, end_reach, piece_key, n_keys):  # pragma: no cover - compiled
     """Sums (n, 3) and counts (n,) of the closest points of ``profile (n, 3)`` on each piece of ``pts``.
+
+    Also the least distance ``(n_keys, n)`` of each profile point to the pieces of each key
+    ``piece_key (q,)`` (inf where no chunk of them is within ``reach``): an upper bound of the
+    point's distance to the pieces (the distance itself where within ``reach``).
 
     Piece ``j`` is the polyline ``pts[piece_start[j]:piece_start[j + 1]]`` (pieces of fewer than
     2 points are skipped). A closest point counts when within ``reach``, and, when it is an end of
@@ -584,6 +588,7 @@ def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cov
     n = len(profile)
     acc = profile.copy()
     count = np.ones(n)
+    dmin = np.full((n_keys, n), np.inf)
     check_ends = np.isfinite(end_reach)
     chunk = 16
     for j in range(len(piece_start) - 1):
@@ -613,6 +618,9 @@ def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cov
                         best = d2
                         cx, cy, cz = qx, qy, qz
             d = np.sqrt(best)
+            key = piece_key[j]
+            if d < dmin[key, i]:
+                dmin[key, i] = d
             if d > reach:
                 continue
             if check_ends and d > end_reach:
@@ -624,7 +632,7 @@ def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cov
             acc[i, 1] += cy
             acc[i, 2] += cz
             count[i] += 1.0
-    return acc, count
+    return acc, count, dmin
 
 
 # ------------------------------------------------------------------- closest points on a swept ring grid

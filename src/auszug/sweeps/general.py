@@ -65,6 +65,7 @@ from auszug.sweeps.patches import (
     SweptError,
     face_areas,
     fit_patch,
+    improve_bounded,
     improve_flat,
     swept_coverage,
     swept_error,
@@ -344,6 +345,13 @@ def _on_polyline(points: Array, polyline: Array) -> tuple[Array, Array]:
 
 def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float,
            grid: EdgeGrid | None = None) -> tuple[Array, IntArray]:
+    """:func:`_recut_knots` without the pieces' knots."""
+    back, starts, _ = _recut_knots(mesh, profile, motion, reach, grid)
+    return back, starts
+
+
+def _recut_knots(mesh: SweepMesh, profile: Array, motion: Motion, reach: float,
+                 grid: EdgeGrid | None = None) -> tuple[Array, IntArray, IntArray]:
     """Cuts of the mesh by the moved profile's planes at the motion's knots, mapped back (sec. 2.3.3).
 
     Per knot, each stretch of a cut curve within ``reach`` of the moved profile, mapped back by the
@@ -351,7 +359,7 @@ def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float,
     (piece ``j`` is ``points[starts[j]:starts[j + 1]]``); one compiled pass finds the stretches of
     all curves. Only the curves with a point in the moved profile's box grown by ``reach`` are
     cut (:func:`~auszug.sweeps.cut.cut_near`, on ``grid``): the others have no point within
-    ``reach``, so the pieces are those of the whole cut.
+    ``reach``, so the pieces are those of the whole cut. Also returns each piece's knot ``(q,)``.
     """
     n0, _ = _plane_of(profile)
     moved = motion.apply(profile, motion.t)
@@ -359,7 +367,7 @@ def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float,
     offsets = np.einsum("ki,ki->k", normals, moved.mean(axis=1))
     c = cut_near(mesh, normals, offsets, np.hstack([moved.min(axis=1) - reach, moved.max(axis=1) + reach]), grid)
     if c.n_curves == 0:
-        return np.zeros((0, 3)), np.zeros(1, np.int64)
+        return np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64)
     near = curves_near_profiles(c.points, c.curve_start, c.curve_plane, np.ascontiguousarray(moved), reach)
     # each stretch of a curve near the moved profile is a piece of its own: joined, a curve
     # broken by a hole in the mesh would bridge the hole by a chord
@@ -373,12 +381,12 @@ def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float,
     keep = b - a >= 2
     a, b = a[keep], b[keep]
     if not len(a):
-        return np.zeros((0, 3)), np.zeros(1, np.int64)
+        return np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64)
     starts = np.concatenate([[0], np.cumsum(b - a)]).astype(np.int64)
     idx = np.arange(starts[-1]) + np.repeat(a - starts[:-1], b - a)
     k = c.curve_plane[curve_of[idx]]
     back = np.einsum("nji,nj->ni", motion.rotation[k], c.points[idx] - motion.translation[k])
-    return back, starts
+    return back, starts, c.curve_plane[curve_of[a]].astype(np.int64)
 
 
 @dataclass(frozen=True)
@@ -505,9 +513,12 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
             if again is not None:
                 ribs = again
                 continue
-        profile = improve_flat(profile, *_recut(mesh, profile, motion, 4 * params.eps_prox, grid), params.eps_prox)
+        back, starts, knot = _recut_knots(mesh, profile, motion, 4 * params.eps_prox, grid)
+        # the improved profile, and bounds of its points' distances to the mesh at the knots (the recut's
+        # pieces lie on the mesh): the fit error queries only the swept points that may be the farthest
+        profile, upper = improve_bounded(profile, back, starts, knot, len(motion), params.eps_prox)
         # the fit error in every round, the covered faces only of the round kept
-        err = swept_error(profile, False, motion, params.eps_prox, tr_)
+        err = swept_error(profile, False, motion, params.eps_prox, tr_, upper)
         if best is None or err.fit_error < best[3].fit_error:
             best = (profile, motion, vel, err)
         if i + 1 < n_rounds:

@@ -46,7 +46,8 @@ if TYPE_CHECKING:
     from auszug.sweeps.profilefit import FittedProfile
 
 __all__ = ["SweepPatch", "Fit", "MeshTree", "RingTree", "kinematic_patches", "fit_patch", "face_areas", "sweep_surface",
-           "closest_distance", "polyline_hausdorff", "SweptError", "swept_error", "swept_coverage", "improve_flat"]
+           "closest_distance", "polyline_hausdorff", "SweptError", "swept_error", "swept_coverage", "improve_flat",
+           "improve_bounded"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -495,12 +496,26 @@ def improve_flat(profile: Array, pts: Array, piece_start: IntArray, end_reach: f
 
     One compiled pass over all pieces (no Python loop per curve).
     """
+    return improve_bounded(profile, pts, piece_start, np.zeros(max(len(piece_start) - 1, 0), np.int64), 1,
+                           end_reach)[0]
+
+
+def improve_bounded(profile: Array, pts: Array, piece_start: IntArray, piece_key: IntArray, n_keys: int,
+                    end_reach: float = np.inf) -> tuple[Array, Array]:
+    """:func:`improve_flat`, and upper bounds ``(n_keys, n)`` of the improved points' distances to each key's pieces.
+
+    ``piece_key (q,)`` in ``0..n_keys - 1`` groups the pieces (the recut's knots). The bound of a
+    point is its distance before the improvement plus how far the improvement moved it (inf where
+    no piece of the key was searched, farther than 0.02).
+    """
     if len(piece_start) < 2:
-        return profile
-    acc, count = improve_sums(np.ascontiguousarray(profile, dtype=float), np.ascontiguousarray(pts, dtype=float),
-                              np.asarray(piece_start, np.int64), 0.02, float(end_reach))
+        return profile, np.full((n_keys, len(profile)), np.inf)
+    acc, count, dmin = improve_sums(np.ascontiguousarray(profile, dtype=float), np.ascontiguousarray(pts, dtype=float),
+                                    np.asarray(piece_start, np.int64), 0.02, float(end_reach),
+                                    np.asarray(piece_key, np.int64), int(n_keys))
     out: Array = acc / count[:, None]
-    return out
+    bound: Array = dmin + np.linalg.norm(out - profile, axis=1)[None, :]
+    return out, bound
 
 
 def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
@@ -510,7 +525,12 @@ def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
     Rings of the profile at parameters refined until every profile point's path deviates from its
     chords by at most ``tol``.
     """
-    n = len(profile)
+    t, rings = _sweep_rings(profile, motion, tol, max_rings)
+    return rings.reshape(-1, 3), ring_faces(len(t), len(profile), closed)
+
+
+def _sweep_rings(profile: Array, motion: Motion, tol: float, max_rings: int = 4096) -> tuple[Array, Array]:
+    """The parameters ``(k,)`` and rings ``(k, n, 3)`` of :func:`sweep_surface` (the motion's knots among them)."""
     t = np.array(motion.t, float)
     rings = None
     while len(t) < max_rings:
@@ -525,7 +545,7 @@ def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
         t = np.sort(np.concatenate([t, mid[bad]]))
     if rings is None:
         rings = motion.apply(profile, t)
-    return rings.reshape(-1, 3), ring_faces(len(t), n, closed)
+    return t, rings
 
 
 def ring_faces(k: int, n: int, closed: bool = False) -> IntArray:
@@ -577,16 +597,44 @@ class SweptError:
     fit_error: float
 
 
-def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: MeshTree) -> SweptError:
+#: :func:`swept_error` with upper bounds queries first the swept points of the largest bounds, this many.
+FIRST_QUERIED = 64
+
+
+def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: MeshTree,
+                upper: Array | None = None) -> SweptError:
     """The swept surface (chords within ``eps / 10``) and its largest distance to the mesh of ``tree``.
 
     Swept points beyond the mesh do not count (:meth:`MeshTree.interior_distance` with the
     swept surface's own tree for the reciprocal test).
+
+    ``upper (len(motion), n)``, optional, bounds each profile point's distance to the mesh at each
+    of the motion's knots from above (inf where unknown). Only the largest distance is kept, so
+    the swept points whose bound is at most the largest distance found are not queried: first
+    the :data:`FIRST_QUERIED` points of the largest bounds (and every point of no bound), then
+    those whose bound exceeds the largest of them. The same fit error, fewer closest points.
     """
-    sv, _ = sweep_surface(profile, closed, motion, eps / 10)
-    swept = RingTree(sv.reshape(-1, len(profile), 3), closed)     # one tree of the swept surface for both directions
-    ds = tree.interior_distance(sv, swept, eps)
-    return SweptError(sv, swept, float(ds.max()) if len(ds) else float("inf"))
+    t, rings = _sweep_rings(profile, motion, eps / 10)
+    sv = rings.reshape(-1, 3)
+    swept = RingTree(rings, closed)     # one tree of the swept surface for both directions
+    if len(sv) == 0:
+        return SweptError(sv, swept, float("inf"))
+    if upper is None:
+        return SweptError(sv, swept, float(tree.interior_distance(sv, swept, eps).max()))
+    ub = np.full(rings.shape[:2], np.inf)
+    k = np.searchsorted(motion.t, t)
+    at = (k < len(motion.t)) & (motion.t[np.minimum(k, len(motion.t) - 1)] == t)
+    # a margin for the round-off of the bound (the pieces mapped back by the knots' maps)
+    ub[at] = np.asarray(upper, float)[k[at]] * (1 + 1e-9) + 1e-12
+    ub = ub.reshape(-1)
+    order = np.argsort(-ub, kind="stable")
+    first = order[:max(FIRST_QUERIED, int(np.sum(~np.isfinite(ub))))]
+    err = float(tree.interior_distance(sv[first], swept, eps).max())
+    rest = order[len(first):]
+    rest = rest[ub[rest] > err]
+    if len(rest):
+        err = max(err, float(tree.interior_distance(sv[rest], swept, eps).max()))
+    return SweptError(sv, swept, err)
 
 
 def swept_coverage(mesh: SweepMesh, err: SweptError, eps: float, areas: Array | None = None) -> Fit:

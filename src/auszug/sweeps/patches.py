@@ -301,7 +301,7 @@ class RingTree:
     Examples
     --------
     >>> rings = np.array([[[0, 0, 0], [1, 0, 0]], [[0, 1, 0], [1, 1, 0.0]]])
-    >>> d, f, c = RingTree(rings, False).query([[0.25, 0.5, 2.0], [3.0, 0.5, 0.0]], bound=2.5)
+    >>> d, f, c = RingTree(rings, False).query([[0.25, 0.5, 2.0], [4.0, 0.5, 0.0]], bound=2.5)
     >>> d.tolist(), f.tolist(), c[0].tolist()
     ([2.0, inf], [1, -1], [0.25, 0.5, 0.0])
     """

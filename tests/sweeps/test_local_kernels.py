@@ -185,3 +185,51 @@ def test_improve_bounded_bounds_the_improved_points_distances_to_each_keys_piece
                     if kk == key], axis=0)
         assert np.all(d <= bound[key] + 1e-15)
         assert np.isfinite(bound[key]).any()
+
+
+def _closest_on_cut_reference(c, plane, target):
+    """The plane's curves one by one (numpy), as the re-slicing took them before sweeps9."""
+    dist = np.full(len(target), np.inf)
+    cp = np.zeros((len(target), 3))
+    at_end = np.zeros(len(target), bool)
+    for j in np.flatnonzero(c.curve_plane == plane):
+        q = c.curve(int(j))
+        if len(q) < 2:
+            continue
+        closed = bool(c.curve_closed[j])
+        if closed:
+            q = np.vstack([q, q[:1]])
+        d, p = _kernels.polyline_closest(target, q)
+        better = d < dist
+        dist[better], cp[better] = d[better], p[better]
+        if not closed:
+            ends = (np.linalg.norm(p - q[0], axis=1) <= 1e-12) | (np.linalg.norm(p - q[-1], axis=1) <= 1e-12)
+            at_end[better] = ends[better]
+        else:
+            at_end[better] = False
+    return dist, cp, at_end
+
+
+def test_closest_on_plane_curves_is_the_curve_by_curve_search():
+    mesh = _mesh(hole=True)
+    rng = np.random.default_rng(16)
+    n = np.array([[1.0, 0.0, 0.0], [0.3, 0.4, 0.5], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]])
+    d = np.array([0.01, -0.02, 0.0, 0.3])
+    c = cut(mesh, n, d)
+    # and a closed loop on plane 0 (a circle in it), a curve of one point on plane 1
+    from dataclasses import replace
+
+    a = np.linspace(0, 2 * np.pi, 30, endpoint=False)
+    loop = np.stack([np.full(30, 0.01), 0.2 * np.cos(a), 0.2 * np.sin(a)], 1)
+    c = replace(c, points=np.vstack([c.points, loop, [[0.0, 0.0, 0.0]]]),
+                curve_start=np.r_[c.curve_start, len(c.points) + 30, len(c.points) + 31],
+                curve_plane=np.r_[c.curve_plane, 0, 1], curve_closed=np.r_[c.curve_closed, True, False])
+    assert c.curve_closed.any() and (~c.curve_closed).any()
+    for plane in range(4):
+        target = rng.uniform(-0.5, 0.5, size=(200, 3))
+        target[:50] = c.points[rng.integers(0, len(c.points), 50)]          # on the cuts: at their points
+        target[50:60] = loop[:10] * [1.0, 1.1, 1.1]                            # beside the loop
+        got = _kernels.closest_on_plane_curves(target, c.points, c.curve_start, c.curve_plane, c.curve_closed, plane)
+        want = _closest_on_cut_reference(c, plane, target)
+        for g, w in zip(got, want, strict=True):
+            assert np.array_equal(g, w)

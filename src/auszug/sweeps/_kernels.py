@@ -517,6 +517,46 @@ def polyline_closest(points, polyline):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
+def closest_on_plane_curves(target, pts, curve_start, curve_plane, curve_closed, plane):  # pragma: no cover - compiled
+    """Closest points of ``target (n, 3)`` on the cut curves of one plane together (each as :func:`polyline_closest`).
+
+    Curves of fewer than 2 points are skipped, a closed curve gets its closing segment. Returns
+    the distances ``(n,)`` (inf where the plane has no curve), the closest points ``(n, 3)`` and
+    whether each is an end of an open curve ``(n,)`` (within 1e-12); a later curve replaces an
+    earlier one only where strictly nearer.
+    """
+    n = len(target)
+    dist = np.full(n, np.inf)
+    cp = np.zeros((n, 3))
+    at_end = np.zeros(n, np.bool_)
+    for j in range(len(curve_plane)):
+        if curve_plane[j] != plane:
+            continue
+        a, b = curve_start[j], curve_start[j + 1]
+        if b - a < 2:
+            continue
+        closed = curve_closed[j]
+        m = b - a + 1 if closed else b - a
+        q = np.empty((m, 3))
+        q[:b - a] = pts[a:b]
+        if closed:
+            q[b - a] = pts[a]
+        d, p = polyline_closest(target, q)
+        for i in range(n):
+            if d[i] < dist[i]:
+                dist[i] = d[i]
+                cp[i, 0], cp[i, 1], cp[i, 2] = p[i, 0], p[i, 1], p[i, 2]
+                if closed:
+                    at_end[i] = False
+                else:
+                    e0 = np.sqrt((p[i, 0] - q[0, 0]) ** 2 + (p[i, 1] - q[0, 1]) ** 2 + (p[i, 2] - q[0, 2]) ** 2)
+                    e1 = np.sqrt((p[i, 0] - q[m - 1, 0]) ** 2 + (p[i, 1] - q[m - 1, 1]) ** 2
+                                 + (p[i, 2] - q[m - 1, 2]) ** 2)
+                    at_end[i] = e0 <= 1e-12 or e1 <= 1e-12
+    return dist, cp, at_end
+
+
+@njit(cache=True)
 def curves_near_profiles(pts, curve_start, curve_plane, moved, reach):  # pragma: no cover - compiled
     """Whether every cut point (m,) is within ``reach`` of the polyline ``moved[plane] (n, 3)`` of its curve's plane.
 

@@ -51,7 +51,7 @@ from typing import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from auszug.sweeps._kernels import box_submesh, curves_near_profiles, polyline_closest
+from auszug.sweeps._kernels import box_submesh, closest_on_plane_curves, curves_near_profiles, polyline_closest
 from auszug.sweeps.cut import Cuts, EdgeGrid, cut, cut_near
 from auszug.sweeps.matching import CurvaturePlots, Family, Ribs, curvature_plots, families, match_cuts, order_ribs
 from auszug.sweeps.mesh import SweepMesh
@@ -684,26 +684,11 @@ def _closest_on_cut(c: Cuts, plane: int, target: Array) -> tuple[Array, Array, N
     Returns the distances ``(n,)``, the closest points ``(n, 3)`` and whether each closest point
     is an end of an open curve ``(n,)``: a cut curve ends only on the mesh's boundary, so a point
     farther than the tolerance from its cut there lies beyond the mesh (past its end, over a hole).
-    Where a hole splits the cut into pieces, every target point finds its own piece.
+    Where a hole splits the cut into pieces, every target point finds its own piece. One compiled
+    pass over the plane's curves (:func:`~auszug.sweeps._kernels.closest_on_plane_curves`).
     """
-    dist = np.full(len(target), np.inf)
-    cp = np.zeros((len(target), 3))
-    at_end = np.zeros(len(target), bool)
-    for j in np.flatnonzero(c.curve_plane == plane):
-        q = c.curve(int(j))
-        if len(q) < 2:
-            continue
-        closed = bool(c.curve_closed[j])
-        if closed:
-            q = np.vstack([q, q[:1]])
-        d, p = _on_polyline(target, q)
-        better = d < dist
-        dist[better], cp[better] = d[better], p[better]
-        if not closed:
-            ends = (np.linalg.norm(p - q[0], axis=1) <= 1e-12) | (np.linalg.norm(p - q[-1], axis=1) <= 1e-12)
-            at_end[better] = ends[better]
-        else:
-            at_end[better] = False
+    dist, cp, at_end = closest_on_plane_curves(np.ascontiguousarray(target, dtype=float), c.points, c.curve_start,
+                                               c.curve_plane, c.curve_closed, plane)
     return None if not np.isfinite(dist).any() else (dist, cp, at_end)
 
 

@@ -517,35 +517,104 @@ def polyline_closest(points, polyline):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def curves_to_profiles(pts, curve_start, curve_plane, moved, reach):  # pragma: no cover - compiled
-    """Distance (m,) of every cut point to the polyline ``moved[plane] (n, 3)`` of its curve's plane.
+def closest_on_plane_curves(target, pts, curve_start, curve_plane, curve_closed, plane):  # pragma: no cover - compiled
+    """Closest points of ``target (n, 3)`` on the cut curves of one plane together (each as :func:`polyline_closest`).
+
+    Curves of fewer than 2 points are skipped, a closed curve gets its closing segment. Returns
+    the distances ``(n,)`` (inf where the plane has no curve), the closest points ``(n, 3)`` and
+    whether each is an end of an open curve ``(n,)`` (within 1e-12); a later curve replaces an
+    earlier one only where strictly nearer.
+    """
+    n = len(target)
+    dist = np.full(n, np.inf)
+    cp = np.zeros((n, 3))
+    at_end = np.zeros(n, np.bool_)
+    for j in range(len(curve_plane)):
+        if curve_plane[j] != plane:
+            continue
+        a, b = curve_start[j], curve_start[j + 1]
+        if b - a < 2:
+            continue
+        closed = curve_closed[j]
+        m = b - a + 1 if closed else b - a
+        q = np.empty((m, 3))
+        q[:b - a] = pts[a:b]
+        if closed:
+            q[b - a] = pts[a]
+        d, p = polyline_closest(target, q)
+        for i in range(n):
+            if d[i] < dist[i]:
+                dist[i] = d[i]
+                cp[i, 0], cp[i, 1], cp[i, 2] = p[i, 0], p[i, 1], p[i, 2]
+                if closed:
+                    at_end[i] = False
+                else:
+                    e0 = np.sqrt((p[i, 0] - q[0, 0]) ** 2 + (p[i, 1] - q[0, 1]) ** 2 + (p[i, 2] - q[0, 2]) ** 2)
+                    e1 = np.sqrt((p[i, 0] - q[m - 1, 0]) ** 2 + (p[i, 1] - q[m - 1, 1]) ** 2
+                                 + (p[i, 2] - q[m - 1, 2]) ** 2)
+                    at_end[i] = e0 <= 1e-12 or e1 <= 1e-12
+    return dist, cp, at_end
+
+
+@njit(cache=True)
+def curves_near_profiles(pts, curve_start, curve_plane, moved, reach):  # pragma: no cover - compiled
+    """Whether every cut point (m,) is within ``reach`` of the polyline ``moved[plane] (n, 3)`` of its curve's plane.
 
     ``pts (m, 3)`` are the points of all curves, curve ``j`` being ``pts[curve_start[j]:curve_start[j + 1]]``;
-    ``moved (k, n, 3)`` one polyline per plane. Points outside the polyline's box grown by
-    ``reach`` are farther than ``reach`` and get inf without a search. One pass over all curves.
+    ``moved (k, n, 3)`` one polyline per plane. The same as the distance to the polyline
+    (:func:`polyline_closest`) being at most ``reach``: each polyline is searched in chunks of 8
+    segments, a chunk only when its box grown by ``reach`` holds the point, and the search stops
+    at the first segment within ``reach`` (the square root is monotone, so a segment's distance
+    is at most ``reach`` exactly when the least one is). One pass over all curves.
     """
-    out = np.full(len(pts), np.inf)
-    k = moved.shape[0]
-    box = np.empty((k, 6))
+    out = np.zeros(len(pts), np.bool_)
+    k, n = moved.shape[0], moved.shape[1]
+    chunk = 8
+    n_seg = n - 1
+    n_chunk = max(1, (n_seg + chunk - 1) // chunk)
+    box = np.empty((k, n_chunk, 6))
     for p in range(k):
-        for ax in range(3):
-            box[p, ax] = moved[p, :, ax].min() - reach
-            box[p, 3 + ax] = moved[p, :, ax].max() + reach
+        for h in range(n_chunk):
+            s0, s1 = h * chunk, min((h + 1) * chunk, n_seg)       # segments s0 .. s1 - 1: points s0 .. s1
+            s1 = max(s1, s0)
+            for ax in range(3):
+                lo, hi = np.inf, -np.inf
+                for r in range(s0, min(s1 + 1, n)):
+                    lo = min(lo, moved[p, r, ax])
+                    hi = max(hi, moved[p, r, ax])
+                box[p, h, ax] = lo - reach
+                box[p, h, 3 + ax] = hi + reach
     for j in range(len(curve_start) - 1):
         p = curve_plane[j]
         line = moved[p]
         for i in range(curve_start[j], curve_start[j + 1]):
             x0, x1, x2 = pts[i, 0], pts[i, 1], pts[i, 2]
-            if x0 < box[p, 0] or x0 > box[p, 3] or x1 < box[p, 1] or x1 > box[p, 4] or x2 < box[p, 2] or x2 > box[p, 5]:
+            if n == 1:
+                out[i] = np.sqrt((x0 - line[0, 0]) ** 2 + (x1 - line[0, 1]) ** 2 + (x2 - line[0, 2]) ** 2) <= reach
                 continue
-            d, _ = polyline_closest(pts[i:i + 1], line)
-            out[i] = d[0]
+            found = False
+            for h in range(n_chunk):
+                if (x0 < box[p, h, 0] or x0 > box[p, h, 3] or x1 < box[p, h, 1] or x1 > box[p, h, 4]
+                        or x2 < box[p, h, 2] or x2 > box[p, h, 5]):
+                    continue
+                for g in range(h * chunk, min((h + 1) * chunk, n_seg)):
+                    d2, _, _, _ = _segment_closest(x0, x1, x2, line, g)
+                    if np.sqrt(d2) <= reach:
+                        found = True
+                        break
+                if found:
+                    break
+            out[i] = found
     return out
 
 
 @njit(cache=True)
-def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cover - compiled
+def improve_sums(profile, pts, piece_start, reach, end_reach, piece_key, n_keys):  # pragma: no cover - compiled
     """Sums (n, 3) and counts (n,) of the closest points of ``profile (n, 3)`` on each piece of ``pts``.
+
+    Also the least distance ``(n_keys, n)`` of each profile point to the pieces of each key
+    ``piece_key (q,)`` (inf where no chunk of them is within ``reach``): an upper bound of the
+    point's distance to the pieces (the distance itself where within ``reach``).
 
     Piece ``j`` is the polyline ``pts[piece_start[j]:piece_start[j + 1]]`` (pieces of fewer than
     2 points are skipped). A closest point counts when within ``reach``, and, when it is an end of
@@ -559,6 +628,7 @@ def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cov
     n = len(profile)
     acc = profile.copy()
     count = np.ones(n)
+    dmin = np.full((n_keys, n), np.inf)
     check_ends = np.isfinite(end_reach)
     chunk = 16
     for j in range(len(piece_start) - 1):
@@ -588,6 +658,9 @@ def improve_sums(profile, pts, piece_start, reach, end_reach):  # pragma: no cov
                         best = d2
                         cx, cy, cz = qx, qy, qz
             d = np.sqrt(best)
+            key = piece_key[j]
+            if d < dmin[key, i]:
+                dmin[key, i] = d
             if d > reach:
                 continue
             if check_ends and d > end_reach:
@@ -632,3 +705,530 @@ def glide_shares(x, nrm, starts, states, beta, gamma, floor, thresh):  # pragma:
                     good += 1
             out[s, j] = good / max(b - a, 1)
     return out
+
+
+    return acc, count, dmin
+
+
+# ------------------------------------------------------------------- closest points on a swept ring grid
+
+
+@njit(cache=True, inline="always")
+def _triangle_closest(px, py, pz, ax, ay, az, bx, by, bz, cx, cy, cz):  # pragma: no cover - compiled
+    """Squared distance from p to triangle abc and the closest point.
+
+    By the Voronoi regions of the vertices, edges and face in barycentric terms; a triangle with
+    a zero-length edge (every denominator below is an edge's squared length or the area) or no
+    area falls to its edges.
+    """
+    abx, aby, abz = bx - ax, by - ay, bz - az
+    acx, acy, acz = cx - ax, cy - ay, cz - az
+    bcx, bcy, bcz = cx - bx, cy - by, cz - bz
+    flat = (abx * abx + aby * aby + abz * abz == 0.0 or acx * acx + acy * acy + acz * acz == 0.0
+            or bcx * bcx + bcy * bcy + bcz * bcz == 0.0)
+    qx, qy, qz = ax, ay, az
+    if not flat:
+        apx, apy, apz = px - ax, py - ay, pz - az
+        d1 = abx * apx + aby * apy + abz * apz
+        d2 = acx * apx + acy * apy + acz * apz
+        bpx, bpy, bpz = px - bx, py - by, pz - bz
+        d3 = abx * bpx + aby * bpy + abz * bpz
+        d4 = acx * bpx + acy * bpy + acz * bpz
+        cpx, cpy, cpz = px - cx, py - cy, pz - cz
+        d5 = abx * cpx + aby * cpy + abz * cpz
+        d6 = acx * cpx + acy * cpy + acz * cpz
+        vc = d1 * d4 - d3 * d2
+        vb = d5 * d2 - d1 * d6
+        va = d3 * d6 - d5 * d4
+        if d1 <= 0.0 and d2 <= 0.0:
+            qx, qy, qz = ax, ay, az
+        elif d3 >= 0.0 and d4 <= d3:
+            qx, qy, qz = bx, by, bz
+        elif vc <= 0.0 and d1 >= 0.0 and d3 <= 0.0 and d1 - d3 > 0.0:
+            v = d1 / (d1 - d3)
+            qx, qy, qz = ax + v * abx, ay + v * aby, az + v * abz
+        elif d6 >= 0.0 and d5 <= d6:
+            qx, qy, qz = cx, cy, cz
+        elif vb <= 0.0 and d2 >= 0.0 and d6 <= 0.0 and d2 - d6 > 0.0:
+            w = d2 / (d2 - d6)
+            qx, qy, qz = ax + w * acx, ay + w * acy, az + w * acz
+        elif va <= 0.0 and (d4 - d3) >= 0.0 and (d5 - d6) >= 0.0 and (d4 - d3) + (d5 - d6) > 0.0:
+            w = (d4 - d3) / ((d4 - d3) + (d5 - d6))
+            qx, qy, qz = bx + w * bcx, by + w * bcy, bz + w * bcz
+        elif va + vb + vc > 0.0:
+            s = va + vb + vc
+            v = vb / s
+            w = vc / s
+            qx, qy, qz = ax + abx * v + acx * w, ay + aby * v + acy * w, az + abz * v + acz * w
+        else:
+            flat = True
+    if flat:       # the nearest point of the three edges
+        best = np.inf
+        for e in range(3):
+            if e == 0:
+                ux, uy, uz, wx, wy, wz = ax, ay, az, bx, by, bz
+            elif e == 1:
+                ux, uy, uz, wx, wy, wz = bx, by, bz, cx, cy, cz
+            else:
+                ux, uy, uz, wx, wy, wz = cx, cy, cz, ax, ay, az
+            ex, ey, ez = wx - ux, wy - uy, wz - uz
+            ee = ex * ex + ey * ey + ez * ez
+            f = 0.0
+            if ee > 0:
+                f = ((px - ux) * ex + (py - uy) * ey + (pz - uz) * ez) / ee
+                f = min(max(f, 0.0), 1.0)
+            rx, ry, rz = ux + f * ex, uy + f * ey, uz + f * ez
+            dd = (px - rx) ** 2 + (py - ry) ** 2 + (pz - rz) ** 2
+            if dd < best:
+                best = dd
+                qx, qy, qz = rx, ry, rz
+    return (px - qx) ** 2 + (py - qy) ** 2 + (pz - qz) ** 2, qx, qy, qz
+
+
+@njit(cache=True)
+def ring_grid_boxes(rings, closed):  # pragma: no cover - compiled
+    """Bounding boxes of the quads of a ring grid ``rings (k, n, 3)`` and of 2 x 2 blocks of them, level by level.
+
+    Level 0 is the ``(k - 1) x m`` quads (``m = n`` for closed rings, else ``n - 1``), each level
+    above halves both counts (rounding up) down to one box. Returns the boxes ``(total, 6)`` (min
+    then max), each level's first row ``(L + 1,)`` and its shape ``(L, 2)``.
+    """
+    k, n = rings.shape[0], rings.shape[1]
+    m = n if closed else n - 1
+    shapes = []
+    a, b = k - 1, m
+    shapes.append((a, b))
+    while a > 1 or b > 1:
+        a, b = (a + 1) // 2, (b + 1) // 2
+        shapes.append((a, b))
+    n_lev = len(shapes)
+    shape = np.zeros((n_lev, 2), np.int64)
+    off = np.zeros(n_lev + 1, np.int64)
+    for lv in range(n_lev):
+        shape[lv, 0], shape[lv, 1] = shapes[lv]
+        off[lv + 1] = off[lv] + shapes[lv][0] * shapes[lv][1]
+    box = np.empty((off[n_lev], 6))
+    for i in range(k - 1):
+        for j in range(m):
+            j1 = (j + 1) % n
+            r = off[0] + i * m + j
+            for ax in range(3):
+                lo = min(min(rings[i, j, ax], rings[i, j1, ax]), min(rings[i + 1, j, ax], rings[i + 1, j1, ax]))
+                hi = max(max(rings[i, j, ax], rings[i, j1, ax]), max(rings[i + 1, j, ax], rings[i + 1, j1, ax]))
+                box[r, ax], box[r, 3 + ax] = lo, hi
+    for lv in range(1, n_lev):
+        pa, pb = shape[lv - 1, 0], shape[lv - 1, 1]
+        for i in range(shape[lv, 0]):
+            for j in range(shape[lv, 1]):
+                r = off[lv] + i * shape[lv, 1] + j
+                for ax in range(3):
+                    box[r, ax], box[r, 3 + ax] = np.inf, -np.inf
+                for ci in range(2 * i, min(2 * i + 2, pa)):
+                    for cj in range(2 * j, min(2 * j + 2, pb)):
+                        c = off[lv - 1] + ci * pb + cj
+                        for ax in range(3):
+                            box[r, ax] = min(box[r, ax], box[c, ax])
+                            box[r, 3 + ax] = max(box[r, 3 + ax], box[c, 3 + ax])
+    return box, off, shape
+
+
+@njit(cache=True, inline="always")
+def _box_sq(px, py, pz, box, r):  # pragma: no cover - compiled
+    dx = max(box[r, 0] - px, 0.0, px - box[r, 3])
+    dy = max(box[r, 1] - py, 0.0, py - box[r, 4])
+    dz = max(box[r, 2] - pz, 0.0, pz - box[r, 5])
+    return dx * dx + dy * dy + dz * dz
+
+
+@njit(cache=True)
+def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma: no cover - compiled
+    """Closest points on the triangulated ring grid (:func:`~auszug.sweeps.patches.ring_faces`) within ``bound``.
+
+    Returns distances ``(q,)`` (inf where the surface is farther than ``bound``), face indices
+    ``(q,)`` (-1 there; numbered as ``ring_faces``) and closest points ``(q, 3)``. A depth-first
+    search of the box levels of :func:`ring_grid_boxes`, nearer children first, pruning boxes
+    farther than the best distance so far (``bound`` at the start): exact. Each point starts from
+    the triangle of the previous point found (points given in order along a surface, such as a
+    mesh's vertices, need few boxes then).
+    """
+    n = rings.shape[1]
+    m = n if closed else n - 1
+    n_lev = len(shape)
+    q = len(points)
+    dist = np.full(q, np.inf)
+    face = np.full(q, -1, np.int64)
+    cp = np.zeros((q, 3))
+    stack_l = np.empty(4 * n_lev + 4, np.int64)
+    stack_i = np.empty(4 * n_lev + 4, np.int64)
+    stack_j = np.empty(4 * n_lev + 4, np.int64)
+    cd = np.empty(4)
+    ci_ = np.empty(4, np.int64)
+    cj_ = np.empty(4, np.int64)
+    b2 = bound * bound
+    last = -1
+    for p in range(q):
+        px, py, pz = points[p, 0], points[p, 1], points[p, 2]
+        best = b2
+        found = False
+        bx, by, bz = 0.0, 0.0, 0.0
+        bf = -1
+        top = n_lev - 1
+        if _box_sq(px, py, pz, box, off[top]) > best:
+            continue
+        if last >= 0:      # the previous point's triangle first: its distance bounds the search
+            qd = last // 2
+            i, j, t = qd // m, qd % m, last % 2
+            j1 = (j + 1) % n
+            a0 = rings[i, j]
+            if t == 0:
+                b0, c0 = rings[i, j1], rings[i + 1, j1]
+            else:
+                b0, c0 = rings[i + 1, j1], rings[i + 1, j]
+            d2, qx, qy, qz = _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2],
+                                               c0[0], c0[1], c0[2])
+            if d2 <= best:
+                best, found, bx, by, bz, bf = d2, True, qx, qy, qz, last
+        sp = 0
+        stack_l[0], stack_i[0], stack_j[0] = top, 0, 0
+        sp = 1
+        while sp > 0:
+            sp -= 1
+            lv, i, j = stack_l[sp], stack_i[sp], stack_j[sp]
+            if _box_sq(px, py, pz, box, off[lv] + i * shape[lv, 1] + j) > best:
+                continue
+            if lv == 0:
+                j1 = (j + 1) % n
+                for t in range(2):
+                    a0 = rings[i, j]
+                    if t == 0:
+                        b0, c0 = rings[i, j1], rings[i + 1, j1]
+                    else:
+                        b0, c0 = rings[i + 1, j1], rings[i + 1, j]
+                    fi = 2 * (i * m + j) + t
+                    if fi == bf:
+                        continue
+                    d2, qx, qy, qz = _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2],
+                                                       c0[0], c0[1], c0[2])
+                    if d2 < best or (not found and d2 <= best):
+                        best = d2
+                        found = True
+                        bx, by, bz = qx, qy, qz
+                        bf = fi
+                continue
+            # children, nearest pushed last (popped first)
+            nc = 0
+            pa, pb = shape[lv - 1, 0], shape[lv - 1, 1]
+            for ci in range(2 * i, min(2 * i + 2, pa)):
+                for cj in range(2 * j, min(2 * j + 2, pb)):
+                    d = _box_sq(px, py, pz, box, off[lv - 1] + ci * pb + cj)
+                    if d > best:
+                        continue
+                    h = nc
+                    while h > 0 and cd[h - 1] < d:     # sorted far to near
+                        cd[h], ci_[h], cj_[h] = cd[h - 1], ci_[h - 1], cj_[h - 1]
+                        h -= 1
+                    cd[h], ci_[h], cj_[h] = d, ci, cj
+                    nc += 1
+            for h in range(nc):
+                stack_l[sp], stack_i[sp], stack_j[sp] = lv - 1, ci_[h], cj_[h]
+                sp += 1
+        if found:
+            dist[p] = np.sqrt(best)
+            face[p] = bf
+            cp[p, 0], cp[p, 1], cp[p, 2] = bx, by, bz
+            last = bf
+    return dist, face, cp
+
+
+# ------------------------------------------------------------------------- local cuts (near given boxes)
+
+
+@njit(cache=True)
+def edge_grid(v, edges, h):  # pragma: no cover - compiled
+    """The edges binned by their midpoints in a uniform grid of cell size ``h``.
+
+    Returns the grid's origin ``(3,)``, its cell counts ``(3,)``, the first entry of each cell
+    ``(c + 1,)`` and the edges cell after cell ``(e,)``, and the longest edge.
+    """
+    n_e = len(edges)
+    lo = np.full(3, np.inf)
+    hi = np.full(3, -np.inf)
+    mid = np.empty((n_e, 3))
+    longest = 0.0
+    for e in range(n_e):
+        a, b = edges[e, 0], edges[e, 1]
+        ll = 0.0
+        for ax in range(3):
+            mid[e, ax] = 0.5 * (v[a, ax] + v[b, ax])
+            lo[ax] = min(lo[ax], mid[e, ax])
+            hi[ax] = max(hi[ax], mid[e, ax])
+            ll += (v[b, ax] - v[a, ax]) ** 2
+        longest = max(longest, np.sqrt(ll))
+    dims = np.ones(3, np.int64)
+    if n_e == 0:
+        lo[:] = 0.0
+    else:
+        for ax in range(3):
+            dims[ax] = max(1, int((hi[ax] - lo[ax]) / h) + 1)
+    cell = np.empty(n_e, np.int64)
+    count = np.zeros(dims[0] * dims[1] * dims[2] + 1, np.int64)
+    for e in range(n_e):
+        i = min(int((mid[e, 0] - lo[0]) / h), dims[0] - 1)
+        j = min(int((mid[e, 1] - lo[1]) / h), dims[1] - 1)
+        k = min(int((mid[e, 2] - lo[2]) / h), dims[2] - 1)
+        cell[e] = (i * dims[1] + j) * dims[2] + k
+        count[cell[e] + 1] += 1
+    for c in range(1, len(count)):
+        count[c] += count[c - 1]
+    fill = count[:-1].copy()
+    out = np.empty(n_e, np.int64)
+    for e in range(n_e):
+        out[fill[cell[e]]] = e
+        fill[cell[e]] += 1
+    return lo, dims, count, out, longest
+
+
+@njit(cache=True, inline="always")
+def _side(v, i, nx, ny, nz, d):  # pragma: no cover - compiled
+    """The signed distance of vertex ``i`` to the plane, as the cutter computes it."""
+    return v[i, 0] * nx + v[i, 1] * ny + v[i, 2] * nz - d
+
+
+@njit(cache=True, inline="always")
+def _crossed(v, edges, e, nx, ny, nz, d):  # pragma: no cover - compiled
+    return (_side(v, edges[e, 0], nx, ny, nz, d) >= 0.0) != (_side(v, edges[e, 1], nx, ny, nz, d) >= 0.0)
+
+
+@njit(cache=True)
+def _other_crossed(v, edges, face_edges, f, e, nx, ny, nz, d):  # pragma: no cover - compiled
+    for k in range(3):
+        g = face_edges[f, k]
+        if g != e and _crossed(v, edges, g, nx, ny, nz, d):
+            return g
+    return -1
+
+
+@njit(cache=True)
+def _emit_local(v, vn, edges, e, nx, ny, nz, d, pts, nrm, eid, pos, begin):  # pragma: no cover - compiled
+    """:func:`_emit` with the two signed distances computed on the spot (the same arithmetic)."""
+    a, b = edges[e, 0], edges[e, 1]
+    da = _side(v, a, nx, ny, nz, d)
+    db = _side(v, b, nx, ny, nz, d)
+    t = da / (da - db)
+    x0 = v[a, 0] + t * (v[b, 0] - v[a, 0])
+    x1 = v[a, 1] + t * (v[b, 1] - v[a, 1])
+    x2 = v[a, 2] + t * (v[b, 2] - v[a, 2])
+    if pos > begin:
+        dx, dy, dz = x0 - pts[pos - 1, 0], x1 - pts[pos - 1, 1], x2 - pts[pos - 1, 2]
+        if dx * dx + dy * dy + dz * dz < 1e-28:
+            return pos
+    pts[pos, 0], pts[pos, 1], pts[pos, 2] = x0, x1, x2
+    m0 = vn[a, 0] + t * (vn[b, 0] - vn[a, 0])
+    m1 = vn[a, 1] + t * (vn[b, 1] - vn[a, 1])
+    m2 = vn[a, 2] + t * (vn[b, 2] - vn[a, 2])
+    s = np.sqrt(m0 * m0 + m1 * m1 + m2 * m2)
+    if s > 0:
+        m0, m1, m2 = m0 / s, m1 / s, m2 / s
+    nrm[pos, 0], nrm[pos, 1], nrm[pos, 2] = m0, m1, m2
+    eid[pos] = e
+    return pos + 1
+
+
+@njit(cache=True)
+def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_start, grid_edges, h, longest, pn, pd,
+             boxes):  # pragma: no cover - compiled
+    """The cut curves of each plane that cross its box ``boxes[p] (6,)`` (min, max), as :func:`cut_fill` gives them.
+
+    Every crossed edge whose cut point may lie in the box (its midpoint's cell within the box
+    grown by half the longest edge) seeds its curve; the curve's crossed edges are found by
+    walking from the seed through the faces, and the cutter's own walk (:func:`cut_fill`: open
+    chains from the crossed edges without a second face in increasing order, then the rest in
+    increasing order) is run on them. So each curve comes out point for point as the whole-mesh
+    cut gives it, and the curves of a plane in the same order; curves without a point in the box
+    may be missing. Work: the cells of the box near the plane and the curves found, not the mesh.
+
+    Returns points, normals, edge ids, curve starts ``(c + 1,)``, curve planes ``(c,)`` and
+    closed flags ``(c,)``.
+    """
+    n_planes = len(pd)
+    cap = 1024
+    pts = np.zeros((cap, 3))
+    nrm = np.zeros((cap, 3))
+    eid = np.full(cap, -1, np.int64)
+    starts = np.zeros(64, np.int64)
+    planes = np.zeros(64, np.int64)
+    closed_out = np.zeros(64, np.bool_)
+    n_curves = 0
+    pos = 0
+    stamp = np.zeros(len(edges), np.int64)      # plane + 1 where an edge's curve is found
+    seen = np.zeros(len(edges), np.int64)       # plane + 1 where the cutter's walk passed
+    comp = np.empty(len(edges), np.int64)
+    for p in range(n_planes):
+        nx, ny, nz, d = pn[p, 0], pn[p, 1], pn[p, 2], pd[p]
+        mark = p + 1
+        g = 0.5 * longest
+        i0 = np.empty(3, np.int64)
+        i1 = np.empty(3, np.int64)
+        for ax in range(3):
+            i0[ax] = max(0, int(np.floor((boxes[p, ax] - g - grid_lo[ax]) / h)))
+            i1[ax] = min(grid_dims[ax] - 1, int(np.floor((boxes[p, 3 + ax] + g - grid_lo[ax]) / h)))
+        # the components (curves) met, as lists of their crossed edges
+        comp_start = [0]
+        n_comp_edges = 0
+        half = 0.5 * h + g
+        reach = half * (abs(nx) + abs(ny) + abs(nz))
+        for ci in range(i0[0], i1[0] + 1):
+            for cj in range(i0[1], i1[1] + 1):
+                for ck in range(i0[2], i1[2] + 1):
+                    cx = grid_lo[0] + (ci + 0.5) * h
+                    cy = grid_lo[1] + (cj + 0.5) * h
+                    cz = grid_lo[2] + (ck + 0.5) * h
+                    if abs(cx * nx + cy * ny + cz * nz - d) > reach:
+                        continue           # no edge of this cell reaches the plane
+                    c = (ci * grid_dims[1] + cj) * grid_dims[2] + ck
+                    for q in range(grid_start[c], grid_start[c + 1]):
+                        e0 = grid_edges[q]
+                        if stamp[e0] == mark or not _crossed(v, edges, e0, nx, ny, nz, d):
+                            continue
+                        # walk both ways from e0 to collect its curve's crossed edges
+                        stamp[e0] = mark
+                        comp[n_comp_edges] = e0
+                        n_comp_edges += 1
+                        for side in range(2):
+                            e, f = e0, edge_faces[e0, side]
+                            while f >= 0:
+                                nxt = _other_crossed(v, edges, face_edges, f, e, nx, ny, nz, d)
+                                if nxt < 0 or stamp[nxt] == mark:
+                                    break
+                                stamp[nxt] = mark
+                                comp[n_comp_edges] = nxt
+                                n_comp_edges += 1
+                                f = edge_faces[nxt, 1] if edge_faces[nxt, 0] == f else edge_faces[nxt, 0]
+                                e = nxt
+                        comp_start.append(n_comp_edges)
+        # the cutter's walk on each component's edges; chains keyed by (phase, start edge)
+        n_comp = len(comp_start) - 1
+        n_e = len(edges)
+        keys = []
+        for r in range(n_comp):
+            s = np.sort(comp[comp_start[r]:comp_start[r + 1]])
+            for phase in range(2):
+                for e0 in s:
+                    if seen[e0] == mark:
+                        continue
+                    if phase == 0 and edge_faces[e0, 1] >= 0:
+                        continue
+                    keys.append(phase * n_e + e0)
+                    # only the start is recorded here; the walk marks its edges
+                    e, prev = e0, -1
+                    while True:
+                        seen[e] = mark
+                        f = edge_faces[e, 0]
+                        if f == prev or f < 0:
+                            f = edge_faces[e, 1]
+                        if f < 0 or f == prev:
+                            break
+                        g2 = _other_crossed(v, edges, face_edges, f, e, nx, ny, nz, d)
+                        if g2 < 0 or seen[g2] == mark:
+                            break
+                        prev, e = f, g2
+        # emit the chains in the cutter's order: phase, then start edge
+        for key in np.sort(np.array(keys, dtype=np.int64)):
+            e0 = key % n_e
+            begin = pos
+            e, prev = e0, -1
+            is_closed = False
+            while True:
+                if pos + 2 > cap:
+                    cap = 2 * cap
+                    pts2 = np.zeros((cap, 3))
+                    nrm2 = np.zeros((cap, 3))
+                    eid2 = np.full(cap, -1, np.int64)
+                    pts2[:pos] = pts[:pos]
+                    nrm2[:pos] = nrm[:pos]
+                    eid2[:pos] = eid[:pos]
+                    pts, nrm, eid = pts2, nrm2, eid2
+                seen[e] = -mark
+                pos = _emit_local(v, vn, edges, e, nx, ny, nz, d, pts, nrm, eid, pos, begin)
+                f = edge_faces[e, 0]
+                if f == prev or f < 0:
+                    f = edge_faces[e, 1]
+                if f < 0 or f == prev:
+                    break
+                g2 = _other_crossed(v, edges, face_edges, f, e, nx, ny, nz, d)
+                if g2 < 0:
+                    break
+                if seen[g2] == -mark:
+                    is_closed = g2 == e0
+                    break
+                prev, e = f, g2
+            if pos - begin >= 2:
+                if n_curves + 2 > len(starts):
+                    starts2 = np.zeros(2 * len(starts), np.int64)
+                    planes2 = np.zeros(2 * len(starts), np.int64)
+                    closed2 = np.zeros(2 * len(starts), np.bool_)
+                    starts2[:n_curves] = starts[:n_curves]
+                    planes2[:n_curves] = planes[:n_curves]
+                    closed2[:n_curves] = closed_out[:n_curves]
+                    starts, planes, closed_out = starts2, planes2, closed2
+                starts[n_curves] = begin
+                planes[n_curves] = p
+                closed_out[n_curves] = is_closed
+                n_curves += 1
+            else:
+                pos = begin
+    curve_start = np.empty(n_curves + 1, np.int64)
+    curve_start[:n_curves] = starts[:n_curves]
+    curve_start[n_curves] = pos
+    return pts[:pos].copy(), nrm[:pos].copy(), eid[:pos].copy(), curve_start, planes[:n_curves].copy(), \
+        closed_out[:n_curves].copy()
+
+
+# ------------------------------------------------------------------------------------ sub-meshes
+
+
+@njit(cache=True)
+def box_submesh(v, faces, edge_faces, face_edges, lo, hi):  # pragma: no cover - compiled
+    """The faces whose three vertices lie in the box ``[lo, hi]``, their edges, and the part's index maps.
+
+    Returns the kept faces ``(f,)`` and edges ``(e,)`` (increasing), the part's ``edge_faces (e, 2)``
+    (-1 for a face not kept) and ``face_edges (f, 3)`` (indices into the kept edges).
+    """
+    n_v = len(v)
+    inside = np.empty(n_v, np.bool_)
+    for i in range(n_v):
+        inside[i] = (lo[0] <= v[i, 0] <= hi[0]) and (lo[1] <= v[i, 1] <= hi[1]) and (lo[2] <= v[i, 2] <= hi[2])
+    n_f = len(faces)
+    face_index = np.full(n_f, -1, np.int64)
+    n_keep = 0
+    for f in range(n_f):
+        if inside[faces[f, 0]] and inside[faces[f, 1]] and inside[faces[f, 2]]:
+            face_index[f] = n_keep
+            n_keep += 1
+    keep = np.empty(n_keep, np.int64)
+    n_e = len(edge_faces)
+    edge_index = np.full(n_e, -1, np.int64)
+    for f in range(n_f):
+        if face_index[f] >= 0:
+            keep[face_index[f]] = f
+            for k in range(3):
+                edge_index[face_edges[f, k]] = 0
+    n_used = 0
+    for e in range(n_e):
+        if edge_index[e] == 0:
+            edge_index[e] = n_used
+            n_used += 1
+    used = np.empty(n_used, np.int64)
+    ef = np.empty((n_used, 2), np.int64)
+    for e in range(n_e):
+        r = edge_index[e]
+        if r >= 0:
+            used[r] = e
+            for k in range(2):
+                g = edge_faces[e, k]
+                ef[r, k] = face_index[g] if g >= 0 else -1
+    fe = np.empty((n_keep, 3), np.int64)
+    for r in range(n_keep):
+        for k in range(3):
+            fe[r, k] = edge_index[face_edges[keep[r], k]]
+    return keep, used, ef, fe

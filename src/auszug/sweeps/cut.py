@@ -19,7 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from auszug.sweeps import _kernels
 from auszug.sweeps.mesh import SweepMesh
 
-__all__ = ["Cuts", "cut"]
+__all__ = ["Cuts", "cut", "EdgeGrid", "cut_near"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -27,6 +27,10 @@ BoolArray = NDArray[np.bool_]
 
 #: Cuts by fewer planes than this run on one thread (the per-sweep re-cuts of sec. 2.3).
 SERIAL_BELOW = 64
+
+#: Cell size of :class:`EdgeGrid` (bounding-box diameters): a few edges' lengths of the meshes of
+#: sweep detection (32k vertices: edges up to 0.0075).
+GRID_CELL = 0.02
 
 
 @dataclass(frozen=True)
@@ -121,3 +125,70 @@ def cut(mesh: SweepMesh, normals: ArrayLike, offsets: ArrayLike) -> Cuts:
     starts = np.flatnonzero(first)
     curve_plane = slot_plane[keep][starts].astype(np.int64)
     return Cuts(n, d, pts, nrm, eid, np.append(starts, len(pts)).astype(np.int64), curve_plane, closed[starts])
+
+
+@dataclass(frozen=True)
+class EdgeGrid:
+    """A mesh's edges binned by their midpoints in a uniform grid (for :func:`cut_near`).
+
+    Attributes
+    ----------
+    origin : (3,) float array
+    dims : (3,) int array
+        Cells along x, y, z.
+    cell_start : (c + 1,) int array
+        Cell ``i``'s edges are ``edges[cell_start[i]:cell_start[i + 1]]`` (cells x-major).
+    edges : (e,) int array
+        Edge indices, cell after cell.
+    cell : float
+        Cell size.
+    longest : float
+        The longest edge of the mesh.
+    """
+
+    origin: Array
+    dims: IntArray
+    cell_start: IntArray
+    edges: IntArray
+    cell: float
+    longest: float
+
+    @classmethod
+    def of(cls, mesh: SweepMesh, cell: float = GRID_CELL) -> "EdgeGrid":
+        """The grid of ``mesh``'s edges (one compiled pass)."""
+        lo, dims, start, order, longest = _kernels.edge_grid(mesh.vertices, mesh.edges, float(cell))
+        return cls(lo, dims, start, order, float(cell), float(longest))
+
+
+def cut_near(mesh: SweepMesh, normals: ArrayLike, offsets: ArrayLike, boxes: ArrayLike,
+             grid: EdgeGrid | None = None) -> Cuts:
+    """The cut curves of each plane that have a point in its box, exactly as :func:`cut` gives them.
+
+    ``boxes (p, 6)`` are per plane the box's minimum and maximum corners. Each cut curve with a
+    point in its plane's box comes out point for point as :func:`cut` gives it, and a plane's
+    curves in the same order; curves without a point there may be missing. The work is the
+    grid's cells in the boxes near the planes and the curves found, not the whole mesh
+    (:class:`EdgeGrid`, built here if not given).
+
+    Examples
+    --------
+    >>> from auszug.sweeps.fixtures import extruded
+    >>> from auszug.sweeps.mesh import normalise
+    >>> m = normalise(*(lambda f: (f.vertices, f.faces))(extruded(n_profile=30, n_path=40)))
+    >>> whole = cut(m, [[1.0, 0, 0]], [0.0])
+    >>> near = cut_near(m, [[1.0, 0, 0]], [0.0], [[-0.1, -1, -1, 0.1, 1, 1]])
+    >>> bool(np.array_equal(near.points, whole.points)), near.n_curves
+    (True, 1)
+    """
+    n = np.ascontiguousarray(np.array(normals, float, ndmin=2))
+    d = np.ascontiguousarray(np.array(offsets, float, ndmin=1))
+    b = np.ascontiguousarray(np.array(boxes, float, ndmin=2))
+    if n.shape != (len(d), 3) or b.shape != (len(d), 6):
+        raise ValueError(f"plane normals (p, 3), offsets (p,) and boxes (p, 6) must match, got {n.shape}, {d.shape} "
+                         f"and {b.shape}")
+    n = n / np.linalg.norm(n, axis=1, keepdims=True)      # as cut(): the same signed distances, bit for bit
+    g = EdgeGrid.of(mesh) if grid is None else grid
+    pts, nrm, eid, start, plane, closed = _kernels.cut_near(
+        mesh.vertices, mesh.normals, mesh.edges, mesh.edge_faces, mesh.face_edges, g.origin, g.dims, g.cell_start,
+        g.edges, g.cell, g.longest, n, d, b)
+    return Cuts(n, d, pts, nrm, eid, start, plane, closed)

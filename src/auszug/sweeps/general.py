@@ -51,8 +51,8 @@ from typing import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from auszug.sweeps._kernels import curves_to_profiles, polyline_closest
-from auszug.sweeps.cut import Cuts, cut
+from auszug.sweeps._kernels import box_submesh, closest_on_plane_curves, curves_near_profiles, polyline_closest
+from auszug.sweeps.cut import Cuts, EdgeGrid, cut, cut_near
 from auszug.sweeps.matching import CurvaturePlots, Family, Ribs, curvature_plots, families, match_cuts, order_ribs
 from auszug.sweeps.mesh import SweepMesh
 from auszug.sweeps.motion import Motion, se3_log
@@ -60,12 +60,13 @@ from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
 from auszug.sweeps.patches import (
     MeshTree,
+    RingTree,
     SweepPatch,
     SweptError,
     face_areas,
     fit_patch,
+    improve_bounded,
     improve_flat,
-    ring_faces,
     swept_coverage,
     swept_error,
 )
@@ -342,22 +343,32 @@ def _on_polyline(points: Array, polyline: Array) -> tuple[Array, Array]:
     return d, c
 
 
-def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float) -> tuple[Array, IntArray]:
+def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float,
+           grid: EdgeGrid | None = None) -> tuple[Array, IntArray]:
+    """:func:`_recut_knots` without the pieces' knots."""
+    back, starts, _ = _recut_knots(mesh, profile, motion, reach, grid)
+    return back, starts
+
+
+def _recut_knots(mesh: SweepMesh, profile: Array, motion: Motion, reach: float,
+                 grid: EdgeGrid | None = None) -> tuple[Array, IntArray, IntArray]:
     """Cuts of the mesh by the moved profile's planes at the motion's knots, mapped back (sec. 2.3.3).
 
     Per knot, each stretch of a cut curve within ``reach`` of the moved profile, mapped back by the
     inverse of the knot's map. Returns the pieces' points ``(m, 3)`` and their starts ``(q + 1,)``
     (piece ``j`` is ``points[starts[j]:starts[j + 1]]``); one compiled pass finds the stretches of
-    all curves.
+    all curves. Only the curves with a point in the moved profile's box grown by ``reach`` are
+    cut (:func:`~auszug.sweeps.cut.cut_near`, on ``grid``): the others have no point within
+    ``reach``, so the pieces are those of the whole cut. Also returns each piece's knot ``(q,)``.
     """
     n0, _ = _plane_of(profile)
     moved = motion.apply(profile, motion.t)
     normals = np.einsum("kij,j->ki", motion.rotation, n0)
     offsets = np.einsum("ki,ki->k", normals, moved.mean(axis=1))
-    c = cut(mesh, normals, offsets)
+    c = cut_near(mesh, normals, offsets, np.hstack([moved.min(axis=1) - reach, moved.max(axis=1) + reach]), grid)
     if c.n_curves == 0:
-        return np.zeros((0, 3)), np.zeros(1, np.int64)
-    near = curves_to_profiles(c.points, c.curve_start, c.curve_plane, np.ascontiguousarray(moved), reach) <= reach
+        return np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64)
+    near = curves_near_profiles(c.points, c.curve_start, c.curve_plane, np.ascontiguousarray(moved), reach)
     # each stretch of a curve near the moved profile is a piece of its own: joined, a curve
     # broken by a hole in the mesh would bridge the hole by a chord
     curve_of = np.repeat(np.arange(c.n_curves), np.diff(c.curve_start))
@@ -370,12 +381,12 @@ def _recut(mesh: SweepMesh, profile: Array, motion: Motion, reach: float) -> tup
     keep = b - a >= 2
     a, b = a[keep], b[keep]
     if not len(a):
-        return np.zeros((0, 3)), np.zeros(1, np.int64)
+        return np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64)
     starts = np.concatenate([[0], np.cumsum(b - a)]).astype(np.int64)
     idx = np.arange(starts[-1]) + np.repeat(a - starts[:-1], b - a)
     k = c.curve_plane[curve_of[idx]]
     back = np.einsum("nji,nj->ni", motion.rotation[k], c.points[idx] - motion.translation[k])
-    return back, starts
+    return back, starts, c.curve_plane[curve_of[a]].astype(np.int64)
 
 
 @dataclass(frozen=True)
@@ -417,14 +428,22 @@ def profile_planes(profile: Array, motion: Motion, t: ArrayLike) -> tuple[Array,
     h = 1e-3 * max(hi - lo, 1e-12)
     tc = np.clip(tt, lo + h, hi - h)
     centroid = profile.mean(axis=0)[None]
-    x = motion.apply(centroid, tt)[:, 0]
-    v = (motion.apply(centroid, tc + h) - motion.apply(centroid, tc - h))[:, 0] / (2 * h)
+    q = len(tt)
+    y = motion.apply(centroid, np.concatenate([tt, tc + h, tc - h]))[:, 0]    # one evaluation of the motion
+    x = y[:q]
+    v = (y[q:2 * q] - y[2 * q:]) / (2 * h)
     n = v / np.maximum(np.linalg.norm(v, axis=1, keepdims=True), 1e-300)
     return n, np.einsum("qi,qi->q", n, x)
 
 
+#: :func:`reslice` cuts the mesh only within this distance of the moved profile (bounding-box
+#: diameters, 10 eps_prox at the default) and the whole plane where a point's closest cut point is
+#: farther: the same ribs, less work.
+RESLICE_REACH = 0.05
+
+
 def reslice(mesh: SweepMesh, profile: Array, motion: Motion, tol: float = np.inf,
-            t: ArrayLike | None = None, far: float = np.inf) -> Array | None:
+            t: ArrayLike | None = None, far: float = np.inf, grid: EdgeGrid | None = None) -> Array | None:
     """New ribs ``(k, n, 3)`` at the motion's integer parameters (or at ``t (k,)``); None if a plane misses the mesh.
 
     The mesh is cut by the profile planes (:func:`profile_planes`) there; sample ``j`` of a rib is
@@ -435,7 +454,10 @@ def reslice(mesh: SweepMesh, profile: Array, motion: Motion, tol: float = np.inf
     found closest points on another part of the profile (the letter G's arc end beside its bar,
     0.06 away, not at a curve's end). The two end ribs at each end lie where the mesh ends, and
     their far samples stay on the cut (taken as the moved profile's points there too, the clean
-    cubic's fit error rose from 8.5e-4 to 2.4e-3).
+    cubic's fit error rose from 8.5e-4 to 2.4e-3). The curves are cut near the moved profile
+    first (:func:`~auszug.sweeps.cut.cut_near` within :data:`RESLICE_REACH`, on ``grid``); a plane
+    where a point's closest cut point is farther is cut whole: every curve within that reach of a
+    point is among those cut, so the ribs are those of the whole cuts.
     """
     if t is None:
         ts = motion.domain[0] + np.arange(int(round(motion.domain[1] - motion.domain[0])) + 1, dtype=float)
@@ -444,10 +466,13 @@ def reslice(mesh: SweepMesh, profile: Array, motion: Motion, tol: float = np.inf
     k = len(ts)
     n, d = profile_planes(profile, motion, ts)
     x = motion.apply(profile, ts)
-    c = cut(mesh, n, d)
+    r = RESLICE_REACH
+    c = cut_near(mesh, n, d, np.hstack([x.min(axis=1) - r, x.max(axis=1) + r]), grid)
     out = []
     for i in range(k):
         got = _closest_on_cut(c, i, x[i])
+        if got is None or float(got[0].max()) > r:
+            got = _closest_on_cut(cut(mesh, n[i:i + 1], d[i:i + 1]), 0, x[i])
         if got is None:
             return None
         dist, cp, at_end = got
@@ -483,6 +508,7 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
     """
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     tr_ = MeshTree(mesh.vertices, mesh.faces) if tree is None else tree
+    grid = EdgeGrid.of(mesh)       # the local cuts of every round
     best: tuple[Array, Motion, Array, SweptError] | None = None
     ribs: Array | None = parts
     n_rounds = params.general_iterations
@@ -499,17 +525,22 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
         if i == 0 and n_rounds > 1:
             # the ribs as found are cuts by planes up to 8 deg off the profile planes: their motion
             # only serves to re-slice (fitted, they missed the mesh by 2-6e-3, re-sliced by 0.6-1.9e-3)
-            again = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times, _far(params))
+            again = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times, _far(params),
+                            grid)
             if again is not None:
                 ribs = again
                 continue
-        profile = improve_flat(profile, *_recut(mesh, profile, motion, 4 * params.eps_prox), params.eps_prox)
+        back, starts, knot = _recut_knots(mesh, profile, motion, 4 * params.eps_prox, grid)
+        # the improved profile, and bounds of its points' distances to the mesh at the knots (the recut's
+        # pieces lie on the mesh): the fit error queries only the swept points that may be the farthest
+        profile, upper = improve_bounded(profile, back, starts, knot, len(motion), params.eps_prox)
         # the fit error in every round, the covered faces only of the round kept
-        err = swept_error(profile, False, motion, params.eps_prox, tr_)
+        err = swept_error(profile, False, motion, params.eps_prox, tr_, upper)
         if best is None or err.fit_error < best[3].fit_error:
             best = (profile, motion, vel, err)
         if i + 1 < n_rounds:
-            ribs = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times, _far(params))
+            ribs = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times, _far(params),
+                           grid)
     assert best is not None
     fit = swept_coverage(mesh, best[3], params.eps_prox, a)
     return GeneralSweep(best[0], best[1], best[2], fit.fit_error, fit.coverage, fit.faces)
@@ -531,18 +562,10 @@ def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, I
     from dataclasses import replace
 
     lo, hi = points.reshape(-1, 3).min(axis=0) - margin, points.reshape(-1, 3).max(axis=0) + margin
-    inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
-    keep = np.flatnonzero(inside[mesh.faces].all(axis=1)).astype(np.int64)
-    used = np.zeros(len(mesh.edges), bool)
-    used[mesh.face_edges[keep]] = True
-    used_edges = np.flatnonzero(used)
-    edge_index = np.full(len(mesh.edges), -1, np.int64)
-    edge_index[used_edges] = np.arange(len(used_edges))
-    face_index = np.full(len(mesh.faces) + 1, -1, np.int64)    # [-1] stays -1: a missing face
-    face_index[keep] = np.arange(len(keep))
-    return replace(mesh, faces=mesh.faces[keep], edges=mesh.edges[used_edges],
-                   edge_faces=face_index[mesh.edge_faces[used_edges]],
-                   face_edges=edge_index[mesh.face_edges[keep]]), keep
+    keep, used, edge_faces, face_edges = box_submesh(mesh.vertices, mesh.faces, mesh.edge_faces, mesh.face_edges,
+                                                     lo, hi)
+    return replace(mesh, faces=mesh.faces[keep], edges=mesh.edges[used], edge_faces=edge_faces,
+                   face_edges=face_edges), keep
 
 
 def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams, step: Callable[[str], float],
@@ -596,7 +619,7 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     areas = face_areas(mesh.vertices, mesh.faces)
     total = float(areas.sum())
     out: list[SweepPatch] = []
-    tree = MeshTree(mesh.vertices, mesh.faces)
+    tree = MeshTree.of(mesh)
     grown = np.zeros(len(mesh.faces), bool)
     skipped = 0
     # a family's ordered ribs may jump across a gap (parallel cuts of two parallel stretches of a
@@ -679,26 +702,11 @@ def _closest_on_cut(c: Cuts, plane: int, target: Array) -> tuple[Array, Array, N
     Returns the distances ``(n,)``, the closest points ``(n, 3)`` and whether each closest point
     is an end of an open curve ``(n,)``: a cut curve ends only on the mesh's boundary, so a point
     farther than the tolerance from its cut there lies beyond the mesh (past its end, over a hole).
-    Where a hole splits the cut into pieces, every target point finds its own piece.
+    Where a hole splits the cut into pieces, every target point finds its own piece. One compiled
+    pass over the plane's curves (:func:`~auszug.sweeps._kernels.closest_on_plane_curves`).
     """
-    dist = np.full(len(target), np.inf)
-    cp = np.zeros((len(target), 3))
-    at_end = np.zeros(len(target), bool)
-    for j in np.flatnonzero(c.curve_plane == plane):
-        q = c.curve(int(j))
-        if len(q) < 2:
-            continue
-        closed = bool(c.curve_closed[j])
-        if closed:
-            q = np.vstack([q, q[:1]])
-        d, p = _on_polyline(target, q)
-        better = d < dist
-        dist[better], cp[better] = d[better], p[better]
-        if not closed:
-            ends = (np.linalg.norm(p - q[0], axis=1) <= 1e-12) | (np.linalg.norm(p - q[-1], axis=1) <= 1e-12)
-            at_end[better] = ends[better]
-        else:
-            at_end[better] = False
+    dist, cp, at_end = closest_on_plane_curves(np.ascontiguousarray(target, dtype=float), c.points, c.curve_start,
+                                               c.curve_plane, c.curve_closed, plane)
     return None if not np.isfinite(dist).any() else (dist, cp, at_end)
 
 
@@ -710,9 +718,8 @@ def trajectory_error(profile: Array, motion: Motion, tree: MeshTree, tol: float 
     (:meth:`~auszug.sweeps.patches.MeshTree.interior_distance`).
     """
     t = np.sort(np.concatenate([motion.t, (motion.t[:-1] + motion.t[1:]) / 2]))
-    x = motion.apply(profile, t).reshape(-1, 3)
-    surface = (x, ring_faces(len(t), len(profile)))
-    d = tree.interior_distance(x, surface, tol).reshape(len(t), len(profile))
+    x = motion.apply(profile, t)
+    d = tree.interior_distance(x.reshape(-1, 3), RingTree(x), tol).reshape(len(t), len(profile))
     out: Array = d.max(axis=0)
     return out
 

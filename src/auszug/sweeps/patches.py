@@ -14,10 +14,12 @@ directly from :func:`~auszug.sweeps.kinematic_axis`:
 - the **motion**: the exact kinematic motion at ``motion_samples`` (>= 8) parameters.
 
 The fit check (:func:`fit_patch`) meshes the swept surface (rings of the profile at parameters
-dense enough that chords stay within ``eps_prox / 10``), takes closest points both ways with
-libigl (``point_mesh_squared_distance``): the faces covered are the mesh faces whose three
-vertices lie within ``eps_prox`` of the swept surface, the fit error the largest distance of the
-swept surface's points to the mesh, and coverage the covered faces' share of the mesh's area.
+dense enough that chords stay within ``eps_prox / 10``), takes closest points both ways (the
+swept points on the mesh with libigl's tree, :class:`MeshTree`; the mesh's vertices on the swept
+surface with the compiled :class:`RingTree` of its rings, within ``eps_prox``): the faces covered
+are the mesh faces whose three vertices lie within ``eps_prox`` of the swept surface, the fit
+error the largest distance of the swept surface's points to the mesh, and coverage the covered
+faces' share of the mesh's area.
 
 All in normalised coordinates (bounding-box diameter 1); :func:`auszug.sweeps.detect` converts
 the accepted patches to the input's coordinates.
@@ -32,7 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
-from auszug.sweeps._kernels import improve_sums
+from auszug.sweeps._kernels import improve_sums, ring_grid_boxes, ring_grid_nearest
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import KinematicAxis
 from auszug.sweeps.mesh import SweepMesh
@@ -43,8 +45,9 @@ if TYPE_CHECKING:
     from auszug.meshing.sweepmodel import Sweep
     from auszug.sweeps.profilefit import FittedProfile
 
-__all__ = ["SweepPatch", "Fit", "MeshTree", "kinematic_patches", "fit_patch", "face_areas", "sweep_surface",
-           "closest_distance", "polyline_hausdorff", "SweptError", "swept_error", "swept_coverage", "improve_flat"]
+__all__ = ["SweepPatch", "Fit", "MeshTree", "RingTree", "kinematic_patches", "fit_patch", "face_areas", "sweep_surface",
+           "closest_distance", "polyline_hausdorff", "SweptError", "swept_error", "swept_coverage", "improve_flat",
+           "improve_bounded"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -128,8 +131,8 @@ class Fit:
     Attributes
     ----------
     vertex_distance : (n_vertices,) float array
-        Distance of every mesh vertex to the swept surface (inf outside its bounding box grown
-        by ``eps_prox``, and at vertices of no face of the mesh, which may be a part).
+        Distance of every mesh vertex to the swept surface where at most ``eps_prox`` (inf where
+        farther, and at vertices of no face of the mesh, which may be a part).
     faces : (m,) int array
         Faces whose three vertices are within ``eps_prox``.
     fit_error : float
@@ -197,6 +200,20 @@ class MeshTree:
         self._tree = igl.AABB()
         self._tree.init(self.vertices, self.faces)
 
+    @classmethod
+    def of(cls, mesh: SweepMesh) -> "MeshTree":
+        """The tree of a whole :class:`~auszug.sweeps.mesh.SweepMesh`, its boundary edges from the mesh's topology.
+
+        The same as ``MeshTree(mesh.vertices, mesh.faces)``, without counting the edges' faces
+        again (an edge with one face is a boundary edge).
+        """
+        tree = cls(mesh.vertices, mesh.faces)
+        f = tree.faces
+        e = np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1)        # (m, 3, 2), as face_edges
+        single: NDArray[np.bool_] = np.any(mesh.edge_faces[mesh.face_edges] < 0, axis=2)     # (m, 3)
+        tree._bnd = np.where(single[:, :, None], e, -1)
+        return tree
+
     def query(self, points: ArrayLike) -> tuple[Array, IntArray, Array]:
         """Distances ``(n,)``, closest faces ``(n,)`` and closest points ``(n, 3)``."""
         p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
@@ -219,14 +236,16 @@ class MeshTree:
         out: IntArray = self._bnd
         return out
 
-    def interior_distance(self, points: ArrayLike, surface: MeshTree | tuple[Array, IntArray] | None = None,
+    def interior_distance(self, points: ArrayLike,
+                          surface: MeshTree | RingTree | tuple[Array, IntArray] | None = None,
                           tol: float = 0.0) -> Array:
         """Distances ``(n,)`` to the mesh, 0 where a point lies beyond the mesh.
 
         A point whose closest point is on the mesh's boundary lies beyond the mesh (past its end or
         over a hole), where the mesh says nothing; the fit check does not count it against a sweep.
 
-        With ``surface``, the swept surface ``(V (k, 3), F (m, 3))`` (or its tree) the points lie on, a point
+        With ``surface``, the swept surface ``(V (k, 3), F (m, 3))`` (or its tree, or its
+        :class:`RingTree`) the points lie on, a point
         farther than ``tol`` from the mesh also counts as beyond it when its closest mesh point lies
         on *another part* of that surface: within ``tol`` of it, and there at least half the
         point's distance away from the point (the reciprocal closest-point test of registration
@@ -248,10 +267,12 @@ class MeshTree:
             gap = np.linalg.norm(c[:, None, :] - (a + f[..., None] * ab), axis=2)
             on = (has & (gap <= 1e-9)).any(axis=1)
             out = np.where(on, 0.0, d)
-        if surface is not None and (isinstance(surface, MeshTree) or len(surface[1])):
+        if surface is not None and (not isinstance(surface, tuple) or len(surface[1])):
             far = np.flatnonzero(out > tol)
             if len(far):
-                if isinstance(surface, MeshTree):
+                if isinstance(surface, RingTree):
+                    ds, _, back = surface.query(c[far], tol)      # only the distances within tol count
+                elif isinstance(surface, MeshTree):
                     ds, _, back = surface.query(c[far])
                 else:
                     ds, back = closest_distance(c[far], surface[0], surface[1])
@@ -259,6 +280,56 @@ class MeshTree:
                 out = out.copy()
                 out[far[other]] = 0.0
         return out
+
+
+class RingTree:
+    """Closest points on a swept surface stored as rings of a profile (:func:`ring_faces`), compiled.
+
+    The quads between consecutive rings and their 2 x 2 blocks, level by level, carry bounding
+    boxes (built in one pass, no tree to balance); a query descends them nearer box first and
+    prunes boxes farther than the best distance so far: exact, like :class:`MeshTree` on
+    ``(rings.reshape(-1, 3), ring_faces(k, n, closed))``, and a query within a ``bound`` prunes
+    from the start.
+
+    Parameters
+    ----------
+    rings : (k, n, 3) float array
+        ``k >= 2`` rings of ``n >= 2`` points.
+    closed : bool
+        Closed rings (the last point joins the first).
+
+    Examples
+    --------
+    >>> rings = np.array([[[0, 0, 0], [1, 0, 0]], [[0, 1, 0], [1, 1, 0.0]]])
+    >>> d, f, c = RingTree(rings, False).query([[0.25, 0.5, 2.0], [4.0, 0.5, 0.0]], bound=2.5)
+    >>> d.tolist(), f.tolist(), c[0].tolist()
+    ([2.0, inf], [1, -1], [0.25, 0.5, 0.0])
+    """
+
+    def __init__(self, rings: ArrayLike, closed: bool = False) -> None:
+        self.rings = np.ascontiguousarray(np.asarray(rings, float))
+        if self.rings.ndim != 3 or self.rings.shape[0] < 2 or self.rings.shape[1] < 2 or self.rings.shape[2] != 3:
+            raise ValueError(f"rings: expected a (k, n, 3) array with k, n >= 2, got shape {self.rings.shape}")
+        self.closed = bool(closed)
+        self._box, self._off, self._shape = ring_grid_boxes(self.rings, self.closed)
+
+    @property
+    def vertices(self) -> Array:
+        """The rings' points ``(k n, 3)``, ring after ring."""
+        return self.rings.reshape(-1, 3)
+
+    @property
+    def faces(self) -> IntArray:
+        """The triangles ``(f, 3)`` (:func:`ring_faces`)."""
+        return ring_faces(self.rings.shape[0], self.rings.shape[1], self.closed)
+
+    def query(self, points: ArrayLike, bound: float = np.inf) -> tuple[Array, IntArray, Array]:
+        """Distances ``(q,)``, closest faces ``(q,)`` and points ``(q, 3)``; inf, -1 and 0 beyond ``bound``."""
+        p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
+        if len(p) == 0:
+            return np.zeros(0), np.zeros(0, np.int64), np.zeros((0, 3))
+        d, f, c = ring_grid_nearest(self.rings, self.closed, self._box, self._off, self._shape, p, float(bound))
+        return d, f, c
 
 
 def polyline_hausdorff(a: ArrayLike, b: ArrayLike, closed_a: bool = False, closed_b: bool = False) -> float:
@@ -425,12 +496,26 @@ def improve_flat(profile: Array, pts: Array, piece_start: IntArray, end_reach: f
 
     One compiled pass over all pieces (no Python loop per curve).
     """
+    return improve_bounded(profile, pts, piece_start, np.zeros(max(len(piece_start) - 1, 0), np.int64), 1,
+                           end_reach)[0]
+
+
+def improve_bounded(profile: Array, pts: Array, piece_start: IntArray, piece_key: IntArray, n_keys: int,
+                    end_reach: float = np.inf) -> tuple[Array, Array]:
+    """:func:`improve_flat`, and upper bounds ``(n_keys, n)`` of the improved points' distances to each key's pieces.
+
+    ``piece_key (q,)`` in ``0..n_keys - 1`` groups the pieces (the recut's knots). The bound of a
+    point is its distance before the improvement plus how far the improvement moved it (inf where
+    no piece of the key was searched, farther than 0.02).
+    """
     if len(piece_start) < 2:
-        return profile
-    acc, count = improve_sums(np.ascontiguousarray(profile, dtype=float), np.ascontiguousarray(pts, dtype=float),
-                              np.asarray(piece_start, np.int64), 0.02, float(end_reach))
+        return profile, np.full((n_keys, len(profile)), np.inf)
+    acc, count, dmin = improve_sums(np.ascontiguousarray(profile, dtype=float), np.ascontiguousarray(pts, dtype=float),
+                                    np.asarray(piece_start, np.int64), 0.02, float(end_reach),
+                                    np.asarray(piece_key, np.int64), int(n_keys))
     out: Array = acc / count[:, None]
-    return out
+    bound: Array = dmin + np.linalg.norm(out - profile, axis=1)[None, :]
+    return out, bound
 
 
 def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
@@ -440,7 +525,12 @@ def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
     Rings of the profile at parameters refined until every profile point's path deviates from its
     chords by at most ``tol``.
     """
-    n = len(profile)
+    t, rings = _sweep_rings(profile, motion, tol, max_rings)
+    return rings.reshape(-1, 3), ring_faces(len(t), len(profile), closed)
+
+
+def _sweep_rings(profile: Array, motion: Motion, tol: float, max_rings: int = 4096) -> tuple[Array, Array]:
+    """The parameters ``(k,)`` and rings ``(k, n, 3)`` of :func:`sweep_surface` (the motion's knots among them)."""
     t = np.array(motion.t, float)
     rings = None
     while len(t) < max_rings:
@@ -455,7 +545,7 @@ def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
         t = np.sort(np.concatenate([t, mid[bad]]))
     if rings is None:
         rings = motion.apply(profile, t)
-    return rings.reshape(-1, 3), ring_faces(len(t), n, closed)
+    return t, rings
 
 
 def ring_faces(k: int, n: int, closed: bool = False) -> IntArray:
@@ -496,34 +586,62 @@ class SweptError:
     ----------
     vertices : (k, 3) float array
         The swept surface's vertices (rings of the profile, :func:`sweep_surface`).
-    tree : MeshTree
+    tree : RingTree
         Closest points on the swept surface.
     fit_error : float
         Largest distance of the vertices to the mesh (:meth:`MeshTree.interior_distance`).
     """
 
     vertices: Array
-    tree: MeshTree
+    tree: RingTree
     fit_error: float
 
 
-def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: MeshTree) -> SweptError:
+#: :func:`swept_error` with upper bounds queries first the swept points of the largest bounds, this many.
+FIRST_QUERIED = 64
+
+
+def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: MeshTree,
+                upper: Array | None = None) -> SweptError:
     """The swept surface (chords within ``eps / 10``) and its largest distance to the mesh of ``tree``.
 
     Swept points beyond the mesh do not count (:meth:`MeshTree.interior_distance` with the
     swept surface's own tree for the reciprocal test).
+
+    ``upper (len(motion), n)``, optional, bounds each profile point's distance to the mesh at each
+    of the motion's knots from above (inf where unknown). Only the largest distance is kept, so
+    the swept points whose bound is at most the largest distance found are not queried: first
+    the :data:`FIRST_QUERIED` points of the largest bounds (and every point of no bound), then
+    those whose bound exceeds the largest of them. The same fit error, fewer closest points.
     """
-    sv, sf = sweep_surface(profile, closed, motion, eps / 10)
-    swept = MeshTree(sv, sf)       # one tree of the swept surface for both directions
-    ds = tree.interior_distance(sv, swept, eps)
-    return SweptError(sv, swept, float(ds.max()) if len(ds) else float("inf"))
+    t, rings = _sweep_rings(profile, motion, eps / 10)
+    sv = rings.reshape(-1, 3)
+    swept = RingTree(rings, closed)     # one tree of the swept surface for both directions
+    if len(sv) == 0:
+        return SweptError(sv, swept, float("inf"))
+    if upper is None:
+        return SweptError(sv, swept, float(tree.interior_distance(sv, swept, eps).max()))
+    ub = np.full(rings.shape[:2], np.inf)
+    k = np.searchsorted(motion.t, t)
+    at = (k < len(motion.t)) & (motion.t[np.minimum(k, len(motion.t) - 1)] == t)
+    # a margin for the round-off of the bound (the pieces mapped back by the knots' maps)
+    ub[at] = np.asarray(upper, float)[k[at]] * (1 + 1e-9) + 1e-12
+    ub = ub.reshape(-1)
+    order = np.argsort(-ub, kind="stable")
+    first = order[:max(FIRST_QUERIED, int(np.sum(~np.isfinite(ub))))]
+    err = float(tree.interior_distance(sv[first], swept, eps).max())
+    rest = order[len(first):]
+    rest = rest[ub[rest] > err]
+    if len(rest):
+        err = max(err, float(tree.interior_distance(sv[rest], swept, eps).max()))
+    return SweptError(sv, swept, err)
 
 
 def swept_coverage(mesh: SweepMesh, err: SweptError, eps: float, areas: Array | None = None) -> Fit:
     """The mesh faces within ``eps`` of a swept surface and their share of the area (the second half).
 
     Only the vertices in the swept surface's box grown by ``eps`` are queried (the others are
-    farther than ``eps``).
+    farther than ``eps``), each within ``eps`` (:meth:`RingTree.query` with that bound).
     """
     sv = err.vertices
     lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
@@ -532,7 +650,7 @@ def swept_coverage(mesh: SweepMesh, err: SweptError, eps: float, areas: Array | 
     used[mesh.faces.reshape(-1)] = True
     inside &= used
     dv = np.full(mesh.n_vertices, np.inf)
-    dv[inside] = err.tree.query(mesh.vertices[inside])[0]
+    dv[inside] = err.tree.query(mesh.vertices[inside], eps)[0]
     near = dv <= eps
     faces = np.flatnonzero(near[mesh.faces].all(axis=1)).astype(np.int64)
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
@@ -572,7 +690,7 @@ def kinematic_patches(mesh: SweepMesh, axis: KinematicAxis, params: SweepParams 
     rot, tr = kin.motion(t_knots)
     motion = Motion(t_knots, rot, tr)
     areas = face_areas(mesh.vertices, mesh.faces)
-    tree = MeshTree(mesh.vertices, mesh.faces)
+    tree = MeshTree.of(mesh)
     # the middle cut and the further cuts for the profile improvement, inside the range, nearest the
     # middle first; each cut's pieces (within a quarter turn of its parameter for rotations)
     t_more = np.linspace(0.0, span, params.profile_cuts + 2)[1:-1]

@@ -1,0 +1,235 @@
+"""The local and compiled searches of the general-sweep build (sweeps9) against the whole-mesh originals.
+
+Each must give exactly what the search it stands in for gives: the cut curves near a box as the
+whole-mesh cutter gives them (point for point, in order), closest points on a swept ring grid as
+libigl's tree of its triangles gives them, the sub-mesh of a box as its numpy definition, the
+near test of the recut as the distance to the polyline, and a mesh's boundary edges from its
+topology as counted from its faces.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from auszug.sweeps import _kernels
+from auszug.sweeps.cut import EdgeGrid, cut, cut_near
+from auszug.sweeps.fixtures import moulding_along_cubic, with_hole
+from auszug.sweeps.mesh import normalise
+from auszug.sweeps.patches import MeshTree, RingTree, closest_distance, ring_faces
+
+
+def _mesh(hole: bool = False):
+    fx = moulding_along_cubic(n_profile=32, n_path=64)
+    fx = with_hole(fx, 0.08) if hole else fx
+    return normalise(fx.vertices, fx.faces)
+
+
+def _in_box(q, box):
+    return bool(np.all((q >= box[:3]) & (q <= box[3:]), axis=1).any())
+
+
+@pytest.mark.parametrize("hole", [False, True])
+@pytest.mark.parametrize("part", [False, True])
+def test_cut_near_gives_the_whole_cuts_curves_in_its_boxes_point_for_point(hole, part):
+    from auszug.sweeps.general import _around
+
+    mesh = _mesh(hole)
+    if part:          # a part of the mesh: its edges may have their only face in the second slot
+        mesh = _around(mesh, mesh.vertices[: len(mesh.vertices) // 2], 0.05)[0]
+    rng = np.random.default_rng(11)
+    n = rng.normal(size=(30, 3))
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    centre = mesh.vertices[np.unique(mesh.faces)][rng.integers(0, len(np.unique(mesh.faces)), 30)]
+    d = np.einsum("ij,ij->i", n, centre)
+    half = rng.uniform(0.01, 0.3, size=(30, 1))
+    boxes = np.hstack([centre - half, centre + half])
+    whole = cut(mesh, n, d)
+    for grid in (None, EdgeGrid.of(mesh, 0.013)):
+        near = cut_near(mesh, n, d, boxes, grid)
+        got = [(int(near.curve_plane[j]), near.curve(j), bool(near.curve_closed[j]),
+                near.edges[near.curve_start[j]:near.curve_start[j + 1]]) for j in range(near.n_curves)]
+        gi = 0
+        for j in range(whole.n_curves):
+            p, q = int(whole.curve_plane[j]), whole.curve(j)
+            same = (gi < len(got) and got[gi][0] == p and np.array_equal(got[gi][1], q)
+                    and got[gi][2] == bool(whole.curve_closed[j])
+                    and np.array_equal(got[gi][3], whole.edges[whole.curve_start[j]:whole.curve_start[j + 1]]))
+            if same:
+                gi += 1
+            else:
+                assert not _in_box(q, boxes[p]), f"plane {p}: a curve with a point in the box is missing or differs"
+        assert gi == len(got)                   # nothing else, and in the cutter's order
+        assert gi > 0
+
+
+def test_cut_near_with_boxes_holding_the_mesh_is_the_whole_cut():
+    mesh = _mesh(hole=True)
+    n = np.array([[1.0, 0.0, 0.0], [0.3, 0.4, 0.5], [0.0, 0.0, 1.0]])
+    d = np.array([0.01, -0.02, 0.0])
+    whole = cut(mesh, n, d)
+    near = cut_near(mesh, n, d, np.tile([-1.0, -1, -1, 1, 1, 1], (3, 1)))
+    for name in ("points", "normals", "edges", "curve_start", "curve_plane", "curve_closed"):
+        assert np.array_equal(getattr(near, name), getattr(whole, name)), name
+
+
+@pytest.mark.parametrize("closed", [False, True])
+def test_ring_tree_is_libigls_closest_points_on_the_ring_faces(closed):
+    rng = np.random.default_rng(12)
+    k, n = 23, 17
+    t = np.linspace(0.0, 1.0, k)[:, None]
+    s = np.linspace(0.0, 2 * np.pi * (1.0 if closed else 0.7), n, endpoint=not closed)[None]
+    rings = np.stack(np.broadcast_arrays(np.cos(s) * (0.3 + 0.1 * t), np.sin(s) * 0.3 + 0 * t,
+                                         t * 0.5 + 0.02 * np.sin(5 * s)), -1) + rng.normal(size=(k, n, 3)) * 1e-3
+    rings[5, 3] = rings[5, 4]                                     # a zero-length edge: degenerate triangles
+    v, f = rings.reshape(-1, 3), ring_faces(k, n, closed)
+    pts = np.vstack([v[rng.integers(0, len(v), 400)] + rng.normal(size=(400, 3)) * 0.01,
+                     rng.uniform(-0.6, 0.8, size=(400, 3)), v[:20]])
+    want, want_c = closest_distance(pts, v, f)
+    tree = RingTree(rings, closed)
+    for bound in (np.inf, 0.02, 0.0):
+        d, face, c = tree.query(pts, bound)
+        ok = want <= bound
+        assert np.allclose(d[ok], want[ok], rtol=0, atol=1e-15) and np.allclose(c[ok], want_c[ok], atol=1e-15)
+        assert np.all(np.isinf(d[~ok])) and np.all(face[~ok] == -1)
+        # the face found holds the closest point
+        fo = face[ok]
+        a, b, cc = v[f[fo, 0]], v[f[fo, 1]], v[f[fo, 2]]
+        dd, _ = closest_distance(c[ok], np.vstack([a, b, cc]),
+                                 np.stack([np.arange(len(fo)), len(fo) + np.arange(len(fo)),
+                                           2 * len(fo) + np.arange(len(fo))], 1))
+        assert np.all(dd <= 1e-12)
+    assert np.sum(want <= 0.02) > 300
+
+
+def test_box_submesh_is_its_numpy_definition():
+    mesh = _mesh(hole=True)
+    lo, hi = np.array([-0.3, -0.2, -0.5]), np.array([0.2, 0.3, 0.1])
+    keep, used, ef, fe = _kernels.box_submesh(mesh.vertices, mesh.faces, mesh.edge_faces, mesh.face_edges, lo, hi)
+    inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
+    want_keep = np.flatnonzero(inside[mesh.faces].all(axis=1))
+    flag = np.zeros(len(mesh.edges), bool)
+    flag[mesh.face_edges[want_keep]] = True
+    want_used = np.flatnonzero(flag)
+    edge_index = np.full(len(mesh.edges), -1)
+    edge_index[want_used] = np.arange(len(want_used))
+    face_index = np.full(len(mesh.faces) + 1, -1)
+    face_index[want_keep] = np.arange(len(want_keep))
+    assert np.array_equal(keep, want_keep) and np.array_equal(used, want_used)
+    assert np.array_equal(ef, face_index[mesh.edge_faces[want_used]])
+    assert np.array_equal(fe, edge_index[mesh.face_edges[want_keep]])
+    assert 0 < len(keep) < len(mesh.faces)
+
+
+def test_curves_near_profiles_is_the_distance_within_reach():
+    rng = np.random.default_rng(13)
+    s = np.linspace(0.0, 1.0, 37)
+    moved = np.stack([np.stack([s, 0.1 * np.sin(6 * s + k), 0.05 * k + 0 * s], 1) for k in range(3)])
+    pts = np.vstack([moved[k][rng.integers(0, 37, 50)] + rng.normal(size=(50, 3)) * 0.01 for k in range(3)])
+    starts = np.array([0, 40, 90, 150])
+    plane = np.array([0, 1, 2])
+    reach = 0.012
+    got = _kernels.curves_near_profiles(pts, starts, plane, moved, reach)
+    want = np.concatenate([_kernels.polyline_closest(pts[starts[j]:starts[j + 1]], moved[plane[j]])[0] <= reach
+                           for j in range(3)])
+    assert np.array_equal(got, want) and 0 < want.sum() < len(want)
+
+
+def test_mesh_tree_of_a_mesh_has_the_boundary_edges_counted_from_its_faces():
+    mesh = _mesh(hole=True)
+    assert np.array_equal(MeshTree.of(mesh)._boundary_edges(), MeshTree(mesh.vertices, mesh.faces)._boundary_edges())
+    assert (MeshTree.of(mesh)._boundary_edges() >= 0).any()
+
+
+def test_swept_error_with_upper_bounds_is_the_fit_error_without():
+    from auszug.sweeps.motion import Motion, screw_motion
+    from auszug.sweeps.patches import swept_error
+
+    mesh = _mesh(hole=True)
+    tree = MeshTree.of(mesh)
+    rng = np.random.default_rng(14)
+    # a profile near the mesh, moved by a screw: some swept points near the mesh, some beyond it
+    profile = mesh.vertices[np.unique(mesh.faces)][:40] + rng.normal(size=(40, 3)) * 0.002
+    r, t = screw_motion([0.2, 1.0, 0.1], [0.0, 0.0, 0.0], 0.01, np.linspace(0.0, 0.3, 9))
+    motion = Motion(np.arange(9.0), r, t)
+    want = swept_error(profile, False, motion, 0.005, tree)
+    x = motion.apply(profile, motion.t)
+    d = tree.query(x.reshape(-1, 3))[0].reshape(9, 40)
+    for slack in (0.0, 1e-4, 1e-2):
+        upper = d + rng.uniform(0.0, slack, size=d.shape)
+        upper[rng.random(d.shape) < 0.1] = np.inf
+        got = swept_error(profile, False, motion, 0.005, tree, upper)
+        assert got.fit_error == want.fit_error
+        assert np.array_equal(got.vertices, want.vertices)
+    assert want.fit_error > 0
+
+
+def test_improve_bounded_bounds_the_improved_points_distances_to_each_keys_pieces():
+    from auszug.sweeps.patches import improve_bounded, improve_flat
+
+    rng = np.random.default_rng(15)
+    s = np.linspace(0, 1, 50)
+    profile = np.stack([s, 0.1 * np.sin(6 * s), 0 * s], axis=1)
+    pieces, keys = [], []
+    for k in range(10):
+        a, b = sorted(rng.integers(0, 50, 2))
+        q = profile[a:b + 2] + rng.normal(size=(len(profile[a:b + 2]), 3)) * 0.004
+        pieces.append(q)
+        keys.append(k % 3)
+    starts = np.concatenate([[0], np.cumsum([len(q) for q in pieces])])
+    pts = np.concatenate(pieces)
+    got, bound = improve_bounded(profile, pts, starts, np.array(keys), 3, 0.004)
+    assert np.array_equal(got, improve_flat(profile, pts, starts, 0.004))
+    for key in range(3):
+        d = np.min([_kernels.polyline_closest(got, q)[0] for q, kk in zip(pieces, keys, strict=True)
+                    if kk == key], axis=0)
+        assert np.all(d <= bound[key] + 1e-15)
+        assert np.isfinite(bound[key]).any()
+
+
+def _closest_on_cut_reference(c, plane, target):
+    """The plane's curves one by one (numpy), as the re-slicing took them before sweeps9."""
+    dist = np.full(len(target), np.inf)
+    cp = np.zeros((len(target), 3))
+    at_end = np.zeros(len(target), bool)
+    for j in np.flatnonzero(c.curve_plane == plane):
+        q = c.curve(int(j))
+        if len(q) < 2:
+            continue
+        closed = bool(c.curve_closed[j])
+        if closed:
+            q = np.vstack([q, q[:1]])
+        d, p = _kernels.polyline_closest(target, q)
+        better = d < dist
+        dist[better], cp[better] = d[better], p[better]
+        if not closed:
+            ends = (np.linalg.norm(p - q[0], axis=1) <= 1e-12) | (np.linalg.norm(p - q[-1], axis=1) <= 1e-12)
+            at_end[better] = ends[better]
+        else:
+            at_end[better] = False
+    return dist, cp, at_end
+
+
+def test_closest_on_plane_curves_is_the_curve_by_curve_search():
+    mesh = _mesh(hole=True)
+    rng = np.random.default_rng(16)
+    n = np.array([[1.0, 0.0, 0.0], [0.3, 0.4, 0.5], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]])
+    d = np.array([0.01, -0.02, 0.0, 0.3])
+    c = cut(mesh, n, d)
+    # and a closed loop on plane 0 (a circle in it), a curve of one point on plane 1
+    from dataclasses import replace
+
+    a = np.linspace(0, 2 * np.pi, 30, endpoint=False)
+    loop = np.stack([np.full(30, 0.01), 0.2 * np.cos(a), 0.2 * np.sin(a)], 1)
+    c = replace(c, points=np.vstack([c.points, loop, [[0.0, 0.0, 0.0]]]),
+                curve_start=np.r_[c.curve_start, len(c.points) + 30, len(c.points) + 31],
+                curve_plane=np.r_[c.curve_plane, 0, 1], curve_closed=np.r_[c.curve_closed, True, False])
+    assert c.curve_closed.any() and (~c.curve_closed).any()
+    for plane in range(4):
+        target = rng.uniform(-0.5, 0.5, size=(200, 3))
+        target[:50] = c.points[rng.integers(0, len(c.points), 50)]          # on the cuts: at their points
+        target[50:60] = loop[:10] * [1.0, 1.1, 1.1]                            # beside the loop
+        got = _kernels.closest_on_plane_curves(target, c.points, c.curve_start, c.curve_plane, c.curve_closed, plane)
+        want = _closest_on_cut_reference(c, plane, target)
+        for g, w in zip(got, want, strict=True):
+            assert np.array_equal(g, w)

@@ -8,7 +8,7 @@ import warnings
 import numpy as np
 import pytest
 from geometry_cases import beziers, rigid_motions
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 from scipy.integrate import IntegrationWarning, quad
 from scipy.optimize import minimize_scalar
@@ -258,6 +258,9 @@ def test_to_dict():
 
 @settings(max_examples=40, deadline=None)
 @given(st.lists(beziers(), min_size=1, max_size=12), st.lists(ts, min_size=1, max_size=9))
+# hypothesis found it: one u row per curve and one shared row differ in the last bits there
+@example(bs=[CubicBezier([0.0, 0.0], [0.0, 0.0], [0.0, 0.0], [0.0, 1.0]),
+             CubicBezier([0.0, 0.0], [0.0, 0.060546875], [0.0, 0.0], [0.0, 0.0])], us=[0.625, 0.625, 0.25])
 def test_t_at_u_many_is_t_at_u_of_each(bs, us):
     """The batched arc-length inversion is each curve's own, to the order BLAS sums the Gauss-Legendre terms."""
     u = np.array([0.0, *us, 1.0])
@@ -273,7 +276,7 @@ def test_t_at_u_many_is_t_at_u_of_each(bs, us):
         assert np.abs(cb - cf).max() <= 4e-15 * cb[-1]
         assert np.array_equal(_speed_extrema_many([b])[0], b._speed_extrema())
     rows = t_at_u_many(fresh, np.tile(u, (len(bs), 1))[:, ::-1])   # one row per curve
-    assert np.array_equal(rows, got[:, ::-1])
+    assert np.abs(rows - got[:, ::-1]).max() <= 4e-15
 
 
 def test_t_at_u_many_degenerate_and_empty():

@@ -672,7 +672,7 @@ def improve_sums(profile, pts, piece_start, reach, end_reach, piece_key, n_keys)
             acc[i, 1] += cy
             acc[i, 2] += cz
             count[i] += 1.0
-    return acc, count
+    return acc, count, dmin
 
 
 # ------------------------------------------------------------------------------ kinematic parts
@@ -705,9 +705,6 @@ def glide_shares(x, nrm, starts, states, beta, gamma, floor, thresh):  # pragma:
                     good += 1
             out[s, j] = good / max(b - a, 1)
     return out
-
-
-    return acc, count, dmin
 
 
 # ------------------------------------------------------------------- closest points on a swept ring grid

@@ -28,7 +28,11 @@ def test_double_translational_sweep_is_found_as_a_translation(sigma):
     fx, r = _run(sigma)
     kin = next(s for s in r.stages if s.name == "kinematic")
     assert kin.numbers["kinematic"] == 1      # a turn (clean: 1 candidate) or a screw (noisy: 0 candidates)
-    assert [s.name for s in r.stages][-4:] == ["match", "families", "motion", "fit"]
+    names = [s.name for s in r.stages]
+    # the kinematic parts run where the patches leave >= min_patch_area (at 5e-4 since sweeps-robust:
+    # coverage 0.974) and add nothing here
+    assert names[3:6] == ["match", "families", "motion"] and names[-1] == "fit"
+    assert names[6:-1] in ([], ["parts"])
     assert r.patches and all(p.kind == "general" for p in r.patches)
     assert all(p.fit_error <= DEFAULT.fit_factor * DEFAULT.eps_prox for p in r.patches)
     assert r.coverage >= (0.99 if sigma == 0 else 0.95)

@@ -20,6 +20,14 @@ solve the stated problem directly: on each diagonal, the condition is ``sum (d_t
 over the window, and the longest such window is the widest ramp of the prefix sums, found in
 O(n) with prefix minima and suffix maxima. All diagonals of all 4 variants of all pairs run in
 one compiled parallel loop: O(n_a n_b) per pair.
+
+Closed profiles (beyond the paper, whose implementation handles none): a run that is a whole
+closed cut curve is resampled as a loop (``period`` samples, curvature taken cyclically) and
+matched cyclically: its plot enters the kernel twice over, so the diagonals of a pair hold every
+cyclic shift, in the same 4 variants (4 x shifts), and a window is at most one period long; its
+starts are taken modulo the period, and families and rib parts index closed plots modulo theirs.
+A family whose members are all closed and whose common part is (within 2 samples) a whole loop
+is closed.
 """
 
 from __future__ import annotations
@@ -59,6 +67,9 @@ class CurvaturePlots:
     normal : (r, 3) float array
         The unit normal of each run's plane.
     spacing : float
+    period : (r,) int array
+        Samples of a closed plot (a whole closed cut curve, resampled as a loop, its last sample
+        joined to its first); 0 for an open plot.
     """
 
     points: Array
@@ -67,6 +78,11 @@ class CurvaturePlots:
     run: IntArray
     normal: Array
     spacing: float
+    period: IntArray | None = None
+
+    def periods(self) -> IntArray:
+        """``period``, zeros when not given."""
+        return np.zeros(self.n_runs, np.int64) if self.period is None else self.period
 
     @property
     def n_runs(self) -> int:
@@ -124,11 +140,13 @@ class Matches:
         return len(self.pairs)
 
     def correspondence(self, k: int) -> tuple[IntArray, IntArray]:
-        """Sample indices ``(i_a, i_b)`` of match ``k``, position by position."""
+        """Sample indices ``(i_a, i_b)`` of match ``k``, position by position (modulo a closed plot's period)."""
         t = np.arange(self.length[k])
         ia = self.start_a[k] + t
         ib = self.start_b[k] - t if self.reversed[k] else self.start_b[k] + t
-        return ia, ib
+        per = self.plots.periods()
+        pa, pb = int(per[self.pairs[k, 0]]), int(per[self.pairs[k, 1]])
+        return (ia % pa if pa else ia), (ib % pb if pb else ib)
 
 
 @dataclass(frozen=True)
@@ -149,6 +167,10 @@ class Family:
         The member's curvature is the seed's negated (its plane's normal points the other way).
     length : int
         Samples in the common part.
+    period : (k,) int array
+        Each member's period (0: an open plot; indices are taken modulo a closed plot's period).
+    closed : bool
+        All members closed and the common part a whole loop (within 2 samples of the shortest).
     """
 
     seed: int
@@ -157,11 +179,15 @@ class Family:
     reversed: BoolArray
     flipped: BoolArray
     length: int
+    period: IntArray | None = None
+    closed: bool = False
 
     def indices(self, j: int) -> IntArray:
         """Sample indices of member ``j`` (in its plot), in the seed's order."""
         t = np.arange(self.length)
-        return self.start[j] - t if self.reversed[j] else self.start[j] + t
+        i = self.start[j] - t if self.reversed[j] else self.start[j] + t
+        p = 0 if self.period is None else int(self.period[j])
+        return i % p if p else i
 
 
 def resample(polyline: ArrayLike, spacing: float, closed: bool = False) -> Array:
@@ -180,11 +206,12 @@ def resample(polyline: ArrayLike, spacing: float, closed: bool = False) -> Array
     return np.column_stack([np.interp(u, s, p[:, k]) for k in range(3)])
 
 
-def signed_curvature(points: ArrayLike, normal: ArrayLike, window: int) -> Array:
+def signed_curvature(points: ArrayLike, normal: ArrayLike, window: int, closed: bool = False) -> Array:
     """Signed curvature ``(n,)`` of evenly spaced planar points: turning angle over ``+-window`` samples.
 
     The angle between the chords to the samples ``window`` before and after, over the mean chord
-    length; one-sided (shorter) near the ends. Positive where the curve turns counter-clockwise
+    length; one-sided (shorter) near the ends, cyclic for ``closed`` points (the last joined to the
+    first). Positive where the curve turns counter-clockwise
     seen from the side ``normal`` points to.
 
     Examples
@@ -200,6 +227,12 @@ def signed_curvature(points: ArrayLike, normal: ArrayLike, window: int) -> Array
     if n < 3:
         return np.zeros(n)
     idx = np.arange(n)
+    if closed and n > 2 * window:
+        lo, hi = (idx - window) % n, (idx + window) % n
+        e1, e2 = p[idx] - p[lo], p[hi] - p[idx]
+        cr = np.cross(e1, e2) @ np.asarray(normal, float)
+        lens = 0.5 * (np.linalg.norm(e1, axis=1) + np.linalg.norm(e2, axis=1))
+        return np.where(lens > 0, np.arctan2(cr, np.einsum("ij,ij->i", e1, e2)) / np.where(lens > 0, lens, 1.0), 0.0)
     lo = np.maximum(idx - window, 0)
     hi = np.minimum(idx + window, n - 1)
     e1 = p[idx] - p[lo]
@@ -215,6 +248,10 @@ def curvature_plots(cuts: Cuts, mov: Movability, runs: ArrayLike | None = None,
                     params: SweepParams = DEFAULT) -> CurvaturePlots:
     """Resample the movable ``runs`` (default: all) at ``params.match_spacing``, with curvatures.
 
+    A run that is a whole closed cut curve is resampled as a loop: ``round(length / spacing)``
+    samples evenly spaced around it (its spacing within half a sample's worth of ``spacing``),
+    its curvature taken cyclically (its ``period``).
+
     Examples
     --------
     >>> from auszug.sweeps import cut, movability, normalise
@@ -228,17 +265,26 @@ def curvature_plots(cuts: Cuts, mov: Movability, runs: ArrayLike | None = None,
     h = params.match_spacing
     window = max(1, int(round(params.curvature_window / (2 * h))))
     sel = np.arange(mov.n_runs) if runs is None else np.asarray(runs, np.int64)
-    pts, kap, counts = [], [], []
+    pts, kap, counts, periods = [], [], [], []
     normals = cuts.plane_normals[cuts.curve_plane[mov.run_curve[sel]]] if len(sel) else np.zeros((0, 3))
     for r, nrm in zip(sel, normals, strict=True):  # one resampling per run (not per pair)
-        q = resample(cuts.points[mov.run_indices(cuts, int(r))], h)
+        idx = mov.run_indices(cuts, int(r))
+        k = int(mov.run_curve[r])
+        loop = bool(cuts.curve_closed[k]) and len(idx) == int(cuts.curve_start[k + 1] - cuts.curve_start[k])
+        if loop:
+            length = float(mov.run_length[r])
+            m = max(3, int(round(length / h)))
+            q = resample(cuts.points[idx], length / m * (1 - 1e-12), closed=True)[:m]
+        else:
+            q = resample(cuts.points[idx], h)
         pts.append(q)
-        kap.append(signed_curvature(q, nrm, window))
+        kap.append(signed_curvature(q, nrm, window, loop))
         counts.append(len(q))
+        periods.append(len(q) if loop else 0)
     start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
     points = np.vstack(pts) if pts else np.zeros((0, 3))
     kappa = np.concatenate(kap) if kap else np.zeros(0)
-    return CurvaturePlots(points, kappa, start, sel.astype(np.int64), normals, h)
+    return CurvaturePlots(points, kappa, start, sel.astype(np.int64), normals, h, np.array(periods, np.int64))
 
 
 def match_cuts(plots: CurvaturePlots, params: SweepParams = DEFAULT) -> Matches:
@@ -262,12 +308,24 @@ def match_cuts(plots: CurvaturePlots, params: SweepParams = DEFAULT) -> Matches:
     keep = cosang >= np.cos(np.radians(params.match_angle)) - 1e-12
     pairs = np.ascontiguousarray(np.column_stack([ia[keep], ib[keep]]).astype(np.int64))
     min_len = max(2, int(np.ceil(params.l_min / plots.spacing - 1e-9)))
-    ln, var, sa, sb, e, ref = _kernels.match_pairs(plots.kappa, plots.start, pairs, float(params.eps_match),
+    per = plots.periods()
+    kappa, start = plots.kappa, plots.start
+    if per.any():   # closed plots twice over: every cyclic shift is a diagonal
+        counts = np.where(per > 0, 2, 1) * np.diff(plots.start)
+        start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+        kappa = np.concatenate([np.tile(plots.curvature(k), 2 if per[k] else 1) for k in range(r)]) if r else kappa
+    ln, var, sa, sb, e, ref = _kernels.match_pairs(np.ascontiguousarray(kappa), start, pairs, float(params.eps_match),
                                                    float(params.kappa_floor), min_len)
-    ok = ln > 0
     rev = (var & 2) != 0
-    mb = np.diff(plots.start)[pairs[:, 1]] if len(pairs) else np.zeros(0, np.int64)
-    start_b = np.where(rev, mb - 1 - sb, sb)  # in b's own indices
+    mb = np.diff(start)[pairs[:, 1]] if len(pairs) else np.zeros(0, np.int64)
+    start_b = np.where(rev, mb - 1 - sb, sb)  # in b's own (doubled) indices
+    if per.any() and len(pairs):
+        pa, pb = per[pairs[:, 0]], per[pairs[:, 1]]
+        whole = np.minimum(np.where(pa > 0, pa, ln), np.where(pb > 0, pb, ln))
+        ln = np.where(ln > 0, np.minimum(ln, whole), ln)    # at most one period
+        sa = np.where(pa > 0, sa % np.maximum(pa, 1), sa)
+        start_b = np.where(pb > 0, start_b % np.maximum(pb, 1), start_b)
+    ok = ln > 0
     return Matches(plots, pairs[ok], ln[ok], (var & 1)[ok] != 0, rev[ok], sa[ok], start_b[ok], e[ok], ref[ok],
                    len(pairs))
 
@@ -293,6 +351,7 @@ def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, .
     (1, [0, 1, 2])
     """
     min_len = max(2, int(np.ceil(params.l_min / matches.plots.spacing - 1e-9)))
+    per = matches.plots.periods()
     out: list[Family] = []
     seen: set[tuple[int, ...]] = set()
     pa, pb = matches.pairs[:, 0], matches.pairs[:, 1]
@@ -309,13 +368,16 @@ def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, .
         s_other = np.where(as_a, matches.start_b[mine], np.where(rev, matches.start_a[mine] + ln - 1,
                                                                   matches.start_a[mine]))
         first = int(np.argmax(ln))
+        p_seed = int(per[seed])
+        if p_seed:
+            s_seed = s_seed % p_seed
         lo, hi = int(s_seed[first]), int(s_seed[first] + ln[first])
         shortest = max(min_len, int(np.ceil(params.family_keep * ln[first])))
-        overlap = np.minimum(hi, s_seed + ln) - np.maximum(lo, s_seed)
+        overlap = np.array([_meet(lo, hi, int(s), int(n), p_seed)[2] for s, n in zip(s_seed, ln, strict=True)])
         order = np.argsort(-overlap, kind="stable")
         members = []
         for k in order:
-            nlo, nhi = max(lo, int(s_seed[k])), min(hi, int(s_seed[k] + ln[k]))
+            nlo, nhi, _ = _meet(lo, hi, int(s_seed[k]), int(ln[k]), p_seed)
             if nhi - nlo < shortest:
                 continue
             lo, hi = nlo, nhi
@@ -326,11 +388,41 @@ def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, .
         seen.add(key)
         ks = np.array(members, np.int64)
         # each member's sample matching the seed's sample `lo`
-        off = lo - s_seed[ks]
+        off = (lo - s_seed[ks]) % p_seed if p_seed else lo - s_seed[ks]
         st = np.where(rev[ks], s_other[ks] - off, s_other[ks] + off)
-        out.append(Family(int(seed), np.r_[seed, other[ks]].astype(np.int64), np.r_[lo, st].astype(np.int64),
-                          np.r_[False, rev[ks]], np.r_[False, flip[ks]], hi - lo))
+        mem = np.r_[seed, other[ks]].astype(np.int64)
+        pm = per[mem]
+        st = np.where(pm[1:] > 0, st % np.maximum(pm[1:], 1), st)
+        closed = bool(np.all(pm > 0)) and hi - lo >= int(pm.min()) - 2
+        out.append(Family(int(seed), mem, np.r_[lo % p_seed if p_seed else lo, st].astype(np.int64),
+                          np.r_[False, rev[ks]], np.r_[False, flip[ks]], hi - lo, pm, closed))
     return tuple(out)
+
+
+def _meet(lo: int, hi: int, s: int, n: int, period: int) -> tuple[int, int, int]:
+    """The common part ``(lo', hi', length)`` of the windows ``[lo, hi)`` and ``[s, s + n)`` on a plot.
+
+    On a closed plot (``period`` > 0) both are arcs of the loop: ``s`` is taken to the shift
+    (by a multiple of the period) meeting ``[lo, hi)`` most, and a whole loop meets every arc
+    in all of it. ``hi' - lo'`` may be negative (no common part).
+
+    Examples
+    --------
+    >>> _meet(0, 10, 5, 10, 0), _meet(2, 10, 38, 8, 40), _meet(0, 40, 30, 39, 40)
+    ((5, 10, 5), (2, 6, 4), (30, 69, 39))
+    """
+    if period <= 0:
+        a, b = max(lo, s), min(hi, s + n)
+        return a, b, b - a
+    if hi - lo >= period:
+        return s, s + min(n, period), min(n, period)
+    best = (0, 0, -(1 << 40))
+    s0 = lo + (s - lo) % period
+    for c in (s0, s0 - period):
+        a, b = max(lo, c), min(hi, c + n)
+        if b - a > best[2]:
+            best = (a, b, b - a)
+    return best
 
 
 @dataclass(frozen=True)

@@ -350,12 +350,14 @@ def letter_g_along_cubic(n_path: int = 160, twist: float = 120.0, n_planes: int 
 def closed_profile(n: int = 96, radius: float = 0.075) -> Array:
     """Points ``(n, 2)`` of a closed, non-symmetric rounded quatrefoil centred on the origin.
 
-    The polar curve ``r = radius (1 + 0.22 cos 4a + 0.12 cos a)``: four rounded lobes, the one at
-    ``a = 0`` bigger than its opposite, so no rotation about the origin but the identity maps it
-    to itself. Its last point is not its first (the curve closes from the last to the first).
+    The polar curve ``r = radius (1 + 0.22 cos 4a + 0.12 cos a + 0.08 sin 2a)``: four rounded
+    lobes of different sizes, so no rotation about the origin but the identity maps it to itself
+    (``cos a``) and no reflection does (``cos a`` allows only ``a -> -a``, which ``sin 2a`` breaks):
+    no rigid motion but the identity maps the curve onto itself, reversed or not. Its last point
+    is not its first (the curve closes from the last to the first).
     """
     a = np.linspace(0.0, 2 * np.pi, n, endpoint=False)
-    r = radius * (1 + 0.22 * np.cos(4 * a) + 0.12 * np.cos(a))
+    r = radius * (1 + 0.22 * np.cos(4 * a) + 0.12 * np.cos(a) + 0.08 * np.sin(2 * a))
     return np.column_stack([r * np.cos(a), r * np.sin(a)])
 
 

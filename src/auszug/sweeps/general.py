@@ -311,8 +311,9 @@ def split_ribs(parts: Array, jump: float) -> list[Array]:
 
 def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
     """The ribs' common parts ``(k, n, 3)`` in rib order, sample ``j`` corresponding across ribs."""
-    fam = ribs.family
-    return np.stack([plots.samples(int(fam.members[j]))[fam.indices(j)] for j in ribs.order])
+    from auszug.sweeps.matching import family_parts  # here: the module's imports stay as they were (merges)
+
+    return family_parts(ribs.family, plots)[ribs.order]
 
 
 def _normals_at(mesh: SweepMesh, points: Array, tree: MeshTree) -> Array:

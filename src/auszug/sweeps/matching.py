@@ -26,8 +26,11 @@ closed cut curve is resampled as a loop (``period`` samples, curvature taken cyc
 matched cyclically: its plot enters the kernel twice over, so the diagonals of a pair hold every
 cyclic shift, in the same 4 variants (4 x shifts), and a window is at most one period long; its
 starts are taken modulo the period, and families and rib parts index closed plots modulo theirs.
-A family whose members are all closed and whose common part is (within 2 samples) a whole loop
-is closed.
+A family whose members are all closed and whose common part is at least ``family_keep`` of the
+shortest member's loop is closed: its parts (:func:`family_parts`) are then the members' whole
+loops, each resampled to the seed's period from its sample matching the seed's first, so that
+sample ``i`` corresponds across members up to the loops' different lengths (oblique cuts of one
+tube differ in length; their common part is shorter than any loop).
 """
 
 from __future__ import annotations
@@ -43,7 +46,7 @@ from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
 
 __all__ = ["CurvaturePlots", "Matches", "Family", "Ribs", "resample", "signed_curvature", "curvature_plots",
-           "match_cuts", "families", "order_energy", "order_ribs"]
+           "match_cuts", "families", "family_parts", "order_energy", "order_ribs"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -170,7 +173,7 @@ class Family:
     period : (k,) int array
         Each member's period (0: an open plot; indices are taken modulo a closed plot's period).
     closed : bool
-        All members closed and the common part a whole loop (within 2 samples of the shortest).
+        All members closed and the common part at least ``family_keep`` of the shortest loop.
     """
 
     seed: int
@@ -393,7 +396,7 @@ def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, .
         mem = np.r_[seed, other[ks]].astype(np.int64)
         pm = per[mem]
         st = np.where(pm[1:] > 0, st % np.maximum(pm[1:], 1), st)
-        closed = bool(np.all(pm > 0)) and hi - lo >= int(pm.min()) - 2
+        closed = bool(np.all(pm > 0)) and hi - lo >= params.family_keep * int(pm.min())
         out.append(Family(int(seed), mem, np.r_[lo % p_seed if p_seed else lo, st].astype(np.int64),
                           np.r_[False, rev[ks]], np.r_[False, flip[ks]], hi - lo, pm, closed))
     return tuple(out)
@@ -423,6 +426,29 @@ def _meet(lo: int, hi: int, s: int, n: int, period: int) -> tuple[int, int, int]
         if b - a > best[2]:
             best = (a, b, b - a)
     return best
+
+
+def family_parts(family: Family, plots: CurvaturePlots) -> Array:
+    """The members' parts ``(k, n, 3)``, sample ``i`` corresponding across members.
+
+    An open family's parts are the common part (``n = length``); a closed family's are the
+    members' whole loops, each resampled (linearly between its samples) to ``n`` = the seed's
+    period, starting at its sample matching the seed's first and running in the seed's direction.
+    """
+    k = len(family.members)
+    if not family.closed or family.period is None:
+        return np.stack([plots.samples(int(family.members[j]))[family.indices(j)] for j in range(k)])
+    n = int(family.period[0])
+    out = np.empty((k, n, 3))
+    t = np.arange(n, dtype=float)
+    for j in range(k):   # one resampling per member (k <= the family's size)
+        loop = plots.samples(int(family.members[j]))
+        p = len(loop)
+        u = family.start[j] + (-1.0 if family.reversed[j] else 1.0) * t * p / n
+        i0 = np.floor(u).astype(np.int64)
+        w = (u - i0)[:, None]
+        out[j] = (1 - w) * loop[i0 % p] + w * loop[(i0 + 1) % p]
+    return out
 
 
 @dataclass(frozen=True)
@@ -503,7 +529,7 @@ def order_ribs(family: Family, plots: CurvaturePlots, params: SweepParams = DEFA
     True
     """
     k = len(family.members)
-    parts = np.stack([plots.samples(int(family.members[j]))[family.indices(j)] for j in range(k)])
+    parts = family_parts(family, plots)
     e = order_energy(parts, params.omega)
     centre = parts.mean(axis=1)
     normal = plots.normal[family.members]

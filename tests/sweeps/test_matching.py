@@ -167,10 +167,10 @@ def test_ribs_of_a_general_sweep_come_out_in_path_order(sigma):
 
 
 def _loop_plot(points, normal, p=DEFAULT):
-    """A closed curve's plot as :func:`curvature_plots` makes it (a loop of ``round(length / h)`` samples)."""
-    closed_len = float(np.linalg.norm(np.diff(np.vstack([points, points[:1]]), axis=0), axis=1).sum())
-    m = int(round(closed_len / p.match_spacing))
-    q = resample(points, closed_len / m * (1 - 1e-12), closed=True)[:m]
+    """A closed curve's plot as :func:`curvature_plots` makes it (``h`` apart round the loop)."""
+    q = resample(points, p.match_spacing, closed=True)
+    if np.linalg.norm(q[-1] - q[0]) < 0.5 * p.match_spacing:
+        q = q[:-1]
     return q, signed_curvature(q, normal, max(1, int(round(p.curvature_window / (2 * p.match_spacing)))), True)
 
 
@@ -190,11 +190,11 @@ def test_closed_curves_match_whole_under_every_shift_and_variant():
                 y = rot.apply(y[::-1] if reverse else y) + [0.1, -0.2, 0.3]
                 nb = rot.apply([0, -1.0, 0] if mirror_normal else [0, 1.0, 0])
                 qb, kb = _loop_plot(y, nb)
-                pl = _plots([ka, kb], [[0, 1.0, 0], nb])
+                pl = _plots([ka, kb], [[0, 1.0, 0], nb])     # the loops taken as open runs, and as loops
                 pl = CurvaturePlots(np.vstack([qa, qb]), pl.kappa, pl.start, pl.run, pl.normal, pl.spacing,
-                                    np.array([len(ka), len(kb)], np.int64))
+                                    np.array([len(ka), len(kb)], np.int64), np.vstack([qa, qb]), np.r_[ka, kb])
                 m = match_cuts(pl, DEFAULT.with_(match_angle=90))
-                assert m.n_matches == 1
+                assert m.n_matches == 1 and m.cyclic is not None and bool(m.cyclic[0])
                 assert m.length[0] == min(len(ka), len(kb))
                 assert m.reversed[0] == reverse and m.flipped[0] == (reverse != mirror_normal)
                 ia, ib = m.correspondence(0)
@@ -214,12 +214,12 @@ def test_profile_cuts_of_a_closed_sweep_form_one_closed_family():
     plots = curvature_plots(c, movability(c))
     assert np.all(plots.periods() > 0)
     m = match_cuts(plots)
-    assert m.n_matches == m.tested > 0
+    assert m.n_matches == m.tested > 0 and m.cyclic is not None and m.cyclic.all()
     assert np.all(m.length == np.minimum(plots.periods()[m.pairs[:, 0]], plots.periods()[m.pairs[:, 1]]))
     biggest = max(families(m), key=lambda f: len(f.members))
     assert biggest.closed and len(biggest.members) >= 25
     assert biggest.length * plots.spacing >= 0.97 * fx.profile_length
-    ks = plots.curvature(biggest.seed)[biggest.indices(0)]
+    ks = plots.loop(biggest.seed)[1][biggest.indices(0)]
     for j in range(1, len(biggest.members)):
-        kj = plots.curvature(int(biggest.members[j]))[biggest.indices(j)] * (-1 if biggest.flipped[j] else 1)
+        kj = plots.loop(int(biggest.members[j]))[1][biggest.indices(j)] * (-1 if biggest.flipped[j] else 1)
         assert np.abs(ks - kj).mean() <= 0.2 * max(np.abs(ks).mean(), DEFAULT.kappa_floor)

@@ -23,9 +23,13 @@ one compiled parallel loop: O(n_a n_b) per pair.
 
 Closed profiles (beyond the paper, whose implementation handles none): a run that is a whole
 closed cut curve is resampled as a loop (``period`` samples, curvature taken cyclically) and
-matched cyclically: its plot enters the kernel twice over, so the diagonals of a pair hold every
-cyclic shift, in the same 4 variants (4 x shifts), and a window is at most one period long; its
-starts are taken modulo the period, and families and rib parts index closed plots modulo theirs.
+matched cyclically: a pair of closed plots enters the kernel again with both plots twice over, so
+its diagonals hold every cyclic shift, in the same 4 variants (4 x shifts), and a window is at
+most one period long; its starts are taken modulo the periods. The cyclic match replaces the open
+one only if it covers at least ``family_keep`` of the shorter loop (partial matches of closed
+runs stay as the paper's, not wrapping: partial matches across the wrap point gave a general
+patch on the tracery border's loops that crowded out its kinematic parts). Families and rib
+parts index closed plots modulo their periods.
 A family whose members are all closed and whose common part is at least ``family_keep`` of the
 shortest member's loop is closed: its parts (:func:`family_parts`) are then the members' whole
 loops, each resampled to the seed's period from its sample matching the seed's first, so that
@@ -71,8 +75,14 @@ class CurvaturePlots:
         The unit normal of each run's plane.
     spacing : float
     period : (r,) int array
-        Samples of a closed plot (a whole closed cut curve, resampled as a loop, its last sample
-        joined to its first); 0 for an open plot.
+        Samples of a closed plot's loop (a whole closed cut curve, resampled round to its start
+        again, its last sample joined to its first); 0 for an open plot.
+    loop_points : (L, 3) float array
+        The closed plots' loops, plot after plot (``period`` samples each; none for open plots):
+        the plot's own samples (the run taken as open, as the paper's) and those on the closing
+        segment.
+    loop_kappa : (L,) float array
+        Their curvature, taken cyclically.
     """
 
     points: Array
@@ -82,10 +92,22 @@ class CurvaturePlots:
     normal: Array
     spacing: float
     period: IntArray | None = None
+    loop_points: Array | None = None
+    loop_kappa: Array | None = None
 
     def periods(self) -> IntArray:
         """``period``, zeros when not given."""
         return np.zeros(self.n_runs, np.int64) if self.period is None else self.period
+
+    def loop_start(self) -> IntArray:
+        """Loop ``k`` is ``loop_points[loop_start[k]:loop_start[k + 1]]`` (empty for an open plot)."""
+        return np.concatenate([[0], np.cumsum(self.periods())]).astype(np.int64)
+
+    def loop(self, k: int) -> tuple[Array, Array]:
+        """Samples ``(period, 3)`` and curvature ``(period,)`` of plot ``k``'s loop."""
+        ls = self.loop_start()
+        assert self.loop_points is not None and self.loop_kappa is not None
+        return self.loop_points[ls[k]:ls[k + 1]], self.loop_kappa[ls[k]:ls[k + 1]]
 
     @property
     def n_runs(self) -> int:
@@ -124,6 +146,9 @@ class Matches:
         ``E_kappa,0`` over the window (before the floor).
     tested : int
         Pairs compared (after angle pruning).
+    cyclic : (p,) bool array
+        A cyclic match of two closed plots' loops (its starts index the loops, its window is at
+        least ``family_keep`` of the shorter loop).
     """
 
     plots: CurvaturePlots
@@ -136,6 +161,7 @@ class Matches:
     energy: Array
     reference: Array
     tested: int
+    cyclic: BoolArray | None = None
 
     @property
     def n_matches(self) -> int:
@@ -147,9 +173,10 @@ class Matches:
         t = np.arange(self.length[k])
         ia = self.start_a[k] + t
         ib = self.start_b[k] - t if self.reversed[k] else self.start_b[k] + t
+        if self.cyclic is None or not self.cyclic[k]:
+            return ia, ib
         per = self.plots.periods()
-        pa, pb = int(per[self.pairs[k, 0]]), int(per[self.pairs[k, 1]])
-        return (ia % pa if pa else ia), (ib % pb if pb else ib)
+        return ia % int(per[self.pairs[k, 0]]), ib % int(per[self.pairs[k, 1]])
 
 
 @dataclass(frozen=True)
@@ -170,10 +197,11 @@ class Family:
         The member's curvature is the seed's negated (its plane's normal points the other way).
     length : int
         Samples in the common part.
-    period : (k,) int array
-        Each member's period (0: an open plot; indices are taken modulo a closed plot's period).
+    period : (k,) int array or None
+        A family of cyclic matches: each member's period (its indices are into its loop, modulo
+        the period); None for a family of open matches.
     closed : bool
-        All members closed and the common part at least ``family_keep`` of the shortest loop.
+        A family of cyclic matches whose common part is at least ``family_keep`` of the shortest loop.
     """
 
     seed: int
@@ -189,8 +217,7 @@ class Family:
         """Sample indices of member ``j`` (in its plot), in the seed's order."""
         t = np.arange(self.length)
         i = self.start[j] - t if self.reversed[j] else self.start[j] + t
-        p = 0 if self.period is None else int(self.period[j])
-        return i % p if p else i
+        return i if self.period is None else i % int(self.period[j])
 
 
 def resample(polyline: ArrayLike, spacing: float, closed: bool = False) -> Array:
@@ -251,9 +278,10 @@ def curvature_plots(cuts: Cuts, mov: Movability, runs: ArrayLike | None = None,
                     params: SweepParams = DEFAULT) -> CurvaturePlots:
     """Resample the movable ``runs`` (default: all) at ``params.match_spacing``, with curvatures.
 
-    A run that is a whole closed cut curve is resampled as a loop: ``round(length / spacing)``
-    samples evenly spaced around it (its spacing within half a sample's worth of ``spacing``),
-    its curvature taken cyclically (its ``period``).
+    A run that is a whole closed cut curve is resampled as a loop: ``spacing`` apart from its
+    start round to its start again (the last step, closing the loop, between ``spacing / 2`` and
+    ``3 spacing / 2``; the samples before it are those of the run taken as open), its curvature
+    taken cyclically (its ``period``).
 
     Examples
     --------
@@ -268,26 +296,30 @@ def curvature_plots(cuts: Cuts, mov: Movability, runs: ArrayLike | None = None,
     h = params.match_spacing
     window = max(1, int(round(params.curvature_window / (2 * h))))
     sel = np.arange(mov.n_runs) if runs is None else np.asarray(runs, np.int64)
-    pts, kap, counts, periods = [], [], [], []
+    pts, kap, counts, periods, loops, loop_kap = [], [], [], [], [], []
     normals = cuts.plane_normals[cuts.curve_plane[mov.run_curve[sel]]] if len(sel) else np.zeros((0, 3))
     for r, nrm in zip(sel, normals, strict=True):  # one resampling per run (not per pair)
         idx = mov.run_indices(cuts, int(r))
         k = int(mov.run_curve[r])
         loop = bool(cuts.curve_closed[k]) and len(idx) == int(cuts.curve_start[k + 1] - cuts.curve_start[k])
-        if loop:
-            length = float(mov.run_length[r])
-            m = max(3, int(round(length / h)))
-            q = resample(cuts.points[idx], length / m * (1 - 1e-12), closed=True)[:m]
-        else:
-            q = resample(cuts.points[idx], h)
+        q = resample(cuts.points[idx], h)
         pts.append(q)
-        kap.append(signed_curvature(q, nrm, window, loop))
+        kap.append(signed_curvature(q, nrm, window))
         counts.append(len(q))
-        periods.append(len(q) if loop else 0)
+        periods.append(0)
+        if loop:   # the open run's samples and those on the closing segment
+            lq = resample(cuts.points[idx], h, closed=True)
+            if len(lq) > 3 and np.linalg.norm(lq[-1] - lq[0]) < 0.5 * h:
+                lq = lq[:-1]
+            loops.append(lq)
+            loop_kap.append(signed_curvature(lq, nrm, window, True))
+            periods[-1] = len(lq)
     start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
     points = np.vstack(pts) if pts else np.zeros((0, 3))
     kappa = np.concatenate(kap) if kap else np.zeros(0)
-    return CurvaturePlots(points, kappa, start, sel.astype(np.int64), normals, h, np.array(periods, np.int64))
+    return CurvaturePlots(points, kappa, start, sel.astype(np.int64), normals, h, np.array(periods, np.int64),
+                          np.vstack(loops) if loops else np.zeros((0, 3)),
+                          np.concatenate(loop_kap) if loop_kap else np.zeros(0))
 
 
 def match_cuts(plots: CurvaturePlots, params: SweepParams = DEFAULT) -> Matches:
@@ -312,25 +344,32 @@ def match_cuts(plots: CurvaturePlots, params: SweepParams = DEFAULT) -> Matches:
     pairs = np.ascontiguousarray(np.column_stack([ia[keep], ib[keep]]).astype(np.int64))
     min_len = max(2, int(np.ceil(params.l_min / plots.spacing - 1e-9)))
     per = plots.periods()
-    kappa, start = plots.kappa, plots.start
-    if per.any():   # closed plots twice over: every cyclic shift is a diagonal
-        counts = np.where(per > 0, 2, 1) * np.diff(plots.start)
-        start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-        kappa = np.concatenate([np.tile(plots.curvature(k), 2 if per[k] else 1) for k in range(r)]) if r else kappa
-    ln, var, sa, sb, e, ref = _kernels.match_pairs(np.ascontiguousarray(kappa), start, pairs, float(params.eps_match),
+    ln, var, sa, sb, e, ref = _kernels.match_pairs(plots.kappa, plots.start, pairs, float(params.eps_match),
                                                    float(params.kappa_floor), min_len)
     rev = (var & 2) != 0
-    mb = np.diff(start)[pairs[:, 1]] if len(pairs) else np.zeros(0, np.int64)
-    start_b = np.where(rev, mb - 1 - sb, sb)  # in b's own (doubled) indices
-    if per.any() and len(pairs):
-        pa, pb = per[pairs[:, 0]], per[pairs[:, 1]]
-        whole = np.minimum(np.where(pa > 0, pa, ln), np.where(pb > 0, pb, ln))
-        ln = np.where(ln > 0, np.minimum(ln, whole), ln)    # at most one period
-        sa = np.where(pa > 0, sa % np.maximum(pa, 1), sa)
-        start_b = np.where(pb > 0, start_b % np.maximum(pb, 1), start_b)
+    mb = np.diff(plots.start)[pairs[:, 1]] if len(pairs) else np.zeros(0, np.int64)
+    start_b = np.where(rev, mb - 1 - sb, sb)  # in b's own indices
+    pa, pb = (per[pairs[:, 0]], per[pairs[:, 1]]) if len(pairs) else (np.zeros(0, np.int64),) * 2
+    loops = (pa > 0) & (pb > 0)
+    cyclic = np.zeros(len(pairs), bool)
+    if loops.any():   # pairs of closed plots again, their loops twice over: every cyclic shift is a diagonal
+        start = np.concatenate([[0], np.cumsum(2 * per)]).astype(np.int64)
+        kappa = np.concatenate([np.tile(plots.loop(k)[1], 2) for k in range(r)])
+        sub = np.ascontiguousarray(pairs[loops])
+        c_ln, c_var, c_sa, c_sb, c_e, c_ref = _kernels.match_pairs(kappa, start, sub, float(params.eps_match),
+                                                                   float(params.kappa_floor), min_len)
+        c_ln = np.minimum(c_ln, np.minimum(pa[loops], pb[loops]))    # at most one period
+        c_rev = (c_var & 2) != 0
+        c_sb = np.where(c_rev, np.diff(start)[sub[:, 1]] - 1 - c_sb, c_sb) % pb[loops]
+        # a cyclic match counts only as (nearly) a whole loop; partial matches stay the open ones
+        whole = c_ln >= params.family_keep * np.minimum(pa[loops], pb[loops])
+        at = np.flatnonzero(loops)[whole]
+        ln[at], var[at], sa[at], start_b[at] = c_ln[whole], c_var[whole], c_sa[whole] % pa[at], c_sb[whole]
+        e[at], ref[at], rev[at] = c_e[whole], c_ref[whole], c_rev[whole]
+        cyclic[at] = True
     ok = ln > 0
     return Matches(plots, pairs[ok], ln[ok], (var & 1)[ok] != 0, rev[ok], sa[ok], start_b[ok], e[ok], ref[ok],
-                   len(pairs))
+                   len(pairs), cyclic[ok])
 
 
 def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, ...]:
@@ -358,8 +397,12 @@ def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, .
     out: list[Family] = []
     seen: set[tuple[int, ...]] = set()
     pa, pb = matches.pairs[:, 0], matches.pairs[:, 1]
+    cyc = np.zeros(len(pa), bool) if matches.cyclic is None else matches.cyclic
     for seed in np.unique(matches.pairs):  # one family per seed (not per pair)
         mine = np.flatnonzero((pa == seed) | (pb == seed))
+        # a seed with cyclic matches (whole loops) grows a family of those only, on the loops
+        is_cyclic = bool(cyc[mine].any())
+        mine = mine[cyc[mine] == is_cyclic]
         # express every match of the seed as (other, window on seed, other's start, reversed, flipped)
         as_a = pa[mine] == seed
         other = np.where(as_a, pb[mine], pa[mine])
@@ -371,7 +414,7 @@ def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, .
         s_other = np.where(as_a, matches.start_b[mine], np.where(rev, matches.start_a[mine] + ln - 1,
                                                                   matches.start_a[mine]))
         first = int(np.argmax(ln))
-        p_seed = int(per[seed])
+        p_seed = int(per[seed]) if is_cyclic else 0
         if p_seed:
             s_seed = s_seed % p_seed
         lo, hi = int(s_seed[first]), int(s_seed[first] + ln[first])
@@ -394,9 +437,10 @@ def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, .
         off = (lo - s_seed[ks]) % p_seed if p_seed else lo - s_seed[ks]
         st = np.where(rev[ks], s_other[ks] - off, s_other[ks] + off)
         mem = np.r_[seed, other[ks]].astype(np.int64)
-        pm = per[mem]
-        st = np.where(pm[1:] > 0, st % np.maximum(pm[1:], 1), st)
-        closed = bool(np.all(pm > 0)) and hi - lo >= params.family_keep * int(pm.min())
+        pm = per[mem] if is_cyclic else None
+        if pm is not None:
+            st = st % pm[1:]
+        closed = pm is not None and hi - lo >= params.family_keep * int(pm.min())
         out.append(Family(int(seed), mem, np.r_[lo % p_seed if p_seed else lo, st].astype(np.int64),
                           np.r_[False, rev[ks]], np.r_[False, flip[ks]], hi - lo, pm, closed))
     return tuple(out)
@@ -436,13 +480,15 @@ def family_parts(family: Family, plots: CurvaturePlots) -> Array:
     period, starting at its sample matching the seed's first and running in the seed's direction.
     """
     k = len(family.members)
-    if not family.closed or family.period is None:
+    if family.period is None:
         return np.stack([plots.samples(int(family.members[j]))[family.indices(j)] for j in range(k)])
+    if not family.closed:
+        return np.stack([plots.loop(int(family.members[j]))[0][family.indices(j)] for j in range(k)])
     n = int(family.period[0])
     out = np.empty((k, n, 3))
     t = np.arange(n, dtype=float)
     for j in range(k):   # one resampling per member (k <= the family's size)
-        loop = plots.samples(int(family.members[j]))
+        loop = plots.loop(int(family.members[j]))[0]
         p = len(loop)
         u = family.start[j] + (-1.0 if family.reversed[j] else 1.0) * t * p / n
         i0 = np.floor(u).astype(np.int64)

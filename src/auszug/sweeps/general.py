@@ -918,7 +918,8 @@ def grown_patch(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: Mes
     Grown across its profile by :func:`extend_profile`, along its path by :func:`grow_ribs`,
     refitted (:func:`general_patch`, 2 rounds: one re-slicing) and its profile trimmed again to
     the points whose paths stay within ``eps_prox``. Returns ``g`` when the grown sweep covers no
-    more or fits worse than ``fit_factor * eps_prox``.
+    more or fits worse than ``fit_factor * eps_prox``. A closed profile is neither grown across
+    nor trimmed (either would open it).
     """
     profile = g.profile if g.closed else extend_profile(mesh, g.profile, g.motion, tree, params)
     grown = grow_ribs(mesh, profile, g.motion, params)

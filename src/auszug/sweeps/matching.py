@@ -22,19 +22,18 @@ O(n) with prefix minima and suffix maxima. All diagonals of all 4 variants of al
 one compiled parallel loop: O(n_a n_b) per pair.
 
 Closed profiles (beyond the paper, whose implementation handles none): a run that is a whole
-closed cut curve is resampled as a loop (``period`` samples, curvature taken cyclically) and
-matched cyclically: a pair of closed plots enters the kernel again with both plots twice over, so
-its diagonals hold every cyclic shift, in the same 4 variants (4 x shifts), and a window is at
-most one period long; its starts are taken modulo the periods. The cyclic match replaces the open
-one only if it covers at least ``family_keep`` of the shorter loop (partial matches of closed
-runs stay as the paper's, not wrapping: partial matches across the wrap point gave a general
-patch on the tracery border's loops that crowded out its kinematic parts). Families and rib
-parts index closed plots modulo their periods.
-A family whose members are all closed and whose common part is at least ``family_keep`` of the
-shortest member's loop is closed: its parts (:func:`family_parts`) are then the members' whole
-loops, each resampled to the seed's period from its sample matching the seed's first, so that
-sample ``i`` corresponds across members up to the loops' different lengths (oblique cuts of one
-tube differ in length; their common part is shorter than any loop).
+closed cut curve keeps its plot (the run taken as open, matched as the paper's) and gets a loop
+beside it (``period`` samples round to its start again, curvature taken cyclically). A pair of
+closed plots is matched again on its loops, each twice over, so the diagonals hold every cyclic
+shift, in the same 4 variants (4 x shifts); a window is at most one period long and its starts
+are taken modulo the periods. This cyclic match replaces the open one only if it covers at least
+``family_keep`` of the shorter loop (letting partial matches wrap changed the tracery border's
+open matches and a general patch crowded out its kinematic parts). A seed with cyclic matches
+grows its family from those only, on the loops; the family is closed if its common part is at
+least ``family_keep`` of the shortest loop, and its parts (:func:`family_parts`) are then the
+members' whole loops, each resampled to the seed's period from its sample matching the seed's
+first, so that sample ``i`` corresponds across members up to the loops' different lengths
+(oblique cuts of one tube differ in length; their common part is shorter than any loop).
 """
 
 from __future__ import annotations

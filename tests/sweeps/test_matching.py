@@ -164,3 +164,62 @@ def test_ribs_of_a_general_sweep_come_out_in_path_order(sigma):
     nrm = plots.normal[ribs.plots]
     for i in range(1, len(cen) - 1):
         assert (nrm[i] @ (cen[i - 1] - cen[i])) * (nrm[i] @ (cen[i + 1] - cen[i])) < 0
+
+
+def _loop_plot(points, normal, p=DEFAULT):
+    """A closed curve's plot as :func:`curvature_plots` makes it (``h`` apart round the loop)."""
+    q = resample(points, p.match_spacing, closed=True)
+    if np.linalg.norm(q[-1] - q[0]) < 0.5 * p.match_spacing:
+        q = q[:-1]
+    return q, signed_curvature(q, normal, max(1, int(round(p.curvature_window / (2 * p.match_spacing)))), True)
+
+
+def test_closed_curves_match_whole_under_every_shift_and_variant():
+    """A closed curve against a rigidly moved copy started elsewhere (every shift), reversed and with its
+    plane's normal turned: one match, a whole period long, whose correspondence pairs the same points."""
+    from auszug.sweeps.fixtures import closed_profile
+
+    prof = closed_profile(240, 0.075)
+    x = np.column_stack([prof[:, 0], np.zeros(len(prof)), prof[:, 1]])
+    qa, ka = _loop_plot(x, [0, 1.0, 0])
+    rot = Rotation.from_rotvec([0.2, 0.3, -0.4])
+    for shift in (0, 37, 120, 201):
+        for reverse in (False, True):
+            for mirror_normal in (False, True):
+                y = np.roll(x, -shift, axis=0)
+                y = rot.apply(y[::-1] if reverse else y) + [0.1, -0.2, 0.3]
+                nb = rot.apply([0, -1.0, 0] if mirror_normal else [0, 1.0, 0])
+                qb, kb = _loop_plot(y, nb)
+                pl = _plots([ka, kb], [[0, 1.0, 0], nb])     # the loops taken as open runs, and as loops
+                pl = CurvaturePlots(np.vstack([qa, qb]), pl.kappa, pl.start, pl.run, pl.normal, pl.spacing,
+                                    np.array([len(ka), len(kb)], np.int64), np.vstack([qa, qb]), np.r_[ka, kb])
+                m = match_cuts(pl, DEFAULT.with_(match_angle=90))
+                assert m.n_matches == 1 and m.cyclic is not None and bool(m.cyclic[0])
+                assert m.length[0] == min(len(ka), len(kb))
+                assert m.reversed[0] == reverse and m.flipped[0] == (reverse != mirror_normal)
+                ia, ib = m.correspondence(0)
+                assert ia.max() < len(ka) and ib.max() < len(kb) and len(np.unique(ia)) == len(ia)
+                # the same points of the profile: b's samples moved back onto a's, within 2 samples
+                back = rot.inv().apply(qb[ib] - [0.1, -0.2, 0.3])
+                assert np.linalg.norm(back - qa[ia], axis=1).max() < 2 * DEFAULT.match_spacing
+
+
+def test_profile_cuts_of_a_closed_sweep_form_one_closed_family():
+    """The true profile planes' cuts of the closed fixture (loops started wherever the cutter starts them)
+    match whole and give a closed family whose members agree in curvature along its correspondence."""
+    from auszug.sweeps.fixtures import closed_along_cubic
+
+    fx = closed_along_cubic()
+    c = cut(normalise(fx.vertices, fx.faces), fx.planes[:, :3], fx.planes[:, 3])
+    plots = curvature_plots(c, movability(c))
+    assert np.all(plots.periods() > 0)
+    m = match_cuts(plots)
+    assert m.n_matches == m.tested > 0 and m.cyclic is not None and m.cyclic.all()
+    assert np.all(m.length == np.minimum(plots.periods()[m.pairs[:, 0]], plots.periods()[m.pairs[:, 1]]))
+    biggest = max(families(m), key=lambda f: len(f.members))
+    assert biggest.closed and len(biggest.members) >= 25
+    assert biggest.length * plots.spacing >= 0.97 * fx.profile_length
+    ks = plots.loop(biggest.seed)[1][biggest.indices(0)]
+    for j in range(1, len(biggest.members)):
+        kj = plots.loop(int(biggest.members[j]))[1][biggest.indices(j)] * (-1 if biggest.flipped[j] else 1)
+        assert np.abs(ks - kj).mean() <= 0.2 * max(np.abs(ks).mean(), DEFAULT.kappa_floor)

@@ -33,6 +33,8 @@ __all__ = [
     "moulding_along_ellipse",
     "moulding_along_cubic",
     "letter_g_profile",
+    "closed_profile",
+    "closed_along_cubic",
     "letter_g_along_cubic",
     "with_hole",
     "decimated",
@@ -258,12 +260,14 @@ def _cubic() -> Any:
 
 
 def _along_cubic(name: str, prof: Array, n_path: int, twist: float, n_planes: int, sigma: float, seed: int,
-                 jitter: float = 0.0) -> Fixture:
+                 jitter: float = 0.0, closed: bool = False) -> Fixture:
     """The 2-d profile ``prof (n, 2)`` (centred on the path) swept along the cubic with ``twist`` degrees.
 
     ``jitter`` > 0 remeshes: every vertex moves along the surface by up to ``jitter`` of the grid's
     spacing in both directions (path parameter and profile arc length), seeded, so the triangles
-    are irregular while every vertex stays exactly on the swept surface.
+    are irregular while every vertex stays exactly on the swept surface. ``closed``: the profile is
+    a closed curve (its last point joined to its first; not with ``jitter``), the tube open at its
+    two ends.
     """
     from auszug.meshing.frames import sweep_frames
 
@@ -277,6 +281,7 @@ def _along_cubic(name: str, prof: Array, n_path: int, twist: float, n_planes: in
     dep = -np.sin(ang)[:, None] * fr.width + np.cos(ang)[:, None] * fr.depth
     n = len(prof)
     s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(prof, axis=0), axis=1))])
+    length = float(s[-1] + np.linalg.norm(prof[0] - prof[-1])) if closed else float(s[-1])
     rows = np.repeat(np.arange(n_path) * fine, n)
     arc = np.tile(s, n_path)
     if jitter > 0:
@@ -292,10 +297,14 @@ def _along_cubic(name: str, prof: Array, n_path: int, twist: float, n_planes: in
         arc = arc + shift
     px, py = np.interp(arc, s, prof[:, 0]), np.interp(arc, s, prof[:, 1])
     v = path[rows] + px[:, None] * wdt[rows] + py[:, None] * dep[rows]
-    f = grid_faces(n_path, n)
+    if closed:   # one more column, the first again, merged into the first
+        g = grid_faces(n_path, n + 1)
+        f = (g // (n + 1)) * n + (g % (n + 1)) % n
+    else:
+        f = grid_faces(n_path, n)
     pq, nq = bez(np.linspace(0.05, 0.95, n_planes))
     planes = np.column_stack([nq, np.einsum("ij,ij->i", nq, pq)])
-    return _finish(name, "moulding", v, f, sigma, seed, None, None, planes, float(s[-1]))
+    return _finish(name, "moulding", v, f, sigma, seed, None, None, planes, length)
 
 
 def moulding_along_cubic(n_profile: int = 60, n_path: int = 160, twist: float = 120.0, n_planes: int = 60,
@@ -336,6 +345,31 @@ def letter_g_along_cubic(n_path: int = 160, twist: float = 120.0, n_planes: int 
     The profile is :func:`letter_g_profile` (an arc and lines).
     """
     return _along_cubic("letter_g", letter_g_profile(), n_path, twist, n_planes, sigma, seed)
+
+
+def closed_profile(n: int = 96, radius: float = 0.075) -> Array:
+    """Points ``(n, 2)`` of a closed, non-symmetric rounded quatrefoil centred on the origin.
+
+    The polar curve ``r = radius (1 + 0.22 cos 4a + 0.12 cos a + 0.08 sin 2a)``: four rounded
+    lobes of different sizes, so no rotation about the origin but the identity maps it to itself
+    (``cos a``) and no reflection does (``cos a`` allows only ``a -> -a``, which ``sin 2a`` breaks):
+    no rigid motion but the identity maps the curve onto itself, reversed or not. Its last point
+    is not its first (the curve closes from the last to the first).
+    """
+    a = np.linspace(0.0, 2 * np.pi, n, endpoint=False)
+    r = radius * (1 + 0.22 * np.cos(4 * a) + 0.12 * np.cos(a) + 0.08 * np.sin(2 * a))
+    return np.column_stack([r * np.cos(a), r * np.sin(a)])
+
+
+def closed_along_cubic(n_profile: int = 96, n_path: int = 160, twist: float = 120.0, n_planes: int = 60,
+                       radius: float = 0.075, sigma: float = 0.0, seed: int = 0) -> Fixture:
+    """A closed profile (:func:`closed_profile`) swept along the cubic with twist, like :func:`moulding_along_cubic`.
+
+    A tube open at its two ends; the profile lies in the path's normal planes (``planes``, over
+    the middle 90 % of the path), ``profile_length`` is the whole closed curve's length.
+    """
+    return _along_cubic("closed", closed_profile(n_profile, radius), n_path, twist, n_planes, sigma, seed,
+                        closed=True)
 
 
 def with_hole(fx: Fixture, radius: float = 0.06, seed: int = 0) -> Fixture:

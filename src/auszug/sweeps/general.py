@@ -312,8 +312,9 @@ def split_ribs(parts: Array, jump: float) -> list[Array]:
 
 def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
     """The ribs' common parts ``(k, n, 3)`` in rib order, sample ``j`` corresponding across ribs."""
-    fam = ribs.family
-    return np.stack([plots.samples(int(fam.members[j]))[fam.indices(j)] for j in ribs.order])
+    from auszug.sweeps.matching import family_parts  # here: the module's imports stay as they were (merges)
+
+    return family_parts(ribs.family, plots)[ribs.order]
 
 
 def _normals_at(mesh: SweepMesh, points: Array, tree: MeshTree) -> Array:
@@ -403,6 +404,8 @@ class GeneralSweep:
     fit_error : float
     coverage : float
     faces : (m,) int array
+    closed : bool
+        The profile is a closed loop (its last point joined to its first).
     """
 
     profile: Array
@@ -411,6 +414,7 @@ class GeneralSweep:
     fit_error: float
     coverage: float
     faces: IntArray
+    closed: bool = False
 
 
 def profile_planes(profile: Array, motion: Motion, t: ArrayLike) -> tuple[Array, Array]:
@@ -495,10 +499,11 @@ def _far(params: SweepParams) -> float:
 
 def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
                   areas: Array | None = None, tree: MeshTree | None = None,
-                  times: Array | None = None) -> GeneralSweep:
+                  times: Array | None = None, closed: bool = False) -> GeneralSweep:
     """Fit a sweep to ordered rib parts ``(k, n, 3)`` (k >= 2), iterating sec. 2.3.2-2.3.4.
 
-    The ribs lie at parameters ``times (k,)`` (default ``0..k-1``).
+    The ribs lie at parameters ``times (k,)`` (default ``0..k-1``); ``closed``: they are closed
+    loops (the profile's last point joined to its first).
 
     The first round fits a motion to the ribs as found (cuts by the initial planes, up to 8
     degrees off the profile planes) and re-slices the mesh by its profile planes
@@ -535,7 +540,7 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
         # pieces lie on the mesh): the fit error queries only the swept points that may be the farthest
         profile, upper = improve_bounded(profile, back, starts, knot, len(motion), params.eps_prox)
         # the fit error in every round, the covered faces only of the round kept
-        err = swept_error(profile, False, motion, params.eps_prox, tr_, upper)
+        err = swept_error(profile, closed, motion, params.eps_prox, tr_, upper)
         if best is None or err.fit_error < best[3].fit_error:
             best = (profile, motion, vel, err)
         if i + 1 < n_rounds:
@@ -543,7 +548,7 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
                            grid)
     assert best is not None
     fit = swept_coverage(mesh, best[3], params.eps_prox, a)
-    return GeneralSweep(best[0], best[1], best[2], fit.fit_error, fit.coverage, fit.faces)
+    return GeneralSweep(best[0], best[1], best[2], fit.fit_error, fit.coverage, fit.faces, closed)
 
 
 def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Array, Array]:
@@ -624,8 +629,9 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     skipped = 0
     # a family's ordered ribs may jump across a gap (parallel cuts of two parallel stretches of a
     # border): each stretch between such jumps is fitted on its own
-    stretches = [q for r in ribs for q in split_ribs(rib_parts(r, plots), params.rib_jump) if len(q) >= 3]
-    for parts in stretches:
+    stretches = [(q, r.family.closed) for r in ribs for q in split_ribs(rib_parts(r, plots), params.rib_jump)
+                 if len(q) >= 3]
+    for parts, closed in stretches:
         # a family whose ribs lie on what an earlier grown patch covers adds nothing
         if grown.any() and float(np.mean(grown[tree.query(parts)[1]])) >= params.patch_overlap:
             skipped += 1
@@ -633,18 +639,18 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
         # the sweep between the first and the last rib stays near them: fit it to that part of the
         # mesh (distances to a part are never smaller than to the whole: the fit error is safe)
         sub, faces = _around(mesh, parts, params.l_min / 4 + 4 * params.eps_prox)
-        g = general_patch(sub, parts, params, areas[faces], tree)
+        g = general_patch(sub, parts, params, areas[faces], tree, closed=closed)
         g = GeneralSweep(g.profile, g.motion, g.velocities, g.fit_error,
-                         float(areas[faces[g.faces]].sum() / total) if total > 0 else 0.0, faces[g.faces])
+                         float(areas[faces[g.faces]].sum() / total) if total > 0 else 0.0, faces[g.faces], closed)
         if params.grow and g.fit_error <= params.fit_factor * params.eps_prox:
             g = grown_patch(mesh, g, params, tree, areas)
-        if translations:
+        if translations and not closed:
             tp = translational_patch(mesh, g.profile, g.motion, params, tree, areas)
             if tp is not None and tp.fit_error <= params.fit_factor * params.eps_prox and tp.coverage > g.coverage:
                 g = tp
         if g.fit_error <= params.fit_factor * params.eps_prox:
             grown[g.faces] = True
-        out.append(SweepPatch(len(out), "general", g.profile, False, g.motion, g.faces, g.fit_error, g.coverage))
+        out.append(SweepPatch(len(out), "general", g.profile, g.closed, g.motion, g.faces, g.fit_error, g.coverage))
     numbers: dict[str, float | int] = {"candidates": len(out)}
     summary = f"{len(out)} general sweep(s) fitted ({skipped} families on grown patches skipped)" + (
         ": fit errors " + ", ".join(f"{p.fit_error:.2e}" for p in out) if out else "")
@@ -935,15 +941,16 @@ def grown_patch(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: Mes
     Grown across its profile by :func:`extend_profile`, along its path by :func:`grow_ribs`,
     refitted (:func:`general_patch`, 2 rounds: one re-slicing) and its profile trimmed again to
     the points whose paths stay within ``eps_prox``. Returns ``g`` when the grown sweep covers no
-    more or fits worse than ``fit_factor * eps_prox``.
+    more or fits worse than ``fit_factor * eps_prox``. A closed profile is neither grown across
+    nor trimmed (either would open it).
     """
-    profile = extend_profile(mesh, g.profile, g.motion, tree, params)
+    profile = g.profile if g.closed else extend_profile(mesh, g.profile, g.motion, tree, params)
     grown = grow_ribs(mesh, profile, g.motion, params)
     if len(grown) < 2:
         return g
-    h = general_patch(mesh, grown.ribs, params.with_(general_iterations=2), areas, tree, grown.t)
+    h = general_patch(mesh, grown.ribs, params.with_(general_iterations=2), areas, tree, grown.t, g.closed)
     a, b = _longest_run(trajectory_error(h.profile, h.motion, tree, params.eps_prox) <= params.eps_prox)
-    if b - a >= 2 and b - a < len(h.profile):
+    if b - a >= 2 and b - a < len(h.profile) and not h.closed:    # a closed profile is kept whole
         fit = fit_patch(mesh, h.profile[a:b], False, h.motion, params, areas, tree)
         h = GeneralSweep(h.profile[a:b], h.motion, h.velocities, fit.fit_error, fit.coverage, fit.faces)
     if h.coverage <= g.coverage or h.fit_error > params.fit_factor * params.eps_prox:

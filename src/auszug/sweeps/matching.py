@@ -20,6 +20,20 @@ solve the stated problem directly: on each diagonal, the condition is ``sum (d_t
 over the window, and the longest such window is the widest ramp of the prefix sums, found in
 O(n) with prefix minima and suffix maxima. All diagonals of all 4 variants of all pairs run in
 one compiled parallel loop: O(n_a n_b) per pair.
+
+Closed profiles (beyond the paper, whose implementation handles none): a run that is a whole
+closed cut curve keeps its plot (the run taken as open, matched as the paper's) and gets a loop
+beside it (``period`` samples round to its start again, curvature taken cyclically). A pair of
+closed plots is matched again on its loops, each twice over, so the diagonals hold every cyclic
+shift, in the same 4 variants (4 x shifts); a window is at most one period long and its starts
+are taken modulo the periods. This cyclic match replaces the open one only if it covers at least
+``family_keep`` of the shorter loop (letting partial matches wrap changed the tracery border's
+open matches and a general patch crowded out its kinematic parts). A seed with cyclic matches
+grows its family from those only, on the loops; the family is closed if its common part is at
+least ``family_keep`` of the shortest loop, and its parts (:func:`family_parts`) are then the
+members' whole loops, each resampled to the seed's period from its sample matching the seed's
+first, so that sample ``i`` corresponds across members up to the loops' different lengths
+(oblique cuts of one tube differ in length; their common part is shorter than any loop).
 """
 
 from __future__ import annotations
@@ -35,7 +49,7 @@ from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
 
 __all__ = ["CurvaturePlots", "Matches", "Family", "Ribs", "resample", "signed_curvature", "curvature_plots",
-           "match_cuts", "families", "order_energy", "order_ribs"]
+           "match_cuts", "families", "family_parts", "order_energy", "order_ribs"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -59,6 +73,15 @@ class CurvaturePlots:
     normal : (r, 3) float array
         The unit normal of each run's plane.
     spacing : float
+    period : (r,) int array
+        Samples of a closed plot's loop (a whole closed cut curve, resampled round to its start
+        again, its last sample joined to its first); 0 for an open plot.
+    loop_points : (L, 3) float array
+        The closed plots' loops, plot after plot (``period`` samples each; none for open plots):
+        the plot's own samples (the run taken as open, as the paper's) and those on the closing
+        segment.
+    loop_kappa : (L,) float array
+        Their curvature, taken cyclically.
     """
 
     points: Array
@@ -67,6 +90,23 @@ class CurvaturePlots:
     run: IntArray
     normal: Array
     spacing: float
+    period: IntArray | None = None
+    loop_points: Array | None = None
+    loop_kappa: Array | None = None
+
+    def periods(self) -> IntArray:
+        """``period``, zeros when not given."""
+        return np.zeros(self.n_runs, np.int64) if self.period is None else self.period
+
+    def loop_start(self) -> IntArray:
+        """Loop ``k`` is ``loop_points[loop_start[k]:loop_start[k + 1]]`` (empty for an open plot)."""
+        return np.concatenate([[0], np.cumsum(self.periods())]).astype(np.int64)
+
+    def loop(self, k: int) -> tuple[Array, Array]:
+        """Samples ``(period, 3)`` and curvature ``(period,)`` of plot ``k``'s loop."""
+        ls = self.loop_start()
+        assert self.loop_points is not None and self.loop_kappa is not None
+        return self.loop_points[ls[k]:ls[k + 1]], self.loop_kappa[ls[k]:ls[k + 1]]
 
     @property
     def n_runs(self) -> int:
@@ -105,6 +145,9 @@ class Matches:
         ``E_kappa,0`` over the window (before the floor).
     tested : int
         Pairs compared (after angle pruning).
+    cyclic : (p,) bool array
+        A cyclic match of two closed plots' loops (its starts index the loops, its window is at
+        least ``family_keep`` of the shorter loop).
     """
 
     plots: CurvaturePlots
@@ -117,6 +160,7 @@ class Matches:
     energy: Array
     reference: Array
     tested: int
+    cyclic: BoolArray | None = None
 
     @property
     def n_matches(self) -> int:
@@ -124,11 +168,14 @@ class Matches:
         return len(self.pairs)
 
     def correspondence(self, k: int) -> tuple[IntArray, IntArray]:
-        """Sample indices ``(i_a, i_b)`` of match ``k``, position by position."""
+        """Sample indices ``(i_a, i_b)`` of match ``k``, position by position (modulo a closed plot's period)."""
         t = np.arange(self.length[k])
         ia = self.start_a[k] + t
         ib = self.start_b[k] - t if self.reversed[k] else self.start_b[k] + t
-        return ia, ib
+        if self.cyclic is None or not self.cyclic[k]:
+            return ia, ib
+        per = self.plots.periods()
+        return ia % int(per[self.pairs[k, 0]]), ib % int(per[self.pairs[k, 1]])
 
 
 @dataclass(frozen=True)
@@ -149,6 +196,11 @@ class Family:
         The member's curvature is the seed's negated (its plane's normal points the other way).
     length : int
         Samples in the common part.
+    period : (k,) int array or None
+        A family of cyclic matches: each member's period (its indices are into its loop, modulo
+        the period); None for a family of open matches.
+    closed : bool
+        A family of cyclic matches whose common part is at least ``family_keep`` of the shortest loop.
     """
 
     seed: int
@@ -157,11 +209,14 @@ class Family:
     reversed: BoolArray
     flipped: BoolArray
     length: int
+    period: IntArray | None = None
+    closed: bool = False
 
     def indices(self, j: int) -> IntArray:
         """Sample indices of member ``j`` (in its plot), in the seed's order."""
         t = np.arange(self.length)
-        return self.start[j] - t if self.reversed[j] else self.start[j] + t
+        i = self.start[j] - t if self.reversed[j] else self.start[j] + t
+        return i if self.period is None else i % int(self.period[j])
 
 
 def resample(polyline: ArrayLike, spacing: float, closed: bool = False) -> Array:
@@ -180,11 +235,12 @@ def resample(polyline: ArrayLike, spacing: float, closed: bool = False) -> Array
     return np.column_stack([np.interp(u, s, p[:, k]) for k in range(3)])
 
 
-def signed_curvature(points: ArrayLike, normal: ArrayLike, window: int) -> Array:
+def signed_curvature(points: ArrayLike, normal: ArrayLike, window: int, closed: bool = False) -> Array:
     """Signed curvature ``(n,)`` of evenly spaced planar points: turning angle over ``+-window`` samples.
 
     The angle between the chords to the samples ``window`` before and after, over the mean chord
-    length; one-sided (shorter) near the ends. Positive where the curve turns counter-clockwise
+    length; one-sided (shorter) near the ends, cyclic for ``closed`` points (the last joined to the
+    first). Positive where the curve turns counter-clockwise
     seen from the side ``normal`` points to.
 
     Examples
@@ -200,6 +256,12 @@ def signed_curvature(points: ArrayLike, normal: ArrayLike, window: int) -> Array
     if n < 3:
         return np.zeros(n)
     idx = np.arange(n)
+    if closed and n > 2 * window:
+        lo, hi = (idx - window) % n, (idx + window) % n
+        e1, e2 = p[idx] - p[lo], p[hi] - p[idx]
+        cr = np.cross(e1, e2) @ np.asarray(normal, float)
+        lens = 0.5 * (np.linalg.norm(e1, axis=1) + np.linalg.norm(e2, axis=1))
+        return np.where(lens > 0, np.arctan2(cr, np.einsum("ij,ij->i", e1, e2)) / np.where(lens > 0, lens, 1.0), 0.0)
     lo = np.maximum(idx - window, 0)
     hi = np.minimum(idx + window, n - 1)
     e1 = p[idx] - p[lo]
@@ -215,6 +277,11 @@ def curvature_plots(cuts: Cuts, mov: Movability, runs: ArrayLike | None = None,
                     params: SweepParams = DEFAULT) -> CurvaturePlots:
     """Resample the movable ``runs`` (default: all) at ``params.match_spacing``, with curvatures.
 
+    A run that is a whole closed cut curve is resampled as a loop: ``spacing`` apart from its
+    start round to its start again (the last step, closing the loop, between ``spacing / 2`` and
+    ``3 spacing / 2``; the samples before it are those of the run taken as open), its curvature
+    taken cyclically (its ``period``).
+
     Examples
     --------
     >>> from auszug.sweeps import cut, movability, normalise
@@ -228,17 +295,30 @@ def curvature_plots(cuts: Cuts, mov: Movability, runs: ArrayLike | None = None,
     h = params.match_spacing
     window = max(1, int(round(params.curvature_window / (2 * h))))
     sel = np.arange(mov.n_runs) if runs is None else np.asarray(runs, np.int64)
-    pts, kap, counts = [], [], []
+    pts, kap, counts, periods, loops, loop_kap = [], [], [], [], [], []
     normals = cuts.plane_normals[cuts.curve_plane[mov.run_curve[sel]]] if len(sel) else np.zeros((0, 3))
     for r, nrm in zip(sel, normals, strict=True):  # one resampling per run (not per pair)
-        q = resample(cuts.points[mov.run_indices(cuts, int(r))], h)
+        idx = mov.run_indices(cuts, int(r))
+        k = int(mov.run_curve[r])
+        loop = bool(cuts.curve_closed[k]) and len(idx) == int(cuts.curve_start[k + 1] - cuts.curve_start[k])
+        q = resample(cuts.points[idx], h)
         pts.append(q)
         kap.append(signed_curvature(q, nrm, window))
         counts.append(len(q))
+        periods.append(0)
+        if loop:   # the open run's samples and those on the closing segment
+            lq = resample(cuts.points[idx], h, closed=True)
+            if len(lq) > 3 and np.linalg.norm(lq[-1] - lq[0]) < 0.5 * h:
+                lq = lq[:-1]
+            loops.append(lq)
+            loop_kap.append(signed_curvature(lq, nrm, window, True))
+            periods[-1] = len(lq)
     start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
     points = np.vstack(pts) if pts else np.zeros((0, 3))
     kappa = np.concatenate(kap) if kap else np.zeros(0)
-    return CurvaturePlots(points, kappa, start, sel.astype(np.int64), normals, h)
+    return CurvaturePlots(points, kappa, start, sel.astype(np.int64), normals, h, np.array(periods, np.int64),
+                          np.vstack(loops) if loops else np.zeros((0, 3)),
+                          np.concatenate(loop_kap) if loop_kap else np.zeros(0))
 
 
 def match_cuts(plots: CurvaturePlots, params: SweepParams = DEFAULT) -> Matches:
@@ -262,14 +342,33 @@ def match_cuts(plots: CurvaturePlots, params: SweepParams = DEFAULT) -> Matches:
     keep = cosang >= np.cos(np.radians(params.match_angle)) - 1e-12
     pairs = np.ascontiguousarray(np.column_stack([ia[keep], ib[keep]]).astype(np.int64))
     min_len = max(2, int(np.ceil(params.l_min / plots.spacing - 1e-9)))
+    per = plots.periods()
     ln, var, sa, sb, e, ref = _kernels.match_pairs(plots.kappa, plots.start, pairs, float(params.eps_match),
                                                    float(params.kappa_floor), min_len)
-    ok = ln > 0
     rev = (var & 2) != 0
     mb = np.diff(plots.start)[pairs[:, 1]] if len(pairs) else np.zeros(0, np.int64)
     start_b = np.where(rev, mb - 1 - sb, sb)  # in b's own indices
+    pa, pb = (per[pairs[:, 0]], per[pairs[:, 1]]) if len(pairs) else (np.zeros(0, np.int64),) * 2
+    loops = (pa > 0) & (pb > 0)
+    cyclic = np.zeros(len(pairs), bool)
+    if loops.any():   # pairs of closed plots again, their loops twice over: every cyclic shift is a diagonal
+        start = np.concatenate([[0], np.cumsum(2 * per)]).astype(np.int64)
+        kappa = np.concatenate([np.tile(plots.loop(k)[1], 2) for k in range(r)])
+        sub = np.ascontiguousarray(pairs[loops])
+        c_ln, c_var, c_sa, c_sb, c_e, c_ref = _kernels.match_pairs(kappa, start, sub, float(params.eps_match),
+                                                                   float(params.kappa_floor), min_len)
+        c_ln = np.minimum(c_ln, np.minimum(pa[loops], pb[loops]))    # at most one period
+        c_rev = (c_var & 2) != 0
+        c_sb = np.where(c_rev, np.diff(start)[sub[:, 1]] - 1 - c_sb, c_sb) % pb[loops]
+        # a cyclic match counts only as (nearly) a whole loop; partial matches stay the open ones
+        whole = c_ln >= params.family_keep * np.minimum(pa[loops], pb[loops])
+        at = np.flatnonzero(loops)[whole]
+        ln[at], var[at], sa[at], start_b[at] = c_ln[whole], c_var[whole], c_sa[whole] % pa[at], c_sb[whole]
+        e[at], ref[at], rev[at] = c_e[whole], c_ref[whole], c_rev[whole]
+        cyclic[at] = True
+    ok = ln > 0
     return Matches(plots, pairs[ok], ln[ok], (var & 1)[ok] != 0, rev[ok], sa[ok], start_b[ok], e[ok], ref[ok],
-                   len(pairs))
+                   len(pairs), cyclic[ok])
 
 
 def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, ...]:
@@ -293,11 +392,16 @@ def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, .
     (1, [0, 1, 2])
     """
     min_len = max(2, int(np.ceil(params.l_min / matches.plots.spacing - 1e-9)))
+    per = matches.plots.periods()
     out: list[Family] = []
     seen: set[tuple[int, ...]] = set()
     pa, pb = matches.pairs[:, 0], matches.pairs[:, 1]
+    cyc = np.zeros(len(pa), bool) if matches.cyclic is None else matches.cyclic
     for seed in np.unique(matches.pairs):  # one family per seed (not per pair)
         mine = np.flatnonzero((pa == seed) | (pb == seed))
+        # a seed with cyclic matches (whole loops) grows a family of those only, on the loops
+        is_cyclic = bool(cyc[mine].any())
+        mine = mine[cyc[mine] == is_cyclic]
         # express every match of the seed as (other, window on seed, other's start, reversed, flipped)
         as_a = pa[mine] == seed
         other = np.where(as_a, pb[mine], pa[mine])
@@ -309,13 +413,16 @@ def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, .
         s_other = np.where(as_a, matches.start_b[mine], np.where(rev, matches.start_a[mine] + ln - 1,
                                                                   matches.start_a[mine]))
         first = int(np.argmax(ln))
+        p_seed = int(per[seed]) if is_cyclic else 0
+        if p_seed:
+            s_seed = s_seed % p_seed
         lo, hi = int(s_seed[first]), int(s_seed[first] + ln[first])
         shortest = max(min_len, int(np.ceil(params.family_keep * ln[first])))
-        overlap = np.minimum(hi, s_seed + ln) - np.maximum(lo, s_seed)
+        overlap = np.array([_meet(lo, hi, int(s), int(n), p_seed)[2] for s, n in zip(s_seed, ln, strict=True)])
         order = np.argsort(-overlap, kind="stable")
         members = []
         for k in order:
-            nlo, nhi = max(lo, int(s_seed[k])), min(hi, int(s_seed[k] + ln[k]))
+            nlo, nhi, _ = _meet(lo, hi, int(s_seed[k]), int(ln[k]), p_seed)
             if nhi - nlo < shortest:
                 continue
             lo, hi = nlo, nhi
@@ -326,11 +433,67 @@ def families(matches: Matches, params: SweepParams = DEFAULT) -> tuple[Family, .
         seen.add(key)
         ks = np.array(members, np.int64)
         # each member's sample matching the seed's sample `lo`
-        off = lo - s_seed[ks]
+        off = (lo - s_seed[ks]) % p_seed if p_seed else lo - s_seed[ks]
         st = np.where(rev[ks], s_other[ks] - off, s_other[ks] + off)
-        out.append(Family(int(seed), np.r_[seed, other[ks]].astype(np.int64), np.r_[lo, st].astype(np.int64),
-                          np.r_[False, rev[ks]], np.r_[False, flip[ks]], hi - lo))
+        mem = np.r_[seed, other[ks]].astype(np.int64)
+        pm = per[mem] if is_cyclic else None
+        if pm is not None:
+            st = st % pm[1:]
+        closed = pm is not None and hi - lo >= params.family_keep * int(pm.min())
+        out.append(Family(int(seed), mem, np.r_[lo % p_seed if p_seed else lo, st].astype(np.int64),
+                          np.r_[False, rev[ks]], np.r_[False, flip[ks]], hi - lo, pm, closed))
     return tuple(out)
+
+
+def _meet(lo: int, hi: int, s: int, n: int, period: int) -> tuple[int, int, int]:
+    """The common part ``(lo', hi', length)`` of the windows ``[lo, hi)`` and ``[s, s + n)`` on a plot.
+
+    On a closed plot (``period`` > 0) both are arcs of the loop: ``s`` is taken to the shift
+    (by a multiple of the period) meeting ``[lo, hi)`` most, and a whole loop meets every arc
+    in all of it. ``hi' - lo'`` may be negative (no common part).
+
+    Examples
+    --------
+    >>> _meet(0, 10, 5, 10, 0), _meet(2, 10, 38, 8, 40), _meet(0, 40, 30, 39, 40)
+    ((5, 10, 5), (2, 6, 4), (30, 69, 39))
+    """
+    if period <= 0:
+        a, b = max(lo, s), min(hi, s + n)
+        return a, b, b - a
+    if hi - lo >= period:
+        return s, s + min(n, period), min(n, period)
+    best = (0, 0, -(1 << 40))
+    s0 = lo + (s - lo) % period
+    for c in (s0, s0 - period):
+        a, b = max(lo, c), min(hi, c + n)
+        if b - a > best[2]:
+            best = (a, b, b - a)
+    return best
+
+
+def family_parts(family: Family, plots: CurvaturePlots) -> Array:
+    """The members' parts ``(k, n, 3)``, sample ``i`` corresponding across members.
+
+    An open family's parts are the common part (``n = length``); a closed family's are the
+    members' whole loops, each resampled (linearly between its samples) to ``n`` = the seed's
+    period, starting at its sample matching the seed's first and running in the seed's direction.
+    """
+    k = len(family.members)
+    if family.period is None:
+        return np.stack([plots.samples(int(family.members[j]))[family.indices(j)] for j in range(k)])
+    if not family.closed:
+        return np.stack([plots.loop(int(family.members[j]))[0][family.indices(j)] for j in range(k)])
+    n = int(family.period[0])
+    out = np.empty((k, n, 3))
+    t = np.arange(n, dtype=float)
+    for j in range(k):   # one resampling per member (k <= the family's size)
+        loop = plots.loop(int(family.members[j]))[0]
+        p = len(loop)
+        u = family.start[j] + (-1.0 if family.reversed[j] else 1.0) * t * p / n
+        i0 = np.floor(u).astype(np.int64)
+        w = (u - i0)[:, None]
+        out[j] = (1 - w) * loop[i0 % p] + w * loop[(i0 + 1) % p]
+    return out
 
 
 @dataclass(frozen=True)
@@ -411,7 +574,7 @@ def order_ribs(family: Family, plots: CurvaturePlots, params: SweepParams = DEFA
     True
     """
     k = len(family.members)
-    parts = np.stack([plots.samples(int(family.members[j]))[family.indices(j)] for j in range(k)])
+    parts = family_parts(family, plots)
     e = order_energy(parts, params.omega)
     centre = parts.mean(axis=1)
     normal = plots.normal[family.members]

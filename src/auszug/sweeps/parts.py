@@ -7,20 +7,23 @@ motion of its own), and the general sweeps of sec. 2.3 need profiles of ``l_min`
 diameter), which such a moulding's profile is not. Here the consensus is sought among subsets of
 the cuts, one motion after another (a sequential consensus, in the manner of RANSAC):
 
-1. candidates: the own velocity states of cuts not yet explained whose state is well determined
-   (second eigenvalue at least ``kinematic_gap`` times the first), at most ``part_candidates``
-   of them, spread evenly over the planes;
+1. candidates: the own velocity states of cuts not yet explained, whose normals turn
+   (``min_spread``) and whose state is well determined (second eigenvalue at least
+   ``kinematic_gap`` times the first), at most ``part_candidates`` of them spread evenly over the
+   planes, each made a pure rotation or translation (:func:`unscrewed`);
 2. each candidate is scored by the cut points of the unexplained curves that glide under it as
    whole curves (at least ``kinematic_share`` of a curve's points with weight above 2/3, as for the
-   whole mesh); the best one is refitted to the curves that glide (the eigenvector of the smallest
-   eigenvalue of their summed movability matrices) and its gliding curves found again;
+   whole mesh); the best one is refitted to the points of the curves that glide by robust least
+   squares, staying a rotation or translation (:func:`refined`), and its gliding curves found again;
 3. the part is the mesh near what those curves span: the faces whose vertices lie, in the
    motion's invariant coordinates (for a translation the plane normal to it, for a rotation
    the radius and the height along the axis), within the gliding points' box, and in the
    motion's parameter within the gliding points' range, each grown by ``part_margin``;
-4. :func:`~auszug.sweeps.patches.kinematic_patches` on that part, with profiles down to
-   ``part_l_min`` long, fitted against the part; the fit check and the area and sweep-length
-   filters of :func:`~auszug.sweeps.detect` decide what is kept;
+4. :func:`~auszug.sweeps.patches.kinematic_patches` on that part (and on ``part_slices`` slices
+   of its range), with profiles down to ``part_l_min`` long, each trimmed to the largest block of
+   profile points times motion on the mesh (:func:`fitting_block`); for a rotation the
+   translation along its axis is tried too; the fit check and the area and sweep-length filters
+   of :func:`~auszug.sweeps.detect` decide what is kept;
 5. the gliding curves count as explained (kept or not) and the search goes on, at most
    ``max_parts`` times, while some candidate moves at least ``part_min_points`` cut points.
 
@@ -443,7 +446,6 @@ def kinematic_parts(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepP
         if score[best] < params.part_min_points:
             break
         glide = (share[best] >= params.kinematic_share) & open_curve
-        # refit to the gliding curves, then find them again under the refitted motion
         # refitted as a pure rotation or translation to the curves that glide, while that keeps at
         # least 80 % of them gliding (a candidate from one short cut may be tilted by degrees and
         # still glide more curves, within Alg. 1's tolerance)

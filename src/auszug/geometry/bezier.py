@@ -17,7 +17,7 @@ from functools import cached_property
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
 from auszug.geometry import _tolerance
@@ -42,6 +42,26 @@ _PROJ_M = (1.0 - _PROJ_T)[:, None]
 _PROJ_W = (_PROJ_M * _PROJ_M * _PROJ_M, 3.0 * _PROJ_M * _PROJ_M * _PROJ_T[:, None],
            3.0 * _PROJ_M * _PROJ_T[:, None] * _PROJ_T[:, None],
            _PROJ_T[:, None] * _PROJ_T[:, None] * _PROJ_T[:, None])
+
+
+def _bracketed_newton(f: Array, sp: Array, t: Array, lo: Array, hi: Array,
+                      eps_f: Array | float) -> tuple[Array, Array, Array, NDArray[np.bool_]]:
+    """One safeguarded Newton step of the arc-length inversion, elementwise.
+
+    ``f (n,)`` is the arc length from 0 to ``t (n,)`` minus the target and ``sp (n,)`` the speed
+    there; the root stays bracketed by ``[lo, hi]``. Returns the next ``t`` (the Newton step,
+    or the bracket's middle where that leaves it), the narrowed ``lo`` and ``hi``, and which
+    values are done (``|f| <= eps_f`` or a bracket of 1e-16). Call under
+    ``np.errstate(invalid="ignore", divide="ignore")`` (a zero speed gives a non-finite step).
+    """
+    pos = f > 0
+    hi = np.where(pos, t, hi)
+    lo = np.where(pos, lo, t)
+    tn = t - f / sp
+    ok = np.isfinite(tn) & (tn > lo) & (tn < hi)
+    tn = np.where(ok, tn, 0.5 * (lo + hi))
+    done = (np.abs(f) <= eps_f) | (hi - lo <= 1e-16)
+    return tn, lo, hi, done
 
 
 @dataclass(frozen=True, eq=False, repr=False, init=False)
@@ -305,14 +325,7 @@ class CubicBezier(Curve):
         with np.errstate(invalid="ignore", divide="ignore"):
             for _ in range(100):
                 f = base + self._integral(start, t) - target
-                sp = self.speed(t)
-                pos = f > 0
-                hi = np.where(pos, t, hi)
-                lo = np.where(pos, lo, t)
-                tn = t - f / sp
-                ok = np.isfinite(tn) & (tn > lo) & (tn < hi)
-                tn = np.where(ok, tn, 0.5 * (lo + hi))
-                done = (np.abs(f) <= eps_f) | (hi - lo <= 1e-16)
+                tn, lo, hi, done = _bracketed_newton(f, self.speed(t), t, lo, hi, eps_f)
                 if done.all():
                     break
                 t = np.where(done, t, tn)
@@ -666,13 +679,7 @@ def t_at_u_many(curves: list[CubicBezier], u: ArrayLike) -> Array:
             ta, la, ha, Da = t[act], lo[act], hi[act], Dr[act]
             f = base[act] + _integral_rows(Da, start[act], ta) - target[act]
             sp = _speed_cols(tuple(Da[:, j] for j in range(6)), ta)
-            pos = f > 0
-            ha = np.where(pos, ta, ha)
-            la = np.where(pos, la, ta)
-            tn = ta - f / sp
-            ok = np.isfinite(tn) & (tn > la) & (tn < ha)
-            tn = np.where(ok, tn, 0.5 * (la + ha))
-            done = (np.abs(f) <= eps_f[act]) | (ha - la <= 1e-16)
+            tn, la, ha, done = _bracketed_newton(f, sp, ta, la, ha, eps_f[act])
             lo[act], hi[act] = la, ha
             if done.all():
                 break

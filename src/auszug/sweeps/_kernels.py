@@ -48,7 +48,12 @@ def _other_edge(face_edges, f, e, crossed):  # pragma: no cover - compiled
 @njit(cache=True)
 def _emit(v, vn, edges, dist, e, pts, nrm, eid, pos, begin):  # pragma: no cover - compiled
     a, b = edges[e, 0], edges[e, 1]
-    t = dist[a] / (dist[a] - dist[b])
+    return _put(v, vn, a, b, dist[a] / (dist[a] - dist[b]), e, pts, nrm, eid, pos, begin)
+
+
+@njit(cache=True)
+def _put(v, vn, a, b, t, e, pts, nrm, eid, pos, begin):  # pragma: no cover - compiled
+    """Append the point at ``t`` along edge ``e = (a, b)`` and its normal; a repeat of the last is skipped."""
     x0 = v[a, 0] + t * (v[b, 0] - v[a, 0])
     x1 = v[a, 1] + t * (v[b, 1] - v[a, 1])
     x2 = v[a, 2] + t * (v[b, 2] - v[a, 2])
@@ -1011,24 +1016,7 @@ def _emit_local(v, vn, edges, e, nx, ny, nz, d, pts, nrm, eid, pos, begin):  # p
     a, b = edges[e, 0], edges[e, 1]
     da = _side(v, a, nx, ny, nz, d)
     db = _side(v, b, nx, ny, nz, d)
-    t = da / (da - db)
-    x0 = v[a, 0] + t * (v[b, 0] - v[a, 0])
-    x1 = v[a, 1] + t * (v[b, 1] - v[a, 1])
-    x2 = v[a, 2] + t * (v[b, 2] - v[a, 2])
-    if pos > begin:
-        dx, dy, dz = x0 - pts[pos - 1, 0], x1 - pts[pos - 1, 1], x2 - pts[pos - 1, 2]
-        if dx * dx + dy * dy + dz * dz < 1e-28:
-            return pos
-    pts[pos, 0], pts[pos, 1], pts[pos, 2] = x0, x1, x2
-    m0 = vn[a, 0] + t * (vn[b, 0] - vn[a, 0])
-    m1 = vn[a, 1] + t * (vn[b, 1] - vn[a, 1])
-    m2 = vn[a, 2] + t * (vn[b, 2] - vn[a, 2])
-    s = np.sqrt(m0 * m0 + m1 * m1 + m2 * m2)
-    if s > 0:
-        m0, m1, m2 = m0 / s, m1 / s, m2 / s
-    nrm[pos, 0], nrm[pos, 1], nrm[pos, 2] = m0, m1, m2
-    eid[pos] = e
-    return pos + 1
+    return _put(v, vn, a, b, da / (da - db), e, pts, nrm, eid, pos, begin)
 
 
 @njit(cache=True)

@@ -487,10 +487,9 @@ def match_pairs(kappa, offs, pairs, eps, kfloor, min_len):  # pragma: no cover -
 
 
 @njit(cache=True, inline="always")
-def _segment_closest(px, py, pz, polyline, j):  # pragma: no cover - compiled
-    """Squared distance from (px, py, pz) to segment j of ``polyline (n, 3)`` and the closest point."""
-    ax, ay, az = polyline[j, 0], polyline[j, 1], polyline[j, 2]
-    bx, by, bz = polyline[j + 1, 0] - ax, polyline[j + 1, 1] - ay, polyline[j + 1, 2] - az
+def _point_segment(px, py, pz, ax, ay, az, cx, cy, cz):  # pragma: no cover - compiled
+    """Squared distance from (px, py, pz) to the segment from a to c and the closest point."""
+    bx, by, bz = cx - ax, cy - ay, cz - az
     w = bx * bx + by * by + bz * bz
     f = 0.0
     if w > 0:
@@ -498,6 +497,13 @@ def _segment_closest(px, py, pz, polyline, j):  # pragma: no cover - compiled
         f = min(max(f, 0.0), 1.0)
     qx, qy, qz = ax + f * bx, ay + f * by, az + f * bz
     return (px - qx) ** 2 + (py - qy) ** 2 + (pz - qz) ** 2, qx, qy, qz
+
+
+@njit(cache=True, inline="always")
+def _segment_closest(px, py, pz, polyline, j):  # pragma: no cover - compiled
+    """Squared distance from (px, py, pz) to segment j of ``polyline (n, 3)`` and the closest point."""
+    return _point_segment(px, py, pz, polyline[j, 0], polyline[j, 1], polyline[j, 2],
+                          polyline[j + 1, 0], polyline[j + 1, 1], polyline[j + 1, 2])
 
 
 @njit(cache=True)
@@ -773,14 +779,7 @@ def _triangle_closest(px, py, pz, ax, ay, az, bx, by, bz, cx, cy, cz):  # pragma
                 ux, uy, uz, wx, wy, wz = bx, by, bz, cx, cy, cz
             else:
                 ux, uy, uz, wx, wy, wz = cx, cy, cz, ax, ay, az
-            ex, ey, ez = wx - ux, wy - uy, wz - uz
-            ee = ex * ex + ey * ey + ez * ez
-            f = 0.0
-            if ee > 0:
-                f = ((px - ux) * ex + (py - uy) * ey + (pz - uz) * ez) / ee
-                f = min(max(f, 0.0), 1.0)
-            rx, ry, rz = ux + f * ex, uy + f * ey, uz + f * ez
-            dd = (px - rx) ** 2 + (py - ry) ** 2 + (pz - rz) ** 2
+            dd, rx, ry, rz = _point_segment(px, py, pz, ux, uy, uz, wx, wy, wz)
             if dd < best:
                 best = dd
                 qx, qy, qz = rx, ry, rz
@@ -1011,6 +1010,17 @@ def _other_crossed(v, edges, face_edges, f, e, nx, ny, nz, d):  # pragma: no cov
 
 
 @njit(cache=True)
+def _step_face(v, edges, edge_faces, face_edges, e, prev, nx, ny, nz, d):  # pragma: no cover - compiled
+    """The face across edge ``e`` away from face ``prev`` and its other crossed edge (-1: the walk ends)."""
+    f = edge_faces[e, 0]
+    if f == prev or f < 0:
+        f = edge_faces[e, 1]
+    if f < 0 or f == prev:
+        return f, -1
+    return f, _other_crossed(v, edges, face_edges, f, e, nx, ny, nz, d)
+
+
+@njit(cache=True)
 def _emit_local(v, vn, edges, e, nx, ny, nz, d, pts, nrm, eid, pos, begin):  # pragma: no cover - compiled
     """:func:`_emit` with the two signed distances computed on the spot (the same arithmetic)."""
     a, b = edges[e, 0], edges[e, 1]
@@ -1108,12 +1118,7 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
                     e, prev = e0, -1
                     while True:
                         seen[e] = mark
-                        f = edge_faces[e, 0]
-                        if f == prev or f < 0:
-                            f = edge_faces[e, 1]
-                        if f < 0 or f == prev:
-                            break
-                        g2 = _other_crossed(v, edges, face_edges, f, e, nx, ny, nz, d)
+                        f, g2 = _step_face(v, edges, edge_faces, face_edges, e, prev, nx, ny, nz, d)
                         if g2 < 0 or seen[g2] == mark:
                             break
                         prev, e = f, g2
@@ -1135,12 +1140,7 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
                     pts, nrm, eid = pts2, nrm2, eid2
                 seen[e] = -mark
                 pos = _emit_local(v, vn, edges, e, nx, ny, nz, d, pts, nrm, eid, pos, begin)
-                f = edge_faces[e, 0]
-                if f == prev or f < 0:
-                    f = edge_faces[e, 1]
-                if f < 0 or f == prev:
-                    break
-                g2 = _other_crossed(v, edges, face_edges, f, e, nx, ny, nz, d)
+                f, g2 = _step_face(v, edges, edge_faces, face_edges, e, prev, nx, ny, nz, d)
                 if g2 < 0:
                     break
                 if seen[g2] == -mark:

@@ -256,20 +256,17 @@ def signed_curvature(points: ArrayLike, normal: ArrayLike, window: int, closed: 
     if n < 3:
         return np.zeros(n)
     idx = np.arange(n)
-    if closed and n > 2 * window:
+    cyclic = closed and n > 2 * window
+    if cyclic:
         lo, hi = (idx - window) % n, (idx + window) % n
-        e1, e2 = p[idx] - p[lo], p[hi] - p[idx]
-        cr = np.cross(e1, e2) @ np.asarray(normal, float)
-        lens = 0.5 * (np.linalg.norm(e1, axis=1) + np.linalg.norm(e2, axis=1))
-        return np.where(lens > 0, np.arctan2(cr, np.einsum("ij,ij->i", e1, e2)) / np.where(lens > 0, lens, 1.0), 0.0)
-    lo = np.maximum(idx - window, 0)
-    hi = np.minimum(idx + window, n - 1)
+    else:
+        lo, hi = np.maximum(idx - window, 0), np.minimum(idx + window, n - 1)
     e1 = p[idx] - p[lo]
     e2 = p[hi] - p[idx]
     cr = np.cross(e1, e2) @ np.asarray(normal, float)
     ang = np.arctan2(cr, np.einsum("ij,ij->i", e1, e2))
     lens = 0.5 * (np.linalg.norm(e1, axis=1) + np.linalg.norm(e2, axis=1))
-    both = (lo < idx) & (idx < hi)
+    both = np.ones(n, bool) if cyclic else (lo < idx) & (idx < hi)
     return np.where(both & (lens > 0), ang / np.where(lens > 0, lens, 1.0), 0.0)
 
 

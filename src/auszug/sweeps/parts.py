@@ -45,7 +45,7 @@ from auszug.sweeps.mesh import SweepMesh
 from auszug.sweeps.motion import Motion, screw_motion
 from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
-from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas, fit_patch, kinematic_patches
+from auszug.sweeps.patches import MeshTree, SweepPatch, _axis_frame, face_areas, fit_patch, kinematic_patches
 
 __all__ = ["fitting_block", "gliding_shares", "kinematic_parts", "part_faces", "refined", "unscrewed"]
 
@@ -123,7 +123,7 @@ def refined(state: Array, points: Array, normals: Array, params: SweepParams = D
 
     axis = _axis(state, params)
     d0 = axis.direction
-    e1, e2 = _frame(d0)
+    e1, e2 = _axis_frame(d0)
     if axis.kind == "translation":
         def res_t(z: Array) -> Array:
             d = d0 + z[0] * e1 + z[1] * e2
@@ -151,17 +151,10 @@ def refined(state: Array, points: Array, normals: Array, params: SweepParams = D
     return c / np.linalg.norm(c)
 
 
-def _frame(d: Array) -> tuple[Array, Array]:
-    a = np.array([1.0, 0, 0]) if abs(d[0]) < 0.9 else np.array([0, 1.0, 0])
-    e1 = np.cross(d, a)
-    e1 /= np.linalg.norm(e1)
-    return e1, np.cross(d, e1)
-
-
 def _coordinates(axis: KinematicAxis, x: Array) -> tuple[Array, Array, float]:
     """Invariant coordinates ``(n, 2)``, the parameter ``(n,)`` (length or angle) and a length per unit of it."""
     d = axis.direction
-    e1, e2 = _frame(d)
+    e1, e2 = _axis_frame(d)
     if axis.kind == "translation":
         return np.column_stack([x @ e1, x @ e2]), x @ d, 1.0
     assert axis.point is not None
@@ -360,7 +353,7 @@ def _part_patches(mesh: SweepMesh, axis: KinematicAxis, pts: Array, free: NDArra
     sub = _submesh(mesh, keep)
     sub_tree = MeshTree(sub.vertices, sub.faces)
     d = axis.direction / np.linalg.norm(axis.direction)
-    e1, e2 = _frame(d)
+    e1, e2 = _axis_frame(d)
     out = []
     n = params.part_slices
     for i in range(n + 1 if n > 1 else 1):

@@ -262,7 +262,10 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         from auszug.sweeps.parts import kinematic_parts
 
         t = step("parts")
-        found, tried = kinematic_parts(m, cuts, mov, params, free, first_id=len(raw))
+        # on the whole mesh, not only the faces left: a small patch fitted before (the coarse pass
+        # found 2 % of the tracery border's arch once its coordinates were rounded to float32) must
+        # not cut the arcs' parts short; the fit stage keeps the patch that covers more
+        found, tried = kinematic_parts(m, cuts, mov, params, first_id=len(raw))
         raw.extend(found)
         fits = sum(_fits(p, params) for p in found)
         stages.append(Stage("parts", time.perf_counter() - t,

@@ -119,7 +119,7 @@ def test_closed_profile_cut_open_by_a_hole_is_still_one_closed_patch():
     m = normalise(fx.vertices, fx.faces)
     c = cut(m, fx.planes[:, :3], fx.planes[:, 3])
     # the hole opens some of the true profile loops (each plane's cut: closed loops or open arcs)
-    opened = {int(p) for p, closed in zip(c.curve_plane, c.curve_closed) if not closed}
+    opened = {int(p) for p, closed in zip(c.curve_plane, c.curve_closed, strict=True) if not closed}
     assert len(opened) >= 8
     r = detect((fx.vertices, fx.faces), DEFAULT.with_(eps_prox=0.005))
     assert len(r.patches) == 1 and r.patches[0].closed and r.patches[0].kind == "general"

@@ -231,7 +231,8 @@ class _Problem:
         self._normal_anchor(energy)
         lam0 = self.lam if self.lam is not None and len(self.lam) == cons.rows else None
         r = solve(energy, cons, self.v, lam0, iterations=self.params.newton_iterations,
-                  tol=self.params.newton_tol, kkt_reg=self.params.kkt_reg, hessian_reg=self.params.hessian_reg)
+                  tol=self.params.newton_tol, kkt_reg=self.params.kkt_reg, hessian_reg=self.params.hessian_reg,
+                  soc_tol=self.params.soc_tol, refine_inexact=bool(self.params.refine_inexact))
         self.v, self.lam = r.v, r.lam
         st = Stage(name, time.perf_counter() - t0, r.energy, r.violation, r.iterations, r.converged,
                    applied, rejected, self.layer, candidate and not r.converged)

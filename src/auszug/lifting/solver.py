@@ -453,7 +453,7 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
           tol: float = 1e-10, kkt_reg: float = 1e-11, hessian_reg: float = 1e-10,
           stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 10, soc_rate: float = 0.5,
           step_growth: float = 2.0, ldl_reg: float = 1e-7, refine_steps: int = 1,
-          stall_tol: float = 1e-6, soc_tol: float = 1e-6, refine_inexact: bool = True) -> SolveResult:
+          stall_tol: float = 1e-6, soc_tol: float = 1e-8, refine_inexact: bool = True) -> SolveResult:
     """Minimise ``sum w_r p_r(v)^2`` subject to ``q(v) = 0`` from ``v0``.
 
     Each step solves the KKT system
@@ -520,8 +520,7 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     soc_tol : float
         GMRES's relative tolerance in the second-order corrections' solves (0: the steps' own
         ``1e-13``). A correction only proposes a trial point for the merit test, so it need not be
-        exact (measured on the 100-curve benchmark: 1488 -> 1063 preconditioner solves, the lifted
-        points within 2.1e-13 of the diagonal).
+        exact (:class:`~auszug.lifting.params.LiftParams` has the measurements).
     refine_inexact : bool
         Solve each refinement step only to the step's own absolute accuracy: the relative
         tolerance ``1e-13 |rhs| / |residual|`` (at most 0.5) instead of ``1e-13``, since the

@@ -9,6 +9,7 @@ the viewer), the cues found and every stage's energy and timing.
 from __future__ import annotations
 
 import time
+import weakref
 from dataclasses import dataclass, fields, replace
 from typing import Callable
 
@@ -902,11 +903,29 @@ def _mirrored(g: SketchGraph, X: Array, s: int, n: Array, d: float) -> tuple[Ske
     return g2, X2
 
 
+#: The memo of :func:`layer_graphs`: per sketch object (held weakly), its fingerprint, the parameters
+#: and the graphs built from them.
+_GRAPHS: weakref.WeakKeyDictionary[Sketch, tuple[str, LiftParams, tuple[tuple[int, SketchGraph], ...]]] = \
+    weakref.WeakKeyDictionary()
+
+
+def _read_only(g: SketchGraph) -> SketchGraph:
+    """``g`` with its arrays made read-only (a memoised graph is shared by its callers)."""
+    for a in (g.points, g.segments, g.seg_stroke, g.closed, g.joints, g.joint_g1, g.occluded, g.offset, *g.chains):
+        if isinstance(a, np.ndarray):
+            a.flags.writeable = False
+    return g
+
+
 def layer_graphs(sketch: Sketch, params: LiftParams = DEFAULT) -> tuple[tuple[int, SketchGraph], ...]:
     """The curve graph of every layer of ``sketch`` that has strokes, with its layer index, back to front.
 
     This is the whole validation :func:`lift` does before it solves, so a
     reader can refuse a sketch that cannot be lifted without solving it.
+    The result is memoised per sketch object while its content
+    (:meth:`~auszug.lifting.sketch.Sketch.fingerprint`) and ``params`` stay
+    the same: a second call (a reader's validation, then :func:`lift`)
+    returns the same graphs, whose arrays are read-only.
 
     Raises
     ------
@@ -927,6 +946,10 @@ def layer_graphs(sketch: Sketch, params: LiftParams = DEFAULT) -> tuple[tuple[in
     """
     if not sketch.strokes:
         raise GeometryError("the sketch has no strokes")
+    fp = sketch.fingerprint()
+    hit = _GRAPHS.get(sketch)
+    if hit is not None and hit[0] == fp and hit[1] == params:
+        return hit[2]
     nlayers = max(s.layer for s in sketch.strokes) + 1
     used_markers: set[int] = set()
     out: list[tuple[int, SketchGraph]] = []
@@ -963,7 +986,9 @@ def layer_graphs(sketch: Sketch, params: LiftParams = DEFAULT) -> tuple[tuple[in
         m = missing[0]
         raise GeometryError(f"{m.kind} marker {m.id or '(no id)'} at {np.asarray(m.point).tolist()}: no "
                             f"crossing within {params.snap:.0%} of the sketch's diagonal in any layer")
-    return tuple(out)
+    res = tuple((lay, _read_only(g)) for lay, g in out)
+    _GRAPHS[sketch] = (fp, params, res)
+    return res
 
 
 def _graph_with_markers(sub: Sketch, params: LiftParams) -> tuple[SketchGraph, set[int]]:

@@ -9,6 +9,7 @@ meeting at an intersection share one control point (paper sec. 5.2, Fig. 8).
 
 from __future__ import annotations
 
+import hashlib
 import math
 from dataclasses import dataclass, field
 
@@ -76,6 +77,35 @@ class Sketch:
     symmetry: Stroke | None = None
     name: str = ""
     layers: tuple[str, ...] = field(default_factory=tuple)
+
+    def fingerprint(self) -> str:
+        """A hash of the sketch's content (hex digest).
+
+        Every stroke's control points (as float64 bytes with their shape), id and layer, the
+        markers, the symmetry curve, the name and the layer names. Equal contents give equal
+        fingerprints; a stroke array changed in place changes it. :func:`auszug.lifting.layer_graphs`
+        keys its memo on it, so that the graphs are built once per sketch (a reader's validation,
+        then :func:`auszug.lifting.lift`).
+        """
+        h = hashlib.sha1()
+
+        def stroke(s: Stroke | None) -> None:
+            if s is None:
+                h.update(b"none")
+                return
+            c = np.ascontiguousarray(s.controls, dtype=np.float64)
+            h.update(repr((c.shape, s.id, s.layer)).encode())
+            h.update(c.tobytes())
+
+        h.update(repr((len(self.strokes), self.name, self.layers)).encode())
+        for s in self.strokes:
+            stroke(s)
+        stroke(self.symmetry)
+        for m in self.markers:
+            pt = np.ascontiguousarray(m.point, dtype=np.float64)
+            h.update(repr((m.kind, m.id, pt.shape)).encode())
+            h.update(pt.tobytes())
+        return h.hexdigest()
 
     def diagonal(self) -> float:
         """Diagonal of the bounding box of all control points."""

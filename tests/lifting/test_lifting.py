@@ -388,3 +388,15 @@ def test_layer_graphs_are_memoised_per_sketch_while_its_content_stays():
     assert sk.fingerprint() != copy.fingerprint()
     (_, g2), = layer_graphs(sk)
     assert g2 is not g and not np.array_equal(g2.points, g.points)
+
+
+@pytest.mark.parametrize("kw, message", [
+    ({"soc_tol": 1.0}, "soc_tol must lie in"),
+    ({"soc_tol": -1e-8}, "soc_tol must be a finite number >= 0"),
+    ({"soc_tol": float("nan")}, "soc_tol must be a finite number >= 0"),
+])
+def test_solver_tolerances_are_validated(kw, message):
+    from auszug.lifting import LiftParams
+
+    with pytest.raises(GeometryError, match=message):
+        LiftParams(**kw)

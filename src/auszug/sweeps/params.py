@@ -242,9 +242,10 @@ class SweepParams:
         whose cuts, mapped back, pulled the improved profile off the mesh: on the tracery window
         the vertical translation found no patch with 8 cuts, 5 with none.
     part_mean_error : float
-        A part's block is kept only when its moved profile points lie on average within this
-        share of ``eps_prox`` of the mesh (in (0, 1]; 1: no test, the points are within ``eps_prox``): a motion that only approximates
-        a smooth surface, a Gaussian bump's rotation, stays within ``eps_prox`` but not near 0.
+        A part's block is kept only when its moved profile points lie on average within this share
+        of ``eps_prox`` of the mesh (in (0, 1]; 1: no test, every point is within ``eps_prox``): a
+        motion that only approximates a smooth surface, a rotation about a Gaussian bump's axis,
+        stays within ``eps_prox`` but not near 0 on average.
     """
 
     beta: float = 400.0

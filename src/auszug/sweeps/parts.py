@@ -20,10 +20,12 @@ the cuts, one motion after another (a sequential consensus, in the manner of RAN
    the radius and the height along the axis), within the gliding points' box, and in the
    motion's parameter within the gliding points' range, each grown by ``part_margin``;
 4. :func:`~auszug.sweeps.patches.kinematic_patches` on that part (and on ``part_slices`` slices
-   of its range), with profiles down to ``part_l_min`` long, each trimmed to the largest block of
-   profile points times motion on the mesh (:func:`fitting_block`); for a rotation the
-   translation along its axis is tried too; the fit check and the area and sweep-length filters
-   of :func:`~auszug.sweeps.detect` decide what is kept;
+   of its range), with profiles down to ``part_l_min`` long taken as cut (``part_profile_cuts``),
+   each trimmed to up to ``part_blocks`` blocks of profile points times motion on the mesh
+   (:func:`fitting_block`), with ``part_grow`` over the whole mesh's range of the motion and on
+   the whole mesh, a block kept when its points lie on average within ``part_mean_error`` times
+   ``eps_prox`` of the mesh; for a rotation the translation along its axis is tried too; the fit
+   check and the area and sweep-length filters of :func:`~auszug.sweeps.detect` decide what is kept;
 5. the gliding curves count as explained (kept or not) and the search goes on, at most
    ``max_parts`` times, while some candidate moves at least ``part_min_points`` cut points.
 
@@ -350,6 +352,8 @@ def _trimmed(mesh: SweepMesh, tree: MeshTree, axis: KinematicAxis, p: SweepPatch
             c0 -= 1
         while c1 < len(prof) - 1 and ok[r0:r1 + 1, c1 + 1].all():
             c1 += 1
+        if p.closed and not closed and c0 == 0 and c1 == len(prof) - 1:
+            c1 -= 1         # an opened loop's block ends short of its first point: no profile meets itself
         if any(a0 <= r0 and r1 <= a1 and b0 <= c0 and c1 <= b1 for a0, a1, b0, b1 in seen):
             continue
         seen.append((r0, r1, c0, c1))

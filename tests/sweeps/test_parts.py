@@ -65,7 +65,7 @@ def test_the_border_is_found_as_five_kinematic_parts():
     the lines, within 0.2 deg; the arcs as rotations about the window's normal through their centres."""
     _, _, _, _, where, _, planes = _border()
     r = _report()
-    assert r.coverage >= 0.95
+    assert r.coverage >= 0.97                                   # measured 0.978
     assert sorted(p.kind for p in r.patches) == ["rotation", "rotation", "translation", "translation", "translation"]
     assert all(p.fit_error <= 2 * DEFAULT.eps_prox for p in r.patches)
     assert r.stage("parts").numbers["fit"] >= 5

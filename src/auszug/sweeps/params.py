@@ -225,6 +225,27 @@ class SweepParams:
         Shortest profile piece of a part (bounding-box diameters; ``l_min`` is for matching).
     part_slices : int
         A part's range is cut in this many slices, each with its own profile cut (1..16).
+    part_blocks : int
+        A part's profile, moved over the part's range, may lie on the mesh over several blocks
+        (stretches of the motion times pieces of the profile): at most this many, largest first,
+        become patches (1..16).
+    part_grow : bool
+        A part's profile is moved over the whole mesh's range of the motion and its blocks are
+        sought on the whole mesh, not only in the part's box: a patch grows over the neighbouring
+        faces that the moved profile stays within ``eps_prox`` of.
+    part_trim_spacing : float
+        Spacing of the rings on which a part's profile is tested for staying on the mesh, in
+        multiples of ``eps_prox`` (0.5..8; at most 1024 rings per profile).
+    part_profile_cuts : int
+        ``profile_cuts`` for a part's profile (default 0: the one cut as is). A part's range may
+        hold stretches that are no sweep under its motion (the rest of a window above its jambs),
+        whose cuts, mapped back, pulled the improved profile off the mesh: on the tracery window
+        the vertical translation found no patch with 8 cuts, 5 with none.
+    part_mean_error : float
+        A part's block is kept only when its moved profile points lie on average within this share
+        of ``eps_prox`` of the mesh (in (0, 1]; 1: no test, every point is within ``eps_prox``): a
+        motion that only approximates a smooth surface, a rotation about a Gaussian bump's axis,
+        stays within ``eps_prox`` but not near 0 on average.
     """
 
     beta: float = 400.0
@@ -287,7 +308,12 @@ class SweepParams:
     part_min_points: int = 200
     part_margin: float = 0.01
     part_l_min: float = 0.03
-    part_slices: int = 1
+    part_slices: int = 3
+    part_blocks: int = 4
+    part_grow: bool = True
+    part_trim_spacing: float = 1.0
+    part_mean_error: float = 0.25
+    part_profile_cuts: int = 0
 
     def __post_init__(self) -> None:
         checks = [
@@ -355,6 +381,14 @@ class SweepParams:
              "in [0, 0.5] (bounding-box diameters)"),
             ("part_l_min", _real(self.part_l_min) and 0 < self.part_l_min <= 10, "in (0, 10] (bounding-box diameters)"),
             ("part_slices", _whole(self.part_slices) and 1 <= self.part_slices <= 16, "a whole number in 1..16"),
+            ("part_blocks", _whole(self.part_blocks) and 1 <= self.part_blocks <= 16, "a whole number in 1..16"),
+            ("part_grow", isinstance(self.part_grow, bool), "true or false"),
+            ("part_profile_cuts", _whole(self.part_profile_cuts) and 0 <= self.part_profile_cuts <= 256,
+             "a whole number in 0..256"),
+            ("part_trim_spacing", _real(self.part_trim_spacing) and 0.5 <= self.part_trim_spacing <= 8,
+             "in [0.5, 8] (multiples of eps_prox)"),
+            ("part_mean_error", _real(self.part_mean_error) and 0 < self.part_mean_error <= 1,
+             "in (0, 1] (a share of eps_prox)"),
         ]
         for name, ok, want in checks:
             if not ok:

@@ -20,10 +20,12 @@ the cuts, one motion after another (a sequential consensus, in the manner of RAN
    the radius and the height along the axis), within the gliding points' box, and in the
    motion's parameter within the gliding points' range, each grown by ``part_margin``;
 4. :func:`~auszug.sweeps.patches.kinematic_patches` on that part (and on ``part_slices`` slices
-   of its range), with profiles down to ``part_l_min`` long, each trimmed to the largest block of
-   profile points times motion on the mesh (:func:`fitting_block`); for a rotation the
-   translation along its axis is tried too; the fit check and the area and sweep-length filters
-   of :func:`~auszug.sweeps.detect` decide what is kept;
+   of its range), with profiles down to ``part_l_min`` long taken as cut (``part_profile_cuts``),
+   each trimmed to up to ``part_blocks`` blocks of profile points times motion on the mesh
+   (:func:`fitting_block`), with ``part_grow`` over the whole mesh's range of the motion and on
+   the whole mesh, a block kept when its points lie on average within ``part_mean_error`` times
+   ``eps_prox`` of the mesh; for a rotation the translation along its axis is tried too; the fit
+   check and the area and sweep-length filters of :func:`~auszug.sweeps.detect` decide what is kept;
 5. the gliding curves count as explained (kept or not) and the search goes on, at most
    ``max_parts`` times, while some candidate moves at least ``part_min_points`` cut points.
 
@@ -200,7 +202,7 @@ def part_faces(mesh: SweepMesh, axis: KinematicAxis, points: Array, margin: floa
 
 
 def _part(mesh: SweepMesh, axis: KinematicAxis, points: Array, margin: float,
-          faces: IntArray | None = None) -> tuple[IntArray, float, float, Array]:
+          faces: IntArray | None = None, overlap: bool = False) -> tuple[IntArray, float, float, Array]:
     """:func:`part_faces`, and the part's parameter range and every vertex's parameter in it.
 
     Returns the faces, the range's start and length (grown by the margin) and every vertex's
@@ -215,8 +217,15 @@ def _part(mesh: SweepMesh, axis: KinematicAxis, points: Array, margin: float,
     vq, vt, _ = _coordinates(axis, mesh.vertices)
     inside = np.all((vq >= lo) & (vq <= hi), axis=1)
     rel = np.mod(vt - start + grow, 2 * np.pi) if angular else vt - start + grow
-    inside &= (rel >= 0) & (rel <= length + 2 * grow)
-    return cand[inside[mesh.faces[cand]].all(axis=1)], start - grow, length + 2 * grow, rel
+    in_range = (rel >= 0) & (rel <= length + 2 * grow)
+    if not overlap:
+        keep = (inside & in_range)[mesh.faces[cand]].all(axis=1)
+    elif angular:
+        keep = inside[mesh.faces[cand]].all(axis=1) & in_range[mesh.faces[cand]].any(axis=1)
+    else:
+        r = rel[mesh.faces[cand]]
+        keep = inside[mesh.faces[cand]].all(axis=1) & (r.max(axis=1) >= 0) & (r.min(axis=1) <= length + 2 * grow)
+    return cand[keep], start - grow, length + 2 * grow, rel
 
 
 def _submesh(mesh: SweepMesh, keep: IntArray) -> SweepMesh:
@@ -282,48 +291,88 @@ def fitting_block(ok: NDArray[np.bool_], widths: Array, min_width: float = 0.0,
 
 
 def _trimmed(mesh: SweepMesh, tree: MeshTree, axis: KinematicAxis, p: SweepPatch, params: SweepParams,
-             t_range: tuple[float, float] | None = None) -> SweepPatch | None:
-    """The patch over the largest stretch of profile and motion where the moved profile stays on the mesh.
+             t_range: tuple[float, float] | None = None) -> list[SweepPatch]:
+    """The patches over the largest stretches of profile and motion where the moved profile stays on the mesh.
 
     A part's range is what its box spans, which may hold a corner where the moulding turns, and its
     profile cut may run on beyond the moulding (over a wall's face, into tracery beside it): the
-    profile's points are moved by the part's motion to rings about ``eps_prox`` apart (at most 1024)
-    over ``t_range`` (parameters relative to the profile's own, default the patch's motion range),
-    each point on each ring kept when within ``eps_prox`` of the mesh, and the largest block of kept
-    points (:func:`fitting_block`: a run of rings times a run of profile points at least ``l_min``
-    long) is the patch, fitted again over it. None if there is none or the profile's centroid
-    travels less than ``min_sweep_length`` over it (:func:`~auszug.sweeps.detect` would drop the
-    patch).
+    profile's points are moved by the part's motion to rings ``part_trim_spacing * eps_prox`` apart
+    (at most 1024) over ``t_range`` (parameters relative to the profile's own, default the patch's
+    motion range), each point on each ring kept when within ``eps_prox`` of the mesh, and the
+    largest block of kept points (:func:`fitting_block`: a run of rings times a run of profile
+    points at least ``l_min`` long) is a patch, fitted again over it; then the block's points are
+    set aside and the next largest is sought, up to ``part_blocks`` patches (a straight profile cut
+    may lie on the mesh over several stretches of the motion, a jamb on both sides of an opening).
+    A block is no patch when the profile's centroid travels less than ``min_sweep_length`` over it
+    (:func:`~auszug.sweeps.detect` would drop it) or when its points' mean distance to the mesh is
+    above ``part_mean_error * eps_prox`` (a motion that only approximates a smooth bump stays within
+    ``eps_prox`` at its best, but not near 0 on average as a true part's points are).
     """
     lo, hi = (float(p.motion.t[0]), float(p.motion.t[-1])) if t_range is None else t_range
     pitch = axis.pitch if axis.kind == "screw" else 0.0
     scale = (hi - lo) * (1.0 if axis.kind == "translation" else max(float(np.max(np.linalg.norm(
         p.profile - (axis.point if axis.point is not None else 0.0), axis=1))), 1e-9))
-    k = int(min(max(8, np.ceil(scale / params.eps_prox)), 1024))
+    k = int(min(max(8, np.ceil(scale / (params.part_trim_spacing * params.eps_prox))), 1024))
     ts = np.linspace(lo, hi, k)
     rot, tr = screw_motion(axis.direction, axis.point, pitch, ts)
     rings = np.einsum("kij,nj->kni", rot, p.profile) + tr[:, None, :]
     d = tree.query(rings.reshape(-1, 3))[0].reshape(k, -1)
     ok = d <= params.eps_prox
     closed = p.closed and bool(ok.all())
-    prof = np.vstack([p.profile, p.profile[:1]]) if closed else p.profile
+    n = len(p.profile)
     if closed:
-        ok = np.hstack([ok, ok[:, :1]])
-    block = fitting_block(ok, np.linalg.norm(np.diff(prof, axis=0), axis=1), params.l_min)
-    if block is None:
-        return None
-    r0, r1, c0, c1 = block
-    sub = p.profile if closed else prof[c0:c1 + 1]
-    centre = rings[r0:r1 + 1, c0:c1 + 1].mean(axis=1)
-    swept = float(np.linalg.norm(np.diff(centre, axis=0), axis=1).sum())
-    a, b = float(ts[r0]), float(ts[r1])
-    if not b > a or swept < params.min_sweep_length:
-        return None         # detect drops a patch sweeping less
-    tk = np.linspace(0.0, b - a, max(8, params.motion_samples))
-    motion = Motion(tk, *screw_motion(axis.direction, axis.point, pitch, tk))
-    profile = sub @ rot[r0].T + tr[r0]
-    fit = fit_patch(mesh, profile, closed, motion, params, tree=tree)
-    return SweepPatch(p.id, p.kind, profile, closed, motion, fit.faces, fit.fit_error, fit.coverage)
+        order = np.r_[np.arange(n), 0]
+    elif p.closed:
+        # a loop not all on the mesh is opened at its point that is on it least often: a block may
+        # then run over the loop's first point
+        s = int(np.argmin(ok.sum(axis=0)))
+        order = np.r_[np.arange(s, n), np.arange(s), s]
+    else:
+        order = np.arange(n)
+    prof, ok, d, rings = p.profile[order], ok[:, order], d[:, order], rings[:, order]
+    widths = np.linalg.norm(np.diff(prof, axis=0), axis=1)
+    free = ok.copy()
+    seen: list[tuple[int, int, int, int]] = []
+    out: list[SweepPatch] = []
+    for _ in range(2 * params.part_blocks):
+        if len(out) >= params.part_blocks:
+            break
+        block = fitting_block(free, widths, params.l_min)
+        if block is None:
+            break
+        r0, r1, c0, c1 = block
+        free[r0:r1 + 1, c0:c1 + 1] = False
+        # the next blocks are sought among the points not yet in one, then grown over all points on
+        # the mesh (a face spanning two blocks' rows needs one patch over both)
+        while r0 > 0 and ok[r0 - 1, c0:c1 + 1].all():
+            r0 -= 1
+        while r1 < k - 1 and ok[r1 + 1, c0:c1 + 1].all():
+            r1 += 1
+        while c0 > 0 and ok[r0:r1 + 1, c0 - 1].all():
+            c0 -= 1
+        while c1 < len(prof) - 1 and ok[r0:r1 + 1, c1 + 1].all():
+            c1 += 1
+        if p.closed and not closed and c0 == 0 and c1 == len(prof) - 1:
+            c1 -= 1         # an opened loop's block ends short of its first point: no profile meets itself
+        if any(a0 <= r0 and r1 <= a1 and b0 <= c0 and c1 <= b1 for a0, a1, b0, b1 in seen):
+            continue
+        seen.append((r0, r1, c0, c1))
+        sub = p.profile if closed else prof[c0:c1 + 1]
+        centre = rings[r0:r1 + 1, c0:c1 + 1].mean(axis=1)
+        swept = float(np.linalg.norm(np.diff(centre, axis=0), axis=1).sum())
+        a, b = float(ts[r0]), float(ts[r1])
+        if not b > a or swept < params.min_sweep_length:
+            continue        # detect drops a patch sweeping less
+        if float(d[r0:r1 + 1, c0:c1 + 1].mean()) > params.part_mean_error * params.eps_prox:
+            continue
+        tk = np.linspace(0.0, b - a, max(8, params.motion_samples))
+        motion = Motion(tk, *screw_motion(axis.direction, axis.point, pitch, tk))
+        profile = sub @ rot[r0].T + tr[r0]
+        fit = fit_patch(mesh, profile, closed, motion, params, tree=tree)
+        out.append(SweepPatch(p.id, p.kind, profile, closed, motion, fit.faces, fit.fit_error, fit.coverage))
+        if closed:
+            break
+    return out
 
 
 def _good_cover(patches: list[SweepPatch], params: SweepParams, areas: Array) -> float:
@@ -336,7 +385,7 @@ def _good_cover(patches: list[SweepPatch], params: SweepParams, areas: Array) ->
 
 
 def _part_patches(mesh: SweepMesh, axis: KinematicAxis, pts: Array, free: NDArray[np.bool_], areas: Array,
-                  part_params: SweepParams, params: SweepParams) -> list[SweepPatch]:
+                  part_params: SweepParams, params: SweepParams, grow: MeshTree | None = None) -> list[SweepPatch]:
     """The trimmed kinematic patches of the part that ``pts`` span under ``axis`` (faces of ``mesh``).
 
     :func:`kinematic_patches` takes its profile cut in the middle of the part and, when
@@ -346,7 +395,7 @@ def _part_patches(mesh: SweepMesh, axis: KinematicAxis, pts: Array, free: NDArra
     be the same sweep: the fit stage of :func:`~auszug.sweeps.detect` keeps one
     (``patch_overlap``).
     """
-    keep, start, length, rel = _part(mesh, axis, pts, params.part_margin, np.flatnonzero(free))
+    keep, start, length, rel = _part(mesh, axis, pts, params.part_margin, np.flatnonzero(free), grow is not None)
     total = float(areas.sum())
     if len(keep) == 0 or float(areas[keep].sum()) < params.min_patch_area * total:
         return []           # too small to be kept whatever fits
@@ -371,12 +420,19 @@ def _part_patches(mesh: SweepMesh, axis: KinematicAxis, pts: Array, free: NDArra
                 assert axis.point is not None
                 y = c - axis.point
                 t0 = float(np.mod(np.arctan2(y @ e2, y @ e1) - start, 2 * np.pi))
-            q = _trimmed(sub, sub_tree, axis, p, part_params, (-t0, length - t0))
-            if q is None:
+            if grow is not None:
+                # over the whole mesh and its whole range: the profile may sweep on beyond the part
+                if axis.kind == "translation":
+                    t_lo = float(np.min(mesh.vertices @ d)) - (t0 + start)
+                    t_hi = float(np.max(mesh.vertices @ d)) - (t0 + start)
+                else:
+                    t_lo, t_hi = -np.pi, np.pi
+                out.extend(_trimmed(mesh, grow, axis, p, part_params, (t_lo, t_hi)))
                 continue
-            faces = keep[q.faces]
-            cov = float(areas[faces].sum() / total) if total > 0 else 0.0
-            out.append(replace(q, faces=faces, coverage=cov))
+            for q in _trimmed(sub, sub_tree, axis, p, part_params, (-t0, length - t0)):
+                faces = keep[q.faces]
+                cov = float(areas[faces].sum() / total) if total > 0 else 0.0
+                out.append(replace(q, faces=faces, coverage=cov))
     return out
 
 
@@ -424,7 +480,8 @@ def kinematic_parts(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepP
     open_curve &= spread[:, 1] >= params.min_spread
     ev = mov.eigenvalues
     voter = ev[:, 1] >= params.kinematic_gap * np.maximum(ev[:, 0], 1e-300)
-    part_params = params.with_(l_min=params.part_l_min)
+    part_params = params.with_(l_min=params.part_l_min, profile_cuts=params.part_profile_cuts)
+    grow = MeshTree.of(mesh) if params.part_grow else None
     tried = 0
     while tried < params.max_parts:
         # candidates spread evenly over the open voters, drawn afresh as the open curves shrink
@@ -458,12 +515,12 @@ def kinematic_parts(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepP
         pts = cuts.points[glide[curve_of] & ~covered_pt]
         if len(pts) < params.part_min_points:
             continue
-        found = _part_patches(mesh, axis, pts, free_f, areas, part_params, params)
+        found = _part_patches(mesh, axis, pts, free_f, areas, part_params, params, grow)
         if axis.kind == "rotation":
             # cuts of a piece of an extrusion whose profile is partly round glide under the rotation
             # about a line along it too: the translation along the axis is tried, the larger cover wins
             slide = _axis(np.r_[0.0, 0.0, 0.0, axis.direction], params)
-            other = _part_patches(mesh, slide, pts, free_f, areas, part_params, params)
+            other = _part_patches(mesh, slide, pts, free_f, areas, part_params, params, grow)
             if _good_cover(other, params, areas) > _good_cover(found, params, areas):
                 found = other
         # the faces of a fitted patch stay open to later motions: a motion that only approximates

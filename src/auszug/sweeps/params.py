@@ -403,7 +403,7 @@ class SweepParams:
         Raises
         ------
         GeometryError
-            A factor outside (0, 1], or a scaled value its field refuses.
+            A factor outside (0, 1].
 
         Examples
         --------

@@ -133,6 +133,7 @@ MEMBERS: tuple[tuple[str, str, tuple[int, ...] | None, float, float], ...] = (
     ("U.XI.30, 1 member, sigma 5e-4, eps 0.002", "legacy/U.XI.30.uc", None, 5e-4, 0.002),
     ("tn-2, 1 member", "teaching-sheet/tn-2.uc", None, 0.0, 0.005),
     ("tn-2, 1 member, eps 0.002", "teaching-sheet/tn-2.uc", None, 0.0, 0.002),
+    ("tn-2, 1 member, sigma 5e-4", "teaching-sheet/tn-2.uc", None, 5e-4, 0.005),
     ("tn-2, 1 member, sigma 5e-4, eps 0.002", "teaching-sheet/tn-2.uc", None, 5e-4, 0.002),
     ("U.XI.29, 2 members", "web/U.XI.29.uc", None, 0.0, 0.005),
     ("U.XI.91, 4 members", "web/U.XI.91.uc", None, 0.0, 0.005),

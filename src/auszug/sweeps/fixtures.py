@@ -17,7 +17,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -475,8 +475,8 @@ class SweptMembers:
     sigma: float = 0.0
 
 
-def swept_members(network: Any, members: Any = None, look: Any = None, n_planes: int = 20, sigma: float = 0.0,
-                  seed: int = 0, name: str = "members") -> SweptMembers:
+def swept_members(network: Any, members: Sequence[int] | None = None, look: Any = None, n_planes: int = 20,
+                  sigma: float = 0.0, seed: int = 0, name: str = "members") -> SweptMembers:
     """Members of ``network`` swept by meshing's public pipeline, normalised, with their truth.
 
     The members are :func:`auszug.meshing.members_of` (every basic piece swept once, not
@@ -535,8 +535,8 @@ def swept_members(network: Any, members: Any = None, look: Any = None, n_planes:
             fr = sw.rigid
             r = RigidFrames(fr.s / diam, fr.rotation, (fr.origin - centre) / diam)
             runs.append(r)
-            s = np.linspace(r.s[0], r.s[-1], 2 * n_planes + 1)[1:-1:2]    # the middle ... of n_planes slices
-            s = r.s[0] + 0.05 * (r.s[-1] - r.s[0]) + 0.9 * (s - r.s[0])
+            u = np.linspace(0.0, 1.0, 2 * n_planes + 1)[1:-1:2]     # the middles of n_planes equal slices
+            s = r.s[0] + (0.05 + 0.9 * u) * (r.s[-1] - r.s[0])         # of the middle 90 % of the run
             rot, o = r.at(s)
             n = rot[:, :, 2]
             planes.append(np.column_stack([n, np.einsum("ij,ij->i", n, o)]))

@@ -18,6 +18,7 @@ examples:
   auszug sweeps base.stl -o base.sweeps.json --explain
   auszug sweeps pier.ply --eps-prox 0.002 --png pier.png --glb pier.glb
   auszug sweeps scan.obj --planes 1452 --percentile 1
+  auszug sweeps member.stl --match-scale 0.25 --match-runs 2000 --eps-prox 0.002   # a thin bar
 """
 
 from __future__ import annotations

@@ -12,6 +12,12 @@ the patches kept and the time of ``detect`` (one run, on a shared machine: not a
 
 The tests in tests/sweeps assert the rows they cover; this script shows the whole matrix.
 
+The group ``members`` (docs/sweeps.md, "Microarch members") runs the project's own members: bundled
+networks' members swept in the ``bar`` look (``sweeps.fixtures.swept_members``), whose profile and
+motion are known exactly, with ``SweepParams.with_scale(0.25)`` and 2000 match runs; columns then add
+the profile's Hausdorff distance and the median rotation / translation errors of the motions
+(``sweeps.fixtures.sweep_errors``; targets <= 1e-3, <= 0.5 deg, <= 1e-3).
+
 Usage: python benchmarks/eval_sweeps.py [--only NAME[,NAME]] [--markdown]
 """
 
@@ -119,10 +125,50 @@ def evaluate(fx: Fixture) -> dict[str, float | int | str]:
     return out
 
 
+#: (row label, bundled drawing, member indices or None for all, sigma, eps_prox) of the group ``members``.
+MEMBERS: tuple[tuple[str, str, tuple[int, ...] | None, float, float], ...] = (
+    ("U.XI.30, 1 member", "legacy/U.XI.30.uc", None, 0.0, 0.005),
+    ("U.XI.30, 1 member, eps 0.002", "legacy/U.XI.30.uc", None, 0.0, 0.002),
+    ("U.XI.30, 1 member, sigma 5e-4", "legacy/U.XI.30.uc", None, 5e-4, 0.005),
+    ("U.XI.30, 1 member, sigma 5e-4, eps 0.002", "legacy/U.XI.30.uc", None, 5e-4, 0.002),
+    ("tn-2, 1 member", "teaching-sheet/tn-2.uc", None, 0.0, 0.005),
+    ("tn-2, 1 member, eps 0.002", "teaching-sheet/tn-2.uc", None, 0.0, 0.002),
+    ("tn-2, 1 member, sigma 5e-4", "teaching-sheet/tn-2.uc", None, 5e-4, 0.005),
+    ("tn-2, 1 member, sigma 5e-4, eps 0.002", "teaching-sheet/tn-2.uc", None, 5e-4, 0.002),
+    ("U.XI.29, 2 members", "web/U.XI.29.uc", None, 0.0, 0.005),
+    ("U.XI.91, 4 members", "web/U.XI.91.uc", None, 0.0, 0.005),
+)
+MEMBER_SCALE, MEMBER_RUNS = 0.25, 2000
+
+
+def evaluate_members(drawing: str, members: tuple[int, ...] | None, sigma: float,
+                     eps: float) -> dict[str, float | int | str]:
+    """One row of the group ``members``: detect on the swept members, errors against their truth."""
+    from auszug import examples
+    from auszug.formats import load
+    from auszug.microarch import build
+    from auszug.sweeps.fixtures import sweep_errors, swept_members
+
+    fx = swept_members(build(load(examples.path(drawing))), members, sigma=sigma)
+    params = DEFAULT.with_(eps_prox=eps, max_match_runs=MEMBER_RUNS).with_scale(MEMBER_SCALE)
+    t0 = time.perf_counter()
+    r = detect((fx.vertices, fx.faces), params)
+    dt = time.perf_counter() - t0
+    e = sweep_errors(r, fx)
+
+    def worst(a: np.ndarray) -> float:
+        return float(a.max()) if len(a) else float("nan")
+
+    return {"coverage": r.coverage, "recall": e.recall, "hausdorff": worst(e.hausdorff),
+            "rotation": e.median_rotation, "translation": e.median_translation, "patches": len(r.patches),
+            "fit": max((p.fit_error for p in r.patches), default=float("nan")), "seconds": dt,
+            "vertices": len(fx.vertices)}
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--only", default=None, help="comma-separated groups (cubic, letter_g, double_translational, "
-                                                 "revolved, extruded)")
+                                                 "revolved, extruded, members)")
     ap.add_argument("--markdown", action="store_true", help="a markdown table")
     args = ap.parse_args()
     want = None if args.only is None else set(args.only.split(","))
@@ -130,7 +176,7 @@ def main() -> None:
     print(f"# eval_sweeps: Python {platform.python_version()}, {os.cpu_count()} cores, "
           f"load average {load0:.1f} at the start, eps_prox {EPS_PROX}")
     head = ["fixture", "coverage", "plane recall", "axis (deg)", "fit error", "patches", "kinds", "detect (s)"]
-    if args.markdown:
+    if args.markdown and (want is None or want - {"members"}):
         print("| " + " | ".join(head) + " |")
         print("|" + "---|" * len(head))
     for group, label, mk in cases():
@@ -144,6 +190,19 @@ def main() -> None:
         cells = [label, f(res["coverage"], ".3f"), f(res["recall"], ".2f"), f(res["axis"], ".3f"),
                  f(res["fit"], ".1e"), str(res["patches"]), str(res["kinds"]), f(res["seconds"], ".1f")]
         print(("| " + " | ".join(cells) + " |") if args.markdown else "  ".join(cells), flush=True)
+    if want is None or "members" in want:
+        head = ["members", "vertices", "coverage", "plane recall", "profile Hausdorff (worst)",
+                "rotation (deg, median)", "translation (median)", "fit error", "patches", "detect (s)"]
+        print(f"# members: with_scale({MEMBER_SCALE}), max_match_runs {MEMBER_RUNS}")
+        if args.markdown:
+            print("| " + " | ".join(head) + " |")
+            print("|" + "---|" * len(head))
+        for label, drawing, members, sigma, eps in MEMBERS:
+            m = evaluate_members(drawing, members, sigma, eps)
+            cells = [label, str(m["vertices"]), f"{m['coverage']:.3f}", f"{m['recall']:.2f}", f"{m['hausdorff']:.1e}",
+                     f"{m['rotation']:.2f}", f"{m['translation']:.1e}", f"{m['fit']:.1e}", str(m["patches"]),
+                     f"{m['seconds']:.1f}"]
+            print(("| " + " | ".join(cells) + " |") if args.markdown else "  ".join(cells), flush=True)
     print(f"# load average {os.getloadavg()[0]:.1f} at the end")
 
 

@@ -125,6 +125,10 @@ def test_two_million_triangles_refused_without_running_out_of_memory():
     (["--png", "x.gif"], "x.gif"),
     (["--parts", "65"], "max_parts = 65: expected a whole number in 0..64"),
     (["--parts", "-1"], ">= 0"),
+    (["--match-scale", "1.5"], "(0, 1]"),
+    (["--match-scale", "0"], "> 0"),
+    (["--match-runs", "1"], ">= 2"),
+    (["--match-scale", "0.25", "--l-min", "0.001"], "match_spacing"),
 ])
 def test_bad_options_exit_2(cli, tmp_path, args, message):
     src = tmp_path / "a.stl"
@@ -194,3 +198,21 @@ def test_parts_option_is_recorded_in_the_result(cli, tmp_path):
     rep = load(out, kind="sweeps")
     assert rep.params.max_parts == 3
     assert [p.kind for p in rep.patches] == ["translation"]
+
+
+def test_match_scale_and_runs_options_are_recorded_and_l_min_wins(cli, tmp_path):
+    """``--match-scale F`` is ``SweepParams.with_scale(F)``, ``--match-runs N`` is ``max_match_runs``; an
+    explicit ``--l-min`` wins over the scale (the rest of the scaled lengths stay scaled)."""
+    from auszug.sweeps import DEFAULT
+
+    src = tmp_path / "a.stl"
+    save(_mesh("extruded"), src, kind="mesh")
+    want = DEFAULT.with_(max_match_runs=900).with_scale(0.25)
+    for extra, l_min in (([], 0.05), (["--l-min", "0.1"], 0.1)):
+        out = tmp_path / f"a{len(extra)}.sweeps.json"
+        r = cli("sweeps", src, "-o", out, "--match-scale", "0.25", "--match-runs", "900", "--quiet", *extra)
+        assert r.code == 0, r.err
+        rep = load(out, kind="sweeps")
+        assert rep.params == want.with_(l_min=l_min)
+        assert rep.params.max_match_runs == 900 and rep.params.match_spacing == 0.00125
+        assert [p.kind for p in rep.patches] == ["translation"]

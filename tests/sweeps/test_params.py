@@ -141,3 +141,22 @@ def test_grow_on_mesh_and_grow_skip_decide_whether_a_hole_is_crossed():
     # with end_gap 20 (0.1 of the diameter) the points over the hole are taken as on the mesh, and
     # far from it: the step fails there too
     assert reach["no gap"] <= -0.06 + STEP
+
+
+def test_with_scale_scales_the_lengths_along_a_cut_and_nothing_else():
+    from dataclasses import fields
+
+    p = DEFAULT.with_(l_min=0.16, eps_prox=0.003)
+    q = p.with_scale(0.25)
+    for f in fields(SweepParams):
+        a, b = getattr(p, f.name), getattr(q, f.name)
+        if f.name in SweepParams.PROFILE_LENGTHS:
+            assert b == a * 0.25, f.name
+        elif f.name == "kappa_floor":
+            assert b == a / 0.25
+        else:
+            assert b == a, f.name
+    assert p.with_scale(1.0) == p
+    for bad in (0, -0.5, 1.5, float("nan"), True):
+        with pytest.raises(GeometryError, match="scale"):
+            p.with_scale(bad)

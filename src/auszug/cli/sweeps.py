@@ -18,6 +18,7 @@ examples:
   auszug sweeps base.stl -o base.sweeps.json --explain
   auszug sweeps pier.ply --eps-prox 0.002 --png pier.png --glb pier.glb
   auszug sweeps scan.obj --planes 1452 --percentile 1
+  auszug sweeps member.stl --match-scale 0.25 --match-runs 2000 --eps-prox 0.002   # a thin bar
 """
 
 from __future__ import annotations
@@ -37,6 +38,13 @@ def _fraction(text: str) -> float:
     v = _common.positive(text)
     if v > 0.1:
         raise argparse.ArgumentTypeError(f"expected a share of the bounding-box diameter in (0, 0.1], got {v:g}")
+    return v
+
+
+def _scale(text: str) -> float:
+    v = _common.positive(text)
+    if v > 1:
+        raise argparse.ArgumentTypeError(f"expected a factor in (0, 1], got {v:g}")
     return v
 
 
@@ -62,6 +70,11 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                    help="matching threshold of Eq. 6 (default 0.1; the paper: 0.01 or 0.1)")
     g.add_argument("--l-min", type=_common.positive, default=None, metavar="L",
                    help="shortest movable run and match (default 0.2)")
+    g.add_argument("--match-scale", type=_scale, default=None, metavar="F",
+                   help="profiles F times as long as the defaults expect, F in (0, 1]: l-min, the curvature "
+                        "windows and the match spacing times F (a thin member: 0.25; an explicit --l-min wins)")
+    g.add_argument("--match-runs", type=_common.at_least(2), default=None, metavar="N",
+                   help="at most N movable runs, longest first, are matched (default 600)")
     g.add_argument("--match-angle", type=_common.positive, default=None, metavar="DEG",
                    help="cuts whose planes meet at more than DEG are not matched (default 25)")
     g.add_argument("--parts", type=_common.at_least(0), default=None, metavar="N",
@@ -74,9 +87,14 @@ def _params(args: argparse.Namespace) -> Any:
 
     changes = {name: getattr(args, opt) for opt, name in (
         ("eps_prox", "eps_prox"), ("planes", "initial_plane_count"), ("percentile", "percentile"),
-        ("refinements", "refinements"), ("eps_match", "eps_match"), ("l_min", "l_min"),
+        ("refinements", "refinements"), ("eps_match", "eps_match"), ("match_runs", "max_match_runs"),
         ("match_angle", "match_angle"), ("parts", "max_parts")) if getattr(args, opt) is not None}
-    return DEFAULT.with_(**changes)
+    params = DEFAULT.with_(**changes)
+    if args.match_scale is not None:
+        params = params.with_scale(args.match_scale)
+    if args.l_min is not None:     # an explicit --l-min wins over the scale
+        params = params.with_(l_min=args.l_min)
+    return params
 
 
 def run(args: argparse.Namespace) -> int:

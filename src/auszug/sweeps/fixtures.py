@@ -17,7 +17,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -41,6 +41,10 @@ __all__ = [
     "double_translational",
     "bumps",
     "grid_faces",
+    "SweptMembers",
+    "swept_members",
+    "SweepErrors",
+    "sweep_errors",
 ]
 
 Array = NDArray[np.float64]
@@ -428,3 +432,215 @@ def bumps(n: int = 90, n_bumps: int = 40, sigma: float = 0.0, seed: int = 0) -> 
         z += h * np.exp(-((x - cx) ** 2 + (y - cy) ** 2) / (2 * w * w))
     v = np.column_stack([x.ravel(), y.ravel(), z.ravel()])
     return _finish("bumps", "none", v, grid_faces(n, n), sigma, seed, None, None, np.empty((0, 4)), 0.0)
+
+
+# -- members of curve networks (microarch), swept by meshing's sweep model --------------------------
+
+
+@dataclass(frozen=True)
+class SweptMembers:
+    """Members of a curve network swept with a look, normalised, with their true profile and motion.
+
+    Attributes
+    ----------
+    name : str
+    vertices : (n, 3) float array
+        Bounding-box diameter 1, centred (noise, if any, added after normalising).
+    faces : (m, 3) int array
+        The members' triangles (caps and mirror-plane cuts included), unwelded between members.
+    profile : (k, 2) float array
+        The true profile, densely sampled on its exact outline, in the members' frame (normalised units).
+    closed : bool
+        Whether the profile is closed.
+    runs : tuple of RigidFrames
+        One per smooth run of every member (meshing's sweep model, normalised): the profile point
+        ``(x, y)`` at path parameter ``s`` is ``origin(s) + R(s) (x, y, 0)``.
+    planes : (q, 4) float array
+        True profile planes ``(n, d)``, ``n . x = d``: the runs' normal planes over the middle 90 %
+        of each run.
+    profile_length : float
+        Length of the profile (normalised units).
+    sigma : float
+        Deviation of the normal noise (normalised units).
+    """
+
+    name: str
+    vertices: Array
+    faces: IntArray
+    profile: Array
+    closed: bool
+    runs: tuple[Any, ...]
+    planes: Array
+    profile_length: float
+    sigma: float = 0.0
+
+
+def swept_members(network: Any, members: Sequence[int] | None = None, look: Any = None, n_planes: int = 20,
+                  sigma: float = 0.0, seed: int = 0, name: str = "members") -> SweptMembers:
+    """Members of ``network`` swept by meshing's public pipeline, normalised, with their truth.
+
+    The members are :func:`auszug.meshing.members_of` (every basic piece swept once, not
+    replicated, with the look's profile, frames, caps and mirror-plane cuts); each member's
+    :attr:`~auszug.meshing.Member.sweeps` is its exact sweep (profile, path, rigid frames), so the
+    truth is known exactly. No microarch internals are read: ``network`` is any value meshing
+    accepts (a ``CurveNetwork`` or a producer of one, e.g. ``microarch.Network``).
+
+    Parameters
+    ----------
+    network : CurveNetwork or a producer of one
+    members : sequence of int, optional
+        Indices into the swept members (default all).
+    look : meshing.Look, optional
+        Default ``Look("bar")`` (a square bar, the default member look).
+    n_planes : int
+        True profile planes per run, over the middle 90 % of its path.
+    sigma : float
+        Deviation of a displacement of every vertex along its normal (after normalising).
+    seed : int
+    name : str
+
+    Returns
+    -------
+    SweptMembers
+
+    Raises
+    ------
+    GeometryError
+        No member selected, or an index out of range.
+    """
+    from auszug.errors import GeometryError
+    from auszug.meshing import Look, RigidFrames, members_of
+
+    lk = Look("bar") if look is None else look
+    allm = members_of(network, lk)
+    idx = list(range(len(allm))) if members is None else [int(i) for i in members]
+    if not idx or any(not 0 <= i < len(allm) for i in idx):
+        raise GeometryError(f"members {idx} not in the network's {len(allm)} swept member(s)")
+    chosen = [allm[i] for i in idx]
+    verts, faces, off = [], [], 0
+    for mb in chosen:
+        verts.append(np.asarray(mb.vertices, float))
+        faces.append(np.asarray(mb.faces, np.int64) + off)
+        off += len(mb.vertices)
+    v, f = np.vstack(verts), np.vstack(faces)
+    lo, hi = v.min(axis=0), v.max(axis=0)
+    centre, diam = (lo + hi) / 2, float(np.linalg.norm(hi - lo))
+    v = (v - centre) / diam
+    prof = chosen[0].sweeps[0].profile
+    closed = bool(prof.closed)
+    dense = prof.point(np.linspace(0.0, 1.0, 64 * prof.n + (0 if closed else 1), endpoint=not closed)) / diam
+    runs, planes = [], []
+    for mb in chosen:
+        for sw in mb.sweeps:
+            fr = sw.rigid
+            r = RigidFrames(fr.s / diam, fr.rotation, (fr.origin - centre) / diam)
+            runs.append(r)
+            u = np.linspace(0.0, 1.0, 2 * n_planes + 1)[1:-1:2]     # the middles of n_planes equal slices
+            s = r.s[0] + (0.05 + 0.9 * u) * (r.s[-1] - r.s[0])         # of the middle 90 % of the run
+            rot, o = r.at(s)
+            n = rot[:, :, 2]
+            planes.append(np.column_stack([n, np.einsum("ij,ij->i", n, o)]))
+    if sigma > 0:
+        rng = np.random.default_rng(seed)
+        v = v + rng.normal(0.0, sigma, len(v))[:, None] * vertex_normals(v, f)
+    return SweptMembers(name, v, f, dense, closed, tuple(runs), np.vstack(planes), float(prof.length) / diam,
+                        float(sigma))
+
+
+@dataclass(frozen=True)
+class SweepErrors:
+    """How far a detection's patches are from a :class:`SweptMembers` truth (normalised units).
+
+    Attributes
+    ----------
+    recall : float
+        Share of the true profile planes with a found profile plane within 2 degrees and 0.005
+        (:func:`~auszug.sweeps.planes.plane_recall`; 8 planes per knot interval of every patch).
+    hausdorff : (p,) float array
+        Per patch: Hausdorff distance of its profile at the middle knot of its motion (the
+        reference rib: the ends may be grown over a member's cut or capped end) to the true
+        profile placed in the true profile plane through that profile's centroid.
+    rotation : (p,) float array
+        Per patch: median over its motion's other knots of the angle (degrees) between the found
+        map from the reference rib to the knot and the true map from the reference rib's true
+        profile plane to the plane through the moved centroid.
+    translation : (p,) float array
+        Per patch: median over the same knots of the distance between where the found map and
+        the true one take the reference profile's centroid.
+    run : (p,) int array
+        Per patch: the true run it was compared with (the one whose path passes nearest the
+        reference profile's centroid).
+    """
+
+    recall: float
+    hausdorff: Array
+    rotation: Array
+    translation: Array
+    run: IntArray
+
+    @property
+    def median_rotation(self) -> float:
+        """Median of the patches' rotation errors (degrees; nan without patches)."""
+        return float(np.median(self.rotation)) if len(self.rotation) else float("nan")
+
+    @property
+    def median_translation(self) -> float:
+        """Median of the patches' translation errors (nan without patches)."""
+        return float(np.median(self.translation)) if len(self.translation) else float("nan")
+
+
+def _true_param(run: Any, points: Array) -> Array:
+    """Per point, the path parameter of the true run's profile plane through it (nearest sample, one Newton step)."""
+    s = np.linspace(run.s[0], run.s[-1], 16 * len(run.s))
+    rot, o = run.at(s)
+    near = np.argmin(np.linalg.norm(points[:, None, :] - o[None], axis=2), axis=1)
+    t = rot[near, :, 2]
+    return np.clip(s[near] + np.einsum("ij,ij->i", points - o[near], t), run.s[0], run.s[-1])
+
+
+def sweep_errors(report: Any, truth: SweptMembers) -> SweepErrors:
+    """Compare a :class:`~auszug.sweeps.detect.SweepReport` of ``truth``'s mesh with the truth.
+
+    The report must be of ``(truth.vertices, truth.faces)`` (its patches in those coordinates).
+
+    Parameters
+    ----------
+    report : SweepReport
+    truth : SweptMembers
+
+    Returns
+    -------
+    SweepErrors
+    """
+    from auszug.sweeps.general import motion_planes
+    from auszug.sweeps.patches import polyline_hausdorff
+    from auszug.sweeps.planes import plane_recall
+
+    normals, offsets, haus, rots, trans, which = [], [], [], [], [], []
+    for p in report.patches:
+        nn, dd = motion_planes(p.profile, p.motion, 8)
+        normals.append(nn)
+        offsets.append(dd)
+        m = len(p.motion) // 2                               # the middle rib: the reference
+        prof = p.swept(p.motion.t[m:m + 1])[0]
+        c = prof.mean(axis=0)
+        dist = [float(np.min(np.linalg.norm(r.origin - c, axis=1))) for r in truth.runs]
+        k = int(np.argmin(dist))
+        run = truth.runs[k]
+        r0, o0 = run.at(_true_param(run, c[None]))
+        placed = o0[0] + truth.profile @ r0[0][:, :2].T
+        haus.append(polyline_hausdorff(prof, placed, p.closed, truth.closed))
+        others = np.delete(np.arange(len(p.motion)), m)
+        rm, tm = p.motion.rotation[m], p.motion.translation[m]
+        found_r = p.motion.rotation[others] @ rm.T             # found maps from the middle rib to the others
+        found_t = p.motion.translation[others] - np.einsum("kij,j->ki", found_r, tm)
+        ck = np.einsum("kij,j->ki", found_r, c) + found_t
+        rk, ok = run.at(_true_param(run, ck))
+        rel = rk @ r0[0].T                                    # true maps from the middle rib's plane
+        img = np.einsum("kij,j->ki", rel, c - o0[0]) + ok
+        cosang = (np.einsum("kij,kij->k", found_r, rel) - 1) / 2
+        rots.append(float(np.median(np.degrees(np.arccos(np.clip(cosang, -1.0, 1.0))))))
+        trans.append(float(np.median(np.linalg.norm(img - ck, axis=1))))
+        which.append(k)
+    recall = (plane_recall(truth.planes, np.vstack(normals), np.concatenate(offsets)) if normals else 0.0)
+    return SweepErrors(recall, np.array(haus), np.array(rots), np.array(trans), np.array(which, np.int64))

@@ -573,6 +573,25 @@ def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, I
                    face_edges=face_edges), keep
 
 
+def _per_component(fams: tuple[Family, ...], mesh: SweepMesh, cuts: Cuts, mov: Movability,
+                   plots: CurvaturePlots) -> list[Family]:
+    """Every family split by the mesh component its members' cuts lie on (:func:`split_family`).
+
+    A mesh of several pieces (the unwelded members of a curve network) has congruent cuts on each
+    piece; one family of them orders ribs that jump between pieces, and no sweep fits them all
+    (four members of U.XI.91: coverage 0.227 before, docs/sweeps.md).
+    """
+    from auszug.sweeps.matching import split_family  # here: the module's imports stay as they were (merges)
+    from auszug.sweeps.mesh import face_components
+
+    comp = face_components(mesh)
+    if len(fams) == 0 or comp.max(initial=0) == 0:
+        return list(fams)
+    edge = cuts.edges[cuts.curve_start[mov.run_curve[plots.run]]]      # per plot: its first point's edge
+    of_plot = comp[mesh.edge_faces[edge, 0]]
+    return [part for f in fams for part in split_family(f, of_plot[f.members])]
+
+
 def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams, step: Callable[[str], float],
                    true_planes: ArrayLike | None = None,
                    translations: bool = False) -> tuple[list[SweepPatch], list[Stage]]:
@@ -601,7 +620,8 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
                         {"runs": len(runs), "pairs": matches.tested, "matches": matches.n_matches}))
     t = step("families")
     # support of a family: its members times the length of their common part
-    fams = sorted(families(matches, params), key=lambda f: (-len(f.members) * f.length, -f.length))
+    fams = sorted(_per_component(families(matches, params), mesh, cuts, mov, plots),
+                  key=lambda f: (-len(f.members) * f.length, -f.length))
     # most support first, but a family half of whose runs an earlier pick already holds is
     # skipped: the most supported families crowd the same stretch of a path
     big: list[Family] = []

@@ -49,7 +49,8 @@ from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
 
 __all__ = ["CurvaturePlots", "Matches", "Family", "Ribs", "resample", "signed_curvature", "curvature_plots",
-           "match_cuts", "families", "family_parts", "order_energy", "order_ribs"]
+           "match_cuts", "families", "family_parts", "order_energy", "order_ribs",
+           "split_family"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -598,3 +599,45 @@ def order_ribs(family: Family, plots: CurvaturePlots, params: SweepParams = DEFA
     order = np.array(chains[1][::-1] + chains[0][1:], np.int64)
     energy = e[order[:-1], order[1:]]
     return Ribs(family, order, energy)
+
+
+def split_family(family: Family, component: ArrayLike) -> tuple[Family, ...]:
+    """The family split by the mesh component its members lie on (beyond the paper).
+
+    Cuts of separate pieces of a mesh (the members of a curve network, unwelded) are congruent
+    where the pieces share a profile, so one family collects runs of several pieces and its
+    ordered ribs jump between them; a sweep lies on one piece. Each part keeps its members in
+    the family's order, aligned to the same common part (``start``, ``reversed``, ``flipped``
+    as before); its seed is its first member.
+
+    Parameters
+    ----------
+    family : Family
+    component : (k,) int array
+        The component of each member (in the order of ``family.members``).
+
+    Returns
+    -------
+    tuple of Family
+        One per component, in the order of their first member; the family itself when all
+        members lie on one component.
+
+    Examples
+    --------
+    >>> f = Family(0, np.array([0, 1, 2]), np.array([0, 0, 0]), np.zeros(3, bool), np.zeros(3, bool), 5)
+    >>> [p.members.tolist() for p in split_family(f, [7, 3, 7])]
+    [[0, 2], [1]]
+    """
+    comp = np.asarray(component)
+    if len(comp) != len(family.members):
+        raise ValueError(f"split_family: {len(comp)} components for {len(family.members)} members")
+    labels, first = np.unique(comp, return_index=True)
+    if len(labels) <= 1:
+        return (family,)
+    out = []
+    for lab in labels[np.argsort(first)]:
+        j = np.flatnonzero(comp == lab)
+        out.append(Family(int(family.members[j[0]]), family.members[j], family.start[j], family.reversed[j],
+                          family.flipped[j], family.length, None if family.period is None else family.period[j],
+                          family.closed))
+    return tuple(out)

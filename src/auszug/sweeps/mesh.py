@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
 
-__all__ = ["SweepMesh", "normalise", "vertex_normals"]
+__all__ = ["SweepMesh", "normalise", "vertex_normals", "face_components"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -146,3 +146,35 @@ def normalise(vertices: ArrayLike, faces: ArrayLike) -> SweepMesh:
     ef[two, 1] = face_of[order[first[two] + 1]]
     return SweepMesh(vn, f, vertex_normals(vn, f), edges.astype(np.int64), ef, inv.reshape(-1, 3).astype(np.int64),
                      centre, scale)
+
+
+def face_components(mesh: SweepMesh) -> IntArray:
+    """The connected component of every face: faces sharing an edge are connected.
+
+    Parameters
+    ----------
+    mesh : SweepMesh
+
+    Returns
+    -------
+    (m,) int array
+        Labels 0, 1, ... in the order of each component's first face.
+
+    Examples
+    --------
+    >>> m = normalise([[0, 0, 0], [1, 0, 0], [0, 1, 0], [5, 0, 0], [6, 0, 0], [5, 1, 0.0]], [[0, 1, 2], [3, 4, 5]])
+    >>> face_components(m).tolist()
+    [0, 1]
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    m = len(mesh.faces)
+    two = mesh.edge_faces[:, 1] >= 0
+    a, b = mesh.edge_faces[two, 0], mesh.edge_faces[two, 1]
+    graph = coo_matrix((np.ones(len(a)), (a, b)), shape=(m, m))
+    _, raw = connected_components(graph, directed=False)
+    # relabel in the order of first appearance
+    _, first, inv = np.unique(raw, return_index=True, return_inverse=True)
+    rank = np.argsort(np.argsort(first))
+    return rank[inv.reshape(-1)].astype(np.int64)

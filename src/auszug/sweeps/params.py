@@ -412,6 +412,46 @@ class SweepParams:
             raise GeometryError(f"unknown sweep parameter(s) {', '.join(bad)}; known: {', '.join(sorted(known))}")
         return replace(self, **changes)
 
+    #: The lengths measured along a cut (a profile's arc length) that :meth:`with_scale` scales.
+    PROFILE_LENGTHS = ("l_min", "gap", "match_spacing", "curvature_window", "coarse_window", "part_l_min")
+
+    def with_scale(self, factor: float) -> "SweepParams":
+        """A copy for profiles ``factor`` times as long: the lengths along a cut scaled, curvature floor inverse.
+
+        Every length measured along a cut (:attr:`PROFILE_LENGTHS`: ``l_min``, ``gap``,
+        ``match_spacing``, ``curvature_window``, ``coarse_window``, ``part_l_min``) is multiplied
+        by ``factor`` and ``kappa_floor`` divided by it, so that a profile ``factor`` times the
+        size of the defaults' (a thin member's cross-section: its cut loop is 6-12 % of the
+        member's diameter, under the default ``l_min`` of 20 %) is matched as the defaults match
+        theirs. Tolerances (``eps_prox``), plane spacings and path lengths are kept.
+
+        Parameters
+        ----------
+        factor : float
+            In (0, 1]; 1 gives an equal copy.
+
+        Returns
+        -------
+        SweepParams
+
+        Raises
+        ------
+        GeometryError
+            A factor outside (0, 1].
+
+        Examples
+        --------
+        >>> p = DEFAULT.with_scale(0.25)
+        >>> p.l_min, p.match_spacing, p.kappa_floor
+        (0.05, 0.00125, 4.0)
+        """
+        if not (_real(factor) and 0 < factor <= 1):
+            raise GeometryError(f"sweep parameter scale = {factor!r}: expected a factor in (0, 1]")
+        f = float(factor)
+        changes: dict[str, Any] = {name: getattr(self, name) * f for name in self.PROFILE_LENGTHS}
+        changes["kappa_floor"] = self.kappa_floor / f
+        return self.with_(**changes)
+
 
 #: The defaults.
 DEFAULT = SweepParams()

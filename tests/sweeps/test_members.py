@@ -1,0 +1,168 @@
+"""Microarch members as sweep fixtures (issue 11, evaluation): the project's own members, whose profile and
+motion are known exactly (``sweeps.fixtures.swept_members``, meshing's sweep model on a bundled network).
+
+Targets of the issue: plane recall >= 0.95 clean / >= 0.85 at sigma 5e-4, profile Hausdorff <= 1e-3
+clean, median rotation error <= 0.5 deg, translation <= 1e-3, coverage >= 95 % clean. Measured
+(docs/sweeps.md, "Microarch members"); asserted here is what holds, with the measured values beside.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import numpy as np
+
+from auszug import examples
+from auszug.formats import load
+from auszug.meshing import Look, members_of
+from auszug.microarch import build
+from auszug.sweeps import DEFAULT, detect
+from auszug.sweeps.detect import SweepReport
+from auszug.sweeps.fixtures import sweep_errors, swept_members
+from auszug.sweeps.motion import Motion
+from auszug.sweeps.patches import SweepPatch
+
+U30 = "legacy/U.XI.30.uc"          # one ogee member, cut at a mirror plane at both ends
+U29 = "web/U.XI.29.uc"             # two ogee members, free ends
+
+
+@cache
+def _net(name):
+    return build(load(examples.path(name)))
+
+
+@cache
+def _fixture(name, sigma=0.0):
+    return swept_members(_net(name), sigma=sigma)
+
+
+def test_the_fixture_is_the_members_mesh_normalised_with_its_exact_truth():
+    net = _net(U30)
+    fx = _fixture(U30)
+    (mb,) = members_of(net, Look("bar"))
+    assert len(fx.vertices) == len(mb.vertices) and np.array_equal(fx.faces, mb.faces)
+    ext = np.ptp(fx.vertices, axis=0)
+    assert abs(float(np.linalg.norm(ext)) - 1.0) < 1e-12
+    assert np.allclose(fx.vertices.max(axis=0), -fx.vertices.min(axis=0), atol=1e-12)
+    # every ring of the swept square away from the cut ends is the true profile in the true frame
+    (run,) = fx.runs
+    scale = float(np.linalg.norm(np.ptp(mb.vertices, axis=0)))
+    corners = np.asarray(mb.sweeps[0].profile.points, float) / scale
+    for k in range(20, len(run.s) - 20, 20):
+        ring = run.origin[k] + corners @ run.rotation[k][:, :2].T
+        d = np.linalg.norm(ring[:, None, :] - fx.vertices[None], axis=2).min(axis=1)
+        assert d.max() < 1e-12
+    # the true profile is the square (densely), its length the square's perimeter
+    assert fx.closed and abs(fx.profile_length - 4 * np.linalg.norm(corners[1] - corners[0])) < 1e-12
+    assert np.allclose(np.abs(fx.profile).max(axis=0), np.abs(corners).max(axis=0))
+    # 20 planes per run, normal to the path: each passes through the path's point there
+    assert fx.planes.shape == (20, 4) and np.allclose(np.linalg.norm(fx.planes[:, :3], axis=1), 1.0)
+    noisy = _fixture(U30, 5e-4)
+    dev = np.linalg.norm(noisy.vertices - fx.vertices, axis=1)
+    assert 3e-4 < float(np.sqrt(np.mean(dev**2))) < 7e-4
+
+
+def _true_patch(fx, a, b, knots=65, turn=0.0):
+    """A patch made from the truth: the profile at parameter ``a`` moved to ``b`` by the true motion,
+    at every knot but the middle one (the reference of ``sweep_errors``) turned ``turn`` degrees more
+    about the path's tangent through the path's point."""
+    from scipy.spatial.transform import Rotation
+
+    run = fx.runs[0]
+    s = np.linspace(a, b, knots)
+    rot, org = run.at(s)
+    prof = org[0] + fx.profile @ rot[0][:, :2].T
+    rel = rot @ rot[0].T
+    tr = org - np.einsum("kij,j->ki", rel, org[0])
+    ang = np.radians(turn) * (np.arange(knots) != knots // 2)
+    extra = Rotation.from_rotvec(rot[:, :, 2] * ang[:, None]).as_matrix()
+    # x -> E (x - o_k) + o_k after the true map
+    rel, tr = extra @ rel, np.einsum("kij,kj->ki", extra, tr - org) + org
+    return SweepPatch(0, "general", prof, True, Motion(np.arange(knots, dtype=float), rel, tr),
+                      np.arange(len(fx.faces)), 0.0, 1.0)
+
+
+def _report(patches):
+    return SweepReport(tuple(patches), 1.0, 1.0, np.zeros(3), 0, 0, ())
+
+
+def test_sweep_errors_are_zero_for_the_truth_and_see_a_turn_about_the_path():
+    fx = _fixture(U30)
+    run = fx.runs[0]
+    lo, hi = run.s[0], run.s[-1]
+    e = sweep_errors(_report([_true_patch(fx, lo, hi)]), fx)
+    assert e.recall == 1.0 and e.run.tolist() == [0]
+    assert e.hausdorff[0] < 1e-6 and e.rotation[0] < 1e-3 and e.translation[0] < 1e-6
+    # half the path: half the planes (those of the other half missed)
+    e = sweep_errors(_report([_true_patch(fx, lo, (lo + hi) / 2)]), fx)
+    assert 0.4 <= e.recall <= 0.6
+    # a turn of 2 deg about the path after the first knot: the rotation error sees it
+    e = sweep_errors(_report([_true_patch(fx, lo, hi, turn=2.0)]), fx)
+    assert 1.99 < e.rotation[0] < 2.01 and e.translation[0] < 1e-6
+    assert np.isnan(sweep_errors(_report([]), fx).median_rotation)
+
+
+def test_families_are_split_per_mesh_component():
+    """Two members (two mesh components) share the square profile: families of the initial cuts mix
+    them, and ``_per_component`` leaves each family on one component, every member kept once."""
+    from auszug.sweeps import curvature_plots, cut, families, initial_planes, match_cuts, movability, normalise
+    from auszug.sweeps.general import _per_component
+    from auszug.sweeps.matching import split_family
+    from auszug.sweeps.mesh import face_components
+
+    fx = _fixture(U29)
+    m = normalise(fx.vertices, fx.faces)
+    comp = face_components(m)
+    assert sorted(np.bincount(comp).tolist()) == [len(fx.faces) // 2] * 2          # two members, equal
+    p = DEFAULT.with_scale(0.25)
+    cuts = cut(m, *initial_planes(m.vertices, p.sphere_frequency, p.offset_spacing))
+    mov = movability(cuts, p)
+    runs = np.sort(np.argsort(-mov.run_length, kind="stable")[:150])
+    plots = curvature_plots(cuts, mov, runs, p)
+    fams = families(match_cuts(plots, p), p)
+    of_plot = comp[m.edge_faces[cuts.edges[cuts.curve_start[mov.run_curve[plots.run]]], 0]]
+    mixed = [f for f in fams if len(set(of_plot[f.members].tolist())) > 1]
+    assert mixed                                                                    # else the test tests nothing
+    split = _per_component(fams, m, cuts, mov, plots)
+    assert all(len(set(of_plot[f.members].tolist())) == 1 for f in split)
+    assert len(split) == len(fams) + len(mixed)                                     # two components: one more each
+    for f in mixed:
+        parts = split_family(f, of_plot[f.members])
+        assert sorted(np.concatenate([q.members for q in parts]).tolist()) == sorted(f.members.tolist())
+        for q in parts:
+            j = [int(np.flatnonzero(f.members == x)[0]) for x in q.members]
+            assert np.array_equal(q.start, f.start[j]) and np.array_equal(q.reversed, f.reversed[j])
+            assert q.length == f.length and q.seed == q.members[0]
+
+
+@cache
+def _detected(name, sigma, eps):
+    fx = swept_members(_net(name), sigma=sigma)
+    r = detect((fx.vertices, fx.faces), DEFAULT.with_(eps_prox=eps, max_match_runs=2000).with_scale(0.25))
+    return fx, r, sweep_errors(r, fx)
+
+
+def test_a_member_at_the_defaults_is_no_general_sweep():
+    """At the default l_min (0.2 of the diameter) the member's cut loops (its profile: 6 % of the
+    diameter) are too short to match: only 12 lengthwise runs, no general sweep. The kinematic parts
+    cover pieces of the ogee as turns (its side view is circular arcs) with partial profiles (measured:
+    coverage 0.778, plane recall 0.85, profile Hausdorff 6.6e-3 and 4.4e-3): what with_scale is for."""
+    fx = _fixture("teaching-sheet/tn-2.uc")
+    assert fx.profile_length < DEFAULT.l_min / 2
+    r = detect((fx.vertices, fx.faces), DEFAULT.with_(eps_prox=0.002))
+    assert r.stage("cut").numbers["runs"] < 20
+    assert r.stage("motion").numbers["candidates"] == 0
+    assert all(p.kind == "rotation" for p in r.patches)
+    e = sweep_errors(r, fx)
+    assert r.coverage < 0.95 and e.hausdorff.min() > 1e-3
+
+
+def test_one_member_clean_meets_every_target_at_eps_prox_0_002():
+    """tn-2's member, clean, with_scale(0.25), eps_prox 0.002: measured coverage 0.998, plane recall
+    1.00, fit error 5.2e-4, profile Hausdorff 4.5e-4, rotation 0.46 deg, translation 4.7e-5 (one patch,
+    closed). Every target of the issue met; asserted at the targets."""
+    fx, r, e = _detected("teaching-sheet/tn-2.uc", 0.0, 0.002)
+    assert r.coverage >= 0.95 and e.recall >= 0.95
+    assert len(r.patches) == 1 and r.patches[0].closed
+    assert e.hausdorff.max() <= 1e-3
+    assert e.median_rotation <= 0.5 and e.median_translation <= 1e-3

@@ -233,3 +233,57 @@ def test_closest_on_plane_curves_is_the_curve_by_curve_search():
         want = _closest_on_cut_reference(c, plane, target)
         for g, w in zip(got, want, strict=True):
             assert np.array_equal(g, w)
+
+
+def test_cut_near_where_the_cutter_starts_a_chain_inside_it_is_the_whole_cut():
+    """Every edge's faces swapped: an open chain's end edges have their one face in the second slot.
+
+    The cutter then starts each open chain at its smallest edge (its phase 1), mostly an inner
+    edge, and the walk from it covers only one side: the chain comes out as two curves. cut_near
+    walks the first chain of a component at once and the rest in the cutter's sorted order; it
+    must still give the whole cut bit for bit.
+    """
+    from dataclasses import replace
+
+    mesh = _mesh(hole=True)
+    ef = mesh.edge_faces[:, ::-1].copy()
+    swapped = replace(mesh, edge_faces=np.ascontiguousarray(ef))
+    rng = np.random.default_rng(5)
+    n = rng.normal(size=(40, 3))
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    d = rng.uniform(-0.2, 0.2, 40)
+    whole = cut(swapped, n, d)
+    near = cut_near(swapped, n, d, np.tile([-1.0, -1, -1, 1, 1, 1], (40, 1)))
+    for name in ("points", "normals", "edges", "curve_start", "curve_plane", "curve_closed"):
+        assert np.array_equal(getattr(near, name), getattr(whole, name)), name
+    # the case in question occurs: open curves that start on an edge with two faces
+    first = whole.edges[whole.curve_start[:-1]]
+    inner_start = (swapped.edge_faces[first] >= 0).all(axis=1) & ~whole.curve_closed
+    assert inner_start.sum() >= 5
+
+
+def test_face_passes_of_the_fit_are_their_numpy_definitions():
+    """Triangle areas (bit for bit), the box's face vertices, the covered faces, the boundary edges."""
+    from auszug.sweeps.general import _around
+    from auszug.sweeps.patches import face_areas
+
+    rng = np.random.default_rng(8)
+    for scale in (1e-3, 1.0, 1e3):
+        v = rng.normal(size=(500, 3)) * scale
+        f = rng.integers(0, 500, size=(2000, 3))
+        want = 0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1)
+        assert np.array_equal(face_areas(v, f), want)
+    mesh = _around(_mesh(hole=True), _mesh(hole=True).vertices[:700], 0.05)[0]     # a part: not every vertex used
+    lo, hi = np.array([-0.2, -0.3, -0.1]), np.array([0.1, 0.2, 0.3])
+    used = np.zeros(len(mesh.vertices), bool)
+    used[mesh.faces.reshape(-1)] = True
+    want_in = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1) & used
+    got_in = _kernels.face_vertices_in_box(mesh.vertices, mesh.faces, lo, hi)
+    assert np.array_equal(got_in, want_in) and 0 < got_in.sum() < used.sum()
+    dist = np.where(rng.uniform(size=len(mesh.vertices)) < 0.7, rng.uniform(0, 0.01, len(mesh.vertices)), np.inf)
+    want_f = np.flatnonzero((dist[mesh.faces] <= 0.005).all(axis=1))
+    assert np.array_equal(_kernels.faces_within(dist, mesh.faces, 0.005), want_f) and len(want_f) > 0
+    # boundary edges from the topology, against counting each edge's faces
+    whole = _mesh(hole=True)
+    counted = MeshTree(whole.vertices, whole.faces)._boundary_edges()
+    assert np.array_equal(MeshTree.of(whole)._bnd, counted) and (counted >= 0).any()

@@ -1058,6 +1058,13 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
     stamp = np.zeros(len(edges), np.int64)      # plane + 1 where an edge's curve is found
     seen = np.zeros(len(edges), np.int64)       # plane + 1 where the cutter's walk passed
     comp = np.empty(len(edges), np.int64)
+    tpts = np.zeros((1024, 3))                  # the plane's chains as walked
+    tnrm = np.zeros((1024, 3))
+    teid = np.full(1024, -1, np.int64)
+    ch_key = np.zeros(64, np.int64)
+    ch_begin = np.zeros(64, np.int64)
+    ch_end = np.zeros(64, np.int64)
+    ch_closed = np.zeros(64, np.bool_)
     for p in range(n_planes):
         nx, ny, nz, d = pn[p, 0], pn[p, 1], pn[p, 2], pd[p]
         mark = p + 1
@@ -1101,67 +1108,106 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
                                 f = edge_faces[nxt, 1] if edge_faces[nxt, 0] == f else edge_faces[nxt, 0]
                                 e = nxt
                         comp_start.append(n_comp_edges)
-        # the cutter's walk on each component's edges; chains keyed by (phase, start edge)
+        # the cutter's walk on each component's edges, each chain emitted as it is walked (into the plane's
+        # buffer); chains keyed by (phase, start edge). A component is one chain of crossed edges: the
+        # cutter starts it at its smallest edge without a second face (phase 0), else at its smallest edge
+        # (phase 1); where that walk does not take in the whole component (a start with a face on either
+        # side), the rest follows the cutter's order: the component's edges sorted, phase 0, then phase 1
         n_comp = len(comp_start) - 1
         n_e = len(edges)
-        keys = []
+        tpos = 0
+        n_ch = 0
         for r in range(n_comp):
-            s = np.sort(comp[comp_start[r]:comp_start[r + 1]])
-            for phase in range(2):
-                for e0 in s:
+            s0 = -1
+            s1 = -1
+            for q in range(comp_start[r], comp_start[r + 1]):
+                e = comp[q]
+                if edge_faces[e, 1] < 0 and (s0 < 0 or e < s0):
+                    s0 = e
+                if s1 < 0 or e < s1:
+                    s1 = e
+            first = np.array([s0 if s0 >= 0 else s1], np.int64)
+            walked = 0
+            for stage in range(3):
+                # stage 0: the first chain; 1 and 2: the cutter's phases 0 and 1 over the sorted edges
+                if stage > 0 and walked == comp_start[r + 1] - comp_start[r]:
+                    break
+                phase = (0 if s0 >= 0 else 1) if stage == 0 else stage - 1
+                order = first if stage == 0 else np.sort(comp[comp_start[r]:comp_start[r + 1]])
+                for qi in range(len(order)):
+                    e0 = order[qi]
                     if seen[e0] == mark:
                         continue
                     if phase == 0 and edge_faces[e0, 1] >= 0:
                         continue
-                    keys.append(phase * n_e + e0)
-                    # only the start is recorded here; the walk marks its edges
+                    if tpos + comp_start[r + 1] - comp_start[r] + 2 > len(tpts):
+                        cap2 = 2 * (tpos + comp_start[r + 1] - comp_start[r] + 2)
+                        tpts2 = np.zeros((cap2, 3))
+                        tnrm2 = np.zeros((cap2, 3))
+                        teid2 = np.full(cap2, -1, np.int64)
+                        tpts2[:tpos] = tpts[:tpos]
+                        tnrm2[:tpos] = tnrm[:tpos]
+                        teid2[:tpos] = teid[:tpos]
+                        tpts, tnrm, teid = tpts2, tnrm2, teid2
+                    if n_ch + 1 > len(ch_key):
+                        ch_key2 = np.zeros(2 * len(ch_key), np.int64)
+                        ch_begin2 = np.zeros(2 * len(ch_key), np.int64)
+                        ch_end2 = np.zeros(2 * len(ch_key), np.int64)
+                        ch_closed2 = np.zeros(2 * len(ch_key), np.bool_)
+                        ch_key2[:n_ch] = ch_key[:n_ch]
+                        ch_begin2[:n_ch] = ch_begin[:n_ch]
+                        ch_end2[:n_ch] = ch_end[:n_ch]
+                        ch_closed2[:n_ch] = ch_closed[:n_ch]
+                        ch_key, ch_begin, ch_end, ch_closed = ch_key2, ch_begin2, ch_end2, ch_closed2
+                    begin = tpos
                     e, prev = e0, -1
+                    is_closed = False
                     while True:
                         seen[e] = mark
+                        walked += 1
+                        tpos = _emit_local(v, vn, edges, e, nx, ny, nz, d, tpts, tnrm, teid, tpos, begin)
                         f, g2 = _step_face(v, edges, edge_faces, face_edges, e, prev, nx, ny, nz, d)
-                        if g2 < 0 or seen[g2] == mark:
+                        if g2 < 0:
+                            break
+                        if seen[g2] == mark:
+                            is_closed = g2 == e0
                             break
                         prev, e = f, g2
-        # emit the chains in the cutter's order: phase, then start edge
-        for key in np.sort(np.array(keys, dtype=np.int64)):
-            e0 = key % n_e
-            begin = pos
-            e, prev = e0, -1
-            is_closed = False
-            while True:
-                if pos + 2 > cap:
-                    cap = 2 * cap
-                    pts2 = np.zeros((cap, 3))
-                    nrm2 = np.zeros((cap, 3))
-                    eid2 = np.full(cap, -1, np.int64)
-                    pts2[:pos] = pts[:pos]
-                    nrm2[:pos] = nrm[:pos]
-                    eid2[:pos] = eid[:pos]
-                    pts, nrm, eid = pts2, nrm2, eid2
-                seen[e] = -mark
-                pos = _emit_local(v, vn, edges, e, nx, ny, nz, d, pts, nrm, eid, pos, begin)
-                f, g2 = _step_face(v, edges, edge_faces, face_edges, e, prev, nx, ny, nz, d)
-                if g2 < 0:
-                    break
-                if seen[g2] == -mark:
-                    is_closed = g2 == e0
-                    break
-                prev, e = f, g2
-            if pos - begin >= 2:
-                if n_curves + 2 > len(starts):
-                    starts2 = np.zeros(2 * len(starts), np.int64)
-                    planes2 = np.zeros(2 * len(starts), np.int64)
-                    closed2 = np.zeros(2 * len(starts), np.bool_)
-                    starts2[:n_curves] = starts[:n_curves]
-                    planes2[:n_curves] = planes[:n_curves]
-                    closed2[:n_curves] = closed_out[:n_curves]
-                    starts, planes, closed_out = starts2, planes2, closed2
-                starts[n_curves] = begin
-                planes[n_curves] = p
-                closed_out[n_curves] = is_closed
-                n_curves += 1
-            else:
-                pos = begin
+                    ch_key[n_ch] = phase * n_e + e0
+                    ch_begin[n_ch] = begin
+                    ch_end[n_ch] = tpos
+                    ch_closed[n_ch] = is_closed
+                    n_ch += 1
+        # the chains in the cutter's order: phase, then start edge
+        for ci in np.argsort(ch_key[:n_ch]):
+            begin, end = ch_begin[ci], ch_end[ci]
+            if end - begin < 2:
+                continue
+            if pos + end - begin > cap:
+                cap = 2 * (pos + end - begin)
+                pts2 = np.zeros((cap, 3))
+                nrm2 = np.zeros((cap, 3))
+                eid2 = np.full(cap, -1, np.int64)
+                pts2[:pos] = pts[:pos]
+                nrm2[:pos] = nrm[:pos]
+                eid2[:pos] = eid[:pos]
+                pts, nrm, eid = pts2, nrm2, eid2
+            if n_curves + 2 > len(starts):
+                starts2 = np.zeros(2 * len(starts), np.int64)
+                planes2 = np.zeros(2 * len(starts), np.int64)
+                closed2 = np.zeros(2 * len(starts), np.bool_)
+                starts2[:n_curves] = starts[:n_curves]
+                planes2[:n_curves] = planes[:n_curves]
+                closed2[:n_curves] = closed_out[:n_curves]
+                starts, planes, closed_out = starts2, planes2, closed2
+            starts[n_curves] = pos
+            planes[n_curves] = p
+            closed_out[n_curves] = ch_closed[ci]
+            n_curves += 1
+            pts[pos:pos + end - begin] = tpts[begin:end]
+            nrm[pos:pos + end - begin] = tnrm[begin:end]
+            eid[pos:pos + end - begin] = teid[begin:end]
+            pos += end - begin
     curve_start = np.empty(n_curves + 1, np.int64)
     curve_start[:n_curves] = starts[:n_curves]
     curve_start[n_curves] = pos
@@ -1217,3 +1263,62 @@ def box_submesh(v, faces, edge_faces, face_edges, lo, hi):  # pragma: no cover -
         for k in range(3):
             fe[r, k] = edge_index[face_edges[keep[r], k]]
     return keep, used, ef, fe
+
+
+# ------------------------------------------------------------------------------ per-face passes of the fit
+
+
+@njit(cache=True)
+def triangle_areas(v, faces):  # pragma: no cover - compiled
+    """Areas ``(m,)`` of triangles: ``|(b - a) x (c - a)| / 2`` in numpy's order of operations (the same bits)."""
+    out = np.empty(len(faces))
+    for i in range(len(faces)):
+        a, b, c = faces[i, 0], faces[i, 1], faces[i, 2]
+        ux, uy, uz = v[b, 0] - v[a, 0], v[b, 1] - v[a, 1], v[b, 2] - v[a, 2]
+        wx, wy, wz = v[c, 0] - v[a, 0], v[c, 1] - v[a, 1], v[c, 2] - v[a, 2]
+        cx = uy * wz - uz * wy
+        cy = uz * wx - ux * wz
+        cz = ux * wy - uy * wx
+        out[i] = 0.5 * np.sqrt(cx * cx + cy * cy + cz * cz)
+    return out
+
+
+@njit(cache=True)
+def face_vertices_in_box(v, faces, lo, hi):  # pragma: no cover - compiled
+    """Per vertex: it is a vertex of one of ``faces`` and lies in the box ``[lo, hi]`` ``(n,)``."""
+    used = np.zeros(len(v), np.bool_)
+    for i in range(len(faces)):
+        for k in range(3):
+            used[faces[i, k]] = True
+    for i in range(len(v)):
+        if used[i]:
+            used[i] = (lo[0] <= v[i, 0] <= hi[0]) and (lo[1] <= v[i, 1] <= hi[1]) and (lo[2] <= v[i, 2] <= hi[2])
+    return used
+
+
+@njit(cache=True)
+def faces_within(dist, faces, eps):  # pragma: no cover - compiled
+    """The faces ``(f,)`` (increasing) whose three vertices have ``dist <= eps``."""
+    keep = np.empty(len(faces), np.int64)
+    n = 0
+    for i in range(len(faces)):
+        if dist[faces[i, 0]] <= eps and dist[faces[i, 1]] <= eps and dist[faces[i, 2]] <= eps:
+            keep[n] = i
+            n += 1
+    return keep[:n].copy()
+
+
+@njit(cache=True)
+def boundary_edges_of(faces, edge_faces, face_edges):  # pragma: no cover - compiled
+    """Per face its boundary edges as vertex pairs ``(m, 3, 2)`` (-1 where the edge has two faces).
+
+    The edges in face order ``(0, 1), (1, 2), (2, 0)``, as :attr:`SweepMesh.face_edges`.
+    """
+    out = np.full((len(faces), 3, 2), -1, np.int64)
+    for i in range(len(faces)):
+        for k in range(3):
+            e = face_edges[i, k]
+            if edge_faces[e, 0] < 0 or edge_faces[e, 1] < 0:
+                out[i, k, 0] = faces[i, k]
+                out[i, k, 1] = faces[i, (k + 1) % 3]
+    return out

@@ -34,7 +34,15 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
-from auszug.sweeps._kernels import improve_sums, ring_grid_boxes, ring_grid_nearest
+from auszug.sweeps._kernels import (
+    boundary_edges_of,
+    face_vertices_in_box,
+    faces_within,
+    improve_sums,
+    ring_grid_boxes,
+    ring_grid_nearest,
+    triangle_areas,
+)
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import KinematicAxis
 from auszug.sweeps.mesh import SweepMesh
@@ -155,9 +163,10 @@ def face_areas(vertices: ArrayLike, faces: ArrayLike) -> Array:
     >>> face_areas([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]]).tolist()
     [0.5]
     """
-    v = np.asarray(vertices, float)
-    f = np.asarray(faces, np.int64)
-    return 0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1)
+    v = np.ascontiguousarray(vertices, dtype=float)
+    f = np.ascontiguousarray(faces, dtype=np.int64)
+    out: Array = triangle_areas(v.reshape(-1, 3), f.reshape(-1, 3))    # one compiled pass, numpy's arithmetic
+    return out
 
 
 def closest_distance(points: ArrayLike, vertices: ArrayLike, elements: ArrayLike) -> tuple[Array, Array]:
@@ -208,10 +217,7 @@ class MeshTree:
         again (an edge with one face is a boundary edge).
         """
         tree = cls(mesh.vertices, mesh.faces)
-        f = tree.faces
-        e = np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1)        # (m, 3, 2), as face_edges
-        single: NDArray[np.bool_] = np.any(mesh.edge_faces[mesh.face_edges] < 0, axis=2)     # (m, 3)
-        tree._bnd = np.where(single[:, :, None], e, -1)
+        tree._bnd = boundary_edges_of(tree.faces, mesh.edge_faces, mesh.face_edges)     # one compiled pass
         return tree
 
     def query(self, points: ArrayLike) -> tuple[Array, IntArray, Array]:
@@ -645,14 +651,11 @@ def swept_coverage(mesh: SweepMesh, err: SweptError, eps: float, areas: Array | 
     """
     sv = err.vertices
     lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
-    inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
-    used = np.zeros(mesh.n_vertices, bool)      # only the vertices of the mesh's faces (it may be a part)
-    used[mesh.faces.reshape(-1)] = True
-    inside &= used
+    # only the vertices of the mesh's faces (it may be a part) in the box: one compiled pass
+    inside = face_vertices_in_box(mesh.vertices, mesh.faces, lo, hi)
     dv = np.full(mesh.n_vertices, np.inf)
     dv[inside] = err.tree.query(mesh.vertices[inside], eps)[0]
-    near = dv <= eps
-    faces = np.flatnonzero(near[mesh.faces].all(axis=1)).astype(np.int64)
+    faces = faces_within(dv, mesh.faces, float(eps))
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     total = float(a.sum())
     cov = float(a[faces].sum() / total) if total > 0 else 0.0

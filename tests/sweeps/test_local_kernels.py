@@ -287,3 +287,21 @@ def test_face_passes_of_the_fit_are_their_numpy_definitions():
     whole = _mesh(hole=True)
     counted = MeshTree(whole.vertices, whole.faces)._boundary_edges()
     assert np.array_equal(MeshTree.of(whole)._bnd, counted) and (counted >= 0).any()
+
+
+@pytest.mark.parametrize("closed", [False, True])
+def test_ring_tree_within_is_its_distance_within_the_bound(closed):
+    """RingTree.within stops at the first triangle within the bound: the same answer as the nearest distance."""
+    rng = np.random.default_rng(21)
+    k, n = 31, 19
+    t = np.linspace(0.0, 1.0, k)[:, None]
+    a = np.linspace(0.0, 2 * np.pi if closed else 2.5, n, endpoint=not closed)[None, :]
+    rings = np.stack([np.cos(a) * (0.3 + 0.1 * t), np.sin(a) * (0.3 + 0.1 * t), t + 0.05 * np.sin(3 * a)], axis=2)
+    tree = RingTree(rings, closed)
+    pts = rings.reshape(-1, 3)[rng.integers(0, k * n, 3000)] + rng.normal(size=(3000, 3)) * 0.01
+    for bound in (0.002, 0.01, 0.03):
+        want = tree.query(pts, bound)[0] <= bound
+        got = tree.within(pts, bound)
+        assert np.array_equal(got, want) and 0 < got.sum() < len(pts)
+    # a point of the surface is within a zero bound
+    assert tree.within(rings[3, 4][None], 0.0)[0]

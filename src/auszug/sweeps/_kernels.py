@@ -941,6 +941,92 @@ def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma:
     return dist, face, cp
 
 
+@njit(cache=True)
+def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: no cover - compiled
+    """Whether each point's distance to the triangulated ring grid is at most ``bound`` ``(q,)``.
+
+    The same as ``ring_grid_nearest(..., bound)[0] <= bound``: a point is within when a triangle's
+    squared distance (:func:`_triangle_closest`, as there) is at most ``bound ** 2`` and its square
+    root at most ``bound`` (the nearest triangle's is the smallest). The search stops at the first
+    such triangle: the previous point's first (points in order along a surface), then the box
+    levels depth first, nearer children first, pruning boxes farther than ``bound``.
+    """
+    n = rings.shape[1]
+    m = n if closed else n - 1
+    n_lev = len(shape)
+    q = len(points)
+    out = np.zeros(q, np.bool_)
+    stack_l = np.empty(4 * n_lev + 4, np.int64)
+    stack_i = np.empty(4 * n_lev + 4, np.int64)
+    stack_j = np.empty(4 * n_lev + 4, np.int64)
+    cd = np.empty(4)
+    ci_ = np.empty(4, np.int64)
+    cj_ = np.empty(4, np.int64)
+    b2 = bound * bound
+    last = -1
+    top = n_lev - 1
+    for p in range(q):
+        px, py, pz = points[p, 0], points[p, 1], points[p, 2]
+        if _box_sq(px, py, pz, box, off[top]) > b2:
+            continue
+        hit = -1
+        if last >= 0:
+            qd = last // 2
+            i, j, t = qd // m, qd % m, last % 2
+            j1 = (j + 1) % n
+            a0 = rings[i, j]
+            if t == 0:
+                b0, c0 = rings[i, j1], rings[i + 1, j1]
+            else:
+                b0, c0 = rings[i + 1, j1], rings[i + 1, j]
+            d2 = _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2], c0[0], c0[1], c0[2])[0]
+            if d2 <= b2 and np.sqrt(d2) <= bound:
+                hit = last
+        sp = 0
+        if hit < 0:
+            stack_l[0], stack_i[0], stack_j[0] = top, 0, 0
+            sp = 1
+        while sp > 0 and hit < 0:
+            sp -= 1
+            lv, i, j = stack_l[sp], stack_i[sp], stack_j[sp]
+            if _box_sq(px, py, pz, box, off[lv] + i * shape[lv, 1] + j) > b2:
+                continue
+            if lv == 0:
+                j1 = (j + 1) % n
+                for t in range(2):
+                    a0 = rings[i, j]
+                    if t == 0:
+                        b0, c0 = rings[i, j1], rings[i + 1, j1]
+                    else:
+                        b0, c0 = rings[i + 1, j1], rings[i + 1, j]
+                    d2 = _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2],
+                                           c0[0], c0[1], c0[2])[0]
+                    if d2 <= b2 and np.sqrt(d2) <= bound:
+                        hit = 2 * (i * m + j) + t
+                        break
+                continue
+            nc = 0
+            pa, pb = shape[lv - 1, 0], shape[lv - 1, 1]
+            for ci in range(2 * i, min(2 * i + 2, pa)):
+                for cj in range(2 * j, min(2 * j + 2, pb)):
+                    d = _box_sq(px, py, pz, box, off[lv - 1] + ci * pb + cj)
+                    if d > b2:
+                        continue
+                    h = nc
+                    while h > 0 and cd[h - 1] < d:     # sorted far to near
+                        cd[h], ci_[h], cj_[h] = cd[h - 1], ci_[h - 1], cj_[h - 1]
+                        h -= 1
+                    cd[h], ci_[h], cj_[h] = d, ci, cj
+                    nc += 1
+            for h in range(nc):
+                stack_l[sp], stack_i[sp], stack_j[sp] = lv - 1, ci_[h], cj_[h]
+                sp += 1
+        if hit >= 0:
+            out[p] = True
+            last = hit
+    return out
+
+
 # ------------------------------------------------------------------------- local cuts (near given boxes)
 
 

@@ -41,6 +41,7 @@ from auszug.sweeps._kernels import (
     improve_sums,
     ring_grid_boxes,
     ring_grid_nearest,
+    ring_grid_within,
     triangle_areas,
 )
 from auszug.sweeps.cut import cut
@@ -336,6 +337,18 @@ class RingTree:
             return np.zeros(0), np.zeros(0, np.int64), np.zeros((0, 3))
         d, f, c = ring_grid_nearest(self.rings, self.closed, self._box, self._off, self._shape, p, float(bound))
         return d, f, c
+
+    def within(self, points: ArrayLike, bound: float) -> NDArray[np.bool_]:
+        """Whether each point ``(q, 3)`` is within ``bound`` of the surface: ``query(points, bound)[0] <= bound``.
+
+        The search for a point stops at the first triangle within ``bound``.
+        """
+        p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
+        if len(p) == 0:
+            return np.zeros(0, bool)
+        out: NDArray[np.bool_] = ring_grid_within(self.rings, self.closed, self._box, self._off, self._shape, p,
+                                                  float(bound))
+        return out
 
 
 def polyline_hausdorff(a: ArrayLike, b: ArrayLike, closed_a: bool = False, closed_b: bool = False) -> float:
@@ -643,18 +656,24 @@ def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: 
     return SweptError(sv, swept, err)
 
 
-def swept_coverage(mesh: SweepMesh, err: SweptError, eps: float, areas: Array | None = None) -> Fit:
+def swept_coverage(mesh: SweepMesh, err: SweptError, eps: float, areas: Array | None = None,
+                   distances: bool = True) -> Fit:
     """The mesh faces within ``eps`` of a swept surface and their share of the area (the second half).
 
     Only the vertices in the swept surface's box grown by ``eps`` are queried (the others are
-    farther than ``eps``), each within ``eps`` (:meth:`RingTree.query` with that bound).
+    farther than ``eps``), each within ``eps`` (:meth:`RingTree.query` with that bound). With
+    ``distances`` False only whether each vertex is within ``eps`` is found (:meth:`RingTree.within`,
+    the same faces): the fit's ``vertex_distance`` is then 0 there instead of the distance.
     """
     sv = err.vertices
     lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
     # only the vertices of the mesh's faces (it may be a part) in the box: one compiled pass
     inside = face_vertices_in_box(mesh.vertices, mesh.faces, lo, hi)
     dv = np.full(mesh.n_vertices, np.inf)
-    dv[inside] = err.tree.query(mesh.vertices[inside], eps)[0]
+    if distances:
+        dv[inside] = err.tree.query(mesh.vertices[inside], eps)[0]
+    else:
+        dv[inside] = np.where(err.tree.within(mesh.vertices[inside], eps), 0.0, np.inf)
     faces = faces_within(dv, mesh.faces, float(eps))
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     total = float(a.sum())

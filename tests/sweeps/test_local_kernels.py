@@ -305,3 +305,35 @@ def test_ring_tree_within_is_its_distance_within_the_bound(closed):
         assert np.array_equal(got, want) and 0 < got.sum() < len(pts)
     # a point of the surface is within a zero bound
     assert tree.within(rings[3, 4][None], 0.0)[0]
+
+
+@pytest.mark.parametrize("swap", [False, True])
+def test_cut_near_gives_the_closed_loops_of_a_tube_as_the_cutter(swap):
+    """Closed cut curves (a tube cut across), walked from their smallest edge in the cutter's direction.
+
+    cut_near emits a component from the order of its first walk (its seed, then each way round);
+    the cutter's direction from the start edge depends on which face it enters first, so both
+    orders of every edge's faces are tried, with the tube's true planes and some at random.
+    """
+    from dataclasses import replace
+
+    from auszug.sweeps.fixtures import closed_along_cubic
+
+    fx = closed_along_cubic(n_profile=24, n_path=48, n_planes=12)
+    mesh = normalise(fx.vertices, fx.faces)
+    if swap:
+        mesh = replace(mesh, edge_faces=np.ascontiguousarray(mesh.edge_faces[:, ::-1]))
+    planes = np.asarray(fx.planes, float)       # the true profile planes, to normalised coordinates
+    n_true = planes[:, :3]
+    d_true = (planes[:, 3] - n_true @ mesh.centre) / mesh.scale
+    rng = np.random.default_rng(6)
+    centre = mesh.vertices[rng.integers(0, len(mesh.vertices), 30)]
+    n = rng.normal(size=(30, 3))
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    n = np.vstack([n_true, n])
+    d = np.r_[d_true, np.einsum("ij,ij->i", n[len(planes):], centre)]
+    whole = cut(mesh, n, d)
+    near = cut_near(mesh, n, d, np.tile([-1.0, -1, -1, 1, 1, 1], (len(d), 1)))
+    for name in ("points", "normals", "edges", "curve_start", "curve_plane", "curve_closed"):
+        assert np.array_equal(getattr(near, name), getattr(whole, name)), name
+    assert whole.curve_closed.sum() >= 5 and (~whole.curve_closed).sum() >= 5

@@ -1116,6 +1116,52 @@ def _emit_local(v, vn, edges, e, nx, ny, nz, d, pts, nrm, eid, pos, begin):  # p
 
 
 @njit(cache=True)
+def _chain_from(comp, comp_face, a, b, na, loop, edge_faces, s):  # pragma: no cover - compiled
+    """The cutter's walk from edge ``s`` over a component found by :func:`cut_near`'s first walk, or an empty array.
+
+    The component is ``comp[a:b]``: its seed, then the ``na`` edges walked through the seed's
+    first face, then those through its second (``comp_face``: the face between each edge and the
+    one before it). The cutter's walk from ``s`` enters the first face of ``s`` that it has
+    (:func:`_step_face`) and follows the chain; where it takes in the whole component (``s`` an
+    end of an open chain, or any edge of a loop), its edges in walk order; else (``s`` inside an
+    open chain) an empty array, and the caller walks the mesh.
+    """
+    size = b - a
+    out = np.empty(size, np.int64)
+    if loop:           # comp[a:b] is the loop in order; comp_face[a + j] between comp[a + j - 1] and comp[a + j]
+        j = 0
+        while comp[a + j] != s:
+            j += 1
+        f0 = edge_faces[s, 0] if edge_faces[s, 0] >= 0 else edge_faces[s, 1]
+        ahead = comp_face[a + j + 1] if j + 1 < size else edge_faces[comp[a], 1]
+        for k in range(size):
+            out[k] = comp[a + (j + k) % size] if f0 == ahead else comp[a + (j - k) % size]
+        return out
+    nb = size - 1 - na
+    end_a = comp[a + na]            # the seed itself when na == 0
+    end_b = comp[b - 1] if nb > 0 else comp[a]
+    k = 0
+    if s == end_b:                  # the second walk's edges back to the seed, then the first walk's
+        for q in range(b - 1, a, -1):
+            if q > a + na:
+                out[k] = comp[q]
+                k += 1
+        for q in range(a, a + na + 1):
+            out[k] = comp[q]
+            k += 1
+        return out
+    if s == end_a:
+        for q in range(a + na, a - 1, -1):
+            out[k] = comp[q]
+            k += 1
+        for q in range(a + na + 1, b):
+            out[k] = comp[q]
+            k += 1
+        return out
+    return np.empty(0, np.int64)
+
+
+@njit(cache=True)
 def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_start, grid_edges, h, longest, pn, pd,
              boxes):  # pragma: no cover - compiled
     """The cut curves of each plane that cross its box ``boxes[p] (6,)`` (min, max), as :func:`cut_fill` gives them.
@@ -1144,6 +1190,7 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
     stamp = np.zeros(len(edges), np.int64)      # plane + 1 where an edge's curve is found
     seen = np.zeros(len(edges), np.int64)       # plane + 1 where the cutter's walk passed
     comp = np.empty(len(edges), np.int64)
+    comp_face = np.empty(len(edges), np.int64)
     tpts = np.zeros((1024, 3))                  # the plane's chains as walked
     tnrm = np.zeros((1024, 3))
     teid = np.full(1024, -1, np.int64)
@@ -1162,6 +1209,10 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
             i1[ax] = min(grid_dims[ax] - 1, int(np.floor((boxes[p, 3 + ax] + g - grid_lo[ax]) / h)))
         # the components (curves) met, as lists of their crossed edges
         comp_start = [0]
+        comp_na = [0]           # per component: the edges of its walk through the seed's first face
+        comp_loop = [False]     # per component: a closed loop
+        comp_na.pop()
+        comp_loop.pop()
         n_comp_edges = 0
         half = 0.5 * h + g
         reach = half * (abs(nx) + abs(ny) + abs(nz))
@@ -1181,18 +1232,25 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
                         # walk both ways from e0 to collect its curve's crossed edges
                         stamp[e0] = mark
                         comp[n_comp_edges] = e0
+                        comp_face[n_comp_edges] = -1
                         n_comp_edges += 1
+                        loop = False
                         for side in range(2):
                             e, f = e0, edge_faces[e0, side]
                             while f >= 0:
                                 nxt = _other_crossed(v, edges, face_edges, f, e, nx, ny, nz, d)
                                 if nxt < 0 or stamp[nxt] == mark:
+                                    loop = loop or (side == 0 and nxt >= 0)
                                     break
                                 stamp[nxt] = mark
                                 comp[n_comp_edges] = nxt
+                                comp_face[n_comp_edges] = f          # the face between it and the edge before
                                 n_comp_edges += 1
                                 f = edge_faces[nxt, 1] if edge_faces[nxt, 0] == f else edge_faces[nxt, 0]
                                 e = nxt
+                            if side == 0:
+                                comp_na.append(n_comp_edges - comp_start[-1] - 1)
+                        comp_loop.append(loop)
                         comp_start.append(n_comp_edges)
         # the cutter's walk on each component's edges, each chain emitted as it is walked (into the plane's
         # buffer); chains keyed by (phase, start edge). A component is one chain of crossed edges: the
@@ -1246,19 +1304,30 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
                         ch_closed2[:n_ch] = ch_closed[:n_ch]
                         ch_key, ch_begin, ch_end, ch_closed = ch_key2, ch_begin2, ch_end2, ch_closed2
                     begin = tpos
-                    e, prev = e0, -1
                     is_closed = False
-                    while True:
-                        seen[e] = mark
-                        walked += 1
-                        tpos = _emit_local(v, vn, edges, e, nx, ny, nz, d, tpts, tnrm, teid, tpos, begin)
-                        f, g2 = _step_face(v, edges, edge_faces, face_edges, e, prev, nx, ny, nz, d)
-                        if g2 < 0:
-                            break
-                        if seen[g2] == mark:
-                            is_closed = g2 == e0
-                            break
-                        prev, e = f, g2
+                    seq = _chain_from(comp, comp_face, comp_start[r], comp_start[r + 1], comp_na[r], comp_loop[r],
+                                      edge_faces, e0) if stage == 0 else np.empty(0, np.int64)
+                    if len(seq):
+                        # the walk from e0 takes in the whole component: its edges in walk order, as walked
+                        for qq in range(len(seq)):
+                            e = seq[qq]
+                            seen[e] = mark
+                            walked += 1
+                            tpos = _emit_local(v, vn, edges, e, nx, ny, nz, d, tpts, tnrm, teid, tpos, begin)
+                        is_closed = comp_loop[r]
+                    else:
+                        e, prev = e0, -1
+                        while True:
+                            seen[e] = mark
+                            walked += 1
+                            tpos = _emit_local(v, vn, edges, e, nx, ny, nz, d, tpts, tnrm, teid, tpos, begin)
+                            f, g2 = _step_face(v, edges, edge_faces, face_edges, e, prev, nx, ny, nz, d)
+                            if g2 < 0:
+                                break
+                            if seen[g2] == mark:
+                                is_closed = g2 == e0
+                                break
+                            prev, e = f, g2
                     ch_key[n_ch] = phase * n_e + e0
                     ch_begin[n_ch] = begin
                     ch_end[n_ch] = tpos

@@ -337,3 +337,21 @@ def test_cut_near_gives_the_closed_loops_of_a_tube_as_the_cutter(swap):
     for name in ("points", "normals", "edges", "curve_start", "curve_plane", "curve_closed"):
         assert np.array_equal(getattr(near, name), getattr(whole, name)), name
     assert whole.curve_closed.sum() >= 5 and (~whole.curve_closed).sum() >= 5
+
+
+def test_mesh_tree_answers_the_same_points_again_from_its_last_query():
+    mesh = _mesh(hole=True)
+    tree = MeshTree.of(mesh)
+    rng = np.random.default_rng(9)
+    a = mesh.vertices[rng.integers(0, len(mesh.vertices), 200)] + rng.normal(size=(200, 3)) * 0.01
+    b = a + 0.003
+    first = tree.query(a)
+    first[0][:] = -1.0                      # the caller's copy: the kept answer is not touched
+    again = tree.query(a.copy())
+    fresh = MeshTree.of(mesh).query(a)
+    other = tree.query(b)
+    for x, y in zip(again, fresh, strict=True):
+        assert np.array_equal(x, y)
+    for x, y in zip(other, MeshTree.of(mesh).query(b), strict=True):
+        assert np.array_equal(x, y)
+    assert not np.array_equal(other[2], again[2])

@@ -222,12 +222,21 @@ class MeshTree:
         return tree
 
     def query(self, points: ArrayLike) -> tuple[Array, IntArray, Array]:
-        """Distances ``(n,)``, closest faces ``(n,)`` and closest points ``(n, 3)``."""
+        """Distances ``(n,)``, closest faces ``(n,)`` and closest points ``(n, 3)``.
+
+        The last query is kept: the same points again (a family's ribs, asked first whether a grown
+        patch holds them, then for their normals) get copies of its answer.
+        """
         p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
         if len(p) == 0:
             return np.zeros(0), np.zeros(0, np.int64), np.zeros((0, 3))
+        last = self.__dict__.get("_last")
+        if last is not None and last[0].shape == p.shape and np.array_equal(last[0], p):
+            return last[1].copy(), last[2].copy(), last[3].copy()
         sq, face, c = self._tree.squared_distance(self.vertices, self.faces, p)
-        return np.sqrt(np.maximum(sq, 0.0)), np.asarray(face, np.int64), np.asarray(c)
+        out = np.sqrt(np.maximum(sq, 0.0)), np.asarray(face, np.int64), np.asarray(c)
+        self._last = (p.copy(), out[0].copy(), out[1].copy(), out[2].copy())
+        return out
 
     def _boundary_edges(self) -> IntArray:
         """Per face its boundary edges as vertex pairs ``(m, 3, 2)`` (-1 where the edge is inner)."""

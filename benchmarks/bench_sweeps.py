@@ -22,7 +22,11 @@ faster on this machine: 14.3 s and 11.7 s.
 Times are the minimum of ``--reps`` in-process runs after a warm-up run (numba compiles, or
 loads its on-disk cache, on the first call).
 
-Usage: python benchmarks/bench_sweeps.py [--reps N] [--quick]
+With ``--build-only`` only row 3 (not grown) runs: the motion stage ``--reps`` times (after a
+warm-up), printing each run's wall and CPU time (``time.process_time``, all threads) per sweep and
+their medians; the machine is shared, so compare old and new code in the same minutes.
+
+Usage: python benchmarks/bench_sweeps.py [--reps N] [--quick] [--build-only]
 """
 
 from __future__ import annotations
@@ -68,11 +72,42 @@ def spacing_for(vertices, frequency, target):
     return hi
 
 
+def build_only(mesh, params, spacing, n_families, reps):
+    """Row 3 alone: the motion stage of ``general_stages`` (not grown), ``reps`` timed runs after a warm-up."""
+    from auszug.sweeps.general import general_stages
+
+    c0 = cut(mesh, *initial_planes(mesh.vertices, params.sphere_frequency, spacing))
+    mv0 = movability(c0, params)
+    pb = params.with_(max_families=n_families, eps_prox=0.005, grow=False)
+    cpu0 = {}
+
+    def step(name):
+        if name == "motion":
+            cpu0["t"] = time.process_time()
+        return time.perf_counter()
+
+    general_stages(mesh, c0, mv0, pb, step)
+    walls, cpus, n = [], [], 0
+    for _ in range(reps):
+        pats, stages = general_stages(mesh, c0, mv0, pb, step)
+        cpu = time.process_time() - cpu0["t"]
+        n = max(len(pats), 1)
+        walls.append(stages[-1].seconds / n)
+        cpus.append(cpu / n)
+        print(f"build: {len(pats)} sweeps, {stages[-1].seconds:.3f} s wall ({walls[-1]:.4f} s each), "
+              f"{cpu:.3f} s CPU ({cpus[-1]:.4f} s each), load {os.getloadavg()[0]:.2f}", flush=True)
+    print(f"median per sweep: {np.median(walls):.4f} s wall, {np.median(cpus):.4f} s CPU "
+          f"({0.566 / np.median(walls):.1f}x the paper's 0.566 s by wall clock; goal 20x: 0.0283 s); "
+          f"fit errors {', '.join(f'{p.fit_error:.3e}' for p in pats)}")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--quick", action="store_true", help="8k vertices instead of 32k")
     ap.add_argument("--families", type=int, default=24, help="sweeps to build in row 3 (default 24)")
+    ap.add_argument("--build-only", action="store_true",
+                    help="time only the build (row 3, not grown): --reps runs, each and the median")
     args = ap.parse_args(argv)
     n_prof, n_path = (64, 128) if args.quick else (128, 256)
     fx = moulding_along_cubic(n_profile=n_prof, n_path=n_path, sigma=5e-4)
@@ -80,6 +115,9 @@ def main(argv=None):
     spacing = spacing_for(mesh.vertices, DEFAULT.sphere_frequency, 1452)
     params = DEFAULT.with_(offset_spacing=spacing, percentile=1.0, refinements=3)
     n_ini = len(initial_planes(mesh.vertices, params.sphere_frequency, spacing)[1])
+    if args.build_only:
+        build_only(mesh, params, spacing, args.families, args.reps)
+        return
     print(f"machine: {platform.machine()}, {os.cpu_count()} cores (shared), load {os.getloadavg()[0]:.1f}; "
           f"numba threads {os.environ.get('NUMBA_NUM_THREADS', 'default')}")
     print(f"mesh: general sweep (cubic path, 120 deg twist, sigma 5e-4), {mesh.n_vertices} vertices, "

@@ -233,3 +233,125 @@ def test_closest_on_plane_curves_is_the_curve_by_curve_search():
         want = _closest_on_cut_reference(c, plane, target)
         for g, w in zip(got, want, strict=True):
             assert np.array_equal(g, w)
+
+
+def test_cut_near_where_the_cutter_starts_a_chain_inside_it_is_the_whole_cut():
+    """Every edge's faces swapped: an open chain's end edges have their one face in the second slot.
+
+    The cutter then starts each open chain at its smallest edge (its phase 1), mostly an inner
+    edge, and the walk from it covers only one side: the chain comes out as two curves. cut_near
+    walks the first chain of a component at once and the rest in the cutter's sorted order; it
+    must still give the whole cut bit for bit.
+    """
+    from dataclasses import replace
+
+    mesh = _mesh(hole=True)
+    ef = mesh.edge_faces[:, ::-1].copy()
+    swapped = replace(mesh, edge_faces=np.ascontiguousarray(ef))
+    rng = np.random.default_rng(5)
+    n = rng.normal(size=(40, 3))
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    d = rng.uniform(-0.2, 0.2, 40)
+    whole = cut(swapped, n, d)
+    near = cut_near(swapped, n, d, np.tile([-1.0, -1, -1, 1, 1, 1], (40, 1)))
+    for name in ("points", "normals", "edges", "curve_start", "curve_plane", "curve_closed"):
+        assert np.array_equal(getattr(near, name), getattr(whole, name)), name
+    # the case in question occurs: open curves that start on an edge with two faces
+    first = whole.edges[whole.curve_start[:-1]]
+    inner_start = (swapped.edge_faces[first] >= 0).all(axis=1) & ~whole.curve_closed
+    assert inner_start.sum() >= 5
+
+
+def test_face_passes_of_the_fit_are_their_numpy_definitions():
+    """Triangle areas (bit for bit), the box's face vertices, the covered faces, the boundary edges."""
+    from auszug.sweeps.general import _around
+    from auszug.sweeps.patches import face_areas
+
+    rng = np.random.default_rng(8)
+    for scale in (1e-3, 1.0, 1e3):
+        v = rng.normal(size=(500, 3)) * scale
+        f = rng.integers(0, 500, size=(2000, 3))
+        want = 0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1)
+        assert np.array_equal(face_areas(v, f), want)
+    mesh = _around(_mesh(hole=True), _mesh(hole=True).vertices[:700], 0.05)[0]     # a part: not every vertex used
+    lo, hi = np.array([-0.2, -0.3, -0.1]), np.array([0.1, 0.2, 0.3])
+    used = np.zeros(len(mesh.vertices), bool)
+    used[mesh.faces.reshape(-1)] = True
+    want_in = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1) & used
+    got_in = _kernels.face_vertices_in_box(mesh.vertices, mesh.faces, lo, hi)
+    assert np.array_equal(got_in, want_in) and 0 < got_in.sum() < used.sum()
+    dist = np.where(rng.uniform(size=len(mesh.vertices)) < 0.7, rng.uniform(0, 0.01, len(mesh.vertices)), np.inf)
+    want_f = np.flatnonzero((dist[mesh.faces] <= 0.005).all(axis=1))
+    assert np.array_equal(_kernels.faces_within(dist, mesh.faces, 0.005), want_f) and len(want_f) > 0
+    # boundary edges from the topology, against counting each edge's faces
+    whole = _mesh(hole=True)
+    counted = MeshTree(whole.vertices, whole.faces)._boundary_edges()
+    assert np.array_equal(MeshTree.of(whole)._bnd, counted) and (counted >= 0).any()
+
+
+@pytest.mark.parametrize("closed", [False, True])
+def test_ring_tree_within_is_its_distance_within_the_bound(closed):
+    """RingTree.within stops at the first triangle within the bound: the same answer as the nearest distance."""
+    rng = np.random.default_rng(21)
+    k, n = 31, 19
+    t = np.linspace(0.0, 1.0, k)[:, None]
+    a = np.linspace(0.0, 2 * np.pi if closed else 2.5, n, endpoint=not closed)[None, :]
+    rings = np.stack([np.cos(a) * (0.3 + 0.1 * t), np.sin(a) * (0.3 + 0.1 * t), t + 0.05 * np.sin(3 * a)], axis=2)
+    tree = RingTree(rings, closed)
+    pts = rings.reshape(-1, 3)[rng.integers(0, k * n, 3000)] + rng.normal(size=(3000, 3)) * 0.01
+    for bound in (0.002, 0.01, 0.03):
+        want = tree.query(pts, bound)[0] <= bound
+        got = tree.within(pts, bound)
+        assert np.array_equal(got, want) and 0 < got.sum() < len(pts)
+    # a point of the surface is within a zero bound
+    assert tree.within(rings[3, 4][None], 0.0)[0]
+
+
+@pytest.mark.parametrize("swap", [False, True])
+def test_cut_near_gives_the_closed_loops_of_a_tube_as_the_cutter(swap):
+    """Closed cut curves (a tube cut across), walked from their smallest edge in the cutter's direction.
+
+    cut_near emits a component from the order of its first walk (its seed, then each way round);
+    the cutter's direction from the start edge depends on which face it enters first, so both
+    orders of every edge's faces are tried, with the tube's true planes and some at random.
+    """
+    from dataclasses import replace
+
+    from auszug.sweeps.fixtures import closed_along_cubic
+
+    fx = closed_along_cubic(n_profile=24, n_path=48, n_planes=12)
+    mesh = normalise(fx.vertices, fx.faces)
+    if swap:
+        mesh = replace(mesh, edge_faces=np.ascontiguousarray(mesh.edge_faces[:, ::-1]))
+    planes = np.asarray(fx.planes, float)       # the true profile planes, to normalised coordinates
+    n_true = planes[:, :3]
+    d_true = (planes[:, 3] - n_true @ mesh.centre) / mesh.scale
+    rng = np.random.default_rng(6)
+    centre = mesh.vertices[rng.integers(0, len(mesh.vertices), 30)]
+    n = rng.normal(size=(30, 3))
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    n = np.vstack([n_true, n])
+    d = np.r_[d_true, np.einsum("ij,ij->i", n[len(planes):], centre)]
+    whole = cut(mesh, n, d)
+    near = cut_near(mesh, n, d, np.tile([-1.0, -1, -1, 1, 1, 1], (len(d), 1)))
+    for name in ("points", "normals", "edges", "curve_start", "curve_plane", "curve_closed"):
+        assert np.array_equal(getattr(near, name), getattr(whole, name)), name
+    assert whole.curve_closed.sum() >= 5 and (~whole.curve_closed).sum() >= 5
+
+
+def test_mesh_tree_answers_the_same_points_again_from_its_last_query():
+    mesh = _mesh(hole=True)
+    tree = MeshTree.of(mesh)
+    rng = np.random.default_rng(9)
+    a = mesh.vertices[rng.integers(0, len(mesh.vertices), 200)] + rng.normal(size=(200, 3)) * 0.01
+    b = a + 0.003
+    first = tree.query(a)
+    first[0][:] = -1.0                      # the caller's copy: the kept answer is not touched
+    again = tree.query(a.copy())
+    fresh = MeshTree.of(mesh).query(a)
+    other = tree.query(b)
+    for x, y in zip(again, fresh, strict=True):
+        assert np.array_equal(x, y)
+    for x, y in zip(other, MeshTree.of(mesh).query(b), strict=True):
+        assert np.array_equal(x, y)
+    assert not np.array_equal(other[2], again[2])

@@ -941,6 +941,92 @@ def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma:
     return dist, face, cp
 
 
+@njit(cache=True)
+def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: no cover - compiled
+    """Whether each point's distance to the triangulated ring grid is at most ``bound`` ``(q,)``.
+
+    The same as ``ring_grid_nearest(..., bound)[0] <= bound``: a point is within when a triangle's
+    squared distance (:func:`_triangle_closest`, as there) is at most ``bound ** 2`` and its square
+    root at most ``bound`` (the nearest triangle's is the smallest). The search stops at the first
+    such triangle: the previous point's first (points in order along a surface), then the box
+    levels depth first, nearer children first, pruning boxes farther than ``bound``.
+    """
+    n = rings.shape[1]
+    m = n if closed else n - 1
+    n_lev = len(shape)
+    q = len(points)
+    out = np.zeros(q, np.bool_)
+    stack_l = np.empty(4 * n_lev + 4, np.int64)
+    stack_i = np.empty(4 * n_lev + 4, np.int64)
+    stack_j = np.empty(4 * n_lev + 4, np.int64)
+    cd = np.empty(4)
+    ci_ = np.empty(4, np.int64)
+    cj_ = np.empty(4, np.int64)
+    b2 = bound * bound
+    last = -1
+    top = n_lev - 1
+    for p in range(q):
+        px, py, pz = points[p, 0], points[p, 1], points[p, 2]
+        if _box_sq(px, py, pz, box, off[top]) > b2:
+            continue
+        hit = -1
+        if last >= 0:
+            qd = last // 2
+            i, j, t = qd // m, qd % m, last % 2
+            j1 = (j + 1) % n
+            a0 = rings[i, j]
+            if t == 0:
+                b0, c0 = rings[i, j1], rings[i + 1, j1]
+            else:
+                b0, c0 = rings[i + 1, j1], rings[i + 1, j]
+            d2 = _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2], c0[0], c0[1], c0[2])[0]
+            if d2 <= b2 and np.sqrt(d2) <= bound:
+                hit = last
+        sp = 0
+        if hit < 0:
+            stack_l[0], stack_i[0], stack_j[0] = top, 0, 0
+            sp = 1
+        while sp > 0 and hit < 0:
+            sp -= 1
+            lv, i, j = stack_l[sp], stack_i[sp], stack_j[sp]
+            if _box_sq(px, py, pz, box, off[lv] + i * shape[lv, 1] + j) > b2:
+                continue
+            if lv == 0:
+                j1 = (j + 1) % n
+                for t in range(2):
+                    a0 = rings[i, j]
+                    if t == 0:
+                        b0, c0 = rings[i, j1], rings[i + 1, j1]
+                    else:
+                        b0, c0 = rings[i + 1, j1], rings[i + 1, j]
+                    d2 = _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2],
+                                           c0[0], c0[1], c0[2])[0]
+                    if d2 <= b2 and np.sqrt(d2) <= bound:
+                        hit = 2 * (i * m + j) + t
+                        break
+                continue
+            nc = 0
+            pa, pb = shape[lv - 1, 0], shape[lv - 1, 1]
+            for ci in range(2 * i, min(2 * i + 2, pa)):
+                for cj in range(2 * j, min(2 * j + 2, pb)):
+                    d = _box_sq(px, py, pz, box, off[lv - 1] + ci * pb + cj)
+                    if d > b2:
+                        continue
+                    h = nc
+                    while h > 0 and cd[h - 1] < d:     # sorted far to near
+                        cd[h], ci_[h], cj_[h] = cd[h - 1], ci_[h - 1], cj_[h - 1]
+                        h -= 1
+                    cd[h], ci_[h], cj_[h] = d, ci, cj
+                    nc += 1
+            for h in range(nc):
+                stack_l[sp], stack_i[sp], stack_j[sp] = lv - 1, ci_[h], cj_[h]
+                sp += 1
+        if hit >= 0:
+            out[p] = True
+            last = hit
+    return out
+
+
 # ------------------------------------------------------------------------- local cuts (near given boxes)
 
 
@@ -1030,6 +1116,52 @@ def _emit_local(v, vn, edges, e, nx, ny, nz, d, pts, nrm, eid, pos, begin):  # p
 
 
 @njit(cache=True)
+def _chain_from(comp, comp_face, a, b, na, loop, edge_faces, s):  # pragma: no cover - compiled
+    """The cutter's walk from edge ``s`` over a component found by :func:`cut_near`'s first walk, or an empty array.
+
+    The component is ``comp[a:b]``: its seed, then the ``na`` edges walked through the seed's
+    first face, then those through its second (``comp_face``: the face between each edge and the
+    one before it). The cutter's walk from ``s`` enters the first face of ``s`` that it has
+    (:func:`_step_face`) and follows the chain; where it takes in the whole component (``s`` an
+    end of an open chain, or any edge of a loop), its edges in walk order; else (``s`` inside an
+    open chain) an empty array, and the caller walks the mesh.
+    """
+    size = b - a
+    out = np.empty(size, np.int64)
+    if loop:           # comp[a:b] is the loop in order; comp_face[a + j] between comp[a + j - 1] and comp[a + j]
+        j = 0
+        while comp[a + j] != s:
+            j += 1
+        f0 = edge_faces[s, 0] if edge_faces[s, 0] >= 0 else edge_faces[s, 1]
+        ahead = comp_face[a + j + 1] if j + 1 < size else edge_faces[comp[a], 1]
+        for k in range(size):
+            out[k] = comp[a + (j + k) % size] if f0 == ahead else comp[a + (j - k) % size]
+        return out
+    nb = size - 1 - na
+    end_a = comp[a + na]            # the seed itself when na == 0
+    end_b = comp[b - 1] if nb > 0 else comp[a]
+    k = 0
+    if s == end_b:                  # the second walk's edges back to the seed, then the first walk's
+        for q in range(b - 1, a, -1):
+            if q > a + na:
+                out[k] = comp[q]
+                k += 1
+        for q in range(a, a + na + 1):
+            out[k] = comp[q]
+            k += 1
+        return out
+    if s == end_a:
+        for q in range(a + na, a - 1, -1):
+            out[k] = comp[q]
+            k += 1
+        for q in range(a + na + 1, b):
+            out[k] = comp[q]
+            k += 1
+        return out
+    return np.empty(0, np.int64)
+
+
+@njit(cache=True)
 def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_start, grid_edges, h, longest, pn, pd,
              boxes):  # pragma: no cover - compiled
     """The cut curves of each plane that cross its box ``boxes[p] (6,)`` (min, max), as :func:`cut_fill` gives them.
@@ -1058,6 +1190,14 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
     stamp = np.zeros(len(edges), np.int64)      # plane + 1 where an edge's curve is found
     seen = np.zeros(len(edges), np.int64)       # plane + 1 where the cutter's walk passed
     comp = np.empty(len(edges), np.int64)
+    comp_face = np.empty(len(edges), np.int64)
+    tpts = np.zeros((1024, 3))                  # the plane's chains as walked
+    tnrm = np.zeros((1024, 3))
+    teid = np.full(1024, -1, np.int64)
+    ch_key = np.zeros(64, np.int64)
+    ch_begin = np.zeros(64, np.int64)
+    ch_end = np.zeros(64, np.int64)
+    ch_closed = np.zeros(64, np.bool_)
     for p in range(n_planes):
         nx, ny, nz, d = pn[p, 0], pn[p, 1], pn[p, 2], pd[p]
         mark = p + 1
@@ -1069,6 +1209,10 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
             i1[ax] = min(grid_dims[ax] - 1, int(np.floor((boxes[p, 3 + ax] + g - grid_lo[ax]) / h)))
         # the components (curves) met, as lists of their crossed edges
         comp_start = [0]
+        comp_na = [0]           # per component: the edges of its walk through the seed's first face
+        comp_loop = [False]     # per component: a closed loop
+        comp_na.pop()
+        comp_loop.pop()
         n_comp_edges = 0
         half = 0.5 * h + g
         reach = half * (abs(nx) + abs(ny) + abs(nz))
@@ -1088,80 +1232,137 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
                         # walk both ways from e0 to collect its curve's crossed edges
                         stamp[e0] = mark
                         comp[n_comp_edges] = e0
+                        comp_face[n_comp_edges] = -1
                         n_comp_edges += 1
+                        loop = False
                         for side in range(2):
                             e, f = e0, edge_faces[e0, side]
                             while f >= 0:
                                 nxt = _other_crossed(v, edges, face_edges, f, e, nx, ny, nz, d)
                                 if nxt < 0 or stamp[nxt] == mark:
+                                    loop = loop or (side == 0 and nxt >= 0)
                                     break
                                 stamp[nxt] = mark
                                 comp[n_comp_edges] = nxt
+                                comp_face[n_comp_edges] = f          # the face between it and the edge before
                                 n_comp_edges += 1
                                 f = edge_faces[nxt, 1] if edge_faces[nxt, 0] == f else edge_faces[nxt, 0]
                                 e = nxt
+                            if side == 0:
+                                comp_na.append(n_comp_edges - comp_start[-1] - 1)
+                        comp_loop.append(loop)
                         comp_start.append(n_comp_edges)
-        # the cutter's walk on each component's edges; chains keyed by (phase, start edge)
+        # the cutter's walk on each component's edges, each chain emitted as it is walked (into the plane's
+        # buffer); chains keyed by (phase, start edge). A component is one chain of crossed edges: the
+        # cutter starts it at its smallest edge without a second face (phase 0), else at its smallest edge
+        # (phase 1); where that walk does not take in the whole component (a start with a face on either
+        # side), the rest follows the cutter's order: the component's edges sorted, phase 0, then phase 1
         n_comp = len(comp_start) - 1
         n_e = len(edges)
-        keys = []
+        tpos = 0
+        n_ch = 0
         for r in range(n_comp):
-            s = np.sort(comp[comp_start[r]:comp_start[r + 1]])
-            for phase in range(2):
-                for e0 in s:
+            s0 = -1
+            s1 = -1
+            for q in range(comp_start[r], comp_start[r + 1]):
+                e = comp[q]
+                if edge_faces[e, 1] < 0 and (s0 < 0 or e < s0):
+                    s0 = e
+                if s1 < 0 or e < s1:
+                    s1 = e
+            first = np.array([s0 if s0 >= 0 else s1], np.int64)
+            walked = 0
+            for stage in range(3):
+                # stage 0: the first chain; 1 and 2: the cutter's phases 0 and 1 over the sorted edges
+                if stage > 0 and walked == comp_start[r + 1] - comp_start[r]:
+                    break
+                phase = (0 if s0 >= 0 else 1) if stage == 0 else stage - 1
+                order = first if stage == 0 else np.sort(comp[comp_start[r]:comp_start[r + 1]])
+                for qi in range(len(order)):
+                    e0 = order[qi]
                     if seen[e0] == mark:
                         continue
                     if phase == 0 and edge_faces[e0, 1] >= 0:
                         continue
-                    keys.append(phase * n_e + e0)
-                    # only the start is recorded here; the walk marks its edges
-                    e, prev = e0, -1
-                    while True:
-                        seen[e] = mark
-                        f, g2 = _step_face(v, edges, edge_faces, face_edges, e, prev, nx, ny, nz, d)
-                        if g2 < 0 or seen[g2] == mark:
-                            break
-                        prev, e = f, g2
-        # emit the chains in the cutter's order: phase, then start edge
-        for key in np.sort(np.array(keys, dtype=np.int64)):
-            e0 = key % n_e
-            begin = pos
-            e, prev = e0, -1
-            is_closed = False
-            while True:
-                if pos + 2 > cap:
-                    cap = 2 * cap
-                    pts2 = np.zeros((cap, 3))
-                    nrm2 = np.zeros((cap, 3))
-                    eid2 = np.full(cap, -1, np.int64)
-                    pts2[:pos] = pts[:pos]
-                    nrm2[:pos] = nrm[:pos]
-                    eid2[:pos] = eid[:pos]
-                    pts, nrm, eid = pts2, nrm2, eid2
-                seen[e] = -mark
-                pos = _emit_local(v, vn, edges, e, nx, ny, nz, d, pts, nrm, eid, pos, begin)
-                f, g2 = _step_face(v, edges, edge_faces, face_edges, e, prev, nx, ny, nz, d)
-                if g2 < 0:
-                    break
-                if seen[g2] == -mark:
-                    is_closed = g2 == e0
-                    break
-                prev, e = f, g2
-            if pos - begin >= 2:
-                if n_curves + 2 > len(starts):
-                    starts2 = np.zeros(2 * len(starts), np.int64)
-                    planes2 = np.zeros(2 * len(starts), np.int64)
-                    closed2 = np.zeros(2 * len(starts), np.bool_)
-                    starts2[:n_curves] = starts[:n_curves]
-                    planes2[:n_curves] = planes[:n_curves]
-                    closed2[:n_curves] = closed_out[:n_curves]
-                    starts, planes, closed_out = starts2, planes2, closed2
-                starts[n_curves] = begin
-                planes[n_curves] = p
-                closed_out[n_curves] = is_closed
-                n_curves += 1
-            else:
-                pos = begin
+                    if tpos + comp_start[r + 1] - comp_start[r] + 2 > len(tpts):
+                        cap2 = 2 * (tpos + comp_start[r + 1] - comp_start[r] + 2)
+                        tpts2 = np.zeros((cap2, 3))
+                        tnrm2 = np.zeros((cap2, 3))
+                        teid2 = np.full(cap2, -1, np.int64)
+                        tpts2[:tpos] = tpts[:tpos]
+                        tnrm2[:tpos] = tnrm[:tpos]
+                        teid2[:tpos] = teid[:tpos]
+                        tpts, tnrm, teid = tpts2, tnrm2, teid2
+                    if n_ch + 1 > len(ch_key):
+                        ch_key2 = np.zeros(2 * len(ch_key), np.int64)
+                        ch_begin2 = np.zeros(2 * len(ch_key), np.int64)
+                        ch_end2 = np.zeros(2 * len(ch_key), np.int64)
+                        ch_closed2 = np.zeros(2 * len(ch_key), np.bool_)
+                        ch_key2[:n_ch] = ch_key[:n_ch]
+                        ch_begin2[:n_ch] = ch_begin[:n_ch]
+                        ch_end2[:n_ch] = ch_end[:n_ch]
+                        ch_closed2[:n_ch] = ch_closed[:n_ch]
+                        ch_key, ch_begin, ch_end, ch_closed = ch_key2, ch_begin2, ch_end2, ch_closed2
+                    begin = tpos
+                    is_closed = False
+                    seq = _chain_from(comp, comp_face, comp_start[r], comp_start[r + 1], comp_na[r], comp_loop[r],
+                                      edge_faces, e0) if stage == 0 else np.empty(0, np.int64)
+                    if len(seq):
+                        # the walk from e0 takes in the whole component: its edges in walk order, as walked
+                        for qq in range(len(seq)):
+                            e = seq[qq]
+                            seen[e] = mark
+                            walked += 1
+                            tpos = _emit_local(v, vn, edges, e, nx, ny, nz, d, tpts, tnrm, teid, tpos, begin)
+                        is_closed = comp_loop[r]
+                    else:
+                        e, prev = e0, -1
+                        while True:
+                            seen[e] = mark
+                            walked += 1
+                            tpos = _emit_local(v, vn, edges, e, nx, ny, nz, d, tpts, tnrm, teid, tpos, begin)
+                            f, g2 = _step_face(v, edges, edge_faces, face_edges, e, prev, nx, ny, nz, d)
+                            if g2 < 0:
+                                break
+                            if seen[g2] == mark:
+                                is_closed = g2 == e0
+                                break
+                            prev, e = f, g2
+                    ch_key[n_ch] = phase * n_e + e0
+                    ch_begin[n_ch] = begin
+                    ch_end[n_ch] = tpos
+                    ch_closed[n_ch] = is_closed
+                    n_ch += 1
+        # the chains in the cutter's order: phase, then start edge
+        for ci in np.argsort(ch_key[:n_ch]):
+            begin, end = ch_begin[ci], ch_end[ci]
+            if end - begin < 2:
+                continue
+            if pos + end - begin > cap:
+                cap = 2 * (pos + end - begin)
+                pts2 = np.zeros((cap, 3))
+                nrm2 = np.zeros((cap, 3))
+                eid2 = np.full(cap, -1, np.int64)
+                pts2[:pos] = pts[:pos]
+                nrm2[:pos] = nrm[:pos]
+                eid2[:pos] = eid[:pos]
+                pts, nrm, eid = pts2, nrm2, eid2
+            if n_curves + 2 > len(starts):
+                starts2 = np.zeros(2 * len(starts), np.int64)
+                planes2 = np.zeros(2 * len(starts), np.int64)
+                closed2 = np.zeros(2 * len(starts), np.bool_)
+                starts2[:n_curves] = starts[:n_curves]
+                planes2[:n_curves] = planes[:n_curves]
+                closed2[:n_curves] = closed_out[:n_curves]
+                starts, planes, closed_out = starts2, planes2, closed2
+            starts[n_curves] = pos
+            planes[n_curves] = p
+            closed_out[n_curves] = ch_closed[ci]
+            n_curves += 1
+            pts[pos:pos + end - begin] = tpts[begin:end]
+            nrm[pos:pos + end - begin] = tnrm[begin:end]
+            eid[pos:pos + end - begin] = teid[begin:end]
+            pos += end - begin
     curve_start = np.empty(n_curves + 1, np.int64)
     curve_start[:n_curves] = starts[:n_curves]
     curve_start[n_curves] = pos
@@ -1217,3 +1418,62 @@ def box_submesh(v, faces, edge_faces, face_edges, lo, hi):  # pragma: no cover -
         for k in range(3):
             fe[r, k] = edge_index[face_edges[keep[r], k]]
     return keep, used, ef, fe
+
+
+# ------------------------------------------------------------------------------ per-face passes of the fit
+
+
+@njit(cache=True)
+def triangle_areas(v, faces):  # pragma: no cover - compiled
+    """Areas ``(m,)`` of triangles: ``|(b - a) x (c - a)| / 2`` in numpy's order of operations (the same bits)."""
+    out = np.empty(len(faces))
+    for i in range(len(faces)):
+        a, b, c = faces[i, 0], faces[i, 1], faces[i, 2]
+        ux, uy, uz = v[b, 0] - v[a, 0], v[b, 1] - v[a, 1], v[b, 2] - v[a, 2]
+        wx, wy, wz = v[c, 0] - v[a, 0], v[c, 1] - v[a, 1], v[c, 2] - v[a, 2]
+        cx = uy * wz - uz * wy
+        cy = uz * wx - ux * wz
+        cz = ux * wy - uy * wx
+        out[i] = 0.5 * np.sqrt(cx * cx + cy * cy + cz * cz)
+    return out
+
+
+@njit(cache=True)
+def face_vertices_in_box(v, faces, lo, hi):  # pragma: no cover - compiled
+    """Per vertex: it is a vertex of one of ``faces`` and lies in the box ``[lo, hi]`` ``(n,)``."""
+    used = np.zeros(len(v), np.bool_)
+    for i in range(len(faces)):
+        for k in range(3):
+            used[faces[i, k]] = True
+    for i in range(len(v)):
+        if used[i]:
+            used[i] = (lo[0] <= v[i, 0] <= hi[0]) and (lo[1] <= v[i, 1] <= hi[1]) and (lo[2] <= v[i, 2] <= hi[2])
+    return used
+
+
+@njit(cache=True)
+def faces_within(dist, faces, eps):  # pragma: no cover - compiled
+    """The faces ``(f,)`` (increasing) whose three vertices have ``dist <= eps``."""
+    keep = np.empty(len(faces), np.int64)
+    n = 0
+    for i in range(len(faces)):
+        if dist[faces[i, 0]] <= eps and dist[faces[i, 1]] <= eps and dist[faces[i, 2]] <= eps:
+            keep[n] = i
+            n += 1
+    return keep[:n].copy()
+
+
+@njit(cache=True)
+def boundary_edges_of(faces, edge_faces, face_edges):  # pragma: no cover - compiled
+    """Per face its boundary edges as vertex pairs ``(m, 3, 2)`` (-1 where the edge has two faces).
+
+    The edges in face order ``(0, 1), (1, 2), (2, 0)``, as :attr:`SweepMesh.face_edges`.
+    """
+    out = np.full((len(faces), 3, 2), -1, np.int64)
+    for i in range(len(faces)):
+        for k in range(3):
+            e = face_edges[i, k]
+            if edge_faces[e, 0] < 0 or edge_faces[e, 1] < 0:
+                out[i, k, 0] = faces[i, k]
+                out[i, k, 1] = faces[i, (k + 1) % 3]
+    return out

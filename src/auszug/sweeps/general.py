@@ -547,7 +547,7 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
             ribs = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times, _far(params),
                            grid)
     assert best is not None
-    fit = swept_coverage(mesh, best[3], params.eps_prox, a)
+    fit = swept_coverage(mesh, best[3], params.eps_prox, a, distances=False)    # the faces, not the distances
     return GeneralSweep(best[0], best[1], best[2], fit.fit_error, fit.coverage, fit.faces, closed)
 
 

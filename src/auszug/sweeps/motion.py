@@ -192,14 +192,26 @@ class Motion:
         inner = np.flatnonzero((f > 0.0) & ~at1)
         if len(inner):
             ii, ff = i[inner], f[inner]
-            r0, r1 = self.rotation[ii], self.rotation[ii + 1]
-            t0, t1 = self.translation[ii], self.translation[ii + 1]
-            r0t = np.swapaxes(r0, -1, -2)
-            w, v = se3_log(r0t @ r1, np.einsum("kij,kj->ki", r0t, t1 - t0))
+            r0, t0 = self.rotation[ii], self.translation[ii]
+            wi, vi = self._interval_twists()
+            w, v = wi[ii], vi[ii]
             dr, dt = se3_exp(w * ff[:, None], v * ff[:, None])
             r[inner] = r0 @ dr
             tr[inner] = t0 + np.einsum("kij,kj->ki", r0, dt)
         return r, tr
+
+    def _interval_twists(self) -> tuple[Array, Array]:
+        """The twists ``(omega (k - 1, 3), v (k - 1, 3))`` of the screw between each pair of knots (computed once).
+
+        The log of ``M_k^{-1} M_{k+1}``, row by row as :meth:`at` took it for the intervals it needed.
+        """
+        got: tuple[Array, Array] | None = self.__dict__.get("_twists")
+        if got is None:
+            r0, r1 = self.rotation[:-1], self.rotation[1:]
+            r0t = np.swapaxes(r0, -1, -2)
+            got = se3_log(r0t @ r1, np.einsum("kij,kj->ki", r0t, self.translation[1:] - self.translation[:-1]))
+            object.__setattr__(self, "_twists", got)      # frozen: a cache of the knots, not a field
+        return got
 
     def apply(self, points: ArrayLike, t: ArrayLike) -> Array:
         """``points (n, 3)`` moved by the maps at ``t (q,)``: shape ``(q, n, 3)``."""

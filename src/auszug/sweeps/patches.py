@@ -34,7 +34,16 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
-from auszug.sweeps._kernels import improve_sums, ring_grid_boxes, ring_grid_nearest
+from auszug.sweeps._kernels import (
+    boundary_edges_of,
+    face_vertices_in_box,
+    faces_within,
+    improve_sums,
+    ring_grid_boxes,
+    ring_grid_nearest,
+    ring_grid_within,
+    triangle_areas,
+)
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import KinematicAxis
 from auszug.sweeps.mesh import SweepMesh
@@ -155,9 +164,10 @@ def face_areas(vertices: ArrayLike, faces: ArrayLike) -> Array:
     >>> face_areas([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]]).tolist()
     [0.5]
     """
-    v = np.asarray(vertices, float)
-    f = np.asarray(faces, np.int64)
-    return 0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1)
+    v = np.ascontiguousarray(vertices, dtype=float)
+    f = np.ascontiguousarray(faces, dtype=np.int64)
+    out: Array = triangle_areas(v.reshape(-1, 3), f.reshape(-1, 3))    # one compiled pass, numpy's arithmetic
+    return out
 
 
 def closest_distance(points: ArrayLike, vertices: ArrayLike, elements: ArrayLike) -> tuple[Array, Array]:
@@ -208,19 +218,25 @@ class MeshTree:
         again (an edge with one face is a boundary edge).
         """
         tree = cls(mesh.vertices, mesh.faces)
-        f = tree.faces
-        e = np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1)        # (m, 3, 2), as face_edges
-        single: NDArray[np.bool_] = np.any(mesh.edge_faces[mesh.face_edges] < 0, axis=2)     # (m, 3)
-        tree._bnd = np.where(single[:, :, None], e, -1)
+        tree._bnd = boundary_edges_of(tree.faces, mesh.edge_faces, mesh.face_edges)     # one compiled pass
         return tree
 
     def query(self, points: ArrayLike) -> tuple[Array, IntArray, Array]:
-        """Distances ``(n,)``, closest faces ``(n,)`` and closest points ``(n, 3)``."""
+        """Distances ``(n,)``, closest faces ``(n,)`` and closest points ``(n, 3)``.
+
+        The last query is kept: the same points again (a family's ribs, asked first whether a grown
+        patch holds them, then for their normals) get copies of its answer.
+        """
         p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
         if len(p) == 0:
             return np.zeros(0), np.zeros(0, np.int64), np.zeros((0, 3))
+        last = self.__dict__.get("_last")
+        if last is not None and last[0].shape == p.shape and np.array_equal(last[0], p):
+            return last[1].copy(), last[2].copy(), last[3].copy()
         sq, face, c = self._tree.squared_distance(self.vertices, self.faces, p)
-        return np.sqrt(np.maximum(sq, 0.0)), np.asarray(face, np.int64), np.asarray(c)
+        out = np.sqrt(np.maximum(sq, 0.0)), np.asarray(face, np.int64), np.asarray(c)
+        self._last = (p.copy(), out[0].copy(), out[1].copy(), out[2].copy())
+        return out
 
     def _boundary_edges(self) -> IntArray:
         """Per face its boundary edges as vertex pairs ``(m, 3, 2)`` (-1 where the edge is inner)."""
@@ -330,6 +346,18 @@ class RingTree:
             return np.zeros(0), np.zeros(0, np.int64), np.zeros((0, 3))
         d, f, c = ring_grid_nearest(self.rings, self.closed, self._box, self._off, self._shape, p, float(bound))
         return d, f, c
+
+    def within(self, points: ArrayLike, bound: float) -> NDArray[np.bool_]:
+        """Whether each point ``(q, 3)`` is within ``bound`` of the surface: ``query(points, bound)[0] <= bound``.
+
+        The search for a point stops at the first triangle within ``bound``.
+        """
+        p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
+        if len(p) == 0:
+            return np.zeros(0, bool)
+        out: NDArray[np.bool_] = ring_grid_within(self.rings, self.closed, self._box, self._off, self._shape, p,
+                                                  float(bound))
+        return out
 
 
 def polyline_hausdorff(a: ArrayLike, b: ArrayLike, closed_a: bool = False, closed_b: bool = False) -> float:
@@ -637,22 +665,25 @@ def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: 
     return SweptError(sv, swept, err)
 
 
-def swept_coverage(mesh: SweepMesh, err: SweptError, eps: float, areas: Array | None = None) -> Fit:
+def swept_coverage(mesh: SweepMesh, err: SweptError, eps: float, areas: Array | None = None,
+                   distances: bool = True) -> Fit:
     """The mesh faces within ``eps`` of a swept surface and their share of the area (the second half).
 
     Only the vertices in the swept surface's box grown by ``eps`` are queried (the others are
-    farther than ``eps``), each within ``eps`` (:meth:`RingTree.query` with that bound).
+    farther than ``eps``), each within ``eps`` (:meth:`RingTree.query` with that bound). With
+    ``distances`` False only whether each vertex is within ``eps`` is found (:meth:`RingTree.within`,
+    the same faces): the fit's ``vertex_distance`` is then 0 there instead of the distance.
     """
     sv = err.vertices
     lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
-    inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
-    used = np.zeros(mesh.n_vertices, bool)      # only the vertices of the mesh's faces (it may be a part)
-    used[mesh.faces.reshape(-1)] = True
-    inside &= used
+    # only the vertices of the mesh's faces (it may be a part) in the box: one compiled pass
+    inside = face_vertices_in_box(mesh.vertices, mesh.faces, lo, hi)
     dv = np.full(mesh.n_vertices, np.inf)
-    dv[inside] = err.tree.query(mesh.vertices[inside], eps)[0]
-    near = dv <= eps
-    faces = np.flatnonzero(near[mesh.faces].all(axis=1)).astype(np.int64)
+    if distances:
+        dv[inside] = err.tree.query(mesh.vertices[inside], eps)[0]
+    else:
+        dv[inside] = np.where(err.tree.within(mesh.vertices[inside], eps), 0.0, np.inf)
+    faces = faces_within(dv, mesh.faces, float(eps))
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     total = float(a.sum())
     cov = float(a[faces].sum() / total) if total > 0 else 0.0

@@ -842,6 +842,48 @@ def _box_sq(px, py, pz, box, r):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
+def _ring_triangle_closest(rings, n, i, j, t, px, py, pz):  # pragma: no cover - compiled
+    """:func:`_triangle_closest` of a point to triangle ``t`` (0 or 1) of quad ``(i, j)`` of the ring grid.
+
+    Triangles as :func:`~auszug.sweeps.patches.ring_faces` numbers them (``n`` points a ring).
+    """
+    j1 = (j + 1) % n
+    a0 = rings[i, j]
+    if t == 0:
+        b0, c0 = rings[i, j1], rings[i + 1, j1]
+    else:
+        b0, c0 = rings[i + 1, j1], rings[i + 1, j]
+    return _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2], c0[0], c0[1], c0[2])
+
+
+@njit(cache=True)
+def _push_near_children(px, py, pz, box, off, shape, lv, i, j, limit, cd, ci_, cj_,
+                        stack_l, stack_i, stack_j, sp):  # pragma: no cover - compiled
+    """Push box ``(i, j)`` of level ``lv``'s children within squared distance ``limit``, nearest last.
+
+    The stack (``stack_l/i/j``, ``sp`` entries) is popped from the end, so the nearest child is
+    searched first; ``cd, ci_, cj_`` (4 each) are scratch. Returns the new ``sp``.
+    """
+    nc = 0
+    pa, pb = shape[lv - 1, 0], shape[lv - 1, 1]
+    for ci in range(2 * i, min(2 * i + 2, pa)):
+        for cj in range(2 * j, min(2 * j + 2, pb)):
+            d = _box_sq(px, py, pz, box, off[lv - 1] + ci * pb + cj)
+            if d > limit:
+                continue
+            h = nc
+            while h > 0 and cd[h - 1] < d:     # sorted far to near
+                cd[h], ci_[h], cj_[h] = cd[h - 1], ci_[h - 1], cj_[h - 1]
+                h -= 1
+            cd[h], ci_[h], cj_[h] = d, ci, cj
+            nc += 1
+    for h in range(nc):
+        stack_l[sp], stack_i[sp], stack_j[sp] = lv - 1, ci_[h], cj_[h]
+        sp += 1
+    return sp
+
+
+@njit(cache=True)
 def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma: no cover - compiled
     """Closest points on the triangulated ring grid (:func:`~auszug.sweeps.patches.ring_faces`) within ``bound``.
 
@@ -878,15 +920,7 @@ def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma:
             continue
         if last >= 0:      # the previous point's triangle first: its distance bounds the search
             qd = last // 2
-            i, j, t = qd // m, qd % m, last % 2
-            j1 = (j + 1) % n
-            a0 = rings[i, j]
-            if t == 0:
-                b0, c0 = rings[i, j1], rings[i + 1, j1]
-            else:
-                b0, c0 = rings[i + 1, j1], rings[i + 1, j]
-            d2, qx, qy, qz = _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2],
-                                               c0[0], c0[1], c0[2])
+            d2, qx, qy, qz = _ring_triangle_closest(rings, n, qd // m, qd % m, last % 2, px, py, pz)
             if d2 <= best:
                 best, found, bx, by, bz, bf = d2, True, qx, qy, qz, last
         sp = 0
@@ -898,18 +932,11 @@ def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma:
             if _box_sq(px, py, pz, box, off[lv] + i * shape[lv, 1] + j) > best:
                 continue
             if lv == 0:
-                j1 = (j + 1) % n
                 for t in range(2):
-                    a0 = rings[i, j]
-                    if t == 0:
-                        b0, c0 = rings[i, j1], rings[i + 1, j1]
-                    else:
-                        b0, c0 = rings[i + 1, j1], rings[i + 1, j]
                     fi = 2 * (i * m + j) + t
                     if fi == bf:
                         continue
-                    d2, qx, qy, qz = _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2],
-                                                       c0[0], c0[1], c0[2])
+                    d2, qx, qy, qz = _ring_triangle_closest(rings, n, i, j, t, px, py, pz)
                     if d2 < best or (not found and d2 <= best):
                         best = d2
                         found = True
@@ -917,22 +944,8 @@ def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma:
                         bf = fi
                 continue
             # children, nearest pushed last (popped first)
-            nc = 0
-            pa, pb = shape[lv - 1, 0], shape[lv - 1, 1]
-            for ci in range(2 * i, min(2 * i + 2, pa)):
-                for cj in range(2 * j, min(2 * j + 2, pb)):
-                    d = _box_sq(px, py, pz, box, off[lv - 1] + ci * pb + cj)
-                    if d > best:
-                        continue
-                    h = nc
-                    while h > 0 and cd[h - 1] < d:     # sorted far to near
-                        cd[h], ci_[h], cj_[h] = cd[h - 1], ci_[h - 1], cj_[h - 1]
-                        h -= 1
-                    cd[h], ci_[h], cj_[h] = d, ci, cj
-                    nc += 1
-            for h in range(nc):
-                stack_l[sp], stack_i[sp], stack_j[sp] = lv - 1, ci_[h], cj_[h]
-                sp += 1
+            sp = _push_near_children(px, py, pz, box, off, shape, lv, i, j, best, cd, ci_, cj_,
+                                     stack_l, stack_i, stack_j, sp)
         if found:
             dist[p] = np.sqrt(best)
             face[p] = bf
@@ -972,14 +985,7 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
         hit = -1
         if last >= 0:
             qd = last // 2
-            i, j, t = qd // m, qd % m, last % 2
-            j1 = (j + 1) % n
-            a0 = rings[i, j]
-            if t == 0:
-                b0, c0 = rings[i, j1], rings[i + 1, j1]
-            else:
-                b0, c0 = rings[i + 1, j1], rings[i + 1, j]
-            d2 = _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2], c0[0], c0[1], c0[2])[0]
+            d2 = _ring_triangle_closest(rings, n, qd // m, qd % m, last % 2, px, py, pz)[0]
             if d2 <= b2 and np.sqrt(d2) <= bound:
                 hit = last
         sp = 0
@@ -992,35 +998,14 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
             if _box_sq(px, py, pz, box, off[lv] + i * shape[lv, 1] + j) > b2:
                 continue
             if lv == 0:
-                j1 = (j + 1) % n
                 for t in range(2):
-                    a0 = rings[i, j]
-                    if t == 0:
-                        b0, c0 = rings[i, j1], rings[i + 1, j1]
-                    else:
-                        b0, c0 = rings[i + 1, j1], rings[i + 1, j]
-                    d2 = _triangle_closest(px, py, pz, a0[0], a0[1], a0[2], b0[0], b0[1], b0[2],
-                                           c0[0], c0[1], c0[2])[0]
+                    d2 = _ring_triangle_closest(rings, n, i, j, t, px, py, pz)[0]
                     if d2 <= b2 and np.sqrt(d2) <= bound:
                         hit = 2 * (i * m + j) + t
                         break
                 continue
-            nc = 0
-            pa, pb = shape[lv - 1, 0], shape[lv - 1, 1]
-            for ci in range(2 * i, min(2 * i + 2, pa)):
-                for cj in range(2 * j, min(2 * j + 2, pb)):
-                    d = _box_sq(px, py, pz, box, off[lv - 1] + ci * pb + cj)
-                    if d > b2:
-                        continue
-                    h = nc
-                    while h > 0 and cd[h - 1] < d:     # sorted far to near
-                        cd[h], ci_[h], cj_[h] = cd[h - 1], ci_[h - 1], cj_[h - 1]
-                        h -= 1
-                    cd[h], ci_[h], cj_[h] = d, ci, cj
-                    nc += 1
-            for h in range(nc):
-                stack_l[sp], stack_i[sp], stack_j[sp] = lv - 1, ci_[h], cj_[h]
-                sp += 1
+            sp = _push_near_children(px, py, pz, box, off, shape, lv, i, j, b2, cd, ci_, cj_,
+                                     stack_l, stack_i, stack_j, sp)
         if hit >= 0:
             out[p] = True
             last = hit

@@ -1147,6 +1147,25 @@ def _chain_from(comp, comp_face, a, b, na, loop, edge_faces, s):  # pragma: no c
 
 
 @njit(cache=True)
+def _room(pts, nrm, eid, used, need):  # pragma: no cover - compiled
+    """Point buffers ``pts, nrm (cap, 3)``, ``eid (cap,)`` with room for ``need`` rows.
+
+    The same arrays when ``need <= cap``, else new ones ``2 need`` long holding the first ``used``
+    rows (the rest zero, ``eid`` -1).
+    """
+    if need <= len(pts):
+        return pts, nrm, eid
+    cap = 2 * need
+    pts2 = np.zeros((cap, 3))
+    nrm2 = np.zeros((cap, 3))
+    eid2 = np.full(cap, -1, np.int64)
+    pts2[:used] = pts[:used]
+    nrm2[:used] = nrm[:used]
+    eid2[:used] = eid[:used]
+    return pts2, nrm2, eid2
+
+
+@njit(cache=True)
 def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_start, grid_edges, h, longest, pn, pd,
              boxes):  # pragma: no cover - compiled
     """The cut curves of each plane that cross its box ``boxes[p] (6,)`` (min, max), as :func:`cut_fill` gives them.
@@ -1269,15 +1288,7 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
                         continue
                     if phase == 0 and edge_faces[e0, 1] >= 0:
                         continue
-                    if tpos + comp_start[r + 1] - comp_start[r] + 2 > len(tpts):
-                        cap2 = 2 * (tpos + comp_start[r + 1] - comp_start[r] + 2)
-                        tpts2 = np.zeros((cap2, 3))
-                        tnrm2 = np.zeros((cap2, 3))
-                        teid2 = np.full(cap2, -1, np.int64)
-                        tpts2[:tpos] = tpts[:tpos]
-                        tnrm2[:tpos] = tnrm[:tpos]
-                        teid2[:tpos] = teid[:tpos]
-                        tpts, tnrm, teid = tpts2, tnrm2, teid2
+                    tpts, tnrm, teid = _room(tpts, tnrm, teid, tpos, tpos + comp_start[r + 1] - comp_start[r] + 2)
                     if n_ch + 1 > len(ch_key):
                         ch_key2 = np.zeros(2 * len(ch_key), np.int64)
                         ch_begin2 = np.zeros(2 * len(ch_key), np.int64)
@@ -1323,15 +1334,7 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
             begin, end = ch_begin[ci], ch_end[ci]
             if end - begin < 2:
                 continue
-            if pos + end - begin > cap:
-                cap = 2 * (pos + end - begin)
-                pts2 = np.zeros((cap, 3))
-                nrm2 = np.zeros((cap, 3))
-                eid2 = np.full(cap, -1, np.int64)
-                pts2[:pos] = pts[:pos]
-                nrm2[:pos] = nrm[:pos]
-                eid2[:pos] = eid[:pos]
-                pts, nrm, eid = pts2, nrm2, eid2
+            pts, nrm, eid = _room(pts, nrm, eid, pos, pos + end - begin)
             if n_curves + 2 > len(starts):
                 starts2 = np.zeros(2 * len(starts), np.int64)
                 planes2 = np.zeros(2 * len(starts), np.int64)

@@ -53,8 +53,17 @@ from numpy.typing import ArrayLike, NDArray
 
 from auszug.sweeps._kernels import box_submesh, closest_on_plane_curves, curves_near_profiles, polyline_closest
 from auszug.sweeps.cut import Cuts, EdgeGrid, cut, cut_near
-from auszug.sweeps.matching import CurvaturePlots, Family, Ribs, curvature_plots, families, match_cuts, order_ribs
-from auszug.sweeps.mesh import SweepMesh
+from auszug.sweeps.matching import (
+    CurvaturePlots,
+    Family,
+    Ribs,
+    curvature_plots,
+    families,
+    match_cuts,
+    order_ribs,
+    split_family,
+)
+from auszug.sweeps.mesh import SweepMesh, face_components
 from auszug.sweeps.motion import Motion, se3_log
 from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
@@ -581,9 +590,6 @@ def _per_component(fams: tuple[Family, ...], mesh: SweepMesh, cuts: Cuts, mov: M
     piece; one family of them orders ribs that jump between pieces, and no sweep fits them all
     (four members of U.XI.91: coverage 0.227 before, docs/sweeps.md).
     """
-    from auszug.sweeps.matching import split_family  # here: the module's imports stay as they were (merges)
-    from auszug.sweeps.mesh import face_components
-
     comp = face_components(mesh)
     if len(fams) == 0 or comp.max(initial=0) == 0:
         return list(fams)

@@ -857,6 +857,13 @@ def _ring_triangle_closest(rings, n, i, j, t, px, py, pz):  # pragma: no cover -
 
 
 @njit(cache=True)
+def _search_scratch(n_lev):  # pragma: no cover - compiled
+    """The box search's stack (levels, rows, columns; ``4 n_lev + 4`` each) and child scratch (4 each)."""
+    return (np.empty(4 * n_lev + 4, np.int64), np.empty(4 * n_lev + 4, np.int64), np.empty(4 * n_lev + 4, np.int64),
+            np.empty(4), np.empty(4, np.int64), np.empty(4, np.int64))
+
+
+@njit(cache=True)
 def _push_near_children(px, py, pz, box, off, shape, lv, i, j, limit, cd, ci_, cj_,
                         stack_l, stack_i, stack_j, sp):  # pragma: no cover - compiled
     """Push box ``(i, j)`` of level ``lv``'s children within squared distance ``limit``, nearest last.
@@ -901,12 +908,7 @@ def ring_grid_nearest(rings, closed, box, off, shape, points, bound):  # pragma:
     dist = np.full(q, np.inf)
     face = np.full(q, -1, np.int64)
     cp = np.zeros((q, 3))
-    stack_l = np.empty(4 * n_lev + 4, np.int64)
-    stack_i = np.empty(4 * n_lev + 4, np.int64)
-    stack_j = np.empty(4 * n_lev + 4, np.int64)
-    cd = np.empty(4)
-    ci_ = np.empty(4, np.int64)
-    cj_ = np.empty(4, np.int64)
+    stack_l, stack_i, stack_j, cd, ci_, cj_ = _search_scratch(n_lev)
     b2 = bound * bound
     last = -1
     for p in range(q):
@@ -969,12 +971,7 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
     n_lev = len(shape)
     q = len(points)
     out = np.zeros(q, np.bool_)
-    stack_l = np.empty(4 * n_lev + 4, np.int64)
-    stack_i = np.empty(4 * n_lev + 4, np.int64)
-    stack_j = np.empty(4 * n_lev + 4, np.int64)
-    cd = np.empty(4)
-    ci_ = np.empty(4, np.int64)
-    cj_ = np.empty(4, np.int64)
+    stack_l, stack_i, stack_j, cd, ci_, cj_ = _search_scratch(n_lev)
     b2 = bound * bound
     last = -1
     top = n_lev - 1

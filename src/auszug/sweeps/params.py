@@ -246,6 +246,13 @@ class SweepParams:
         of ``eps_prox`` of the mesh (in (0, 1]; 1: no test, every point is within ``eps_prox``): a
         motion that only approximates a smooth surface, a rotation about a Gaussian bump's axis,
         stays within ``eps_prox`` but not near 0 on average.
+    part_across : float
+        After the parts, each translation that found patches is tried across the planar faces
+        along it: the faces whose normals are within this sine of normal to the translation,
+        grouped by normal (to 0.01), give the largest group's normal ``n``, and the translation
+        along ``n x d`` is tried over the whole mesh (a wall's top and bottom and its face above an
+        opening slide along the wall's width; no cut of them glides as a whole). 0 turns it off;
+        at most 0.2.
     """
 
     beta: float = 400.0
@@ -314,6 +321,7 @@ class SweepParams:
     part_trim_spacing: float = 1.0
     part_mean_error: float = 0.25
     part_profile_cuts: int = 0
+    part_across: float = 0.02
 
     def __post_init__(self) -> None:
         checks = [
@@ -389,6 +397,7 @@ class SweepParams:
              "in [0.5, 8] (multiples of eps_prox)"),
             ("part_mean_error", _real(self.part_mean_error) and 0 < self.part_mean_error <= 1,
              "in (0, 1] (a share of eps_prox)"),
+            ("part_across", _real(self.part_across) and 0 <= self.part_across <= 0.2, "in [0, 0.2] (a sine)"),
         ]
         for name, ok, want in checks:
             if not ok:

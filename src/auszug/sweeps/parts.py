@@ -27,7 +27,11 @@ the cuts, one motion after another (a sequential consensus, in the manner of RAN
    ``eps_prox`` of the mesh; for a rotation the translation along its axis is tried too; the fit
    check and the area and sweep-length filters of :func:`~auszug.sweeps.detect` decide what is kept;
 5. the gliding curves count as explained (kept or not) and the search goes on, at most
-   ``max_parts`` times, while some candidate moves at least ``part_min_points`` cut points.
+   ``max_parts`` times, while some candidate moves at least ``part_min_points`` cut points;
+6. each translation that found patches is tried across the planar faces along it (``part_across``):
+   the translation along ``n x d`` for the largest planar faces' normal ``n`` along the direction
+   ``d``, on the whole mesh (a wall's top and bottom and its face above an opening slide along its
+   width, but every cut across the wall runs through the opening's moulding, so none glides whole).
 
 Screw motions are not sought as parts (only rotations and translations): a helical part's
 parameter range would need the winding of every face, and no fixture has one.
@@ -436,6 +440,51 @@ def _part_patches(mesh: SweepMesh, axis: KinematicAxis, pts: Array, free: NDArra
     return out
 
 
+def _across(mesh: SweepMesh, slid: list[Array], free: NDArray[np.bool_], areas: Array, part_params: SweepParams,
+            params: SweepParams, grow: MeshTree | None) -> list[SweepPatch]:
+    """Patches of the translations across the planar faces along the translations ``slid`` (unit directions).
+
+    Per direction ``d`` (those found first, then each one found here), the faces whose unit normals
+    are within ``part_across`` of normal to ``d``, grouped by normal rounded to 0.01 (up to sign),
+    give the largest group's normal ``n`` by area; the translation along ``n x d``, unless parallel
+    to one tried, is tried on the whole mesh (:func:`_part_patches`). A wall's top and bottom and its
+    face above an opening slide along the wall's width, but every cut across the wall runs through
+    the opening's moulding too, so none glides as a whole and no candidate suggests that motion.
+    """
+    out: list[SweepPatch] = []
+    if params.part_across <= 0 or not slid:
+        return out
+    tri = mesh.vertices[mesh.faces]
+    nrm = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    unit = nrm / np.maximum(np.linalg.norm(nrm, axis=1, keepdims=True), 1e-300)
+    done, queue = list(slid), list(slid)
+    while queue:
+        d = queue.pop(0)
+        along = np.abs(unit @ d) <= params.part_across
+        if not along.any():
+            continue
+        u = unit[along]
+        key = np.round(np.where((u @ np.array([1.0, 2.0, 3.0]))[:, None] < 0, -u, u), 2)
+        groups, inv = np.unique(key, axis=0, return_inverse=True)
+        w = np.bincount(inv.ravel(), weights=areas[along])
+        g = int(np.argmax(w))
+        if w[g] < params.min_patch_area * float(areas.sum()):
+            continue
+        e = np.cross(groups[g] / np.linalg.norm(groups[g]), d)
+        if np.linalg.norm(e) < 0.5:
+            continue
+        e /= np.linalg.norm(e)
+        if any(abs(float(e @ q)) > 0.999 for q in done):
+            continue
+        done.append(e)
+        found = _part_patches(mesh, _axis(np.r_[0.0, 0.0, 0.0, e], params), mesh.vertices, free, areas,
+                              part_params, params, grow)
+        if found:
+            queue.append(e)
+        out.extend(found)
+    return out
+
+
 def kinematic_parts(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepParams = DEFAULT,
                     free: NDArray[np.bool_] | None = None, first_id: int = 0) -> tuple[list[SweepPatch], int]:
     """Rotation and translation patches of the parts of a mesh (normalised coordinates), fitted, not filtered.
@@ -483,6 +532,7 @@ def kinematic_parts(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepP
     part_params = params.with_(l_min=params.part_l_min, profile_cuts=params.part_profile_cuts)
     grow = MeshTree.of(mesh) if params.part_grow else None
     tried = 0
+    slid: list[Array] = []
     while tried < params.max_parts:
         # candidates spread evenly over the open voters, drawn afresh as the open curves shrink
         cand = np.flatnonzero(voter & open_curve)
@@ -528,4 +578,8 @@ def kinematic_parts(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepP
         # fit stage of detect keeps the patch that covers more (patch_overlap)
         for p in found:
             out.append(replace(p, id=first_id + len(out)))
+        if found and axis.kind == "translation":
+            slid.append(axis.direction / np.linalg.norm(axis.direction))
+    for p in _across(mesh, slid, free_f, areas, part_params, params, grow):
+        out.append(replace(p, id=first_id + len(out)))
     return out, tried

@@ -447,9 +447,10 @@ def _across(mesh: SweepMesh, slid: list[Array], free: NDArray[np.bool_], areas: 
     Per direction ``d`` (those found first, then each one found here), the faces whose unit normals
     are within ``part_across`` of normal to ``d``, grouped by normal rounded to 0.01 (up to sign),
     give the largest group's normal ``n`` by area; the translation along ``n x d``, unless parallel
-    to one tried, is tried on the whole mesh (:func:`_part_patches`). A wall's top and bottom and its
-    face above an opening slide along the wall's width, but every cut across the wall runs through
-    the opening's moulding too, so none glides as a whole and no candidate suggests that motion.
+    to one tried, is tried on the whole mesh (:func:`_part_patches`), at most ``max_parts`` of them.
+    A wall's top and bottom and its face above an opening slide along the wall's width, but every
+    cut across the wall runs through the opening's moulding too, so none glides as a whole and no
+    candidate suggests that motion.
     """
     out: list[SweepPatch] = []
     if params.part_across <= 0 or not slid:
@@ -458,7 +459,7 @@ def _across(mesh: SweepMesh, slid: list[Array], free: NDArray[np.bool_], areas: 
     nrm = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     unit = nrm / np.maximum(np.linalg.norm(nrm, axis=1, keepdims=True), 1e-300)
     done, queue = list(slid), list(slid)
-    while queue:
+    while queue and len(done) - len(slid) < params.max_parts:      # at most max_parts directions tried
         d = queue.pop(0)
         along = np.abs(unit @ d) <= params.part_across
         if not along.any():

@@ -758,10 +758,12 @@ def area_coverage(mesh: SweepMesh, patches: Sequence[SweepPatch], eps: float, sa
     share = np.zeros(m)
     for p in patches:
         share[p.faces] = 1.0
+    if not patches or samples <= 0:
+        return share
     fid, x = area_samples(mesh.vertices, mesh.faces, samples, areas)
     open_ = share[fid] < 1
     fid, x = fid[open_], x[open_]
-    if len(fid) == 0 or not patches:
+    if len(fid) == 0:
         return share
     hit = np.zeros(len(fid), bool)
     for p in patches:

@@ -27,6 +27,8 @@ def test_document_has_the_required_keys():
     assert doc["format"] == "auszug.sweeps" and doc["version"] == 1 and doc["source"] == "ring.stl"
     assert doc["bbox_diameter"] == pytest.approx(3.0, rel=1e-2)   # noise moves the box a little
     assert 0.95 <= doc["coverage"] <= 1.0
+    # the per-face figure beside the area's: never above it
+    assert 0.95 <= doc["face_coverage"] <= doc["coverage"]
     (p,) = doc["patches"]
     assert set(p) >= {"id", "profile", "motion", "faces", "fit_error"}
     assert len(p["motion"]) >= 8 and set(p["motion"][0]) == {"t", "rotation", "translation"}
@@ -45,6 +47,7 @@ def test_round_trip_is_lossless(tmp_path):
     assert np.array_equal(p.motion.translation, q.motion.translation)
     assert (p.fit_error, p.coverage, p.kind, p.closed) == (q.fit_error, q.coverage, q.kind, q.closed)
     assert back.params == r.params and [s.name for s in back.stages] == [s.name for s in r.stages]
+    assert (back.coverage, back.face_coverage) == (r.coverage, r.face_coverage) and back.face_shares is None
     # through the registry, by file name
     out = save(r, tmp_path / "ring.sweeps.json", kind="sweeps")
     again = load(out, kind="sweeps")

@@ -38,12 +38,19 @@ STEP = 0.02     # rib step of the seed motion (bounding-box diameters)
     ("coarse_window", 0.005), ("coarse_window", -0.08), ("coarse_window", float("nan")), ("coarse_window", "0.08"),
     ("coarse_below", -0.1), ("coarse_below", 1.5), ("coarse_below", None),
     ("chord_slack", -0.01), ("chord_slack", 1.5), ("chord_slack", float("inf")),
+    ("coverage_samples", -1), ("coverage_samples", 10_000_001), ("coverage_samples", 1e5),
+    ("coverage_samples", True),
 ])
 def test_bad_growth_settings_are_refused_with_what_was_expected(name, value):
     with pytest.raises(GeometryError, match=rf"sweep parameter {name} = .*: expected "):
         SweepParams(**{name: value})
     with pytest.raises(GeometryError, match=rf"sweep parameter {name} = "):
         DEFAULT.with_(**{name: value})
+
+
+def test_the_coverage_samples_edges_are_accepted():
+    assert SweepParams(coverage_samples=0).coverage_samples == 0
+    assert SweepParams(coverage_samples=10_000_000).coverage_samples == 10_000_000
 
 
 def test_the_step_limit_is_the_one_in_limits_and_its_edge_is_accepted():

@@ -248,3 +248,58 @@ def test_interior_distance_over_a_hole_beside_a_fold_is_not_counted():
     low = _sheets(hole=False, shift=0.008)
     off = np.array([[0.1, 0.1, -0.008], [0.8, 0.75, -0.008]])
     assert np.allclose(tree.interior_distance(off, low, 0.005), 0.008)
+
+
+def _half_swept_square(lift: float = 0.0):
+    """A square of two triangles (normalised: half-side ``a``) and a translation sweeping a segment over
+    its left half, ``lift`` above it: no triangle has its three corners on the swept strip."""
+    from auszug.sweeps import Motion
+    from auszug.sweeps.patches import SweepPatch
+
+    m = normalise(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.0]]), np.array([[0, 1, 2], [1, 3, 2]]))
+    a = float(m.vertices[:, 0].max())
+    prof = np.stack([np.linspace(-a, 0.0, 11), np.full(11, -a), np.full(11, lift)], axis=1)
+    t = np.linspace(0.0, 2 * a, 8)
+    motion = Motion(t, np.repeat(np.eye(3)[None], 8, axis=0), np.stack([0 * t, t, 0 * t], axis=1))
+    return m, a, SweepPatch(0, "translation", prof, False, motion, np.zeros(0, np.int64), 0.0, 0.0)
+
+
+def test_area_coverage_counts_the_part_of_a_long_face_on_a_patch():
+    """Per face no triangle is covered (each has a corner beyond the strip); by area the strip and its
+    ``eps`` band are: ``(a + eps) / 2a`` of the square (0.507 at eps 0.005), to the samples' precision."""
+    from auszug.sweeps.patches import area_coverage, face_areas
+
+    m, a, p = _half_swept_square()
+    areas = face_areas(m.vertices, m.faces)
+    share = area_coverage(m, [p], 0.005, 100_000, areas)
+    assert float((share * areas).sum() / areas.sum()) == pytest.approx((a + 0.005) / (2 * a), abs=2e-3)
+    # the left half holds 3/4 of the first triangle (corners (0, 0), (1, 0), (0, 1)) and 1/4 of the second
+    assert share[0] == pytest.approx(0.75, abs=0.02) and share[1] == pytest.approx(0.25, abs=0.02)
+    # no samples: the per-face figure (nothing); the strip 2 eps above the square: nothing either
+    assert area_coverage(m, [p], 0.005, 0, areas).tolist() == [0.0, 0.0]
+    _, _, off = _half_swept_square(lift=0.01)
+    assert area_coverage(m, [off], 0.005, 100_000, areas).tolist() == [0.0, 0.0]
+    # a face the patch holds whole counts whole
+    assert area_coverage(m, [replace(p, faces=np.array([1]))], 0.005, 100_000, areas)[1] == 1.0
+
+
+def test_area_samples_are_spread_by_area():
+    from auszug.sweeps.patches import area_samples, face_areas
+
+    fx = revolved(n_profile=20, n_path=30)
+    areas = face_areas(fx.vertices, fx.faces)
+    fid, x = area_samples(fx.vertices, fx.faces, 5000, areas)
+    assert len(fid) == len(x) == 5000
+    per = np.bincount(fid, minlength=len(fx.faces))
+    want = 5000 * areas / areas.sum()
+    assert np.all((per >= np.floor(want) - 1e-9) & (per <= np.ceil(want) + 1e-9))
+    # each sample inside its face: barycentric coordinates in [0, 1]
+    tri = fx.vertices[fx.faces[fid]]
+    e1, e2, d = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0], x - tri[:, 0]
+    g = np.stack([np.einsum("ij,ij->i", e1, e1), np.einsum("ij,ij->i", e1, e2), np.einsum("ij,ij->i", e2, e2)], 1)
+    r = np.stack([np.einsum("ij,ij->i", d, e1), np.einsum("ij,ij->i", d, e2)], 1)
+    det = g[:, 0] * g[:, 2] - g[:, 1] ** 2
+    u = (g[:, 2] * r[:, 0] - g[:, 1] * r[:, 1]) / det
+    w = (g[:, 0] * r[:, 1] - g[:, 1] * r[:, 0]) / det
+    assert np.all((u >= -1e-9) & (w >= -1e-9) & (u + w <= 1 + 1e-9))
+    assert len(area_samples(fx.vertices, fx.faces, 0)[0]) == 0

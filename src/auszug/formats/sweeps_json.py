@@ -3,7 +3,7 @@
 Required keys (more may be added, never removed)::
 
     {"format": "auszug.sweeps", "version": 1, "source": "moulding.stl",
-     "bbox_diameter": 1.0, "coverage": 0.98,
+     "bbox_diameter": 1.0, "coverage": 0.98, "face_coverage": 0.97,
      "patches": [{"id": 0, "kind": "rotation", "closed": false,
                   "profile": [[x, y, z], ...],
                   "motion": [{"t": 0.0, "rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]],
@@ -22,8 +22,13 @@ sweeps); between two maps the motion is the screw between them. A patch may carr
 [...]], "closed": false, "points": [[x, y], ...], "bulges": [b, ...], "hausdorff": h}`` (the
 vertices of meshing's ``Profile`` in the plane frame whose columns are ``axes``, one bulge
 ``tan(angle / 4)`` per segment, ``hausdorff`` over ``bbox_diameter``). ``faces`` are indices into the
-mesh's faces; ``fit_error`` (the largest distance of the swept profile to the mesh) and
-``coverage`` are relative to ``bbox_diameter`` and the mesh's area.
+mesh's faces (those whose three corners lie within ``eps_prox`` of the patch's swept surface);
+``fit_error`` (the largest distance of the swept profile to the mesh) and ``coverage`` are
+relative to ``bbox_diameter`` and the mesh's area. The top-level ``coverage`` is the share of the
+mesh's area covered (the faces some patch holds whole, and the sampled share of the others within
+``eps_prox`` of a patch holding one of their corners: docs/sweeps.md, "Coverage"); the optional
+``face_coverage`` is the per-face figure (the area of the union of the patches' ``faces``), and a
+patch's ``coverage`` is its ``faces``' share of the area.
 
 Floats are written in their shortest round-trip form, so reading gives back exactly the numbers
 that were written (:func:`loads` then :func:`dumps` reproduces the text).
@@ -76,6 +81,7 @@ def to_dict(report: Any) -> dict[str, Any]:
                 "hausdorff": float(fit.hausdorff)}
     return {"format": FORMAT, "version": VERSION, "source": report.source,
             "bbox_diameter": float(report.bbox_diameter), "coverage": float(report.coverage),
+            **({} if report.face_coverage is None else {"face_coverage": float(report.face_coverage)}),
             "patches": patches,
             "centre": np.asarray(report.centre, float).tolist(), "n_vertices": int(report.n_vertices),
             "n_faces": int(report.n_faces),
@@ -169,6 +175,8 @@ def loads(text: str | bytes, name: str = "<string>") -> Any:
     for key in ("bbox_diameter", "coverage"):
         if not _number(doc.get(key)):
             raise FormatError(f"{key}: expected a finite number", name)
+    if "face_coverage" in doc and not _number(doc["face_coverage"]):
+        raise FormatError("face_coverage: expected a finite number", name)
     for key in ("n_vertices", "n_faces"):
         if key in doc and (not isinstance(doc[key], int) or isinstance(doc[key], bool) or doc[key] < 0):
             raise FormatError(f"{key}: expected a whole number >= 0", name)
@@ -237,7 +245,8 @@ def loads(text: str | bytes, name: str = "<string>") -> Any:
     centre = _array(doc.get("centre", [0.0, 0.0, 0.0]), (3,), "centre", name)
     return SweepReport(tuple(patches), float(doc["coverage"]), float(doc["bbox_diameter"]), centre,
                        int(doc.get("n_vertices", 0)), int(n_faces) if isinstance(n_faces, int) else 0, tuple(stages),
-                       params, doc.get("source", ""))
+                       params, doc.get("source", ""),
+                       float(doc["face_coverage"]) if "face_coverage" in doc else None)
 
 
 register(FileFormat("sweeps", (".sweeps.json",), "sweeps", reader=loads, writer=_write))

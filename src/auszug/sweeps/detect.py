@@ -46,7 +46,7 @@ from auszug.sweeps.kinematic import kinematic_axis
 from auszug.sweeps.mesh import SweepMesh, normalise
 from auszug.sweeps.movability import movability
 from auszug.sweeps.params import DEFAULT, SweepParams
-from auszug.sweeps.patches import SweepPatch, face_areas, kinematic_patches
+from auszug.sweeps.patches import SweepPatch, area_coverage, face_areas, kinematic_patches
 from auszug.sweeps.planes import initial_planes, spacing_for
 from auszug.sweeps.stage import Stage
 
@@ -70,7 +70,10 @@ class SweepReport:
     patches : tuple of SweepPatch
         Profiles and motions in input coordinates (``fit_error`` relative to the diameter).
     coverage : float
-        Share of the mesh's area covered by the union of the patches' faces, 0..1.
+        Share of the mesh's area covered by the patches, 0..1: the faces some patch covers whole,
+        and on the others the share of their area within ``eps_prox`` of the swept surface of a
+        patch holding one of their corners (sampled, at most ``params.coverage_samples`` points;
+        :func:`~auszug.sweeps.patches.area_coverage`).
     bbox_diameter : float
         Of the input mesh.
     centre : (3,) float array
@@ -80,6 +83,13 @@ class SweepReport:
     params : SweepParams
     source : str
         The mesh file's name ("" when not from a file).
+    face_coverage : float or None
+        The per-face figure: share of the area of the union of the patches' ``faces`` (each face
+        counted only when one patch holds its three corners); None when not known (a file
+        without it).
+    face_shares : (n_faces,) float array or None
+        Per face the share of its area covered (1 for the patches' faces); its area-weighted
+        mean is ``coverage``. None when not known (read from a file).
     """
 
     patches: tuple[SweepPatch, ...]
@@ -91,6 +101,8 @@ class SweepReport:
     stages: tuple[Stage, ...]
     params: SweepParams = DEFAULT
     source: str = ""
+    face_coverage: float | None = None
+    face_shares: Array | None = None
 
     def stage(self, name: str) -> Stage | None:
         """The stage called ``name`` (None if it did not run)."""
@@ -103,7 +115,8 @@ class SweepReport:
             lines.append(f"patch {p.id}: {p.kind}, profile {len(p.profile)} points"
                          f"{' (closed)' if p.closed else ''}, {len(p.motion)} motion samples, "
                          f"{len(p.faces)} faces, coverage {p.coverage:.3f}, fit error {p.fit_error:.2e}")
-        lines.append(f"coverage {self.coverage:.3f} of the mesh's area by {len(self.patches)} patch(es)")
+        whole = "" if self.face_coverage is None else f" ({self.face_coverage:.3f} in whole faces)"
+        lines.append(f"coverage {self.coverage:.3f} of the mesh's area{whole} by {len(self.patches)} patch(es)")
         return "\n".join(lines)
 
 
@@ -289,15 +302,20 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
     covered = np.zeros(len(m.faces), bool)
     for p in patches:
         covered[p.faces] = True
-    coverage = float(areas[covered].sum() / areas.sum()) if areas.sum() > 0 else 0.0
+    area = float(areas.sum())
+    face_coverage = float(areas[covered].sum() / area) if area > 0 else 0.0
+    # the faces a patch holds whole, and the sampled share of the others (docs/sweeps.md, "Coverage")
+    shares = area_coverage(m, kept, params.eps_prox, params.coverage_samples, areas)
+    coverage = float(min(1.0, (shares * areas).sum() / area)) if area > 0 else 0.0
     stages.append(Stage("fit", time.perf_counter() - t,
                         f"{len(patches)} of {len(raw)} patch(es) kept ({len(good)} within fit error {bound:.3g}, "
                         f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}; "
-                        f"then overlaps dropped); coverage {coverage:.3f}; {fitted} profile(s) fitted with lines "
+                        f"then overlaps dropped); coverage {coverage:.3f} of the area ({face_coverage:.3f} in whole "
+                        f"faces, {params.coverage_samples} samples); {fitted} profile(s) fitted with lines "
                         f"and arcs within {params.profile_fit_tolerance:.3g}",
                         {"candidates": len(raw), "patches": len(patches), "coverage": coverage,
-                         "profile_fits": fitted}))
+                         "face_coverage": face_coverage, "profile_fits": fitted}))
     if progress is not None:
         progress("fit", total, total)
     return SweepReport(patches, coverage, m.scale, m.centre, m.n_vertices, len(m.faces), tuple(stages), params,
-                       source)
+                       source, face_coverage, shares)

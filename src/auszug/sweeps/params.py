@@ -253,6 +253,15 @@ class SweepParams:
         along ``n x d`` is tried over the whole mesh (a wall's top and bottom and its face above an
         opening slide along the wall's width; no cut of them glides as a whole). 0 turns it off;
         at most 0.2.
+    coverage_samples : int
+        The report's ``coverage`` is of the mesh's area, not of whole faces: the faces that no
+        kept patch covers whole (all three corners within ``eps_prox`` of its swept surface) are
+        sampled, at most this many points over the whole mesh, area-uniform (systematic), and a
+        sample counts as covered when it lies within ``eps_prox`` of the swept surface of a patch
+        holding at least one of its face's corners (:func:`auszug.sweeps.patches.area_coverage`).
+        The per-face figure is reported beside it (``face_coverage``). Bounds the time and memory
+        (a few arrays of this length). 0: no samples, the coverage is the per-face one; at most
+        10 000 000.
     """
 
     beta: float = 400.0
@@ -322,6 +331,7 @@ class SweepParams:
     part_mean_error: float = 0.25
     part_profile_cuts: int = 0
     part_across: float = 0.02
+    coverage_samples: int = 100_000
 
     def __post_init__(self) -> None:
         checks = [
@@ -398,6 +408,8 @@ class SweepParams:
             ("part_mean_error", _real(self.part_mean_error) and 0 < self.part_mean_error <= 1,
              "in (0, 1] (a share of eps_prox)"),
             ("part_across", _real(self.part_across) and 0 <= self.part_across <= 0.2, "in [0, 0.2] (a sine)"),
+            ("coverage_samples", _whole(self.coverage_samples) and 0 <= self.coverage_samples <= 10_000_000,
+             "a whole number in 0..10000000"),
         ]
         for name, ok, want in checks:
             if not ok:

@@ -28,7 +28,7 @@ the accepted patches to the input's coordinates.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Literal, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -56,7 +56,7 @@ if TYPE_CHECKING:
 
 __all__ = ["SweepPatch", "Fit", "MeshTree", "RingTree", "kinematic_patches", "fit_patch", "face_areas", "sweep_surface",
            "closest_distance", "polyline_hausdorff", "SweptError", "swept_error", "swept_coverage", "improve_flat",
-           "improve_bounded"]
+           "improve_bounded", "area_coverage", "area_samples"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -688,6 +688,103 @@ def swept_coverage(mesh: SweepMesh, err: SweptError, eps: float, areas: Array | 
     total = float(a.sum())
     cov = float(a[faces].sum() / total) if total > 0 else 0.0
     return Fit(dv, faces, err.fit_error, cov)
+
+
+#: The additive recurrence (R2 sequence) that spreads the samples inside a face: its two
+#: increments are ``1 / g, 1 / g^2`` for the plastic number ``g`` (the root of ``x^3 = x + 1``).
+_R2 = (0.7548776662466927, 0.5698402909980532)
+
+
+def area_samples(vertices: ArrayLike, faces: ArrayLike, n: int,
+                 areas: Array | None = None) -> tuple[IntArray, Array]:
+    """``n`` points spread evenly over a mesh's area: their faces ``(n,)`` and positions ``(n, 3)``.
+
+    Systematic sampling: the ``i``-th point falls at area ``(i + 1/2) A / n`` along the faces in
+    order (so a face of area ``a`` gets ``floor`` or ``ceil`` of ``n a / A`` points), and inside its
+    face at the ``i``-th point of the R2 sequence folded into the triangle. Deterministic.
+
+    Examples
+    --------
+    >>> f, x = area_samples([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], [[0, 1, 2], [1, 3, 2]], 4)
+    >>> f.tolist(), bool(np.all((x >= 0) & (x <= 1)))
+    ([0, 0, 1, 1], True)
+    """
+    v = np.asarray(vertices, float)
+    f = np.asarray(faces, np.int64)
+    a = face_areas(v, f) if areas is None else np.asarray(areas, float)
+    total = float(a.sum())
+    if n <= 0 or len(f) == 0 or not total > 0:
+        return np.zeros(0, np.int64), np.zeros((0, 3))
+    i = np.arange(n, dtype=float)
+    fid = np.searchsorted(np.cumsum(a), (i + 0.5) * (total / n), side="right")
+    fid = np.minimum(fid, len(f) - 1).astype(np.int64)
+    u = np.mod(0.5 + i * _R2[0], 1.0)
+    w = np.mod(0.5 + i * _R2[1], 1.0)
+    fold = u + w > 1
+    u[fold], w[fold] = 1 - u[fold], 1 - w[fold]
+    tri = v[f[fid]]
+    x = tri[:, 0] + u[:, None] * (tri[:, 1] - tri[:, 0]) + w[:, None] * (tri[:, 2] - tri[:, 0])
+    return fid, x
+
+
+def area_coverage(mesh: SweepMesh, patches: Sequence[SweepPatch], eps: float, samples: int,
+                  areas: Array | None = None) -> Array:
+    """Per face the share of its area that the patches cover ``(m,)`` in [0, 1].
+
+    A face one patch covers whole (in its ``faces``: its three corners within ``eps`` of the
+    patch's swept surface) counts 1. The other faces are sampled (:func:`area_samples`, ``samples``
+    points over the whole mesh, so a face gets about ``samples`` times its share of the area; a
+    face too small for one counts 0): a sample is covered when it lies within ``eps`` of the
+    swept surface (rings as in the fit check, chords within ``eps / 10``) of a patch that holds at
+    least one of the face's corners within ``eps``. So a long face whose corners lie on different
+    patches, or on one patch and beyond it, counts by the part of it that lies on them. The mesh's
+    covered area is ``(share * areas).sum()``; it is at least the per-face figure.
+
+    Parameters
+    ----------
+    mesh : SweepMesh
+    patches : sequence of SweepPatch
+        In the mesh's (normalised) coordinates.
+    eps : float
+    samples : int
+        At most this many samples (0: the per-face figure alone).
+    areas : (m,) float array, optional
+
+    Returns
+    -------
+    (m,) float array
+    """
+    m = len(mesh.faces)
+    share = np.zeros(m)
+    for p in patches:
+        share[p.faces] = 1.0
+    if not patches or samples <= 0:
+        return share
+    fid, x = area_samples(mesh.vertices, mesh.faces, samples, areas)
+    open_ = share[fid] < 1
+    fid, x = fid[open_], x[open_]
+    if len(fid) == 0:
+        return share
+    hit = np.zeros(len(fid), bool)
+    for p in patches:
+        if len(p.profile) < 2:
+            continue
+        rings = _sweep_rings(p.profile, p.motion, eps / 10)[1]
+        tree = RingTree(rings, p.closed)
+        sv = rings.reshape(-1, 3)
+        lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
+        inside = face_vertices_in_box(mesh.vertices, mesh.faces, lo, hi)
+        near = np.zeros(mesh.n_vertices, bool)
+        near[inside] = tree.within(mesh.vertices[inside], eps)
+        held: NDArray[np.bool_] = np.asarray(near[mesh.faces].any(axis=1))
+        ask = ~hit & held[fid] & np.all((x >= lo) & (x <= hi), axis=1)
+        if ask.any():
+            hit[ask] = tree.within(x[ask], eps)
+    count = np.bincount(fid, minlength=m)
+    got = np.bincount(fid, weights=hit.astype(float), minlength=m)
+    sampled = count > 0
+    share[sampled] = got[sampled] / count[sampled]
+    return share
 
 
 def kinematic_patches(mesh: SweepMesh, axis: KinematicAxis, params: SweepParams = DEFAULT,

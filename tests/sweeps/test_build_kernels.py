@@ -131,3 +131,73 @@ def test_motion_between_knots_is_the_screw_of_its_interval_bit_for_bit():
         again = fresh.at([t])
         j = int(np.flatnonzero(ts == t)[0])
         assert np.array_equal(one[0][0], got_r[j]) and np.array_equal(again[1][0], got_t[j])
+
+
+@pytest.mark.parametrize("q,n", [(1, 1), (1, 7), (9, 128), (300, 3)])
+def test_apply_maps_is_numpys_einsum_bit_for_bit(q, n):
+    # the compiled map application replaces np.einsum in Motion.apply and the Hermite projection:
+    # the fitted sweeps stay the same only if every bit does (signed zeros included)
+    from auszug.sweeps._kernels import apply_maps
+
+    rng = np.random.default_rng(q + n)
+    r = rng.normal(size=(q, 3, 3))
+    tr = rng.normal(size=(q, 3))
+    x = rng.normal(size=(n, 3)) * 1e3
+    r[0, 0], tr[0, 0], x[0] = -0.0, -0.0, 0.0                    # products and sums of signed zeros
+    want = np.einsum("qij,nj->qni", r, x) + tr[:, None, :]
+    got = apply_maps(r, tr, x)
+    assert got.shape == want.shape
+    assert np.array_equal(got, want) and np.array_equal(np.signbit(got), np.signbit(want))
+
+
+@pytest.mark.parametrize("m", [1, 6, 5000])
+def test_inverse_maps_at_is_numpys_einsum_bit_for_bit(m):
+    from auszug.sweeps._kernels import inverse_maps_at
+
+    rng = np.random.default_rng(m)
+    r = rng.normal(size=(40, 3, 3))
+    tr = rng.normal(size=(40, 3))
+    pts = rng.normal(size=(m + 9, 3))
+    idx = rng.permutation(m + 9)[:m].astype(np.int64)
+    knot = rng.integers(0, 40, m)
+    r[knot[0], 0, 0], tr[knot[0]] = -0.0, pts[idx[0]]             # a zero difference
+    want = np.einsum("nji,nj->ni", r[knot], pts[idx] - tr[knot])
+    got = inverse_maps_at(r, tr, knot, pts, idx)
+    assert np.array_equal(got, want) and np.array_equal(np.signbit(got), np.signbit(want))
+
+
+def test_motion_apply_is_the_maps_at_its_parameters():
+    r, t = screw_motion([0.3, 0.0, 1.0], [1.0, 0.5, 0.0], 0.2, [0.0, 0.7, 1.9, 2.5])
+    m = Motion(np.array([0.0, 1.0, 2.0, 4.0]), r, t)
+    x = np.random.default_rng(2).normal(size=(11, 3))
+    tt = np.array([0.0, 0.3, 1.0, 3.1, 4.0])
+    rr, trr = m.at(tt)
+    got = m.apply(x, tt)
+    assert got.shape == (5, 11, 3)
+    assert np.array_equal(got, np.einsum("qij,nj->qni", rr, x) + trr[:, None, :])
+
+
+def test_mesh_tree_of_is_built_once_per_mesh_and_answers_as_a_new_tree():
+    import copy
+    import pickle
+
+    from auszug.sweeps.fixtures import extruded
+    from auszug.sweeps.mesh import normalise
+    from auszug.sweeps.patches import MeshTree
+
+    fx = extruded(n_profile=30, n_path=12)
+    m = normalise(fx.vertices, fx.faces)
+    t = MeshTree.of(m)
+    assert MeshTree.of(m) is t                                   # shared by every stage on the mesh
+    other = normalise(fx.vertices, fx.faces)
+    assert MeshTree.of(other) is not t                           # another mesh object: its own tree
+    p = np.random.default_rng(0).normal(size=(50, 3)) * 0.3
+    d0, f0, c0 = MeshTree.built(m).query(p)
+    d, f, c = t.query(p)
+    assert np.array_equal(d, d0) and np.array_equal(f, f0) and np.array_equal(c, c0)
+    assert np.array_equal(t._boundary_edges(), MeshTree(m.vertices, m.faces)._boundary_edges())
+    # the tree is not part of the mesh's state: a pickled or copied mesh builds its own
+    for m2 in (pickle.loads(pickle.dumps(m)), copy.deepcopy(m)):
+        assert "_mesh_tree" not in m2.__dict__
+        assert np.array_equal(m2.vertices, m.vertices) and np.array_equal(m2.faces, m.faces)
+        assert MeshTree.of(m2) is not t

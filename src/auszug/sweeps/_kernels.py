@@ -1462,3 +1462,48 @@ def boundary_edges_of(faces, edge_faces, face_edges):  # pragma: no cover - comp
                 out[i, k, 0] = faces[i, k]
                 out[i, k, 1] = faces[i, (k + 1) % 3]
     return out
+
+
+# ------------------------------------------------------------------------- rigid maps applied to points
+
+
+@njit(cache=True)
+def apply_maps(r, tr, x):  # pragma: no cover - compiled
+    """Points ``x (n, 3)`` moved by each map ``(r (q, 3, 3), tr (q, 3))``: ``(q, n, 3)``.
+
+    Equal bit for bit to ``np.einsum("qij,nj->qni", r, x) + tr[:, None, :]``: numpy's einsum sums
+    the three products of a row as ``(p0 + p2) + p1`` (from 0.0), then the translation is added.
+    """
+    q = r.shape[0]
+    n = x.shape[0]
+    out = np.empty((q, n, 3))
+    for k in range(q):
+        for p in range(n):
+            x0, x1, x2 = x[p, 0], x[p, 1], x[p, 2]
+            for i in range(3):
+                s = 0.0 + ((r[k, i, 0] * x0 + r[k, i, 2] * x2) + r[k, i, 1] * x1)
+                out[k, p, i] = s + tr[k, i]
+    return out
+
+
+@njit(cache=True)
+def inverse_maps_at(r, tr, knot, pts, idx):  # pragma: no cover - compiled
+    """Each point ``pts[idx[p]]`` mapped back by the inverse of the map ``knot[p]`` of ``(r (q, 3, 3), tr (q, 3))``.
+
+    Returns ``(m, 3)``, equal bit for bit to ``np.einsum("nji,nj->ni", r[knot], pts[idx] - tr[knot])``
+    (numpy's einsum sums these three products in order, from 0.0), without the gathered copies.
+    """
+    m = len(idx)
+    out = np.empty((m, 3))
+    for p in range(m):
+        k = knot[p]
+        d0 = pts[idx[p], 0] - tr[k, 0]
+        d1 = pts[idx[p], 1] - tr[k, 1]
+        d2 = pts[idx[p], 2] - tr[k, 2]
+        for i in range(3):
+            s = 0.0
+            s += r[k, 0, i] * d0
+            s += r[k, 1, i] * d1
+            s += r[k, 2, i] * d2
+            out[p, i] = s
+    return out

@@ -51,7 +51,14 @@ from typing import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from auszug.sweeps._kernels import box_submesh, closest_on_plane_curves, curves_near_profiles, polyline_closest
+from auszug.sweeps._kernels import (
+    apply_maps,
+    box_submesh,
+    closest_on_plane_curves,
+    curves_near_profiles,
+    inverse_maps_at,
+    polyline_closest,
+)
 from auszug.sweeps.cut import Cuts, EdgeGrid, cut, cut_near
 from auszug.sweeps.matching import (
     CurvaturePlots,
@@ -290,8 +297,9 @@ def hermite_motion(profile: Array, rotations: Array, translations: Array, veloci
     off = (h00[None, :, None] * translations[:-1, None] + (hh * h10)[:, :, None] * da[:-1, None]
            + h01[None, :, None] * translations[1:, None] + (hh * h11)[:, :, None] * da[1:, None])
     # each projected to the closest rigid motion in the sense of the profile's points (one batched Kabsch)
-    moved = np.einsum("ksij,nj->ksni", lin, profile) + off[:, :, None, :]
-    r_all, t_all = kabsch_batch(profile, moved.reshape(-1, len(profile), 3))
+    moved = apply_maps(np.ascontiguousarray(lin.reshape(-1, 3, 3)), np.ascontiguousarray(off.reshape(-1, 3)),
+                       np.ascontiguousarray(profile, dtype=float))     # compiled, as einsum bit for bit
+    r_all, t_all = kabsch_batch(profile, moved)
     r_all = r_all.reshape(k - 1, samples_per_rib, 3, 3)
     t_all = t_all.reshape(k - 1, samples_per_rib, 3)
     r_all[:, -1], t_all[:, -1] = rotations[1:], translations[1:]   # exactly the given maps at the ribs
@@ -395,7 +403,8 @@ def _recut_knots(mesh: SweepMesh, profile: Array, motion: Motion, reach: float,
     starts = np.concatenate([[0], np.cumsum(b - a)]).astype(np.int64)
     idx = np.arange(starts[-1]) + np.repeat(a - starts[:-1], b - a)
     k = c.curve_plane[curve_of[idx]]
-    back = np.einsum("nji,nj->ni", motion.rotation[k], c.points[idx] - motion.translation[k])
+    # compiled, as np.einsum("nji,nj->ni", R[k], points[idx] - T[k]) bit for bit
+    back = inverse_maps_at(motion.rotation, motion.translation, k, c.points, idx)
     return back, starts, c.curve_plane[curve_of[a]].astype(np.int64)
 
 

@@ -191,6 +191,10 @@ def closest_distance(points: ArrayLike, vertices: ArrayLike, elements: ArrayLike
     return np.sqrt(np.maximum(sq, 0.0)), np.asarray(c)
 
 
+#: Where :meth:`MeshTree.of` keeps a mesh's tree (an attribute of the mesh object, not a dataclass field).
+_TREE_KEY = "_mesh_tree"
+
+
 class MeshTree:
     """Closest points on one triangle mesh, its bounding-volume tree built once (libigl ``AABB``).
 
@@ -212,10 +216,33 @@ class MeshTree:
 
     @classmethod
     def of(cls, mesh: SweepMesh) -> "MeshTree":
-        """The tree of a whole :class:`~auszug.sweeps.mesh.SweepMesh`, its boundary edges from the mesh's topology.
+        """The tree of a whole :class:`~auszug.sweeps.mesh.SweepMesh`, built once per mesh (:meth:`built`).
+
+        The first call builds it and keeps it with the mesh; every later call for the same mesh
+        object (the kinematic stage, both passes of the general stages, the kinematic parts of
+        one ``detect``) gets the same tree. A tree answers a query from the mesh and the query
+        alone, so sharing it changes no result.
+
+        Examples
+        --------
+        >>> from auszug.sweeps.fixtures import extruded
+        >>> from auszug.sweeps.mesh import normalise
+        >>> m = normalise(*(lambda f: (f.vertices, f.faces))(extruded(n_profile=30, n_path=10)))
+        >>> MeshTree.of(m) is MeshTree.of(m)
+        True
+        """
+        got: MeshTree | None = mesh.__dict__.get(_TREE_KEY)
+        if got is None:
+            got = cls.built(mesh)
+            object.__setattr__(mesh, _TREE_KEY, got)      # frozen: a cache of the mesh, not a field
+        return got
+
+    @classmethod
+    def built(cls, mesh: SweepMesh) -> "MeshTree":
+        """A new tree of a whole :class:`~auszug.sweeps.mesh.SweepMesh`, its boundary edges from the mesh's topology.
 
         The same as ``MeshTree(mesh.vertices, mesh.faces)``, without counting the edges' faces
-        again (an edge with one face is a boundary edge).
+        again (an edge with one face is a boundary edge). :meth:`of` keeps it with the mesh.
         """
         tree = cls(mesh.vertices, mesh.faces)
         tree._bnd = boundary_edges_of(tree.faces, mesh.edge_faces, mesh.face_edges)     # one compiled pass

@@ -201,3 +201,38 @@ def test_mesh_tree_of_is_built_once_per_mesh_and_answers_as_a_new_tree():
         assert "_mesh_tree" not in m2.__dict__
         assert np.array_equal(m2.vertices, m.vertices) and np.array_equal(m2.faces, m.faces)
         assert MeshTree.of(m2) is not t
+
+
+def test_sweep_rings_kept_across_refinements_are_the_motion_at_their_parameters():
+    # _sweep_rings computes only the new parameters' rings in each refinement: every ring must be
+    # what the motion gives at its parameter in one call for all of them, bit for bit
+    from auszug.sweeps.general import hermite_motion
+    from auszug.sweeps.patches import _sweep_rings
+
+    rng = np.random.default_rng(5)
+    profile = np.column_stack([np.linspace(0, 0.2, 30), 0.05 * np.sin(np.linspace(0, 3, 30)), np.zeros(30)])
+    r, t = screw_motion([0.2, 0.1, 1.0], [0.3, 0.0, 0.1], 0.05, np.linspace(0.0, 2.0, 6))
+    motion = hermite_motion(profile, r, t, rng.normal(size=(6, 6)) * 0.3, 4)
+    for tol in (1e-4, 1e-6):
+        tt, rings = _sweep_rings(profile, motion, tol)
+        assert len(tt) > len(motion.t) and np.all(np.diff(tt) > 0)       # refined at least once
+        assert np.array_equal(rings, motion.apply(profile, tt))
+
+
+def test_ordered_parts_are_the_family_parts_in_rib_order():
+    from auszug.sweeps import curvature_plots, cut, families, match_cuts, movability, normalise
+    from auszug.sweeps.fixtures import extruded
+    from auszug.sweeps.matching import family_parts, order_ribs, ordered_parts
+
+    fx = extruded(n_profile=60, n_path=60)
+    xs = np.array([0.05, -0.2, 0.3, -0.05, 0.15, -0.3])
+    c = cut(normalise(fx.vertices, fx.faces), np.tile([1.0, 0, 0], (6, 1)), xs)
+    pl = curvature_plots(c, movability(c))
+    ribs = order_ribs(families(match_cuts(pl))[0], pl)
+    want = family_parts(ribs.family, pl)[ribs.order]
+    got = ordered_parts(ribs, pl)
+    assert np.array_equal(got, want)
+    got[0] += 1.0                                             # a copy: the kept parts stay as they were
+    assert np.array_equal(ordered_parts(ribs, pl), want)
+    other = curvature_plots(c, movability(c))                 # other plots: taken anew
+    assert np.array_equal(ordered_parts(ribs, other), family_parts(ribs.family, other)[ribs.order])

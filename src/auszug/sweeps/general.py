@@ -296,12 +296,18 @@ def hermite_motion(profile: Array, rotations: Array, translations: Array, veloci
            + h01[None, :, None, None] * rotations[1:, None] + (hh * h11)[:, :, None, None] * dl[1:, None])
     off = (h00[None, :, None] * translations[:-1, None] + (hh * h10)[:, :, None] * da[:-1, None]
            + h01[None, :, None] * translations[1:, None] + (hh * h11)[:, :, None] * da[1:, None])
-    # each projected to the closest rigid motion in the sense of the profile's points (one batched Kabsch)
-    moved = apply_maps(np.ascontiguousarray(lin.reshape(-1, 3, 3)), np.ascontiguousarray(off.reshape(-1, 3)),
+    # each projected to the closest rigid motion in the sense of the profile's points (one batched Kabsch), but
+    # the last of each interval: it is exactly the given map at the next rib (each map's Kabsch is its own)
+    s1 = samples_per_rib - 1
+    moved = apply_maps(np.ascontiguousarray(lin[:, :s1].reshape(-1, 3, 3)),
+                       np.ascontiguousarray(off[:, :s1].reshape(-1, 3)),
                        np.ascontiguousarray(profile, dtype=float))     # compiled, as einsum bit for bit
-    r_all, t_all = kabsch_batch(profile, moved)
-    r_all = r_all.reshape(k - 1, samples_per_rib, 3, 3)
-    t_all = t_all.reshape(k - 1, samples_per_rib, 3)
+    r_all = np.empty((k - 1, samples_per_rib, 3, 3))
+    t_all = np.empty((k - 1, samples_per_rib, 3))
+    if s1 > 0:
+        r_in, t_in = kabsch_batch(profile, moved)
+        r_all[:, :s1] = r_in.reshape(k - 1, s1, 3, 3)
+        t_all[:, :s1] = t_in.reshape(k - 1, s1, 3)
     r_all[:, -1], t_all[:, -1] = rotations[1:], translations[1:]   # exactly the given maps at the ribs
     ts = np.r_[tt[0], (tt[:-1, None] + hh * f[None, :]).reshape(-1)]
     return Motion(ts, np.concatenate([rotations[:1], r_all.reshape(-1, 3, 3)]),
@@ -329,9 +335,9 @@ def split_ribs(parts: Array, jump: float) -> list[Array]:
 
 def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
     """The ribs' common parts ``(k, n, 3)`` in rib order, sample ``j`` corresponding across ribs."""
-    from auszug.sweeps.matching import family_parts  # here: the module's imports stay as they were (merges)
+    from auszug.sweeps.matching import ordered_parts  # here: the module's imports stay as they were (merges)
 
-    return family_parts(ribs.family, plots)[ribs.order]
+    return ordered_parts(ribs, plots)
 
 
 def _normals_at(mesh: SweepMesh, points: Array, tree: MeshTree) -> Array:

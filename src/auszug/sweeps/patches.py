@@ -587,20 +587,20 @@ def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
 def _sweep_rings(profile: Array, motion: Motion, tol: float, max_rings: int = 4096) -> tuple[Array, Array]:
     """The parameters ``(k,)`` and rings ``(k, n, 3)`` of :func:`sweep_surface` (the motion's knots among them)."""
     t = np.array(motion.t, float)
-    rings = None
+    # each ring is the motion at its own parameter (row by row, bit for bit as in one call for all
+    # parameters): the rings found are kept, only the new parameters' are computed
+    a = motion.apply(profile, t)
     while len(t) < max_rings:
         mid = (t[:-1] + t[1:]) / 2
-        a = motion.apply(profile, t)
         m = motion.apply(profile, mid)
         dev = np.linalg.norm(m - (a[:-1] + a[1:]) / 2, axis=2).max(axis=1)
         bad = dev > tol
         if not bad.any():
-            rings = a
             break
-        t = np.sort(np.concatenate([t, mid[bad]]))
-    if rings is None:
-        rings = motion.apply(profile, t)
-    return t, rings
+        order = np.argsort(np.concatenate([t, mid[bad]]), kind="stable")
+        t = np.concatenate([t, mid[bad]])[order]
+        a = np.concatenate([a, m[bad]])[order]
+    return t, a
 
 
 def ring_faces(k: int, n: int, closed: bool = False) -> IntArray:

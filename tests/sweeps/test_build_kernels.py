@@ -236,3 +236,34 @@ def test_ordered_parts_are_the_family_parts_in_rib_order():
     assert np.array_equal(ordered_parts(ribs, pl), want)
     other = curvature_plots(c, movability(c))                 # other plots: taken anew
     assert np.array_equal(ordered_parts(ribs, other), family_parts(ribs.family, other)[ribs.order])
+
+
+@pytest.mark.parametrize("p,n", [(1, 1), (2, 3), (30, 128)])
+def test_eq7_blocks_are_numpys_einsum_over_the_built_matrix_bit_for_bit(p, n):
+    from auszug.sweeps._kernels import eq7_blocks
+
+    rng = np.random.default_rng(p * n)
+    mid = rng.normal(size=(p, n, 3))
+    d = rng.normal(size=(p, n, 3))
+    mid[0, 0] = [0.0, -0.0, 0.0]
+    a = np.zeros((p, n, 3, 6))                  # per point the rows [-[mid]x | I], as rib_velocities built them
+    a[:, :, 0, 1], a[:, :, 0, 2] = mid[..., 2], -mid[..., 1]
+    a[:, :, 1, 0], a[:, :, 1, 2] = -mid[..., 2], mid[..., 0]
+    a[:, :, 2, 0], a[:, :, 2, 1] = mid[..., 1], -mid[..., 0]
+    a[:, :, :, 3:] = np.eye(3)
+    a = a.reshape(p, 3 * n, 6)
+    want_l, want_r = np.einsum("pri,prj->pij", a, a), np.einsum("pri,pr->pi", a, d.reshape(p, 3 * n))
+    got_l, got_r = eq7_blocks(mid, d)
+    assert np.array_equal(got_l, want_l) and np.array_equal(np.signbit(got_l), np.signbit(want_l))
+    assert np.array_equal(got_r, want_r) and np.array_equal(np.signbit(got_r), np.signbit(want_r))
+
+
+@pytest.mark.parametrize("k,n,m", [(1, 1, 3), (16, 128, 6), (40, 64, 3)])
+def test_batched_gram_is_numpys_einsum_bit_for_bit(k, n, m):
+    from auszug.sweeps._kernels import batched_gram
+
+    rng = np.random.default_rng(k + n)
+    a = rng.normal(size=(k, n, m))
+    b = rng.normal(size=(k, n, m))
+    assert np.array_equal(batched_gram(a, b), np.einsum("kni,knj->kij", a, b))
+    assert np.array_equal(batched_gram(a, a), np.einsum("kni,knj->kij", a, a))

@@ -1405,6 +1405,16 @@ def box_submesh(v, faces, edge_faces, face_edges, lo, hi):  # pragma: no cover -
     return keep, used, ef, fe
 
 
+@njit(cache=True)
+def take_rows(a, idx):  # pragma: no cover - compiled
+    """``a[idx]`` for a 2-d array ``a`` and indices ``idx (k,)`` in range (no checks): the rows copied."""
+    out = np.empty((len(idx), a.shape[1]), a.dtype)
+    for r in range(len(idx)):
+        for c in range(a.shape[1]):
+            out[r, c] = a[idx[r], c]
+    return out
+
+
 # ------------------------------------------------------------------------------ per-face passes of the fit
 
 
@@ -1506,4 +1516,57 @@ def inverse_maps_at(r, tr, knot, pts, idx):  # pragma: no cover - compiled
             s += r[k, 1, i] * d1
             s += r[k, 2, i] * d2
             out[p, i] = s
+    return out
+
+
+# ------------------------------------------------------------------------- Eq. 7 and Kabsch sums
+
+
+@njit(cache=True)
+def eq7_blocks(mid, d):  # pragma: no cover - compiled
+    """The normal-equation blocks of F_pivot per rib pair: ``A^T A (p, 6, 6)`` and ``A^T d (p, 6)``.
+
+    ``mid (p, n, 3)`` are the pairs' midpoints and ``d (p, n, 3)`` their displacements per unit
+    time; ``A (p, 3 n, 6)`` has per point the rows ``[-[m]x | I]`` (``c x m + c_bar``), point after
+    point. Equal bit for bit to ``np.einsum("pri,prj->pij", A, A)`` and ``np.einsum("pri,pr->pi", A,
+    d.reshape(p, 3 n))``: numpy's einsum sums these products over ``r`` in order, from 0.0, and so
+    does this pass, without building ``A``.
+    """
+    n_p, n = mid.shape[0], mid.shape[1]
+    lhs = np.zeros((n_p, 6, 6))
+    rhs = np.zeros((n_p, 6))
+    row = np.zeros(6)
+    for p in range(n_p):
+        for q in range(n):
+            mx, my, mz = mid[p, q, 0], mid[p, q, 1], mid[p, q, 2]
+            for c in range(3):
+                if c == 0:
+                    row[0], row[1], row[2], row[3], row[4], row[5] = 0.0, mz, -my, 1.0, 0.0, 0.0
+                elif c == 1:
+                    row[0], row[1], row[2], row[3], row[4], row[5] = -mz, 0.0, mx, 0.0, 1.0, 0.0
+                else:
+                    row[0], row[1], row[2], row[3], row[4], row[5] = my, -mx, 0.0, 0.0, 0.0, 1.0
+                dc = d[p, q, c]
+                for i in range(6):
+                    ri = row[i]
+                    for j in range(6):
+                        lhs[p, i, j] += ri * row[j]
+                    rhs[p, i] += ri * dc
+    return lhs, rhs
+
+
+@njit(cache=True)
+def batched_gram(a, b):  # pragma: no cover - compiled
+    """``a (k, n, i)`` and ``b (k, n, j)``: ``(k, i, j)`` sums over ``n`` of ``a[:, n, :, None] b[:, n, None, :]``.
+
+    Equal bit for bit to ``np.einsum("kni,knj->kij", a, b)`` (numpy sums over ``n`` in order, from 0.0).
+    """
+    k, n, ni, nj = a.shape[0], a.shape[1], a.shape[2], b.shape[2]
+    out = np.zeros((k, ni, nj))
+    for h in range(k):
+        for q in range(n):
+            for i in range(ni):
+                ai = a[h, q, i]
+                for j in range(nj):
+                    out[h, i, j] += ai * b[h, q, j]
     return out

@@ -267,3 +267,18 @@ def test_batched_gram_is_numpys_einsum_bit_for_bit(k, n, m):
     b = rng.normal(size=(k, n, m))
     assert np.array_equal(batched_gram(a, b), np.einsum("kni,knj->kij", a, b))
     assert np.array_equal(batched_gram(a, a), np.einsum("kni,knj->kij", a, a))
+
+
+@pytest.mark.parametrize("shared", [True, False])
+@pytest.mark.parametrize("k,n", [(1, 3), (7, 128), (120, 64)])
+def test_kabsch_sums_are_numpys_centroids_and_einsum_bit_for_bit(shared, k, n):
+    from auszug.sweeps._kernels import kabsch_sums
+
+    rng = np.random.default_rng(k * n + shared)
+    b = rng.normal(size=(k, n, 3)) * [1.0, 10.0, 0.1] + 3.0
+    p = rng.normal(size=(n, 3)) if shared else rng.normal(size=(k, n, 3))
+    a = np.broadcast_to(p, b.shape)
+    ca, cb = a.mean(axis=1), b.mean(axis=1)                 # kabsch_batch's sums as numpy gave them
+    want = np.einsum("kni,knj->kij", (a - ca[:, None]) / n, b - cb[:, None])
+    gca, gcb, got = kabsch_sums(np.ascontiguousarray(p[None] if shared else p), b)
+    assert np.array_equal(gca, ca) and np.array_equal(gcb, cb) and np.array_equal(got, want)

@@ -1570,3 +1570,33 @@ def batched_gram(a, b):  # pragma: no cover - compiled
                 for j in range(nj):
                     out[h, i, j] += ai * b[h, q, j]
     return out
+
+
+@njit(cache=True)
+def kabsch_sums(a, b):  # pragma: no cover - compiled
+    """The centroids and cross-covariances of Kabsch for point sets ``a`` onto ``b (k, n, 3)``.
+
+    ``a`` is ``(k, n, 3)``, or ``(1, n, 3)`` for the same points for every ``b[h]``. Returns ``ca``,
+    ``cb (k, 3)`` and ``h (k, 3, 3) = sum_q (a_q - ca) / n (b_q - cb)^T``; bit for bit numpy's
+    ``mean(axis=1)`` (the rows summed in order, then divided by ``n``) and
+    ``np.einsum("kni,knj->kij", (a - ca[:, None]) / n, b - cb[:, None])`` (summed over ``q`` in order).
+    """
+    k, n = b.shape[0], b.shape[1]
+    ca = np.zeros((k, 3))
+    cb = np.zeros((k, 3))
+    h = np.zeros((k, 3, 3))
+    for g in range(k):
+        ga = 0 if a.shape[0] == 1 else g
+        for q in range(n):
+            for i in range(3):
+                ca[g, i] += a[ga, q, i]
+                cb[g, i] += b[g, q, i]
+        for i in range(3):
+            ca[g, i] /= n
+            cb[g, i] /= n
+        for q in range(n):
+            for i in range(3):
+                ai = (a[ga, q, i] - ca[g, i]) / n
+                for j in range(3):
+                    h[g, i, j] += ai * (b[g, q, j] - cb[g, j])
+    return ca, cb, h

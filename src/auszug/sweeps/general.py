@@ -59,6 +59,7 @@ from auszug.sweeps._kernels import (
     curves_near_profiles,
     eq7_blocks,
     inverse_maps_at,
+    kabsch_sums,
     polyline_closest,
     take_rows,
 )
@@ -142,12 +143,11 @@ def kabsch_batch(p: ArrayLike, q: ArrayLike) -> tuple[Array, Array]:
     >>> bool(np.allclose(r, r0)), (np.round(t, 12) + 0.0).tolist()   # + 0.0: no -0.0
     (True, [[1.0, 2.0, 3.0], [0.0, 0.0, 0.0]])
     """
-    b = np.asarray(q, float)
-    a = np.broadcast_to(np.asarray(p, float), b.shape)
-    ca = a.mean(axis=1)
-    cb = b.mean(axis=1)
-    # compiled: np.einsum("kni,knj->kij", ...) bit for bit
-    h = batched_gram(np.ascontiguousarray((a - ca[:, None]) / b.shape[1]), np.ascontiguousarray(b - cb[:, None]))
+    b = np.ascontiguousarray(np.asarray(q, float))
+    a = np.asarray(p, float)
+    a3 = np.ascontiguousarray(a[None] if a.ndim == 2 else np.broadcast_to(a, b.shape))
+    # compiled: the centroids (numpy's mean over axis 1) and einsum("kni,knj->kij", (a - ca) / n, b - cb), bit for bit
+    ca, cb, h = kabsch_sums(a3, b)
     u, _, vt = np.linalg.svd(h)
     v = np.swapaxes(vt, 1, 2)
     ut = np.swapaxes(u, 1, 2)

@@ -131,3 +131,154 @@ def test_motion_between_knots_is_the_screw_of_its_interval_bit_for_bit():
         again = fresh.at([t])
         j = int(np.flatnonzero(ts == t)[0])
         assert np.array_equal(one[0][0], got_r[j]) and np.array_equal(again[1][0], got_t[j])
+
+
+@pytest.mark.parametrize("q,n", [(1, 1), (1, 7), (9, 128), (300, 3)])
+def test_apply_maps_is_numpys_einsum_bit_for_bit(q, n):
+    # the compiled map application replaces np.einsum in Motion.apply and the Hermite projection:
+    # the fitted sweeps stay the same only if every bit does (signed zeros included)
+    from auszug.sweeps._kernels import apply_maps
+
+    rng = np.random.default_rng(q + n)
+    r = rng.normal(size=(q, 3, 3))
+    tr = rng.normal(size=(q, 3))
+    x = rng.normal(size=(n, 3)) * 1e3
+    r[0, 0], tr[0, 0], x[0] = -0.0, -0.0, 0.0                    # products and sums of signed zeros
+    want = np.einsum("qij,nj->qni", r, x) + tr[:, None, :]
+    got = apply_maps(r, tr, x)
+    assert got.shape == want.shape
+    assert np.array_equal(got, want) and np.array_equal(np.signbit(got), np.signbit(want))
+
+
+@pytest.mark.parametrize("m", [1, 6, 5000])
+def test_inverse_maps_at_is_numpys_einsum_bit_for_bit(m):
+    from auszug.sweeps._kernels import inverse_maps_at
+
+    rng = np.random.default_rng(m)
+    r = rng.normal(size=(40, 3, 3))
+    tr = rng.normal(size=(40, 3))
+    pts = rng.normal(size=(m + 9, 3))
+    idx = rng.permutation(m + 9)[:m].astype(np.int64)
+    knot = rng.integers(0, 40, m)
+    r[knot[0], 0, 0], tr[knot[0]] = -0.0, pts[idx[0]]             # a zero difference
+    want = np.einsum("nji,nj->ni", r[knot], pts[idx] - tr[knot])
+    got = inverse_maps_at(r, tr, knot, pts, idx)
+    assert np.array_equal(got, want) and np.array_equal(np.signbit(got), np.signbit(want))
+
+
+def test_motion_apply_is_the_maps_at_its_parameters():
+    r, t = screw_motion([0.3, 0.0, 1.0], [1.0, 0.5, 0.0], 0.2, [0.0, 0.7, 1.9, 2.5])
+    m = Motion(np.array([0.0, 1.0, 2.0, 4.0]), r, t)
+    x = np.random.default_rng(2).normal(size=(11, 3))
+    tt = np.array([0.0, 0.3, 1.0, 3.1, 4.0])
+    rr, trr = m.at(tt)
+    got = m.apply(x, tt)
+    assert got.shape == (5, 11, 3)
+    assert np.array_equal(got, np.einsum("qij,nj->qni", rr, x) + trr[:, None, :])
+
+
+def test_mesh_tree_of_is_built_once_per_mesh_and_answers_as_a_new_tree():
+    import copy
+    import pickle
+
+    from auszug.sweeps.fixtures import extruded
+    from auszug.sweeps.mesh import normalise
+    from auszug.sweeps.patches import MeshTree
+
+    fx = extruded(n_profile=30, n_path=12)
+    m = normalise(fx.vertices, fx.faces)
+    t = MeshTree.of(m)
+    assert MeshTree.of(m) is t                                   # shared by every stage on the mesh
+    other = normalise(fx.vertices, fx.faces)
+    assert MeshTree.of(other) is not t                           # another mesh object: its own tree
+    p = np.random.default_rng(0).normal(size=(50, 3)) * 0.3
+    d0, f0, c0 = MeshTree.built(m).query(p)
+    d, f, c = t.query(p)
+    assert np.array_equal(d, d0) and np.array_equal(f, f0) and np.array_equal(c, c0)
+    assert np.array_equal(t._boundary_edges(), MeshTree(m.vertices, m.faces)._boundary_edges())
+    # the tree is not part of the mesh's state: a pickled or copied mesh builds its own
+    for m2 in (pickle.loads(pickle.dumps(m)), copy.deepcopy(m)):
+        assert "_mesh_tree" not in m2.__dict__
+        assert np.array_equal(m2.vertices, m.vertices) and np.array_equal(m2.faces, m.faces)
+        assert MeshTree.of(m2) is not t
+
+
+def test_sweep_rings_kept_across_refinements_are_the_motion_at_their_parameters():
+    # _sweep_rings computes only the new parameters' rings in each refinement: every ring must be
+    # what the motion gives at its parameter in one call for all of them, bit for bit
+    from auszug.sweeps.general import hermite_motion
+    from auszug.sweeps.patches import _sweep_rings
+
+    rng = np.random.default_rng(5)
+    profile = np.column_stack([np.linspace(0, 0.2, 30), 0.05 * np.sin(np.linspace(0, 3, 30)), np.zeros(30)])
+    r, t = screw_motion([0.2, 0.1, 1.0], [0.3, 0.0, 0.1], 0.05, np.linspace(0.0, 2.0, 6))
+    motion = hermite_motion(profile, r, t, rng.normal(size=(6, 6)) * 0.3, 4)
+    for tol in (1e-4, 1e-6):
+        tt, rings = _sweep_rings(profile, motion, tol)
+        assert len(tt) > len(motion.t) and np.all(np.diff(tt) > 0)       # refined at least once
+        assert np.array_equal(rings, motion.apply(profile, tt))
+
+
+def test_ordered_parts_are_the_family_parts_in_rib_order():
+    from auszug.sweeps import curvature_plots, cut, families, match_cuts, movability, normalise
+    from auszug.sweeps.fixtures import extruded
+    from auszug.sweeps.matching import family_parts, order_ribs, ordered_parts
+
+    fx = extruded(n_profile=60, n_path=60)
+    xs = np.array([0.05, -0.2, 0.3, -0.05, 0.15, -0.3])
+    c = cut(normalise(fx.vertices, fx.faces), np.tile([1.0, 0, 0], (6, 1)), xs)
+    pl = curvature_plots(c, movability(c))
+    ribs = order_ribs(families(match_cuts(pl))[0], pl)
+    want = family_parts(ribs.family, pl)[ribs.order]
+    got = ordered_parts(ribs, pl)
+    assert np.array_equal(got, want)
+    got[0] += 1.0                                             # a copy: the kept parts stay as they were
+    assert np.array_equal(ordered_parts(ribs, pl), want)
+    other = curvature_plots(c, movability(c))                 # other plots: taken anew
+    assert np.array_equal(ordered_parts(ribs, other), family_parts(ribs.family, other)[ribs.order])
+
+
+@pytest.mark.parametrize("p,n", [(1, 1), (2, 3), (30, 128)])
+def test_eq7_blocks_are_numpys_einsum_over_the_built_matrix_bit_for_bit(p, n):
+    from auszug.sweeps._kernels import eq7_blocks
+
+    rng = np.random.default_rng(p * n)
+    mid = rng.normal(size=(p, n, 3))
+    d = rng.normal(size=(p, n, 3))
+    mid[0, 0] = [0.0, -0.0, 0.0]
+    a = np.zeros((p, n, 3, 6))                  # per point the rows [-[mid]x | I], as rib_velocities built them
+    a[:, :, 0, 1], a[:, :, 0, 2] = mid[..., 2], -mid[..., 1]
+    a[:, :, 1, 0], a[:, :, 1, 2] = -mid[..., 2], mid[..., 0]
+    a[:, :, 2, 0], a[:, :, 2, 1] = mid[..., 1], -mid[..., 0]
+    a[:, :, :, 3:] = np.eye(3)
+    a = a.reshape(p, 3 * n, 6)
+    want_l, want_r = np.einsum("pri,prj->pij", a, a), np.einsum("pri,pr->pi", a, d.reshape(p, 3 * n))
+    got_l, got_r = eq7_blocks(mid, d)
+    assert np.array_equal(got_l, want_l) and np.array_equal(np.signbit(got_l), np.signbit(want_l))
+    assert np.array_equal(got_r, want_r) and np.array_equal(np.signbit(got_r), np.signbit(want_r))
+
+
+@pytest.mark.parametrize("k,n,m", [(1, 1, 3), (16, 128, 6), (40, 64, 3)])
+def test_batched_gram_is_numpys_einsum_bit_for_bit(k, n, m):
+    from auszug.sweeps._kernels import batched_gram
+
+    rng = np.random.default_rng(k + n)
+    a = rng.normal(size=(k, n, m))
+    b = rng.normal(size=(k, n, m))
+    assert np.array_equal(batched_gram(a, b), np.einsum("kni,knj->kij", a, b))
+    assert np.array_equal(batched_gram(a, a), np.einsum("kni,knj->kij", a, a))
+
+
+@pytest.mark.parametrize("shared", [True, False])
+@pytest.mark.parametrize("k,n", [(1, 3), (7, 128), (120, 64)])
+def test_kabsch_sums_are_numpys_centroids_and_einsum_bit_for_bit(shared, k, n):
+    from auszug.sweeps._kernels import kabsch_sums
+
+    rng = np.random.default_rng(k * n + shared)
+    b = rng.normal(size=(k, n, 3)) * [1.0, 10.0, 0.1] + 3.0
+    p = rng.normal(size=(n, 3)) if shared else rng.normal(size=(k, n, 3))
+    a = np.broadcast_to(p, b.shape)
+    ca, cb = a.mean(axis=1), b.mean(axis=1)                 # kabsch_batch's sums as numpy gave them
+    want = np.einsum("kni,knj->kij", (a - ca[:, None]) / n, b - cb[:, None])
+    gca, gcb, got = kabsch_sums(np.ascontiguousarray(p[None] if shared else p), b)
+    assert np.array_equal(gca, ca) and np.array_equal(gcb, cb) and np.array_equal(got, want)

@@ -118,6 +118,10 @@ def test_box_submesh_is_its_numpy_definition():
     assert np.array_equal(keep, want_keep) and np.array_equal(used, want_used)
     assert np.array_equal(ef, face_index[mesh.edge_faces[want_used]])
     assert np.array_equal(fe, edge_index[mesh.face_edges[want_keep]])
+    # the part's faces and edges: the kept rows, as numpy's fancy indexing gives them
+    for a, idx in ((mesh.faces, keep), (mesh.edges, used), (mesh.faces, keep[:0])):
+        got = _kernels.take_rows(a, idx)
+        assert got.dtype == a.dtype and np.array_equal(got, a[idx])
     assert 0 < len(keep) < len(mesh.faces)
 
 

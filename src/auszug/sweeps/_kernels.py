@@ -1405,6 +1405,16 @@ def box_submesh(v, faces, edge_faces, face_edges, lo, hi):  # pragma: no cover -
     return keep, used, ef, fe
 
 
+@njit(cache=True)
+def take_rows(a, idx):  # pragma: no cover - compiled
+    """``a[idx]`` for a 2-d array ``a`` and indices ``idx (k,)`` in range (no checks): the rows copied."""
+    out = np.empty((len(idx), a.shape[1]), a.dtype)
+    for r in range(len(idx)):
+        for c in range(a.shape[1]):
+            out[r, c] = a[idx[r], c]
+    return out
+
+
 # ------------------------------------------------------------------------------ per-face passes of the fit
 
 
@@ -1462,3 +1472,131 @@ def boundary_edges_of(faces, edge_faces, face_edges):  # pragma: no cover - comp
                 out[i, k, 0] = faces[i, k]
                 out[i, k, 1] = faces[i, (k + 1) % 3]
     return out
+
+
+# ------------------------------------------------------------------------- rigid maps applied to points
+
+
+@njit(cache=True)
+def apply_maps(r, tr, x):  # pragma: no cover - compiled
+    """Points ``x (n, 3)`` moved by each map ``(r (q, 3, 3), tr (q, 3))``: ``(q, n, 3)``.
+
+    Equal bit for bit to ``np.einsum("qij,nj->qni", r, x) + tr[:, None, :]``: numpy's einsum sums
+    the three products of a row as ``(p0 + p2) + p1`` (from 0.0), then the translation is added.
+    """
+    q = r.shape[0]
+    n = x.shape[0]
+    out = np.empty((q, n, 3))
+    for k in range(q):
+        for p in range(n):
+            x0, x1, x2 = x[p, 0], x[p, 1], x[p, 2]
+            for i in range(3):
+                s = 0.0 + ((r[k, i, 0] * x0 + r[k, i, 2] * x2) + r[k, i, 1] * x1)
+                out[k, p, i] = s + tr[k, i]
+    return out
+
+
+@njit(cache=True)
+def inverse_maps_at(r, tr, knot, pts, idx):  # pragma: no cover - compiled
+    """Each point ``pts[idx[p]]`` mapped back by the inverse of the map ``knot[p]`` of ``(r (q, 3, 3), tr (q, 3))``.
+
+    Returns ``(m, 3)``, equal bit for bit to ``np.einsum("nji,nj->ni", r[knot], pts[idx] - tr[knot])``
+    (numpy's einsum sums these three products in order, from 0.0), without the gathered copies.
+    """
+    m = len(idx)
+    out = np.empty((m, 3))
+    for p in range(m):
+        k = knot[p]
+        d0 = pts[idx[p], 0] - tr[k, 0]
+        d1 = pts[idx[p], 1] - tr[k, 1]
+        d2 = pts[idx[p], 2] - tr[k, 2]
+        for i in range(3):
+            s = 0.0
+            s += r[k, 0, i] * d0
+            s += r[k, 1, i] * d1
+            s += r[k, 2, i] * d2
+            out[p, i] = s
+    return out
+
+
+# ------------------------------------------------------------------------- Eq. 7 and Kabsch sums
+
+
+@njit(cache=True)
+def eq7_blocks(mid, d):  # pragma: no cover - compiled
+    """The normal-equation blocks of F_pivot per rib pair: ``A^T A (p, 6, 6)`` and ``A^T d (p, 6)``.
+
+    ``mid (p, n, 3)`` are the pairs' midpoints and ``d (p, n, 3)`` their displacements per unit
+    time; ``A (p, 3 n, 6)`` has per point the rows ``[-[m]x | I]`` (``c x m + c_bar``), point after
+    point. Equal bit for bit to ``np.einsum("pri,prj->pij", A, A)`` and ``np.einsum("pri,pr->pi", A,
+    d.reshape(p, 3 n))``: numpy's einsum sums these products over ``r`` in order, from 0.0, and so
+    does this pass, without building ``A``.
+    """
+    n_p, n = mid.shape[0], mid.shape[1]
+    lhs = np.zeros((n_p, 6, 6))
+    rhs = np.zeros((n_p, 6))
+    row = np.zeros(6)
+    for p in range(n_p):
+        for q in range(n):
+            mx, my, mz = mid[p, q, 0], mid[p, q, 1], mid[p, q, 2]
+            for c in range(3):
+                if c == 0:
+                    row[0], row[1], row[2], row[3], row[4], row[5] = 0.0, mz, -my, 1.0, 0.0, 0.0
+                elif c == 1:
+                    row[0], row[1], row[2], row[3], row[4], row[5] = -mz, 0.0, mx, 0.0, 1.0, 0.0
+                else:
+                    row[0], row[1], row[2], row[3], row[4], row[5] = my, -mx, 0.0, 0.0, 0.0, 1.0
+                dc = d[p, q, c]
+                for i in range(6):
+                    ri = row[i]
+                    for j in range(6):
+                        lhs[p, i, j] += ri * row[j]
+                    rhs[p, i] += ri * dc
+    return lhs, rhs
+
+
+@njit(cache=True)
+def batched_gram(a, b):  # pragma: no cover - compiled
+    """``a (k, n, i)`` and ``b (k, n, j)``: ``(k, i, j)`` sums over ``n`` of ``a[:, n, :, None] b[:, n, None, :]``.
+
+    Equal bit for bit to ``np.einsum("kni,knj->kij", a, b)`` (numpy sums over ``n`` in order, from 0.0).
+    """
+    k, n, ni, nj = a.shape[0], a.shape[1], a.shape[2], b.shape[2]
+    out = np.zeros((k, ni, nj))
+    for h in range(k):
+        for q in range(n):
+            for i in range(ni):
+                ai = a[h, q, i]
+                for j in range(nj):
+                    out[h, i, j] += ai * b[h, q, j]
+    return out
+
+
+@njit(cache=True)
+def kabsch_sums(a, b):  # pragma: no cover - compiled
+    """The centroids and cross-covariances of Kabsch for point sets ``a`` onto ``b (k, n, 3)``.
+
+    ``a`` is ``(k, n, 3)``, or ``(1, n, 3)`` for the same points for every ``b[h]``. Returns ``ca``,
+    ``cb (k, 3)`` and ``h (k, 3, 3) = sum_q (a_q - ca) / n (b_q - cb)^T``; bit for bit numpy's
+    ``mean(axis=1)`` (the rows summed in order, then divided by ``n``) and
+    ``np.einsum("kni,knj->kij", (a - ca[:, None]) / n, b - cb[:, None])`` (summed over ``q`` in order).
+    """
+    k, n = b.shape[0], b.shape[1]
+    ca = np.zeros((k, 3))
+    cb = np.zeros((k, 3))
+    h = np.zeros((k, 3, 3))
+    for g in range(k):
+        ga = 0 if a.shape[0] == 1 else g
+        for q in range(n):
+            for i in range(3):
+                ca[g, i] += a[ga, q, i]
+                cb[g, i] += b[g, q, i]
+        for i in range(3):
+            ca[g, i] /= n
+            cb[g, i] /= n
+        for q in range(n):
+            for i in range(3):
+                ai = (a[ga, q, i] - ca[g, i]) / n
+                for j in range(3):
+                    h[g, i, j] += ai * (b[g, q, j] - cb[g, j])
+    return ca, cb, h

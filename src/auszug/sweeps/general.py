@@ -51,7 +51,18 @@ from typing import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from auszug.sweeps._kernels import box_submesh, closest_on_plane_curves, curves_near_profiles, polyline_closest
+from auszug.sweeps._kernels import (
+    apply_maps,
+    batched_gram,
+    box_submesh,
+    closest_on_plane_curves,
+    curves_near_profiles,
+    eq7_blocks,
+    inverse_maps_at,
+    kabsch_sums,
+    polyline_closest,
+    take_rows,
+)
 from auszug.sweeps.cut import Cuts, EdgeGrid, cut, cut_near
 from auszug.sweeps.matching import (
     CurvaturePlots,
@@ -132,11 +143,11 @@ def kabsch_batch(p: ArrayLike, q: ArrayLike) -> tuple[Array, Array]:
     >>> bool(np.allclose(r, r0)), (np.round(t, 12) + 0.0).tolist()   # + 0.0: no -0.0
     (True, [[1.0, 2.0, 3.0], [0.0, 0.0, 0.0]])
     """
-    b = np.asarray(q, float)
-    a = np.broadcast_to(np.asarray(p, float), b.shape)
-    ca = a.mean(axis=1)
-    cb = b.mean(axis=1)
-    h = np.einsum("kni,knj->kij", (a - ca[:, None]) / b.shape[1], b - cb[:, None])
+    b = np.ascontiguousarray(np.asarray(q, float))
+    a = np.asarray(p, float)
+    a3 = np.ascontiguousarray(a[None] if a.ndim == 2 else np.broadcast_to(a, b.shape))
+    # compiled: the centroids (numpy's mean over axis 1) and einsum("kni,knj->kij", (a - ca) / n, b - cb), bit for bit
+    ca, cb, h = kabsch_sums(a3, b)
     u, _, vt = np.linalg.svd(h)
     v = np.swapaxes(vt, 1, 2)
     ut = np.swapaxes(u, 1, 2)
@@ -220,7 +231,7 @@ def rib_velocities(parts: Array, normals: Array | None, mu: tuple[float, float] 
     if normals is not None:
         nr = np.asarray(normals, float)
         tg = np.concatenate([np.cross(x, nr), nr], axis=2)             # (k, n, 6)
-        lhs += np.einsum("kni,knj->kij", tg, tg)
+        lhs += batched_gram(tg, tg)                                    # compiled: einsum "kni,knj->kij" bit for bit
     if k < 2:
         out1: Array = np.asarray(np.linalg.solve(lhs, rhs[..., None])[..., 0], dtype=np.float64)
         return out1
@@ -230,14 +241,11 @@ def rib_velocities(parts: Array, normals: Array | None, mu: tuple[float, float] 
     dt = (tt[j] - tt[i])[:, None, None]
     mid = (x[i] + x[j]) / 2
     d = (x[j] - x[i]) / dt
-    a = np.zeros((len(i), n, 3, 6))
-    a[:, :, 0, 1], a[:, :, 0, 2] = mid[..., 2], -mid[..., 1]
-    a[:, :, 1, 0], a[:, :, 1, 2] = -mid[..., 2], mid[..., 0]
-    a[:, :, 2, 0], a[:, :, 2, 1] = mid[..., 1], -mid[..., 0]
-    a[:, :, :, 3:] = np.eye(3)
-    a = a.reshape(len(i), 3 * n, 6)
-    np.add.at(lhs, i, mu[1] * np.einsum("pri,prj->pij", a, a))
-    np.add.at(rhs, i, mu[1] * np.einsum("pri,pr->pi", a, d.reshape(len(i), 3 * n)))
+    # A^T A and A^T d of A (pairs, 3 n, 6), per point the rows [-[mid]x | I], without building A (compiled,
+    # numpy's einsum over A bit for bit)
+    ata, atd = eq7_blocks(mid, d)
+    np.add.at(lhs, i, mu[1] * ata)
+    np.add.at(rhs, i, mu[1] * atd)
     # the prior C_0: the twist of the best rigid map to each neighbour over dt, mean over the neighbours
     rot, tr = kabsch_batch(x[i], x[j])
     w, v = se3_log(rot, tr)
@@ -289,11 +297,18 @@ def hermite_motion(profile: Array, rotations: Array, translations: Array, veloci
            + h01[None, :, None, None] * rotations[1:, None] + (hh * h11)[:, :, None, None] * dl[1:, None])
     off = (h00[None, :, None] * translations[:-1, None] + (hh * h10)[:, :, None] * da[:-1, None]
            + h01[None, :, None] * translations[1:, None] + (hh * h11)[:, :, None] * da[1:, None])
-    # each projected to the closest rigid motion in the sense of the profile's points (one batched Kabsch)
-    moved = np.einsum("ksij,nj->ksni", lin, profile) + off[:, :, None, :]
-    r_all, t_all = kabsch_batch(profile, moved.reshape(-1, len(profile), 3))
-    r_all = r_all.reshape(k - 1, samples_per_rib, 3, 3)
-    t_all = t_all.reshape(k - 1, samples_per_rib, 3)
+    # each projected to the closest rigid motion in the sense of the profile's points (one batched Kabsch), but
+    # the last of each interval: it is exactly the given map at the next rib (each map's Kabsch is its own)
+    s1 = samples_per_rib - 1
+    moved = apply_maps(np.ascontiguousarray(lin[:, :s1].reshape(-1, 3, 3)),
+                       np.ascontiguousarray(off[:, :s1].reshape(-1, 3)),
+                       np.ascontiguousarray(profile, dtype=float))     # compiled, as einsum bit for bit
+    r_all = np.empty((k - 1, samples_per_rib, 3, 3))
+    t_all = np.empty((k - 1, samples_per_rib, 3))
+    if s1 > 0:
+        r_in, t_in = kabsch_batch(profile, moved)
+        r_all[:, :s1] = r_in.reshape(k - 1, s1, 3, 3)
+        t_all[:, :s1] = t_in.reshape(k - 1, s1, 3)
     r_all[:, -1], t_all[:, -1] = rotations[1:], translations[1:]   # exactly the given maps at the ribs
     ts = np.r_[tt[0], (tt[:-1, None] + hh * f[None, :]).reshape(-1)]
     return Motion(ts, np.concatenate([rotations[:1], r_all.reshape(-1, 3, 3)]),
@@ -321,9 +336,9 @@ def split_ribs(parts: Array, jump: float) -> list[Array]:
 
 def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
     """The ribs' common parts ``(k, n, 3)`` in rib order, sample ``j`` corresponding across ribs."""
-    from auszug.sweeps.matching import family_parts  # here: the module's imports stay as they were (merges)
+    from auszug.sweeps.matching import ordered_parts  # here: the module's imports stay as they were (merges)
 
-    return family_parts(ribs.family, plots)[ribs.order]
+    return ordered_parts(ribs, plots)
 
 
 def _normals_at(mesh: SweepMesh, points: Array, tree: MeshTree) -> Array:
@@ -395,7 +410,8 @@ def _recut_knots(mesh: SweepMesh, profile: Array, motion: Motion, reach: float,
     starts = np.concatenate([[0], np.cumsum(b - a)]).astype(np.int64)
     idx = np.arange(starts[-1]) + np.repeat(a - starts[:-1], b - a)
     k = c.curve_plane[curve_of[idx]]
-    back = np.einsum("nji,nj->ni", motion.rotation[k], c.points[idx] - motion.translation[k])
+    # compiled, as np.einsum("nji,nj->ni", R[k], points[idx] - T[k]) bit for bit
+    back = inverse_maps_at(motion.rotation, motion.translation, k, c.points, idx)
     return back, starts, c.curve_plane[curve_of[a]].astype(np.int64)
 
 
@@ -578,7 +594,8 @@ def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, I
     lo, hi = points.reshape(-1, 3).min(axis=0) - margin, points.reshape(-1, 3).max(axis=0) + margin
     keep, used, edge_faces, face_edges = box_submesh(mesh.vertices, mesh.faces, mesh.edge_faces, mesh.face_edges,
                                                      lo, hi)
-    return replace(mesh, faces=mesh.faces[keep], edges=mesh.edges[used], edge_faces=edge_faces,
+    # the kept rows copied by a compiled pass (numpy's fancy indexing took 0.5 ms of a part of 20k faces)
+    return replace(mesh, faces=take_rows(mesh.faces, keep), edges=take_rows(mesh.edges, used), edge_faces=edge_faces,
                    face_edges=face_edges), keep
 
 

@@ -49,7 +49,7 @@ from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
 
 __all__ = ["CurvaturePlots", "Matches", "Family", "Ribs", "resample", "signed_curvature", "curvature_plots",
-           "match_cuts", "families", "family_parts", "order_energy", "order_ribs",
+           "match_cuts", "families", "family_parts", "order_energy", "order_ribs", "ordered_parts",
            "split_family"]
 
 Array = NDArray[np.float64]
@@ -598,7 +598,23 @@ def order_ribs(family: Family, plots: CurvaturePlots, params: SweepParams = DEFA
             used[nxt] = True
     order = np.array(chains[1][::-1] + chains[0][1:], np.int64)
     energy = e[order[:-1], order[1:]]
-    return Ribs(family, order, energy)
+    ribs = Ribs(family, order, energy)
+    # the parts in rib order, kept with the ribs for these plots (:func:`ordered_parts`: not taken again)
+    object.__setattr__(ribs, "_parts", (plots, parts[order]))
+    return ribs
+
+
+def ordered_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
+    """The ribs' common parts ``(k, n, 3)`` in rib order: ``family_parts(ribs.family, plots)[ribs.order]``.
+
+    The parts :func:`order_ribs` took for the same ``plots`` are kept with the ribs and given
+    (a copy); other plots' are taken anew.
+    """
+    kept = ribs.__dict__.get("_parts")
+    if kept is not None and kept[0] is plots:
+        out: Array = kept[1].copy()
+        return out
+    return family_parts(ribs.family, plots)[ribs.order]
 
 
 def split_family(family: Family, component: ArrayLike) -> tuple[Family, ...]:

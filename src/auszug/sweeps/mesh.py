@@ -52,6 +52,10 @@ class SweepMesh:
     centre: Array
     scale: float
 
+    def __getstate__(self) -> dict[str, object]:
+        """The fields only: what is kept with the mesh (its closest-point tree) is neither pickled nor copied."""
+        return {k: v for k, v in self.__dict__.items() if not k.startswith("_")}
+
     @property
     def n_vertices(self) -> int:
         """Number of vertices."""

@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.spatial.transform import Rotation
 
 from auszug.errors import GeometryError
+from auszug.sweeps._kernels import apply_maps
 
 __all__ = ["Motion", "se3_exp", "se3_log", "screw_motion", "rotation_about"]
 
@@ -215,9 +216,11 @@ class Motion:
 
     def apply(self, points: ArrayLike, t: ArrayLike) -> Array:
         """``points (n, 3)`` moved by the maps at ``t (q,)``: shape ``(q, n, 3)``."""
-        x = np.asarray(points, float)
+        x = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
         r, tr = self.at(t)
-        return np.einsum("qij,nj->qni", r, x) + tr[:, None, :]
+        # compiled: np.einsum("qij,nj->qni", r, x) + tr[:, None, :] bit for bit
+        out: Array = apply_maps(np.ascontiguousarray(r), np.ascontiguousarray(tr), x)
+        return out
 
     def inverse_apply(self, points: ArrayLike, t: ArrayLike) -> Array:
         """Each point ``(n, 3)`` mapped back by the inverse of the map at its own ``t (n,)``: ``(n, 3)``."""

@@ -191,6 +191,10 @@ def closest_distance(points: ArrayLike, vertices: ArrayLike, elements: ArrayLike
     return np.sqrt(np.maximum(sq, 0.0)), np.asarray(c)
 
 
+#: Where :meth:`MeshTree.of` keeps a mesh's tree (an attribute of the mesh object, not a dataclass field).
+_TREE_KEY = "_mesh_tree"
+
+
 class MeshTree:
     """Closest points on one triangle mesh, its bounding-volume tree built once (libigl ``AABB``).
 
@@ -212,10 +216,33 @@ class MeshTree:
 
     @classmethod
     def of(cls, mesh: SweepMesh) -> "MeshTree":
-        """The tree of a whole :class:`~auszug.sweeps.mesh.SweepMesh`, its boundary edges from the mesh's topology.
+        """The tree of a whole :class:`~auszug.sweeps.mesh.SweepMesh`, built once per mesh (:meth:`built`).
+
+        The first call builds it and keeps it with the mesh; every later call for the same mesh
+        object (the kinematic stage, both passes of the general stages, the kinematic parts of
+        one ``detect``) gets the same tree. A tree answers a query from the mesh and the query
+        alone, so sharing it changes no result.
+
+        Examples
+        --------
+        >>> from auszug.sweeps.fixtures import extruded
+        >>> from auszug.sweeps.mesh import normalise
+        >>> m = normalise(*(lambda f: (f.vertices, f.faces))(extruded(n_profile=30, n_path=10)))
+        >>> MeshTree.of(m) is MeshTree.of(m)
+        True
+        """
+        got: MeshTree | None = mesh.__dict__.get(_TREE_KEY)
+        if got is None:
+            got = cls.built(mesh)
+            object.__setattr__(mesh, _TREE_KEY, got)      # frozen: a cache of the mesh, not a field
+        return got
+
+    @classmethod
+    def built(cls, mesh: SweepMesh) -> "MeshTree":
+        """A new tree of a whole :class:`~auszug.sweeps.mesh.SweepMesh`, its boundary edges from the mesh's topology.
 
         The same as ``MeshTree(mesh.vertices, mesh.faces)``, without counting the edges' faces
-        again (an edge with one face is a boundary edge).
+        again (an edge with one face is a boundary edge). :meth:`of` keeps it with the mesh.
         """
         tree = cls(mesh.vertices, mesh.faces)
         tree._bnd = boundary_edges_of(tree.faces, mesh.edge_faces, mesh.face_edges)     # one compiled pass
@@ -560,20 +587,20 @@ def sweep_surface(profile: Array, closed: bool, motion: Motion, tol: float,
 def _sweep_rings(profile: Array, motion: Motion, tol: float, max_rings: int = 4096) -> tuple[Array, Array]:
     """The parameters ``(k,)`` and rings ``(k, n, 3)`` of :func:`sweep_surface` (the motion's knots among them)."""
     t = np.array(motion.t, float)
-    rings = None
+    # each ring is the motion at its own parameter (row by row, bit for bit as in one call for all
+    # parameters): the rings found are kept, only the new parameters' are computed
+    a = motion.apply(profile, t)
     while len(t) < max_rings:
         mid = (t[:-1] + t[1:]) / 2
-        a = motion.apply(profile, t)
         m = motion.apply(profile, mid)
         dev = np.linalg.norm(m - (a[:-1] + a[1:]) / 2, axis=2).max(axis=1)
         bad = dev > tol
         if not bad.any():
-            rings = a
             break
-        t = np.sort(np.concatenate([t, mid[bad]]))
-    if rings is None:
-        rings = motion.apply(profile, t)
-    return t, rings
+        order = np.argsort(np.concatenate([t, mid[bad]]), kind="stable")
+        t = np.concatenate([t, mid[bad]])[order]
+        a = np.concatenate([a, m[bad]])[order]
+    return t, a
 
 
 def ring_faces(k: int, n: int, closed: bool = False) -> IntArray:

@@ -131,10 +131,11 @@ class LiftParams:
         (docs/lifting.md).
     nd_ordering : bool
         Factorise the KKT matrices of the solves that take more than two Newton steps in a
-        nested-dissection ordering (METIS, by ``pymetis``) with a numba LDL^T where that costs
-        fewer multiply-adds than QDLDL's AMD (``auszug.lifting.solver.Orderings``; without numba
-        or ``pymetis`` installed, QDLDL throughout). Only GMRES's preconditioner changes, so the
-        lift moves by round-off. *Our choice* (lift-speed5): on (docs/lifting.md, benchmarks/RESULTS.md).
+        nested-dissection ordering (METIS, by ``pymetis``) with our compiled LDL^T
+        (``auszug.lifting._ldl``, built by ``make install``) where that costs fewer multiply-adds
+        than QDLDL's AMD (``auszug.lifting.solver.Orderings``; without ``pymetis`` or the compiled
+        kernels, QDLDL throughout). Only GMRES's preconditioner changes, so the lift moves by
+        round-off. *Our choice* (lift-speed5): on (docs/lifting.md, benchmarks/RESULTS.md).
     """
 
     w_a: float = 1.0

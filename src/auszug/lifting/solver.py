@@ -24,17 +24,14 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Callable
 
 import numpy as np
+import pymetis
 import qdldl
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 from scipy.sparse.linalg import splu
 
-try:  # the LDL^T in a nested-dissection ordering (optional: numba and pymetis; QDLDL's AMD without)
-    import pymetis
+from auszug.lifting import _ldl
 
-    from auszug.lifting import _ldl
-except ImportError:  # pragma: no cover - depends on the installation
-    _ldl = None  # type: ignore[assignment]
 if TYPE_CHECKING:
     from auszug.lifting._ldl import LDL
 
@@ -276,14 +273,12 @@ class _Assembly:
 #: Nested dissection is tried for patterns whose LDL^T in QDLDL's AMD ordering costs at least this many
 #: multiply-adds (``sum(c_j^2)``; the 100-curve benchmark: 2.1M for the seed propagation, 74M for
 #: the baseline, 53-68M for the parallel and orthogonal rounds, 28M and 84M for the planar rounds;
-#: the first planar round's METIS ordering costs 36-39M, so it would pay nothing for its 70 ms).
+#: the first planar round's METIS ordering costs 36M, so it would only cost its 70-90 ms there).
 ND_MIN_FLOPS = 4e7
-#: The numba LDL^T's time per multiply-add over QDLDL's (C; 0.44 ns on the 100-curve benchmark's
-#: matrices): 0.7-0.8 ns in the nested-dissection orderings of its baseline and parallel rounds
-#: (12-14 ms for 17.6M, against QDLDL's 23-33 ms for 53-74M), 0.7-1.1 ns in its second planar
-#: round's (26-42 ms for 37M, against 37 ms for 84M: about even, with a third fewer non-zeros in L
-#: for the preconditioner solves).
-ND_SPEED = 2.0
+#: The compiled LDL^T's time per multiply-add over QDLDL's: both 0.44 ns in the same (AMD) ordering
+#: on the 100-curve benchmark's matrices; 0.50-0.53 ns in the nested-dissection orderings (9 ms for
+#: 17.6M, 18 ms for 37M); the margin above 1 pays for the ordering (METIS 60-100 ms per pattern).
+ND_SPEED = 1.2
 #: A kept ordering serves a new pattern of the same size from its first factorisation while its
 #: multiply-adds stay within this factor of those it had where it was chosen (the benchmark's
 #: baseline ordering on its parallel and orthogonal rounds: 17.9-18.4M against 17.6-18.8M for
@@ -315,8 +310,8 @@ class Orderings:
 
     @staticmethod
     def available() -> bool:
-        """Whether the numba LDL^T and METIS (``pymetis``) are installed."""
-        return _ldl is not None
+        """Whether the compiled LDL^T kernels (:mod:`auszug.lifting._ldl`, ``make install``) are built."""
+        return _ldl.available
 
 
 def _permuted_upper(indptr: NDArray[np.int32], indices: NDArray[np.int32],
@@ -454,7 +449,7 @@ class _KKT:
         """After a pattern's second QDLDL factorisation: switch to nested dissection where it pays.
 
         QDLDL's AMD ordering costs ``sum(c_j^2)`` multiply-adds (``c_j``: non-zeros of L's column
-        j); the numba LDL^T in the nested-dissection ordering (the kept one of this size, or a new
+        j); the compiled LDL^T in the nested-dissection ordering (the kept one of this size, or a new
         METIS ordering) is used when its count times ``Orderings.speed`` is below that; nothing is
         tried below ``Orderings.min_flops``.
         """
@@ -678,8 +673,8 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
         residual the refinement corrects (the ``kkt_reg`` term) is 1e-15 to 1e-9 of the right-hand
         side. False: every refinement solve to ``1e-13`` relative.
     orderings : Orderings, optional
-        Given (and numba and ``pymetis`` installed): a pattern factorised more than twice whose
-        LDL^T costs at least ``ND_MIN_FLOPS`` is factorised from then on by the numba LDL^T
+        Given (and ``pymetis`` and the compiled kernels installed): a pattern factorised more than
+        twice whose LDL^T costs at least ``ND_MIN_FLOPS`` is factorised from then on by our LDL^T
         (:mod:`auszug.lifting._ldl`) in a nested-dissection ordering where that costs less
         (``ND_SPEED``), the ordering kept in ``orderings`` for the later solves of the same size.
         None: QDLDL's AMD ordering throughout.

@@ -15,7 +15,13 @@ $(STAMP): pyproject.toml
 	$(PY) -m uv pip install --quiet --python $(BIN)/python -e ".[dev]"
 	touch $(STAMP)
 
-install: $(STAMP)
+# the lifting's sparse LDL^T kernels (our C, loaded with ctypes; without them the lift uses QDLDL alone)
+LDL_SO := src/auszug/lifting/ldl-kernels.so
+
+$(LDL_SO): src/auszug/lifting/_ldl.c
+	$(CC) -O2 -shared -fPIC -o $@ $<
+
+install: $(STAMP) $(LDL_SO)
 
 # three.js for the glTF check (and the studio front end): from the npm registry, pinned by package-lock.json
 $(NODE_STAMP): web/package.json web/package-lock.json
@@ -45,19 +51,19 @@ protocol: $(STAMP)
 
 ## run: set up (the studio's front end too), then build and render the bundled teaching sheet and
 ## Basel drawings, and the tracery style gallery, into ./out
-run: $(STAMP) $(WEB_BUILD)
+run: $(STAMP) $(LDL_SO) $(WEB_BUILD)
 	$(BIN)/auszug demo -o $(OUT)
 	$(BIN)/auszug tracery --gallery $(OUT)/tracery
 
 ## test: set up, then lint (ruff), type-check (mypy) and run every test
-test: $(STAMP) $(NODE_STAMP) $(WEB_BUILD) $(CHROMIUM)
+test: $(STAMP) $(LDL_SO) $(NODE_STAMP) $(WEB_BUILD) $(CHROMIUM)
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/mypy src/auszug
 	cd web && npm run --silent typecheck && npm test --silent
 	AUSZUG_REQUIRE_NODE=1 $(BIN)/python -m pytest -n 2 -q
 
 ## bench: every benchmark (tables for benchmarks/RESULTS.md)
-bench: $(STAMP) $(WEB_BUILD) $(CHROMIUM)
+bench: $(STAMP) $(LDL_SO) $(WEB_BUILD) $(CHROMIUM)
 	$(BIN)/python benchmarks/bench_engine.py
 	$(BIN)/python benchmarks/bench_meshing.py
 	$(BIN)/python benchmarks/bench_tracery.py --markdown

@@ -129,6 +129,13 @@ class LiftParams:
         *Our choice* (lift-speed4): on; 1488 -> 1143 preconditioner solves on the
         100-curve benchmark, the lifted points within 6.3e-13 of the diagonal
         (docs/lifting.md).
+    nd_ordering : bool
+        Factorise the KKT matrices of the solves that take more than two Newton steps in a
+        nested-dissection ordering (METIS, by ``pymetis``) with our compiled LDL^T
+        (``auszug.lifting._ldl``, built by ``make install``) where that costs fewer multiply-adds
+        than QDLDL's AMD (``auszug.lifting.solver.Orderings``; without ``pymetis`` or the compiled
+        kernels, QDLDL throughout). Only GMRES's preconditioner changes, so the lift moves by
+        round-off. *Our choice* (lift-speed5): on (docs/lifting.md, benchmarks/RESULTS.md).
     """
 
     w_a: float = 1.0
@@ -161,6 +168,7 @@ class LiftParams:
     hessian_reg: float = 1e-10
     soc_tol: float = 1e-8
     refine_inexact: bool = True
+    nd_ordering: bool = True
 
     def __post_init__(self) -> None:
         for f in fields(self):

@@ -23,7 +23,7 @@ from auszug.geometry.network import CurveNetwork, Piece
 from auszug.lifting import cues as cu
 from auszug.lifting.params import DEFAULT, LiftParams
 from auszug.lifting.sketch import Sketch, SketchGraph, Stroke, sketch_graph
-from auszug.lifting.solver import Poly2, SolveResult, solve
+from auszug.lifting.solver import Orderings, Poly2, SolveResult, solve
 from auszug.lifting.terms import fidelity, structure
 
 __all__ = ["CueResult", "Stage", "LiftResult", "lift", "lift_graph", "layer_graphs", "from_above", "CLASSES",
@@ -217,6 +217,7 @@ class _Problem:
         self.fid = {w: fidelity(g, self.n, params, w) for w in (params.w_a, params.w_a_baseline)}
         self.v = _initial(g, self.n, self.smooth, self.seed)
         self.lam: Array | None = None
+        self.orderings = Orderings() if params.nd_ordering else None
 
     def X(self, v: Array | None = None) -> Array:
         return (self.v if v is None else v)[: 3 * self.N].reshape(self.N, 3)
@@ -233,7 +234,8 @@ class _Problem:
         lam0 = self.lam if self.lam is not None and len(self.lam) == cons.rows else None
         r = solve(energy, cons, self.v, lam0, iterations=self.params.newton_iterations,
                   tol=self.params.newton_tol, kkt_reg=self.params.kkt_reg, hessian_reg=self.params.hessian_reg,
-                  soc_tol=self.params.soc_tol, refine_inexact=bool(self.params.refine_inexact))
+                  soc_tol=self.params.soc_tol, refine_inexact=bool(self.params.refine_inexact),
+                  orderings=self.orderings)
         self.v, self.lam = r.v, r.lam
         st = Stage(name, time.perf_counter() - t0, r.energy, r.violation, r.iterations, r.converged,
                    applied, rejected, self.layer, candidate and not r.converged)

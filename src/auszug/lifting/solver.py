@@ -15,21 +15,30 @@ multiplier increments (sec. 5.3), and a convergence test on the KKT residual.
 The sparse system's pattern is built once per solve and only its values are
 filled per step; it is solved by GMRES preconditioned with a sparse LDL^T
 (QDLDL) of the system made quasi-definite, with SuperLU as the fallback
-(:class:`_KKT`).
+(:class:`_KKT`); patterns whose LDL^T in QDLDL's AMD ordering is costly are
+factorised from their third Newton step on by our LDL^T
+(:mod:`auszug.lifting._ldl`) in a METIS nested-dissection ordering where that
+costs fewer multiply-adds (:class:`Orderings`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
+import pymetis
 import qdldl
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 from scipy.sparse.linalg import splu
 
-__all__ = ["Poly2", "SolveResult", "solve"]
+from auszug.lifting import _ldl
+
+if TYPE_CHECKING:
+    from auszug.lifting._ldl import LDL
+
+__all__ = ["Orderings", "Poly2", "SolveResult", "solve"]
 
 #: Factor by which the Hessian regularisation delta grows (negative curvature, short steps) or shrinks.
 GROW = 10.0
@@ -264,6 +273,80 @@ class _Assembly:
         return sp.csc_matrix((data, self.indices, self.indptr), shape=(self.N, self.N))
 
 
+#: Nested dissection is tried for patterns whose LDL^T in QDLDL's AMD ordering costs at least this many
+#: multiply-adds (``sum(c_j^2)``; the 100-curve benchmark: 2.1M for the seed propagation, 74M for
+#: the baseline, 53-68M for the parallel and orthogonal rounds, 28M and 84M for the planar rounds;
+#: the first planar round's METIS ordering costs 36M, so it would only cost its 70-90 ms there).
+ND_MIN_FLOPS = 4e7
+#: The compiled LDL^T's time per multiply-add over QDLDL's: both 0.44 ns in the same (AMD) ordering
+#: on the 100-curve benchmark's matrices; 0.50-0.53 ns in the nested-dissection orderings (9 ms for
+#: 17.6M, 18 ms for 37M); the margin above 1 pays for the ordering (METIS 60-100 ms per pattern).
+ND_SPEED = 1.2
+#: A kept ordering serves a new pattern of the same size from its first factorisation while its
+#: multiply-adds stay within this factor of those it had where it was chosen (the benchmark's
+#: baseline ordering on its parallel and orthogonal rounds: 17.9-18.4M against 17.6-18.8M for
+#: their own METIS orderings).
+ND_REUSE = 1.1
+
+
+class Orderings:
+    """The nested-dissection orderings chosen during one lift, by matrix size, for the later solves.
+
+    A METIS ordering of a KKT pattern costs 50-90 ms (10 000 unknowns); the solves of one lift
+    share their unknowns, and so the baseline's ordering serves the rounds after it.
+    ``min_flops`` and ``speed``: when nested dissection is tried and used (defaults
+    ``ND_MIN_FLOPS``, ``ND_SPEED``; tests force it with 0 and 0).
+    """
+
+    def __init__(self, min_flops: float | None = None, speed: float | None = None) -> None:
+        self._kept: dict[int, tuple[Index, float]] = {}
+        self.min_flops = ND_MIN_FLOPS if min_flops is None else min_flops
+        self.speed = ND_SPEED if speed is None else speed
+
+    def get(self, size: int) -> tuple[Index, float] | None:
+        """The ordering kept for matrices of ``size`` rows and its multiply-adds where chosen."""
+        return self._kept.get(size)
+
+    def put(self, size: int, perm: Index, flops: float) -> None:
+        """Keep ``perm`` for matrices of ``size`` rows."""
+        self._kept[size] = (perm, flops)
+
+    @staticmethod
+    def available() -> bool:
+        """Whether the compiled LDL^T kernels (:mod:`auszug.lifting._ldl`, ``make install``) are built."""
+        return _ldl.available
+
+
+def _permuted_upper(indptr: NDArray[np.int32], indices: NDArray[np.int32],
+                    perm: Index) -> tuple[Index, Index, Index]:
+    """The upper triangle of ``A[perm][:, perm]`` from ``A``'s upper triangle (CSC ``indptr``, ``indices``).
+
+    Returns its ``indptr``, ``indices`` (sorted in each column) and, per entry, the index of the
+    same entry in ``A``'s upper triangle's data.
+    """
+    N = len(indptr) - 1
+    iperm = np.empty(N, np.int64)
+    iperm[perm] = np.arange(N)
+    col = iperm[np.repeat(np.arange(N), np.diff(indptr))]
+    row = iperm[indices]
+    lo, hi = np.minimum(row, col), np.maximum(row, col)
+    order = np.lexsort((lo, hi))
+    Ap = np.zeros(N + 1, np.int64)
+    np.cumsum(np.bincount(hi, minlength=N), out=Ap[1:])
+    return Ap, np.ascontiguousarray(lo[order]), order
+
+
+def _nested_dissection(indptr: NDArray[np.int32], indices: NDArray[np.int32]) -> Index:
+    """METIS's nested-dissection ordering of the symmetric matrix with this upper triangle (CSC)."""
+    N = len(indptr) - 1
+    U = sp.csc_matrix((np.ones(len(indices)), indices, indptr), shape=(N, N))
+    G = (U + U.T).tocsr()
+    G.setdiag(0.0)
+    G.eliminate_zeros()
+    perm, _ = pymetis.nested_dissection(pymetis.CSRAdjacency(G.indptr, G.indices))
+    return np.asarray(perm, dtype=np.int64)
+
+
 class _KKT:
     """Factorises the KKT matrices ``K`` (N, N) of one solve (one sparsity pattern) and solves with them.
 
@@ -278,11 +361,21 @@ class _KKT:
     a solve of 1 ms against 3-14 ms, 5-12 GMRES iterations per solve. Where the LDL^T fails (a
     zero pivot) or GMRES does not reach ``1e-10``, SuperLU factorises ``K`` (COLAMD, its column
     ordering reused for the later factorisations, scipy having no separate symbolic
-    factorisation); ``ldl_reg <= 0`` uses SuperLU alone.
+    factorisation); ``ldl_reg <= 0`` uses SuperLU alone. With ``orderings`` (a lift's
+    :class:`Orderings`), a pattern's third and later factorisations are our LDL^T
+    (:mod:`auszug.lifting._ldl`, the same algorithm as QDLDL's) in a nested-dissection ordering
+    where :meth:`_nd_try` finds it cheaper (lift-speed5: on the 100-curve benchmark L 0.41-0.48M
+    -> 0.25M non-zeros, a factorisation 24-34 ms -> 9 ms, a solve 0.8 -> 0.55 ms).
     """
 
-    def __init__(self, n: int, ldl_reg: float = 1e-7, gmres_tol: float = 1e-13, gmres_its: int = 30) -> None:
+    def __init__(self, n: int, ldl_reg: float = 1e-7, gmres_tol: float = 1e-13, gmres_its: int = 30,
+                 orderings: Orderings | None = None) -> None:
         self.n = n
+        self.orderings = orderings
+        self.nd: LDL | None = None        # the LDL^T in a nested-dissection ordering, once chosen
+        self.nd_map: Index | None = None       # its permuted upper triangle's entries in ``U``'s data
+        self.nd_tried = False
+        self.ldl_count = 0                     # QDLDL factorisations of this pattern
         self.perm: NDArray[np.intp] | None = None
         self.count = 0
         self.lu_count = 0
@@ -308,26 +401,85 @@ class _KKT:
             self.sign = np.where(self.up_indices[self.up_diag] < self.n, 1.0, -1.0)
         data = K.data[self.upper]
         data[self.up_diag] += self.ldl_reg * self.sign
-        U = sp.csc_matrix((data, self.up_indices, self.up_indptr), shape=K.shape)
-        try:
-            if self.ldl is None:
-                self.ldl = qdldl.Solver(U, upper=True)
-            else:
-                self.ldl.update(U, upper=True)
-        except (ValueError, RuntimeError):   # QDLDL: "not quasi-definite" (a zero pivot)
-            self.ldl = None
-            return None
-        ldl = self.ldl
+        prec: Callable[[Array], Array]
+        if self.orderings is not None and not self.nd_tried and self.ldl_count == 0:
+            self._nd_cached()
+        if self.nd is not None and self.nd_map is not None:
+            if not self.nd.factor(data[self.nd_map]):      # a zero pivot
+                return None
+            prec = self.nd.solve
+        else:
+            U = sp.csc_matrix((data, self.up_indices, self.up_indptr), shape=K.shape)
+            try:
+                if self.ldl is None:
+                    self.ldl = qdldl.Solver(U, upper=True)
+                else:
+                    self.ldl.update(U, upper=True)
+            except (ValueError, RuntimeError):   # QDLDL: "not quasi-definite" (a zero pivot)
+                self.ldl = None
+                return None
+            self.ldl_count += 1
+            prec = self.ldl.solve
+            if self.orderings is not None and not self.nd_tried and self.ldl_count >= 2:
+                self._nd_try()
 
         def solve_(b: Array, tol: float | None = None) -> Array:
             t = self.gmres_tol if tol is None else tol
-            x, its = _gmres(K, ldl.solve, b, t, self.gmres_its, max(1e-10, t))
+            x, its = _gmres(K, prec, b, t, self.gmres_its, max(1e-10, t))
             self.prec_solves += its
             if x is None:
                 raise _NotSolved
             return x
 
         return solve_
+
+    def _nd_use(self, perm: Index) -> LDL:
+        """The LDL^T of this pattern in the ordering ``perm`` (symbolic factorisation only)."""
+        Ap, Ai, self.nd_map = _permuted_upper(self.up_indptr, self.up_indices, perm)
+        return _ldl.LDL(perm, Ap, Ai)
+
+    def _nd_cached(self) -> None:
+        """At a pattern's first factorisation: the ordering kept for this size, if it fills as it did."""
+        assert self.orderings is not None
+        N = len(self.up_indptr) - 1
+        kept = self.orderings.get(N)
+        if kept is None:
+            return
+        perm, flops = kept
+        nd = self._nd_use(perm)
+        if nd.flops <= ND_REUSE * flops:
+            self.nd, self.nd_tried = nd, True
+        else:
+            self.nd_map = None
+
+    def _nd_try(self) -> None:
+        """After a pattern's second QDLDL factorisation: switch to nested dissection where it pays.
+
+        QDLDL's AMD ordering costs ``sum(c_j^2)`` multiply-adds (``c_j``: non-zeros of L's column
+        j); the compiled LDL^T in the nested-dissection ordering (the kept one of this size, or a new
+        METIS ordering) is used when its count times ``Orderings.speed`` is below that; nothing is
+        tried below ``Orderings.min_flops``.
+        """
+        assert self.orderings is not None and self.ldl is not None
+        self.nd_tried = True
+        counts = np.diff(self.ldl.factors()[0].indptr).astype(float)
+        amd = float(np.sum(counts * counts))
+        if amd < self.orderings.min_flops:
+            return
+        N = len(self.up_indptr) - 1
+        kept = self.orderings.get(N)
+        if kept is not None:
+            nd = self._nd_use(kept[0])
+            if self.orderings.speed * nd.flops < amd:
+                self.nd = nd
+                return
+        perm = _nested_dissection(self.up_indptr, self.up_indices)
+        nd = self._nd_use(perm)
+        if self.orderings.speed * nd.flops < amd:
+            self.nd = nd
+            self.orderings.put(N, perm, nd.flops)
+        else:
+            self.nd_map = None
 
     def _lu(self, K: sp.csc_matrix) -> Callable[[Array], Array]:
         """SuperLU's solver of ``K``."""
@@ -453,7 +605,8 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
           tol: float = 1e-10, kkt_reg: float = 1e-11, hessian_reg: float = 1e-10,
           stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 10, soc_rate: float = 0.5,
           step_growth: float = 2.0, ldl_reg: float = 1e-7, refine_steps: int = 1,
-          stall_tol: float = 1e-6, soc_tol: float = 1e-8, refine_inexact: bool = True) -> SolveResult:
+          stall_tol: float = 1e-6, soc_tol: float = 1e-8, refine_inexact: bool = True,
+          orderings: Orderings | None = None) -> SolveResult:
     """Minimise ``sum w_r p_r(v)^2`` subject to ``q(v) = 0`` from ``v0``.
 
     Each step solves the KKT system
@@ -526,6 +679,12 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
         tolerance ``1e-13 |rhs| / |residual|`` (at most 0.5) instead of ``1e-13``, since the
         residual the refinement corrects (the ``kkt_reg`` term) is 1e-15 to 1e-9 of the right-hand
         side. False: every refinement solve to ``1e-13`` relative.
+    orderings : Orderings, optional
+        Given (and ``pymetis`` and the compiled kernels installed): a pattern factorised more than
+        twice whose LDL^T costs at least ``ND_MIN_FLOPS`` is factorised from then on by our LDL^T
+        (:mod:`auszug.lifting._ldl`) in a nested-dissection ordering where that costs less
+        (``ND_SPEED``), the ordering kept in ``orderings`` for the later solves of the same size.
+        None: QDLDL's AMD ordering throughout.
 
     Examples
     --------
@@ -543,7 +702,7 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     w = energy.weights
     asm = _Assembly(energy, constraints, hessian_reg, kkt_reg)
     zk = np.zeros(k)
-    kkt = _KKT(n, ldl_reg)
+    kkt = _KKT(n, ldl_reg, orderings=orderings if Orderings.available() else None)
     mu = 0.0
     delta = 0.0
     converged = False

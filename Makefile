@@ -15,10 +15,12 @@ $(STAMP): pyproject.toml
 	$(PY) -m uv pip install --quiet --python $(BIN)/python -e ".[dev]"
 	touch $(STAMP)
 
-# the lifting's sparse LDL^T kernels (our C, loaded with ctypes; without them the lift uses QDLDL alone)
+# the lifting's sparse LDL^T kernels (our C, loaded with ctypes; without them the lift uses QDLDL alone);
+# Debian's gcc is installed if there is no C compiler
 LDL_SO := src/auszug/lifting/ldl-kernels.so
 
 $(LDL_SO): src/auszug/lifting/_ldl.c
+	command -v $(CC) >/dev/null 2>&1 || $(SUDO) apt-get install -y gcc || ($(SUDO) apt-get update && $(SUDO) apt-get install -y gcc)
 	$(CC) -O2 -shared -fPIC -o $@ $<
 
 install: $(STAMP) $(LDL_SO)
@@ -71,4 +73,4 @@ bench: $(STAMP) $(LDL_SO) $(WEB_BUILD) $(CHROMIUM)
 	$(BIN)/python benchmarks/bench_studio_tracery.py
 
 clean:
-	rm -rf $(VENV) $(OUT) .pytest_cache
+	rm -rf $(VENV) $(OUT) .pytest_cache $(LDL_SO)

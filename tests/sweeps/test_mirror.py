@@ -1,5 +1,7 @@
 """Mirror candidates (auszug.sweeps.mirror): mirror planes of a mesh, and a patch's mirror image."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -95,7 +97,8 @@ def test_a_box_has_its_three_mirror_planes_and_a_random_hull_none():
 def test_mirror_candidates_are_fitted_against_the_mesh():
     """On the box, a translation patch along one wall's edge mirrored in the plane across the wall:
     the image lies on the opposite wall and fits (error 0, its faces that wall's two triangles); a
-    patch far from the mesh mirrored stays far (its image's fit error is measured, not assumed)."""
+    patch far from the mesh mirrored stays far and covers nothing (not returned); an image on faces
+    the candidates hold already is dropped, one on faces they leave is kept."""
     v, f = _box((1.0, 2.0, 3.0))
     m = normalise(v, f)
     lo = m.vertices.min(axis=0)
@@ -110,12 +113,22 @@ def test_mirror_candidates_are_fitted_against_the_mesh():
     planes = [pl for pl in mirror_planes(m, DEFAULT.with_(mirror_planes=3)) if abs(pl[0][0]) > 0.99]
     assert len(planes) == 1
     out = mirror_candidates(m, [good, far], planes, DEFAULT, first_id=10)
-    assert [p.id for p in out] == [10, 11] and [p.kind for p in out] == ["translation"] * 2
+    # the far patch's image is fitted too (its swept surface 0.5 off the mesh) and covers no face:
+    # it adds nothing and is not returned
+    assert [p.id for p in out] == [10] and [p.kind for p in out] == ["translation"]
     assert out[0].fit_error <= 1e-12
     wall = np.flatnonzero(np.all(np.isclose(m.vertices[m.faces][:, :, 0], hi[0]), axis=1))
     assert sorted(out[0].faces.tolist()) == sorted(wall.tolist())
-    assert out[1].fit_error >= 0.4
-    assert out[1].fit_error > SweepParams().fit_factor * SweepParams().eps_prox
+    prof_far, motion_far = mirrored(far, *planes[0][:2])
+    from auszug.sweeps.patches import fit_patch
+
+    fit_far = fit_patch(m, prof_far, False, motion_far)
+    assert fit_far.fit_error >= 0.4 and len(fit_far.faces) == 0
+    # a candidate whose faces hold the opposite wall already: its image there adds nothing, dropped
+    holding = replace(good, faces=wall)
+    assert mirror_candidates(m, [holding, far], planes, DEFAULT) == []
+    part = replace(good, faces=wall[:1])        # half the wall held: the image stays
+    assert len(mirror_candidates(m, [part], planes, DEFAULT)) == 1
 
 
 @pytest.mark.parametrize("name, value", [

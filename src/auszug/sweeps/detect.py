@@ -313,8 +313,8 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
                           for n, _, share in planes)
         stages.append(Stage("mirror", time.perf_counter() - t,
                             f"{len(planes)} mirror plane(s){': ' + where if where else ''}; {len(found)} mirror "
-                            f"image(s) fitted, {fits} within fit error {bound:.3g}, covering >= "
-                            f"{params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}",
+                            f"image(s) fitted on faces the candidates leave, {fits} within fit error {bound:.3g}, "
+                            f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}",
                             {"planes": len(planes), "candidates": len(found), "fit": fits}))
 
     t = step("fit")

@@ -39,9 +39,12 @@ def test_random_bumps_are_no_sweep(eps, most):
         assert r.patches == ()
     assert r.stage("kinematic").numbers["kinematic"] == 0
     # nothing covers 0.95 after the first pass, so the coarse pass runs as well, and finds no sweep
-    # either; then the kinematic parts are sought, and none fits
+    # either; then the kinematic parts are sought, and none fits; then the mirror images of the
+    # candidates that fit in the mesh's mirror planes (bumps at random have none, nor any candidate)
     general = ["match", "families", "motion"]
-    assert [s.name for s in r.stages] == ["normalise", "cut", "kinematic", *general, *general, "parts", "fit"]
+    assert [s.name for s in r.stages] == ["normalise", "cut", "kinematic", *general, *general, "parts", "mirror",
+                                          "fit"]
+    assert r.stage("mirror").numbers["fit"] == 0
     assert [s.numbers.get("curvature_window") for s in r.stages[6:9]] == [DEFAULT.coarse_window] * 3
     assert all(s.summary.startswith("coarse pass") for s in r.stages[6:9])
     assert r.stage("parts").numbers["fit"] == 0

@@ -23,7 +23,12 @@ Stages (each also callable alone, see :mod:`auszug.sweeps`):
    ``min_patch_area`` of the mesh): :func:`~auszug.sweeps.parts.kinematic_parts`, the pieces that
    are each a surface of revolution or an extrusion, such as a moulding's straight and arched
    stretches along a window's border;
-6. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
+6. ``mirror`` (beyond the paper; with ``mirror`` on, where the candidates that fit still leave at
+   least ``min_patch_area``): the mesh's mirror planes (:func:`~auszug.sweeps.mirror.mirror_planes`)
+   and the mirror images of the candidates that fit, each fitted against the mesh
+   (:func:`~auszug.sweeps.mirror.mirror_candidates`): a sweep found on one side of a symmetric
+   piece is sought on the other;
+7. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
    ``min_patch_area`` of the mesh are dropped; the rest are converted to the input's coordinates,
    each profile fitted with exact lines and arcs (``profile_fit_tolerance``, docs/sweeps.md section 6).
 
@@ -56,7 +61,7 @@ Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
 #: The stages in the order :func:`detect` runs them (the general ones only on non-kinematic meshes).
-STAGES = ("normalise", "cut", "kinematic", "match", "families", "motion", "parts", "fit")
+STAGES = ("normalise", "cut", "kinematic", "match", "families", "motion", "parts", "mirror", "fit")
 
 Progress = Callable[[str, int, int], None]
 
@@ -286,6 +291,31 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
                             f"left, {len(found)} part patch(es), {fits} within fit error {bound:.3g}, covering "
                             f">= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}",
                             {"tried": tried, "candidates": len(found), "fit": fits}))
+
+    free = np.ones(len(m.faces), bool)
+    for p in raw:
+        if _fits(p, params):
+            free[p.faces] = False
+    if params.mirror and params.mirror_planes > 0 and areas.sum() > 0 \
+            and float(areas[free].sum() / areas.sum()) >= params.min_patch_area:
+        # the mirror images of the candidates that fit, in the mesh's mirror planes (beyond the
+        # paper, docs/sweeps.md): a sweep found on one side of a symmetric piece, sought on the other
+        from auszug.sweeps.mirror import mirror_candidates, mirror_planes
+        from auszug.sweeps.patches import MeshTree
+
+        t = step("mirror")
+        tree = MeshTree.of(m)
+        planes = mirror_planes(m, params, tree)
+        found = mirror_candidates(m, [p for p in raw if _fits(p, params)], planes, params, tree, first_id=len(raw))
+        raw.extend(found)
+        fits = sum(_fits(p, params) for p in found)
+        where = "; ".join(f"normal {np.round(n, 3).tolist()} ({share:.3f} of the area mirrored on the mesh)"
+                          for n, _, share in planes)
+        stages.append(Stage("mirror", time.perf_counter() - t,
+                            f"{len(planes)} mirror plane(s){': ' + where if where else ''}; {len(found)} mirror "
+                            f"image(s) fitted on faces the candidates leave, {fits} within fit error {bound:.3g}, "
+                            f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}",
+                            {"planes": len(planes), "candidates": len(found), "fit": fits}))
 
     t = step("fit")
     good = [p for p in raw if _fits(p, params)]

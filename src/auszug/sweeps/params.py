@@ -253,6 +253,15 @@ class SweepParams:
         along ``n x d`` is tried over the whole mesh (a wall's top and bottom and its face above an
         opening slide along the wall's width; no cut of them glides as a whole). 0 turns it off;
         at most 0.2.
+    mirror : bool
+        Whether :func:`~auszug.sweeps.detect` adds the mirror images of the candidates that fit in
+        the mesh's mirror planes as candidates (beyond the paper, :mod:`auszug.sweeps.mirror`),
+        each fitted against the mesh like every other candidate.
+    mirror_share : float
+        A plane is a mirror plane when the mirror images of the faces' centroids lie within
+        ``eps_prox`` of the mesh for at least this share of the area. Default 0.95.
+    mirror_planes : int
+        At most this many mirror planes, best first (0..3; 0: none, as ``mirror`` false). Default 2.
     coverage_samples : int
         The report's ``coverage`` is of the mesh's area, not of whole faces: the faces that no
         kept patch covers whole (all three corners within ``eps_prox`` of its swept surface) are
@@ -332,6 +341,9 @@ class SweepParams:
     part_profile_cuts: int = 0
     part_across: float = 0.02
     coverage_samples: int = 100_000
+    mirror: bool = True
+    mirror_share: float = 0.95
+    mirror_planes: int = 2
 
     def __post_init__(self) -> None:
         checks = [
@@ -410,6 +422,10 @@ class SweepParams:
             ("part_across", _real(self.part_across) and 0 <= self.part_across <= 0.2, "in [0, 0.2] (a sine)"),
             ("coverage_samples", _whole(self.coverage_samples) and 0 <= self.coverage_samples <= 10_000_000,
              "a whole number in 0..10000000"),
+            ("mirror", isinstance(self.mirror, bool), "true or false"),
+            ("mirror_share", _real(self.mirror_share) and 0.5 <= self.mirror_share <= 1,
+             "in [0.5, 1] (a share of the area)"),
+            ("mirror_planes", _whole(self.mirror_planes) and 0 <= self.mirror_planes <= 3, "a whole number in 0..3"),
         ]
         for name, ok, want in checks:
             if not ok:

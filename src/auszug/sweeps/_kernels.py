@@ -1637,13 +1637,19 @@ def rotvecs_of(r):  # pragma: no cover - compiled
 
     As scipy's ``Rotation.from_matrix(r).as_rotvec()`` for orthogonal ``r``: the quaternion from the
     largest of the diagonal and the trace (Markley), normalised, made canonical (``w >= 0``), then
-    ``2 atan2(|xyz|, w)`` with the series of ``angle / sin(angle / 2)`` up to 1e-3.
+    ``2 atan2(|xyz|, w)`` with the series of ``angle / sin(angle / 2)`` up to 1e-3. A matrix whose
+    determinant is not positive (no rotation) gets NaN (scipy raises there; the caller does).
     """
     n = r.shape[0]
     out = np.empty((n, 3))
     qv = np.empty(4)
     for p in range(n):
         m = r[p]
+        det = (m[0, 0] * (m[1, 1] * m[2, 2] - m[1, 2] * m[2, 1]) - m[0, 1] * (m[1, 0] * m[2, 2] - m[1, 2] * m[2, 0])
+               + m[0, 2] * (m[1, 0] * m[2, 1] - m[1, 1] * m[2, 0]))
+        if not det > 0.0:
+            out[p, 0], out[p, 1], out[p, 2] = np.nan, np.nan, np.nan
+            continue
         tr = m[0, 0] + m[1, 1] + m[2, 2]
         c = 0
         best = m[0, 0]

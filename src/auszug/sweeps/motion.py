@@ -72,6 +72,11 @@ def se3_exp(omega: ArrayLike, v: ArrayLike) -> tuple[Array, Array]:
 def se3_log(rotation: ArrayLike, translation: ArrayLike) -> tuple[Array, Array]:
     """Twists ``(omega (..., 3), v (..., 3))`` of rigid maps (rotation angle below pi).
 
+    Raises
+    ------
+    GeometryError
+        A rotation whose determinant is not positive or that has a non-finite entry.
+
     Examples
     --------
     >>> r, t = se3_exp([0.1, -0.2, 0.3], [0.5, 0.0, -1.0])
@@ -83,6 +88,8 @@ def se3_log(rotation: ArrayLike, translation: ArrayLike) -> tuple[Array, Array]:
     t = np.asarray(translation, float)
     # compiled: bit for bit scipy's Rotation.from_matrix(r).as_rotvec() for orthogonal r (|R^T R - I| <= 1e-12)
     w = rotvecs_of(np.ascontiguousarray(r.reshape(-1, 3, 3))).reshape(r.shape[:-2] + (3,))
+    if not np.isfinite(w).all():
+        raise GeometryError("se3_log: a rotation has a determinant <= 0 (or a non-finite entry): not a rigid map")
     theta = np.linalg.norm(w, axis=-1)
     a, b = _v_coeffs(theta)
     k = _hat(w)

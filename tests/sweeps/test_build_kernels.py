@@ -282,3 +282,56 @@ def test_kabsch_sums_are_numpys_centroids_and_einsum_bit_for_bit(shared, k, n):
     want = np.einsum("kni,knj->kij", (a - ca[:, None]) / n, b - cb[:, None])
     gca, gcb, got = kabsch_sums(np.ascontiguousarray(p[None] if shared else p), b)
     assert np.array_equal(gca, ca) and np.array_equal(gcb, cb) and np.array_equal(got, want)
+
+
+def _rotvecs(rng, n):
+    """Random rotation vectors: general, near the identity (down to 1e-12 rad, and the series'
+    bounds 1e-4 and 1e-3 on both sides), near a half turn (down to 1e-12 below pi), and exact 0 and pi."""
+    axes = rng.normal(size=(n, 3))
+    axes /= np.linalg.norm(axes, axis=1, keepdims=True)
+    small = 10.0 ** rng.uniform(-12, -2, n)
+    near_pi = np.pi - 10.0 ** rng.uniform(-12, -2, n)
+    edges = np.array([0.0, 1e-4 * (1 - 1e-12), 1e-4, 1e-3 * (1 - 1e-12), 1e-3, 1e-3 * (1 + 1e-12), np.pi])
+    ang = np.concatenate([rng.uniform(0, np.pi, n), small, near_pi, edges])
+    ax = np.concatenate([axes, axes, axes, axes[: len(edges)]])
+    ax[-len(edges):] = [[0.0, 0.0, 1.0], [1.0, 0, 0], [0, -1.0, 0], [0.6, 0.8, 0], [0, 0, -1.0], [1.0, 0, 0],
+                        [-0.6, 0, 0.8]]
+    return ang[:, None] * ax
+
+
+def test_rotations_of_is_scipys_from_rotvec_as_matrix_bit_for_bit():
+    from auszug.sweeps._kernels import rotations_of
+
+    w = _rotvecs(np.random.default_rng(11), 400)
+    assert np.array_equal(rotations_of(w), Rotation.from_rotvec(w).as_matrix())
+
+
+def test_rotvecs_of_is_scipys_from_matrix_as_rotvec_bit_for_bit():
+    from auszug.sweeps._kernels import rotvecs_of
+
+    w = _rotvecs(np.random.default_rng(12), 400)
+    r = Rotation.from_rotvec(w).as_matrix()
+    # orthogonalised products too, as the motion's interval rotations M_k^T M_{k+1}
+    r = np.concatenate([r, np.einsum("kji,kjl->kil", r[:-1], r[1:]), np.eye(3)[None], np.diag([1.0, -1.0, -1.0])[None]])
+    got = rotvecs_of(np.ascontiguousarray(r))
+    assert np.array_equal(got, Rotation.from_matrix(r).as_rotvec())
+    # and the angle comes back: |w| in [0, pi], rotations of it equal to r
+    assert np.all(np.linalg.norm(got, axis=1) <= np.pi + 1e-15)
+    assert np.allclose(Rotation.from_rotvec(got).as_matrix(), r, rtol=0, atol=1e-12)
+
+
+def test_se3_log_and_exp_are_their_scipy_definitions_bit_for_bit():
+    from auszug.sweeps.motion import rotation_about, se3_exp, se3_log
+
+    rng = np.random.default_rng(13)
+    w = _rotvecs(rng, 100)
+    v = rng.normal(size=w.shape)
+    r, t = se3_exp(w, v)
+    assert np.array_equal(r, Rotation.from_rotvec(w).as_matrix())
+    w2, v2 = se3_log(r, t)
+    assert np.array_equal(w2, Rotation.from_matrix(r).as_rotvec())
+    keep = np.linalg.norm(w, axis=1) < np.pi - 1e-6       # the log is unique below a half turn
+    assert np.allclose(w2[keep], w[keep], rtol=0, atol=1e-9) and np.allclose(v2[keep], v[keep], rtol=0, atol=1e-7)
+    ang = rng.uniform(-4, 4, 7)
+    assert np.array_equal(rotation_about([0, 3.0, 4.0], ang),
+                          Rotation.from_rotvec(ang[:, None] * np.array([0, 0.6, 0.8])).as_matrix())

@@ -66,3 +66,13 @@ def test_bad_motions_are_refused():
         Motion(np.array([0.0, 1.0]), np.stack([np.eye(3), np.diag([1.0, 1, -1])]), np.zeros((2, 3)))
     with pytest.raises(GeometryError, match="k >= 2"):
         Motion(np.array([0.0]), np.eye(3)[None], np.zeros((1, 3)))
+
+
+@pytest.mark.parametrize("bad", [np.diag([1.0, 1.0, -1.0]), np.zeros((3, 3)), np.full((3, 3), np.nan)])
+def test_se3_log_refuses_a_matrix_that_is_no_rotation(bad: np.ndarray) -> None:
+    """A reflection, a singular matrix and NaNs are no rigid map: an error, not a twist."""
+    good, t = se3_exp([0.1, -0.2, 0.3], [0.5, 0.0, -1.0])
+    with pytest.raises(GeometryError, match="determinant"):
+        se3_log(np.stack([good, bad]), np.stack([t, t]))
+    w, _ = se3_log(good, t)
+    assert np.allclose(w, [0.1, -0.2, 0.3], atol=1e-12)

@@ -1600,3 +1600,84 @@ def kabsch_sums(a, b):  # pragma: no cover - compiled
                 for j in range(3):
                     h[g, i, j] += ai * (b[g, q, j] - cb[g, j])
     return ca, cb, h
+
+
+# ------------------------------------------------------------------------- rotation vectors <-> matrices
+
+
+@njit(cache=True)
+def rotations_of(w):  # pragma: no cover - compiled
+    """Rotation matrices ``(n, 3, 3)`` of rotation vectors ``w (n, 3)``.
+
+    Bit for bit scipy's ``Rotation.from_rotvec(w).as_matrix()``: the unit quaternion with
+    ``sin(t/2)/t`` (its series up to ``t = 1e-3``), then the quaternion's matrix in scipy's order.
+    """
+    n = w.shape[0]
+    r = np.empty((n, 3, 3))
+    for p in range(n):
+        w0, w1, w2 = w[p, 0], w[p, 1], w[p, 2]
+        th = np.sqrt(w0 * w0 + w1 * w1 + w2 * w2)
+        if th <= 1e-3:
+            t2 = th * th
+            s = 0.5 - t2 / 48.0 + t2 * t2 / 3840.0
+        else:
+            s = np.sin(th / 2.0) / th
+        x, y, z, q = w0 * s, w1 * s, w2 * s, np.cos(th / 2.0)
+        x2, y2, z2, q2 = x * x, y * y, z * z, q * q
+        xy, zq, xz, yq, yz, xq = x * y, z * q, x * z, y * q, y * z, x * q
+        r[p, 0, 0], r[p, 0, 1], r[p, 0, 2] = x2 - y2 - z2 + q2, 2.0 * (xy - zq), 2.0 * (xz + yq)
+        r[p, 1, 0], r[p, 1, 1], r[p, 1, 2] = 2.0 * (xy + zq), -x2 + y2 - z2 + q2, 2.0 * (yz - xq)
+        r[p, 2, 0], r[p, 2, 1], r[p, 2, 2] = 2.0 * (xz - yq), 2.0 * (yz + xq), -x2 - y2 + z2 + q2
+    return r
+
+
+@njit(cache=True)
+def rotvecs_of(r):  # pragma: no cover - compiled
+    """Rotation vectors ``(n, 3)`` of rotations ``r (n, 3, 3)`` (angle in [0, pi]).
+
+    As scipy's ``Rotation.from_matrix(r).as_rotvec()`` for orthogonal ``r``: the quaternion from the
+    largest of the diagonal and the trace (Markley), normalised, made canonical (``w >= 0``), then
+    ``2 atan2(|xyz|, w)`` with the series of ``angle / sin(angle / 2)`` up to 1e-3. A matrix whose
+    determinant is not positive (no rotation) gets NaN (scipy raises there; the caller does).
+    """
+    n = r.shape[0]
+    out = np.empty((n, 3))
+    qv = np.empty(4)
+    for p in range(n):
+        m = r[p]
+        det = (m[0, 0] * (m[1, 1] * m[2, 2] - m[1, 2] * m[2, 1]) - m[0, 1] * (m[1, 0] * m[2, 2] - m[1, 2] * m[2, 0])
+               + m[0, 2] * (m[1, 0] * m[2, 1] - m[1, 1] * m[2, 0]))
+        if not det > 0.0:
+            out[p, 0], out[p, 1], out[p, 2] = np.nan, np.nan, np.nan
+            continue
+        tr = m[0, 0] + m[1, 1] + m[2, 2]
+        c = 0
+        best = m[0, 0]
+        if m[1, 1] > best:
+            c, best = 1, m[1, 1]
+        if m[2, 2] > best:
+            c, best = 2, m[2, 2]
+        if tr > best:
+            c = 3
+        if c == 3:
+            qv[0], qv[1], qv[2], qv[3] = m[2, 1] - m[1, 2], m[0, 2] - m[2, 0], m[1, 0] - m[0, 1], 1.0 + tr
+        else:
+            i = c
+            j = (i + 1) % 3
+            k = (j + 1) % 3
+            qv[i] = 1.0 - tr + 2.0 * m[i, i]
+            qv[j] = m[j, i] + m[i, j]
+            qv[k] = m[k, i] + m[i, k]
+            qv[3] = m[k, j] - m[j, k]
+        nq = np.sqrt(qv[0] * qv[0] + qv[1] * qv[1] + qv[2] * qv[2] + qv[3] * qv[3])
+        x, y, z, q = qv[0] / nq, qv[1] / nq, qv[2] / nq, qv[3] / nq
+        if q < 0.0 or (q == 0.0 and (x < 0.0 or (x == 0.0 and (y < 0.0 or (y == 0.0 and z < 0.0))))):
+            x, y, z, q = -x, -y, -z, -q
+        ang = 2.0 * np.arctan2(np.sqrt(x * x + y * y + z * z), q)
+        if ang <= 1e-3:
+            a2 = ang * ang
+            s = 2.0 + a2 / 12.0 + 7.0 * a2 * a2 / 2880.0
+        else:
+            s = ang / np.sin(ang / 2.0)
+        out[p, 0], out[p, 1], out[p, 2] = s * x, s * y, s * z
+    return out

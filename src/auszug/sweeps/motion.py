@@ -17,10 +17,9 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.spatial.transform import Rotation
 
 from auszug.errors import GeometryError
-from auszug.sweeps._kernels import apply_maps
+from auszug.sweeps._kernels import apply_maps, rotations_of, rotvecs_of
 
 __all__ = ["Motion", "se3_exp", "se3_log", "screw_motion", "rotation_about"]
 
@@ -62,7 +61,8 @@ def se3_exp(omega: ArrayLike, v: ArrayLike) -> tuple[Array, Array]:
     w = np.asarray(omega, float)
     vv = np.asarray(v, float)
     theta = np.linalg.norm(w, axis=-1)
-    r = Rotation.from_rotvec(w.reshape(-1, 3)).as_matrix().reshape(w.shape[:-1] + (3, 3))
+    # compiled: bit for bit scipy's Rotation.from_rotvec(w).as_matrix(), without its per-call overhead
+    r = rotations_of(np.ascontiguousarray(w.reshape(-1, 3))).reshape(w.shape[:-1] + (3, 3))
     a, b = _v_coeffs(theta)
     k = _hat(w)
     vmat = np.eye(3) + a[..., None, None] * k + b[..., None, None] * (k @ k)
@@ -71,6 +71,11 @@ def se3_exp(omega: ArrayLike, v: ArrayLike) -> tuple[Array, Array]:
 
 def se3_log(rotation: ArrayLike, translation: ArrayLike) -> tuple[Array, Array]:
     """Twists ``(omega (..., 3), v (..., 3))`` of rigid maps (rotation angle below pi).
+
+    Raises
+    ------
+    GeometryError
+        A rotation whose determinant is not positive or that has a non-finite entry.
 
     Examples
     --------
@@ -81,7 +86,10 @@ def se3_log(rotation: ArrayLike, translation: ArrayLike) -> tuple[Array, Array]:
     """
     r = np.asarray(rotation, float)
     t = np.asarray(translation, float)
-    w = Rotation.from_matrix(r.reshape(-1, 3, 3)).as_rotvec().reshape(r.shape[:-2] + (3,))
+    # compiled: bit for bit scipy's Rotation.from_matrix(r).as_rotvec() for orthogonal r (|R^T R - I| <= 1e-12)
+    w = rotvecs_of(np.ascontiguousarray(r.reshape(-1, 3, 3))).reshape(r.shape[:-2] + (3,))
+    if not np.isfinite(w).all():
+        raise GeometryError("se3_log: a rotation has a determinant <= 0 (or a non-finite entry): not a rigid map")
     theta = np.linalg.norm(w, axis=-1)
     a, b = _v_coeffs(theta)
     k = _hat(w)
@@ -94,7 +102,7 @@ def rotation_about(axis: ArrayLike, angle: ArrayLike) -> Array:
     a = np.asarray(axis, float)
     a = a / np.linalg.norm(a)
     ang = np.asarray(angle, float)
-    return Rotation.from_rotvec(ang.reshape(-1)[:, None] * a).as_matrix().reshape(ang.shape + (3, 3))
+    return rotations_of(np.ascontiguousarray(ang.reshape(-1)[:, None] * a)).reshape(ang.shape + (3, 3))
 
 
 def screw_motion(direction: ArrayLike, point: ArrayLike | None, pitch: float, t: ArrayLike) -> tuple[Array, Array]:

@@ -49,9 +49,10 @@ from auszug.limits import LIMITS
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import kinematic_axis
 from auszug.sweeps.mesh import SweepMesh, normalise
+from auszug.sweeps.mirror import mirror_candidates, mirror_planes
 from auszug.sweeps.movability import movability
 from auszug.sweeps.params import DEFAULT, SweepParams
-from auszug.sweeps.patches import SweepPatch, area_coverage, face_areas, kinematic_patches
+from auszug.sweeps.patches import MeshTree, SweepPatch, area_coverage, face_areas, kinematic_patches
 from auszug.sweeps.planes import initial_planes, spacing_for
 from auszug.sweeps.stage import Stage
 
@@ -300,9 +301,6 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
             and float(areas[free].sum() / areas.sum()) >= params.min_patch_area:
         # the mirror images of the candidates that fit, in the mesh's mirror planes (beyond the
         # paper, docs/sweeps.md): a sweep found on one side of a symmetric piece, sought on the other
-        from auszug.sweeps.mirror import mirror_candidates, mirror_planes
-        from auszug.sweeps.patches import MeshTree
-
         t = step("mirror")
         tree = MeshTree.of(m)
         planes = mirror_planes(m, params, tree)

@@ -129,6 +129,9 @@ def test_two_million_triangles_refused_without_running_out_of_memory():
     (["--match-scale", "0"], "> 0"),
     (["--match-runs", "1"], ">= 2"),
     (["--match-scale", "0.25", "--l-min", "0.001"], "match_spacing"),
+    (["--mirror-planes", "4"], "mirror_planes = 4: expected a whole number in 0..3"),
+    (["--mirror-planes", "-1"], ">= 0"),
+    (["--coverage-samples", "10000001"], "coverage_samples = 10000001"),
 ])
 def test_bad_options_exit_2(cli, tmp_path, args, message):
     src = tmp_path / "a.stl"
@@ -197,6 +200,20 @@ def test_parts_option_is_recorded_in_the_result(cli, tmp_path):
     assert r.code == 0, r.err
     rep = load(out, kind="sweeps")
     assert rep.params.max_parts == 3
+    assert [p.kind for p in rep.patches] == ["translation"]
+
+
+def test_mirror_and_coverage_options_are_recorded_in_the_result(cli, tmp_path):
+    """``--mirror-planes N`` is ``mirror_planes``, ``--coverage-samples N`` is ``coverage_samples``;
+    with 0 samples the coverage is the whole-face figure."""
+    src = tmp_path / "a.stl"
+    save(_mesh("extruded"), src, kind="mesh")
+    out = tmp_path / "a.sweeps.json"
+    r = cli("sweeps", src, "-o", out, "--mirror-planes", "0", "--coverage-samples", "0", "--quiet")
+    assert r.code == 0, r.err
+    rep = load(out, kind="sweeps")
+    assert rep.params.mirror_planes == 0 and rep.params.coverage_samples == 0
+    assert rep.coverage == rep.face_coverage
     assert [p.kind for p in rep.patches] == ["translation"]
 
 

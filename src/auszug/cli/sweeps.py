@@ -80,6 +80,12 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--parts", type=_common.at_least(0), default=None, metavar="N",
                    help="at most N motions tried for kinematic parts, 0 = none (default 8; beyond the paper: "
                         "pieces that are each an extrusion or a surface of revolution, docs/sweeps.md)")
+    g.add_argument("--mirror-planes", type=_common.at_least(0), default=None, metavar="N",
+                   help="at most N mirror planes whose images of fitting candidates are tried, 0 = none "
+                        "(default 2, at most 3; beyond the paper, docs/sweeps.md)")
+    g.add_argument("--coverage-samples", type=_common.at_least(0), default=None, metavar="N",
+                   help="at most N area samples for the coverage of faces no patch covers whole "
+                        "(default 100000, at most 10000000; 0: whole faces only)")
 
 
 def _params(args: argparse.Namespace) -> Any:
@@ -88,7 +94,8 @@ def _params(args: argparse.Namespace) -> Any:
     changes = {name: getattr(args, opt) for opt, name in (
         ("eps_prox", "eps_prox"), ("planes", "initial_plane_count"), ("percentile", "percentile"),
         ("refinements", "refinements"), ("eps_match", "eps_match"), ("match_runs", "max_match_runs"),
-        ("match_angle", "match_angle"), ("parts", "max_parts")) if getattr(args, opt) is not None}
+        ("match_angle", "match_angle"), ("parts", "max_parts"), ("mirror_planes", "mirror_planes"),
+        ("coverage_samples", "coverage_samples")) if getattr(args, opt) is not None}
     params = DEFAULT.with_(**changes)
     if args.match_scale is not None:
         params = params.with_scale(args.match_scale)

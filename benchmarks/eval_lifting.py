@@ -20,6 +20,9 @@ Usage (from the repository root)::
     python -m benchmarks.eval_lifting views [--truths a,b] [--cues none|default]
     python -m benchmarks.eval_lifting energy [--truths a,b]
 
+``--params k=v,...`` lifts with those :class:`~auszug.lifting.LiftParams` fields (noise and views modes),
+e.g. ``--params parallel_robust_deg=5,w_depth_anchor=10`` (branch lift-energy, docs/lifting.md).
+
 ``energy`` (branch lift-acc): the baseline energy term by term (accuracy, minimal variation,
 foreshortening, soft parallelism) at the truth, at the baseline lift, and at the minimum of the
 truth's own basin (the baseline solved from the truth), with and without the soft parallelism
@@ -46,12 +49,12 @@ TILTS = (15.0, 20.0, 25.0, 30.0, 35.0)
 TURNS = tuple(float(t) for t in range(-50, 51, 10))
 
 
-def evaluate(tr: T.Truth, classes: tuple[str, ...]) -> dict:
+def evaluate(tr: T.Truth, classes: tuple[str, ...], params: LiftParams = DEFAULT) -> dict:
     """One lift of a truth's sketch, scored against the truth."""
     try:
         lab = T.labels(tr)
         t0 = time.perf_counter()
-        r = lift(tr.sketch, classes=classes)
+        r = lift(tr.sketch, params=params, classes=classes)
         sec = time.perf_counter() - t0
     except GeometryError as e:       # refused, e.g. noise left no smooth crossing to start from
         return {"refused": str(e).split(":")[0]}
@@ -87,7 +90,7 @@ def _worst(rows: list[dict]) -> str:
                      for k in ("smooth-orthogonal", "orthogonal", "planar", "parallel"))
 
 
-def noise_table(names: list[str], classes: tuple[str, ...], out) -> None:
+def noise_table(names: list[str], classes: tuple[str, ...], out, params: LiftParams = DEFAULT) -> None:
     """Depth RMSE at noise 0, 0.5 %, 1 % (3 seeds) at each truth's own view, and cue scores."""
     print("| truth | view | depth spread | no noise | 0.5 % noise | 1 % noise | 1 % / none (worst) | "
           "F1 parallel (tp/applied/true) | F1 corner orthogonal | F1 planar | largest applied angle (deg): smooth, "
@@ -101,7 +104,7 @@ def noise_table(names: list[str], classes: tuple[str, ...], out) -> None:
             es = []
             for s in seeds:
                 tr = T.make(name, noise=noise, seed=s)
-                e = evaluate(tr, classes)
+                e = evaluate(tr, classes, params)
                 es.append(e)
                 if "refused" in e:
                     print(f"# {name} noise {noise} seed {s}: refused: {e['refused']}", file=sys.stderr, flush=True)
@@ -125,7 +128,7 @@ def noise_table(names: list[str], classes: tuple[str, ...], out) -> None:
               file=out, flush=True)
 
 
-def views_table(names: list[str], classes: tuple[str, ...], out) -> None:
+def views_table(names: list[str], classes: tuple[str, ...], out, params: LiftParams = DEFAULT) -> None:
     """Wrong-sign rate and depth RMSE over the grid TILTS x TURNS (noise-free), accidental views rejected."""
     print("| truth | views lifted (rejected) | wrong sign | depth RMSE median / max | F1 parallel | "
           "F1 corner orthogonal | F1 planar | largest applied angle (deg): smooth, corner, planar, parallel | "
@@ -142,7 +145,7 @@ def views_table(names: list[str], classes: tuple[str, ...], out) -> None:
                     rejected += 1
                     print(f"# {name} {tilt:g} {turn:g}: rejected: {'; '.join(why)}", file=sys.stderr, flush=True)
                     continue
-                e = evaluate(tr, classes)
+                e = evaluate(tr, classes, params)
                 if "refused" in e:
                     refused += 1
                     print(f"# {name} {tilt:g} {turn:g}: refused: {e['refused']}", file=sys.stderr, flush=True)
@@ -184,14 +187,17 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("mode", choices=("noise", "views", "energy"))
     ap.add_argument("--truths", default=",".join(T.TRUTHS))
     ap.add_argument("--cues", default="default", choices=("default", "none"))
+    ap.add_argument("--params", default="", help="LiftParams fields, e.g. parallel_robust_deg=5,w_depth_anchor=10")
     a = ap.parse_args(argv)
     classes = DEFAULT_CLASSES if a.cues == "default" else ()
+    kw = dict(x.split("=") for x in a.params.split(",") if x)
+    params = LiftParams(**{k: type(getattr(DEFAULT, k))(float(v)) for k, v in kw.items()})
     names = a.truths.split(",")
-    print(f"cues: {a.cues}; load {os.getloadavg()[0]:.1f} at start", file=sys.stdout)
+    print(f"cues: {a.cues}; params: {a.params or 'default'}; load {os.getloadavg()[0]:.1f} at start", file=sys.stdout)
     if a.mode == "energy":
         energy_table(names, sys.stdout)
     else:
-        (noise_table if a.mode == "noise" else views_table)(names, classes, sys.stdout)
+        (noise_table if a.mode == "noise" else views_table)(names, classes, sys.stdout, params)
     print(f"load {os.getloadavg()[0]:.1f} at the end", file=sys.stdout)
     return 0
 

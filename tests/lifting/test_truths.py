@@ -375,3 +375,40 @@ def test_the_second_propagation_reaches_the_vaults_lower_basin():
     e0, e1 = min(baselines(r0)), min(baselines(r1))
     assert e1 < 0.95 * e0 and np.isclose(e1, baselines(r1)[1])
     assert T.depth_rmse(tr, r1)[0] < T.depth_rmse(tr, r0)[0]
+
+
+# Robust baseline and depth anchor (branch lift-energy, docs/lifting.md "Robust baseline and depth anchor"):
+# beyond the paper, off by default. Measured noise-free at each truth's own view, default cues (the default
+# lift in brackets): revolve 1.23 (3.11), spiral 34.42 (34.31), saddle 2.93 (7.45), wrinkle 8.96 (8.95),
+# cross 13.66, every solve converged (16.21, the planar round unconverged), turret 11.01 (10.28) %.
+ROBUST = LiftParams(parallel_robust_deg=5.0, w_depth_anchor=10.0)
+ROBUST_LIFTED = [
+    ("revolve", 0.0125, {"parallel": (23, 38, 23), "planar": (9, 9, 10)}),
+    ("spiral", 0.3460, {"parallel": (5, 13, 5)}),
+    ("saddle", 0.0295, {"parallel": (12, 24, 12), "planar": (8, 8, 8)}),
+    ("wrinkle", 0.0905, {"parallel": (22, 22, 22), "planar": (3, 3, 3)}),
+    ("cross", 0.1380, {"parallel": (20, 60, 20), "orthogonal": (4, 12, 12), "planar": (6, 6, 6)}),
+    ("turret", 0.1110, {"parallel": (22, 22, 22), "orthogonal": (8, 9, 10)}),
+]
+
+
+@pytest.mark.parametrize("name, bound, counts", ROBUST_LIFTED)
+def test_robust_baseline_and_depth_anchor_against_the_truth(name, bound, counts):
+    """``parallel_robust_deg`` = 5 (the kept baseline reweighted three times by the Geman-McClure weight of each
+    parallel candidate's 3D angle) and ``w_depth_anchor`` = 10 (each cue class's rounds held near the depths
+    the class started from). The saddle meets the issue's 3 % and the revolve comes within 1.25 % of its 1 %;
+    the default lift of both is 2.4 and 2.5 times as far off. Not the default: over the view grid 27 of 159
+    signs are wrong instead of 24, and the bundled arches get worse (docs/lifting.md)."""
+    tr = T.make(name)
+    r = lift(tr.sketch, params=ROBUST)
+    err, sign = T.depth_rmse(tr, r)
+    assert r.converged and sign == 1 and err <= bound, (err, sign)
+    scores = T.cue_scores(r, T.labels(tr))
+    assert {k: scores[k][:3] for k in counts} == counts
+    names = [s.name for s in r.stages]
+    k = names.index("baseline reweighted 1")
+    assert names[k: k + 3] == ["baseline reweighted 1", "baseline reweighted 2", "baseline reweighted 3"]
+    assert all(s.converged for s in r.stages[k: k + 3])
+    if name in ("revolve", "saddle"):
+        err0, _ = T.depth_rmse(tr, _clean(name)[1])
+        assert err < 0.45 * err0, (err, err0)

@@ -129,6 +129,23 @@ class LiftParams:
         *Our choice* (lift-speed4): on; 1488 -> 1143 preconditioner solves on the
         100-curve benchmark, the lifted points within 6.3e-13 of the diagonal
         (docs/lifting.md).
+    parallel_robust_deg : float
+        *Beyond the paper* (0: off, the paper's baseline). With c > 0, the kept
+        baseline is solved ``robust_rounds`` more times, each candidate's soft
+        parallel weight multiplied by the Geman-McClure weight
+        ``(c^2 / (c^2 + a^2))^2`` of its 3D angle ``a`` (degrees) on the
+        previous solve (iteratively reweighted least squares), so that
+        candidates far from parallel in 3D stop pulling. Measured with 5 deg
+        and ``w_depth_anchor`` 10 (docs/lifting.md, "Robust baseline and depth
+        anchor"): not adopted, the wrong-sign rate over the views rises.
+    robust_rounds : int
+        Reweighted baseline solves with ``parallel_robust_deg`` (3).
+    w_depth_anchor : float
+        *Beyond the paper* (0: off). In every round of a cue class's
+        progressive resolution, the term ``w sum_k (z_k - z0_k)^2`` over the
+        control points' depths, ``z0`` the depths when the class's resolution
+        began: the class's cues bend the network in depth only against it
+        (the fidelity energy hardly resists depth changes; docs/lifting.md).
     nd_ordering : bool
         Factorise the KKT matrices of the solves that take more than two Newton steps in a
         nested-dissection ordering (METIS, by ``pymetis``) with our compiled LDL^T
@@ -169,6 +186,9 @@ class LiftParams:
     soc_tol: float = 1e-8
     refine_inexact: bool = True
     nd_ordering: bool = True
+    parallel_robust_deg: float = 0.0
+    robust_rounds: int = 3
+    w_depth_anchor: float = 0.0
 
     def __post_init__(self) -> None:
         for f in fields(self):

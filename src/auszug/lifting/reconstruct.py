@@ -247,11 +247,15 @@ class _Problem:
                              else " (NOT converged)"))
         return r
 
-    def energy(self, w_a: float) -> Poly2:
+    def energy(self, w_a: float, anchor: Array | None = None) -> Poly2:
+        """Fidelity with accuracy weight ``w_a``; with ``anchor``, ``params.w_depth_anchor (z - anchor)^2`` too."""
         base = self.fid[w_a]
         P = Poly2(self.n)
         P.const, P.weight, P.lin, P.bil, P.rows = list(base.const), list(base.weight), list(base.lin), \
             list(base.bil), base.rows
+        if anchor is not None and self.params.w_depth_anchor > 0:
+            cols = 3 * np.arange(self.N) + 2
+            P.add(-anchor, self.params.w_depth_anchor, lin=(np.arange(self.N), cols, np.ones(self.N)))
         return P
 
     def constraints(self) -> Poly2:
@@ -376,13 +380,13 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     best: tuple[float, Array, Array | None, list[Stage]] | None = None
     start_stages = list(pr.stages)
 
-    def baseline() -> SolveResult:
+    def baseline(robust: Array | None = None, name: str = "baseline") -> SolveResult:
         E = pr.energy(params.w_a_baseline)
-        par.add(E, all_par, params.w_p_baseline * wfac)
+        par.add(E, all_par, params.w_p_baseline * wfac * (1.0 if robust is None else robust))
         C = pr.constraints()
         pr.smooth.add(C, np.arange(len(pr.smooth)), 1.0)
         pr.lam = None
-        return pr.run("baseline", E, C, candidate=True)
+        return pr.run(name, E, C, candidate=True)
 
     first_v: Array | None = None   # the first seed's propagation, when its baseline was skipped
     # every seed propagated with the paper's over-emphasised parallelism; then, unless two of those reached the
@@ -436,6 +440,15 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         ok = False
         if progress is not None:
             progress(f"layer {layer}: no seed's baseline converged (NOT converged)")
+    elif params.parallel_robust_deg > 0:
+        # beyond the paper (off by default): the kept baseline reweighted by its candidates' 3D angles
+        c2 = params.parallel_robust_deg**2
+        for k_ in range(params.robust_rounds):
+            gm = (c2 / (c2 + par.angles(pr.X()) ** 2)) ** 2
+            keep = (pr.v.copy(), pr.lam)
+            if not baseline(gm, f"baseline reweighted {k_ + 1}").converged:
+                pr.v, pr.lam = keep     # an unconverged reweighting is discarded (its stage says so)
+                break
     hard: list[Callable[[Poly2], None]] = [lambda c: pr.smooth.add(c, np.arange(len(pr.smooth)), 1.0)]
     soft_kept: list[Callable[[Poly2], None]] = []
     results: list[CueResult] = []
@@ -458,8 +471,9 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         if not undecided.any():
             return applied
         Lp = cu.likelihood(fam.angles(pr.X()), params)
+        anchor = pr.X()[:, 2].copy() if params.w_depth_anchor > 0 else None
         for rnd in range(params.rounds):
-            E = pr.energy(params.w_a)
+            E = pr.energy(params.w_a, anchor)
             for f in soft_kept:
                 f(E)
             idx = np.nonzero(undecided)[0]

@@ -60,7 +60,7 @@ from auszug.sweeps._kernels import (
     eq7_blocks,
     inverse_maps_at,
     kabsch_sums,
-    polyline_closest,
+    polyline_closest_chunked,
     take_rows,
 )
 from auszug.sweeps.cut import Cuts, EdgeGrid, cut, cut_near
@@ -359,12 +359,14 @@ def _plane_of(points: Array) -> tuple[Array, float]:
 
 def _polyline_distance(points: Array, polyline: Array) -> Array:
     """Distances ``(m,)`` of points ``(m, 3)`` to a polyline ``(n, 3)`` (compiled)."""
-    return polyline_closest(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(polyline, dtype=float))[0]
+    return polyline_closest_chunked(np.ascontiguousarray(points, dtype=float),
+                                    np.ascontiguousarray(polyline, dtype=float))[0]
 
 
 def _on_polyline(points: Array, polyline: Array) -> tuple[Array, Array]:
     """Distances ``(m,)`` and closest points ``(m, 3)`` of points ``(m, 3)`` on a polyline ``(n, 3)`` (compiled)."""
-    d, c = polyline_closest(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(polyline, dtype=float))
+    d, c = polyline_closest_chunked(np.ascontiguousarray(points, dtype=float),
+                                    np.ascontiguousarray(polyline, dtype=float))
     return d, c
 
 

@@ -102,10 +102,11 @@ def test_ring_tree_is_libigls_closest_points_on_the_ring_faces(closed):
     assert np.sum(want <= 0.02) > 300
 
 
-def test_box_submesh_is_its_numpy_definition():
+def test_box_part_is_its_numpy_definition():
     mesh = _mesh(hole=True)
     lo, hi = np.array([-0.3, -0.2, -0.5]), np.array([0.2, 0.3, 0.1])
-    keep, used, ef, fe = _kernels.box_submesh(mesh.vertices, mesh.faces, mesh.edge_faces, mesh.face_edges, lo, hi)
+    keep, used, ef, fe, faces, edges = _kernels.box_part(mesh.vertices, mesh.faces, mesh.edges, mesh.edge_faces,
+                                                         mesh.face_edges, lo, hi)
     inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
     want_keep = np.flatnonzero(inside[mesh.faces].all(axis=1))
     flag = np.zeros(len(mesh.edges), bool)
@@ -119,10 +120,12 @@ def test_box_submesh_is_its_numpy_definition():
     assert np.array_equal(ef, face_index[mesh.edge_faces[want_used]])
     assert np.array_equal(fe, edge_index[mesh.face_edges[want_keep]])
     # the part's faces and edges: the kept rows, as numpy's fancy indexing gives them
-    for a, idx in ((mesh.faces, keep), (mesh.edges, used), (mesh.faces, keep[:0])):
-        got = _kernels.take_rows(a, idx)
-        assert got.dtype == a.dtype and np.array_equal(got, a[idx])
+    for g, w in ((faces, mesh.faces[want_keep]), (edges, mesh.edges[want_used])):
+        assert g.dtype == w.dtype and np.array_equal(g, w)
     assert 0 < len(keep) < len(mesh.faces)
+    # an empty box: no faces, no edges
+    got = _kernels.box_part(mesh.vertices, mesh.faces, mesh.edges, mesh.edge_faces, mesh.face_edges, hi + 1, hi + 2)
+    assert [len(g) for g in got] == [0] * 6 and got[4].shape == (0, 3) and got[5].shape == (0, 2)
 
 
 def test_curves_near_profiles_is_the_distance_within_reach():

@@ -1494,60 +1494,61 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
 
 
 @njit(cache=True)
-def box_submesh(v, faces, edge_faces, face_edges, lo, hi):  # pragma: no cover - compiled
-    """The faces whose three vertices lie in the box ``[lo, hi]``, their edges, and the part's index maps.
+def box_part(v, faces, edges, edge_faces, face_edges, lo, hi):  # pragma: no cover - compiled
+    """The faces whose three vertices lie in the box ``[lo, hi]``, their edges, the part's index maps and rows.
 
     Returns the kept faces ``(f,)`` and edges ``(e,)`` (increasing), the part's ``edge_faces (e, 2)``
-    (-1 for a face not kept) and ``face_edges (f, 3)`` (indices into the kept edges).
+    (-1 for a face not kept) and ``face_edges (f, 3)`` (indices into the kept edges), and the kept
+    rows of ``faces`` and ``edges`` (as numpy's ``faces[keep]``, ``edges[used]``): one pass over
+    the vertices, the faces and the edges each.
     """
     n_v = len(v)
     inside = np.empty(n_v, np.bool_)
     for i in range(n_v):
         inside[i] = (lo[0] <= v[i, 0] <= hi[0]) and (lo[1] <= v[i, 1] <= hi[1]) and (lo[2] <= v[i, 2] <= hi[2])
     n_f = len(faces)
-    face_index = np.full(n_f, -1, np.int64)
+    n_e = len(edge_faces)
+    face_index = np.empty(n_f, np.int64)
+    edge_index = np.full(n_e, -1, np.int64)
+    keep_all = np.empty(n_f, np.int64)
     n_keep = 0
     for f in range(n_f):
         if inside[faces[f, 0]] and inside[faces[f, 1]] and inside[faces[f, 2]]:
             face_index[f] = n_keep
+            keep_all[n_keep] = f
             n_keep += 1
-    keep = np.empty(n_keep, np.int64)
-    n_e = len(edge_faces)
-    edge_index = np.full(n_e, -1, np.int64)
-    for f in range(n_f):
-        if face_index[f] >= 0:
-            keep[face_index[f]] = f
             for k in range(3):
                 edge_index[face_edges[f, k]] = 0
+        else:
+            face_index[f] = -1
+    keep = keep_all[:n_keep].copy()
+    sub_faces = np.empty((n_keep, 3), faces.dtype)
+    for r in range(n_keep):
+        f = keep[r]
+        sub_faces[r, 0], sub_faces[r, 1], sub_faces[r, 2] = faces[f, 0], faces[f, 1], faces[f, 2]
+    used_all = np.empty(n_e, np.int64)
     n_used = 0
     for e in range(n_e):
         if edge_index[e] == 0:
             edge_index[e] = n_used
+            used_all[n_used] = e
             n_used += 1
-    used = np.empty(n_used, np.int64)
+    used = used_all[:n_used].copy()
     ef = np.empty((n_used, 2), np.int64)
-    for e in range(n_e):
-        r = edge_index[e]
-        if r >= 0:
-            used[r] = e
-            for k in range(2):
-                g = edge_faces[e, k]
-                ef[r, k] = face_index[g] if g >= 0 else -1
+    sub_edges = np.empty((n_used, edges.shape[1]), edges.dtype)
+    for r in range(n_used):
+        e = used[r]
+        for k in range(2):
+            g = edge_faces[e, k]
+            ef[r, k] = face_index[g] if g >= 0 else -1
+        for c in range(edges.shape[1]):
+            sub_edges[r, c] = edges[e, c]
     fe = np.empty((n_keep, 3), np.int64)
     for r in range(n_keep):
+        f = keep[r]
         for k in range(3):
-            fe[r, k] = edge_index[face_edges[keep[r], k]]
-    return keep, used, ef, fe
-
-
-@njit(cache=True)
-def take_rows(a, idx):  # pragma: no cover - compiled
-    """``a[idx]`` for a 2-d array ``a`` and indices ``idx (k,)`` in range (no checks): the rows copied."""
-    out = np.empty((len(idx), a.shape[1]), a.dtype)
-    for r in range(len(idx)):
-        for c in range(a.shape[1]):
-            out[r, c] = a[idx[r], c]
-    return out
+            fe[r, k] = edge_index[face_edges[f, k]]
+    return keep, used, ef, fe, sub_faces, sub_edges
 
 
 # ------------------------------------------------------------------------------ per-face passes of the fit

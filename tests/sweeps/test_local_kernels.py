@@ -102,10 +102,11 @@ def test_ring_tree_is_libigls_closest_points_on_the_ring_faces(closed):
     assert np.sum(want <= 0.02) > 300
 
 
-def test_box_submesh_is_its_numpy_definition():
+def test_box_part_is_its_numpy_definition():
     mesh = _mesh(hole=True)
     lo, hi = np.array([-0.3, -0.2, -0.5]), np.array([0.2, 0.3, 0.1])
-    keep, used, ef, fe = _kernels.box_submesh(mesh.vertices, mesh.faces, mesh.edge_faces, mesh.face_edges, lo, hi)
+    keep, used, ef, fe, faces, edges = _kernels.box_part(mesh.vertices, mesh.faces, mesh.edges, mesh.edge_faces,
+                                                         mesh.face_edges, lo, hi)
     inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
     want_keep = np.flatnonzero(inside[mesh.faces].all(axis=1))
     flag = np.zeros(len(mesh.edges), bool)
@@ -119,10 +120,12 @@ def test_box_submesh_is_its_numpy_definition():
     assert np.array_equal(ef, face_index[mesh.edge_faces[want_used]])
     assert np.array_equal(fe, edge_index[mesh.face_edges[want_keep]])
     # the part's faces and edges: the kept rows, as numpy's fancy indexing gives them
-    for a, idx in ((mesh.faces, keep), (mesh.edges, used), (mesh.faces, keep[:0])):
-        got = _kernels.take_rows(a, idx)
-        assert got.dtype == a.dtype and np.array_equal(got, a[idx])
+    for g, w in ((faces, mesh.faces[want_keep]), (edges, mesh.edges[want_used])):
+        assert g.dtype == w.dtype and np.array_equal(g, w)
     assert 0 < len(keep) < len(mesh.faces)
+    # an empty box: no faces, no edges
+    got = _kernels.box_part(mesh.vertices, mesh.faces, mesh.edges, mesh.edge_faces, mesh.face_edges, hi + 1, hi + 2)
+    assert [len(g) for g in got] == [0] * 6 and got[4].shape == (0, 3) and got[5].shape == (0, 2)
 
 
 def test_curves_near_profiles_is_the_distance_within_reach():
@@ -359,3 +362,119 @@ def test_mesh_tree_answers_the_same_points_again_from_its_last_query():
     for x, y in zip(other, MeshTree.of(mesh).query(b), strict=True):
         assert np.array_equal(x, y)
     assert not np.array_equal(other[2], again[2])
+
+
+def _tied_polyline(rng, n):
+    """A polyline with exact ties: dyadic points, every stretch walked there and back, zero-length segments."""
+    q = np.round(np.cumsum(rng.normal(size=(n, 3)) * 0.01, axis=0) * 1024) / 1024
+    q = np.vstack([q, q[::-1][1:]])                                 # back over the same segments: equal distances
+    return np.repeat(q, rng.integers(1, 3, len(q)), axis=0)        # repeated points: zero-length segments
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 9, 40, 300])
+def test_polyline_closest_chunked_is_polyline_closest_bit_for_bit(n):
+    """The chunked search (nearest chunk first, the others pruned) keeps the first of equal distances, as the scan."""
+    rng = np.random.default_rng(30 + n)
+    for _ in range(5):
+        q = _tied_polyline(rng, n) if n > 1 else rng.normal(size=(1, 3))
+        pts = np.vstack([q[rng.integers(0, len(q), 50)],                              # on its points
+                         q[rng.integers(0, len(q), 50)] + rng.normal(size=(50, 3)) * 0.005,
+                         rng.uniform(-1, 1, size=(50, 3)),                              # far away
+                         np.round(rng.normal(size=(50, 3)) * 0.02 * 1024) / 1024])      # dyadic: exact ties
+        pts = np.ascontiguousarray(pts)
+        want = _kernels.polyline_closest(pts, q)
+        got = _kernels.polyline_closest_chunked(pts, q)
+        for g, w in zip(got, want, strict=True):
+            assert np.array_equal(g, w)
+
+
+def _improve_sums_reference(profile, pts, piece_start, reach, end_reach, piece_key, n_keys):
+    """improve_sums as the in-order scan of every chunk whose grown box holds the point (numpy, sweeps9)."""
+    n = len(profile)
+    acc, count, dmin = profile.copy(), np.ones(n), np.full((n_keys, n), np.inf)
+    for j in range(len(piece_start) - 1):
+        q = pts[piece_start[j]:piece_start[j + 1]]
+        if len(q) < 2:
+            continue
+        n_seg = len(q) - 1
+        lo = np.array([q[h:min(h + 16, n_seg) + 1].min(axis=0) for h in range(0, n_seg, 16)]) - reach
+        hi = np.array([q[h:min(h + 16, n_seg) + 1].max(axis=0) for h in range(0, n_seg, 16)]) + reach
+        a, b = q[:-1], q[1:]
+        bb = b - a
+        w = bb[:, 0] * bb[:, 0] + bb[:, 1] * bb[:, 1] + bb[:, 2] * bb[:, 2]
+        for i in range(n):
+            p = profile[i]
+            ok = np.repeat(np.all((p >= lo) & (p <= hi), axis=1), 16)[:n_seg]
+            f = ((p[0] - a[:, 0]) * bb[:, 0] + (p[1] - a[:, 1]) * bb[:, 1] + (p[2] - a[:, 2]) * bb[:, 2])
+            f = np.where(w > 0, np.clip(f / np.where(w > 0, w, 1.0), 0.0, 1.0), 0.0)
+            c = a + f[:, None] * bb
+            d2 = (p[0] - c[:, 0]) ** 2 + (p[1] - c[:, 1]) ** 2 + (p[2] - c[:, 2]) ** 2
+            d2 = np.where(ok, d2, np.inf)
+            g = int(np.argmin(d2))                       # the first of equal distances
+            d = np.sqrt(d2[g])
+            dmin[piece_key[j], i] = min(dmin[piece_key[j], i], d)
+            if d > reach:
+                continue
+            if np.isfinite(end_reach) and d > end_reach:
+                if ((c[g] - q[0]) ** 2).sum() <= 1e-24 or ((c[g] - q[-1]) ** 2).sum() <= 1e-24:
+                    continue
+            acc[i] += c[g]
+            count[i] += 1.0
+    return acc, count, dmin
+
+
+@pytest.mark.parametrize("end_reach", [np.inf, 0.004])
+def test_improve_sums_is_the_in_order_scan_of_its_chunks_bit_for_bit(end_reach):
+    rng = np.random.default_rng(31)
+    s = np.linspace(0, 1, 70)
+    profile = np.round(np.stack([s, 0.1 * np.sin(6 * s), 0 * s], axis=1) * 1024) / 1024
+    pieces = []
+    for k in range(14):
+        a, b = sorted(rng.integers(0, 70, 2))
+        q = profile[a:b + 2] + (np.round(rng.normal(size=(len(profile[a:b + 2]), 3)) * 4) / 1024 if k % 3 else 0.0)
+        if k % 4 == 0:
+            q = np.vstack([q, q[::-1][1:]])              # there and back: equal distances on two segments
+        pieces.append(np.repeat(q, 1 + k % 2, axis=0) if k % 5 == 0 else q)
+    pieces.append(profile[:1].copy())
+    starts = np.concatenate([[0], np.cumsum([len(q) for q in pieces])]).astype(np.int64)
+    pts = np.ascontiguousarray(np.concatenate(pieces))
+    keys = np.arange(len(pieces), dtype=np.int64) % 4
+    got = _kernels.improve_sums(profile, pts, starts, 0.02, end_reach, keys, 4)
+    want = _improve_sums_reference(profile, pts, starts, 0.02, end_reach, keys, 4)
+    for g, w in zip(got, want, strict=True):
+        assert np.array_equal(g, w)
+    assert np.isfinite(want[2]).any() and np.isinf(want[2]).any() and (want[1] > 1).any()
+
+
+def test_curves_near_profiles_at_exactly_the_reach():
+    """Points exactly ``reach`` from a segment (dyadic, no round-off) are near; the next float beyond is not."""
+    reach = 2.0 ** -7
+    line = np.array([[0.0, 0, 0], [0.25, 0, 0], [0.5, 0, 0], [0.5, 0.25, 0]] + [[0.5, 0.25, 0.0]] * 30)
+    x = np.linspace(0.0, 0.5, 17)
+    on = np.stack([x, np.full(17, reach), np.zeros(17)], 1)
+    beyond = np.stack([x, np.full(17, np.nextafter(reach, 1.0)), np.zeros(17)], 1)
+    pts = np.ascontiguousarray(np.vstack([on, beyond, [[0.5 + reach, 0.125, 0.0]]]))
+    got = _kernels.curves_near_profiles(pts, np.array([0, len(pts)]), np.array([0]), line[None].copy(), reach)
+    want = _kernels.polyline_closest(pts, line)[0] <= reach
+    assert np.array_equal(got, want)
+    assert got[:17].all() and not got[17:33].any() and got[33] and got[34]     # 33: on the last segment
+
+
+@pytest.mark.parametrize("closed", [False, True])
+def test_ring_tree_within_of_points_in_surface_order_is_its_distance_within_the_bound(closed):
+    """Points in order along the surface (as a mesh's vertices): the search starts near the last triangle found."""
+    rng = np.random.default_rng(32)
+    k, n = 57, 41
+    t = np.linspace(0.0, 1.0, k)[:, None]
+    a = np.linspace(0.0, 2 * np.pi if closed else 2.5, n, endpoint=not closed)[None, :]
+    rings = np.stack([np.cos(a) * (0.3 + 0.1 * t), np.sin(a) * (0.3 + 0.1 * t), t + 0.05 * np.sin(3 * a)], axis=2)
+    tree = RingTree(rings, closed)
+    tt = np.linspace(-0.05, 1.05, 90)[:, None]
+    aa = np.linspace(0.0, 2.7, 70)[None, :]                      # past the open rings' end
+    pts = np.stack([np.cos(aa) * (0.3 + 0.1 * tt), np.sin(aa) * (0.3 + 0.1 * tt),
+                    tt + 0.05 * np.sin(3 * aa) + 0 * aa], axis=2).reshape(-1, 3)
+    pts = pts + rng.normal(size=pts.shape) * 0.006
+    for bound in (0.002, 0.006, 0.02):
+        want = tree.query(pts, bound)[0] <= bound
+        got = tree.within(pts, bound)
+        assert np.array_equal(got, want) and 0 < got.sum() < len(pts)

@@ -527,6 +527,103 @@ def polyline_closest(points, polyline):  # pragma: no cover - compiled
     return dist, cp
 
 
+@njit(cache=True, inline="always")
+def _prune_limit(px, py, pz, best):  # pragma: no cover - compiled
+    """Squared distance beyond which a box holds no segment as near as ``best`` (squared), with a margin.
+
+    The margin (1e-9 times the coordinates' and the distance's size) exceeds the round-off of a
+    segment's computed distance and of a box's, so a box farther than this holds no segment whose
+    computed squared distance is at most ``best``.
+    """
+    r = np.sqrt(best)
+    r += 1e-9 * (1.0 + abs(px) + abs(py) + abs(pz) + r)
+    return r * r
+
+
+@njit(cache=True)
+def _chunk_boxes(q, n_seg, chunk):  # pragma: no cover - compiled
+    """Bounding boxes ``(c, 6)`` (min, max) of a polyline's chunks of ``chunk`` segments (points ``s0 .. s1``)."""
+    n_chunk = (n_seg + chunk - 1) // chunk
+    box = np.empty((n_chunk, 6))
+    for h in range(n_chunk):
+        s0, s1 = h * chunk, min((h + 1) * chunk, n_seg)
+        for ax in range(3):
+            lo, hi = q[s0, ax], q[s0, ax]
+            for r in range(s0 + 1, s1 + 1):
+                lo = min(lo, q[r, ax])
+                hi = max(hi, q[r, ax])
+            box[h, ax], box[h, 3 + ax] = lo, hi
+    return box
+
+
+@njit(cache=True)
+def _chunks_closest(px, py, pz, q, n_seg, chunk, raw, allowed, lb):  # pragma: no cover - compiled
+    """The nearest segment of a polyline ``q`` to a point among the chunks with ``allowed[h]``.
+
+    Returns the squared distance, the segment (-1 if none) and the closest point: the least
+    ``(squared distance, segment)`` pair, i.e. what a search of those chunks' segments in order
+    gives when it keeps the first of equal distances (:func:`polyline_closest`). The chunk whose
+    box ``raw[h]`` is nearest is searched first; then every other allowed chunk whose box is not
+    farther than the best distance so far (with :func:`_prune_limit`'s margin): a chunk passed
+    over holds no segment as near. ``lb (c,)`` is scratch.
+    """
+    n_chunk = len(raw)
+    h0 = -1
+    m = np.inf
+    for h in range(n_chunk):
+        if not allowed[h]:
+            continue
+        lb[h] = _box_sq(px, py, pz, raw, h)
+        if lb[h] < m or h0 < 0:
+            m = lb[h]
+            h0 = h
+    best = np.inf
+    bg = -1
+    cx, cy, cz = 0.0, 0.0, 0.0
+    if h0 < 0:
+        return best, bg, cx, cy, cz
+    for g in range(h0 * chunk, min((h0 + 1) * chunk, n_seg)):
+        d2, qx, qy, qz = _segment_closest(px, py, pz, q, g)
+        if d2 < best or (d2 == best and g < bg):
+            best, bg, cx, cy, cz = d2, g, qx, qy, qz
+    limit = _prune_limit(px, py, pz, best)
+    for h in range(n_chunk):
+        if h == h0 or not allowed[h] or lb[h] > limit:
+            continue
+        for g in range(h * chunk, min((h + 1) * chunk, n_seg)):
+            d2, qx, qy, qz = _segment_closest(px, py, pz, q, g)
+            if d2 < best or (d2 == best and g < bg):
+                best, bg, cx, cy, cz = d2, g, qx, qy, qz
+                limit = _prune_limit(px, py, pz, best)
+    return best, bg, cx, cy, cz
+
+
+@njit(cache=True)
+def polyline_closest_chunked(points, polyline):  # pragma: no cover - compiled
+    """:func:`polyline_closest` bit for bit; the segments in chunks of 8, nearest first (:func:`_chunks_closest`).
+
+    Points far from most of a long polyline visit few of its segments; the first of equal
+    distances is kept, as the scan keeps it.
+    """
+    m = len(points)
+    dist = np.full(m, np.inf)
+    cp = np.zeros((m, 3))
+    n_seg = len(polyline) - 1
+    if n_seg < 1:
+        return polyline_closest(points, polyline)
+    chunk = 8
+    raw = _chunk_boxes(polyline, n_seg, chunk)
+    allowed = np.ones(len(raw), np.bool_)
+    lb = np.empty(len(raw))
+    for i in range(m):
+        px, py, pz = points[i, 0], points[i, 1], points[i, 2]
+        best, g, qx, qy, qz = _chunks_closest(px, py, pz, polyline, n_seg, chunk, raw, allowed, lb)
+        if g >= 0:
+            cp[i, 0], cp[i, 1], cp[i, 2] = qx, qy, qz
+        dist[i] = np.sqrt(best)
+    return dist, cp
+
+
 @njit(cache=True)
 def closest_on_plane_curves(target, pts, curve_start, curve_plane, curve_closed, plane):  # pragma: no cover - compiled
     """Closest points of ``target (n, 3)`` on the cut curves of one plane together (each as :func:`polyline_closest`).
@@ -548,11 +645,13 @@ def closest_on_plane_curves(target, pts, curve_start, curve_plane, curve_closed,
             continue
         closed = curve_closed[j]
         m = b - a + 1 if closed else b - a
-        q = np.empty((m, 3))
-        q[:b - a] = pts[a:b]
         if closed:
+            q = np.empty((m, 3))
+            q[:b - a] = pts[a:b]
             q[b - a] = pts[a]
-        d, p = polyline_closest(target, q)
+        else:
+            q = pts[a:b]
+        d, p = polyline_closest_chunked(target, q)
         for i in range(n):
             if d[i] < dist[i]:
                 dist[i] = d[i]
@@ -576,7 +675,9 @@ def curves_near_profiles(pts, curve_start, curve_plane, moved, reach):  # pragma
     (:func:`polyline_closest`) being at most ``reach``: each polyline is searched in chunks of 8
     segments, a chunk only when its box grown by ``reach`` holds the point, and the search stops
     at the first segment within ``reach`` (the square root is monotone, so a segment's distance
-    is at most ``reach`` exactly when the least one is). One pass over all curves.
+    is at most ``reach`` exactly when the least one is). A chunk whose own box is farther than
+    ``reach`` (with :func:`_prune_limit`'s margin) is passed over, and the nearest chunk is
+    searched first: the answer does not depend on the order. One pass over all curves.
     """
     out = np.zeros(len(pts), np.bool_)
     k, n = moved.shape[0], moved.shape[1]
@@ -584,6 +685,7 @@ def curves_near_profiles(pts, curve_start, curve_plane, moved, reach):  # pragma
     n_seg = n - 1
     n_chunk = max(1, (n_seg + chunk - 1) // chunk)
     box = np.empty((k, n_chunk, 6))
+    raw = np.empty((k, n_chunk, 6))
     for p in range(k):
         for h in range(n_chunk):
             s0, s1 = h * chunk, min((h + 1) * chunk, n_seg)       # segments s0 .. s1 - 1: points s0 .. s1
@@ -595,6 +697,8 @@ def curves_near_profiles(pts, curve_start, curve_plane, moved, reach):  # pragma
                     hi = max(hi, moved[p, r, ax])
                 box[p, h, ax] = lo - reach
                 box[p, h, 3 + ax] = hi + reach
+                raw[p, h, ax], raw[p, h, 3 + ax] = lo, hi
+    lb = np.empty(n_chunk)
     for j in range(len(curve_start) - 1):
         p = curve_plane[j]
         line = moved[p]
@@ -603,18 +707,39 @@ def curves_near_profiles(pts, curve_start, curve_plane, moved, reach):  # pragma
             if n == 1:
                 out[i] = np.sqrt((x0 - line[0, 0]) ** 2 + (x1 - line[0, 1]) ** 2 + (x2 - line[0, 2]) ** 2) <= reach
                 continue
-            found = False
+            # the chunks whose grown box holds the point and whose box is within reach (with
+            # _prune_limit's margin: the others hold no segment within reach), the nearest first
+            limit = _prune_limit(x0, x1, x2, reach * reach)
+            h0 = -1
+            m = np.inf
             for h in range(n_chunk):
+                lb[h] = np.inf
                 if (x0 < box[p, h, 0] or x0 > box[p, h, 3] or x1 < box[p, h, 1] or x1 > box[p, h, 4]
                         or x2 < box[p, h, 2] or x2 > box[p, h, 5]):
                     continue
-                for g in range(h * chunk, min((h + 1) * chunk, n_seg)):
+                b2 = _box_sq(x0, x1, x2, raw[p], h)
+                if b2 > limit:
+                    continue
+                lb[h] = b2
+                if b2 < m or h0 < 0:
+                    m, h0 = b2, h
+            found = False
+            if h0 >= 0:
+                for g in range(h0 * chunk, min((h0 + 1) * chunk, n_seg)):
                     d2, _, _, _ = _segment_closest(x0, x1, x2, line, g)
                     if np.sqrt(d2) <= reach:
                         found = True
                         break
-                if found:
-                    break
+                for h in range(n_chunk):
+                    if found:
+                        break
+                    if h == h0 or lb[h] > limit:
+                        continue
+                    for g in range(h * chunk, min((h + 1) * chunk, n_seg)):
+                        d2, _, _, _ = _segment_closest(x0, x1, x2, line, g)
+                        if np.sqrt(d2) <= reach:
+                            found = True
+                            break
             out[i] = found
     return out
 
@@ -632,9 +757,10 @@ def improve_sums(profile, pts, piece_start, reach, end_reach, piece_key, n_keys)
     its piece, only within ``end_reach``. The sums start at the profile itself (count 1).
 
     Each piece is searched in chunks of 16 segments, a chunk only when its box grown by ``reach``
-    holds the point: a closest point within ``reach`` lies in such a chunk, and the segments are
-    visited in order with the first of equal distances kept (as :func:`polyline_closest`), so the
-    result is the same as a search of every segment.
+    holds the point: a closest point within ``reach`` lies in such a chunk. Of those chunks the
+    nearest is searched first and the others only where their box is not farther than the best
+    so far (:func:`_chunks_closest`), keeping the first of equal distances in segment order (as
+    :func:`polyline_closest`): the same result as a search of those chunks' segments in order.
     """
     n = len(profile)
     acc = profile.copy()
@@ -649,25 +775,21 @@ def improve_sums(profile, pts, piece_start, reach, end_reach, piece_key, n_keys)
         q = pts[a:b]
         n_seg = len(q) - 1
         n_chunk = (n_seg + chunk - 1) // chunk
+        raw = _chunk_boxes(q, n_seg, chunk)
         box = np.empty((n_chunk, 6))
         for h in range(n_chunk):
-            s0, s1 = h * chunk, min((h + 1) * chunk, n_seg)     # segments s0 .. s1 - 1: points s0 .. s1
             for ax in range(3):
-                box[h, ax] = q[s0:s1 + 1, ax].min() - reach
-                box[h, 3 + ax] = q[s0:s1 + 1, ax].max() + reach
+                box[h, ax] = raw[h, ax] - reach
+                box[h, 3 + ax] = raw[h, 3 + ax] + reach
+        allowed = np.empty(n_chunk, np.bool_)
+        lb = np.empty(n_chunk)
         for i in range(n):
             px, py, pz = profile[i, 0], profile[i, 1], profile[i, 2]
-            best = np.inf
-            cx, cy, cz = 0.0, 0.0, 0.0
             for h in range(n_chunk):
-                if (px < box[h, 0] or px > box[h, 3] or py < box[h, 1] or py > box[h, 4]
-                        or pz < box[h, 2] or pz > box[h, 5]):
-                    continue
-                for g in range(h * chunk, min((h + 1) * chunk, n_seg)):
-                    d2, qx, qy, qz = _segment_closest(px, py, pz, q, g)
-                    if d2 < best:
-                        best = d2
-                        cx, cy, cz = qx, qy, qz
+                allowed[h] = not (px < box[h, 0] or px > box[h, 3] or py < box[h, 1] or py > box[h, 4]
+                                  or pz < box[h, 2] or pz > box[h, 5])
+            # the nearest segment of the chunks whose grown box holds the point, nearest chunk first
+            best, _, cx, cy, cz = _chunks_closest(px, py, pz, q, n_seg, chunk, raw, allowed, lb)
             d = np.sqrt(best)
             key = piece_key[j]
             if d < dmin[key, i]:
@@ -963,8 +1085,10 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
     The same as ``ring_grid_nearest(..., bound)[0] <= bound``: a point is within when a triangle's
     squared distance (:func:`_triangle_closest`, as there) is at most ``bound ** 2`` and its square
     root at most ``bound`` (the nearest triangle's is the smallest). The search stops at the first
-    such triangle: the previous point's first (points in order along a surface), then the box
-    levels depth first, nearer children first, pruning boxes farther than ``bound``.
+    such triangle: the previous point's first (points in order along a surface), then the box of
+    8 x 8 quads around it (level 3), then the whole grid from the top, each depth first, nearer
+    children first, pruning boxes farther than ``bound``. Any triangle within decides, so the
+    order of the search changes no answer.
     """
     n = rings.shape[1]
     m = n if closed else n - 1
@@ -975,6 +1099,7 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
     b2 = bound * bound
     last = -1
     top = n_lev - 1
+    near = min(3, top)      # the previous triangle's box of 8 x 8 quads is searched first
     for p in range(q):
         px, py, pz = points[p, 0], points[p, 1], points[p, 2]
         if _box_sq(px, py, pz, box, off[top]) > b2:
@@ -985,24 +1110,34 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
             d2 = _ring_triangle_closest(rings, n, qd // m, qd % m, last % 2, px, py, pz)[0]
             if d2 <= b2 and np.sqrt(d2) <= bound:
                 hit = last
-        sp = 0
-        if hit < 0:
-            stack_l[0], stack_i[0], stack_j[0] = top, 0, 0
+        # any triangle within decides: first the box of ``near`` levels around the previous
+        # point's triangle, then (if none there) the whole grid from the top
+        for start in range(2):
+            if hit >= 0:
+                break
+            sp = 0
+            if start == 0:
+                if last < 0 or near == 0:
+                    continue
+                qd = last // 2
+                stack_l[0], stack_i[0], stack_j[0] = near, (qd // m) >> near, (qd % m) >> near
+            else:
+                stack_l[0], stack_i[0], stack_j[0] = top, 0, 0
             sp = 1
-        while sp > 0 and hit < 0:
-            sp -= 1
-            lv, i, j = stack_l[sp], stack_i[sp], stack_j[sp]
-            if _box_sq(px, py, pz, box, off[lv] + i * shape[lv, 1] + j) > b2:
-                continue
-            if lv == 0:
-                for t in range(2):
-                    d2 = _ring_triangle_closest(rings, n, i, j, t, px, py, pz)[0]
-                    if d2 <= b2 and np.sqrt(d2) <= bound:
-                        hit = 2 * (i * m + j) + t
-                        break
-                continue
-            sp = _push_near_children(px, py, pz, box, off, shape, lv, i, j, b2, cd, ci_, cj_,
-                                     stack_l, stack_i, stack_j, sp)
+            while sp > 0 and hit < 0:
+                sp -= 1
+                lv, i, j = stack_l[sp], stack_i[sp], stack_j[sp]
+                if _box_sq(px, py, pz, box, off[lv] + i * shape[lv, 1] + j) > b2:
+                    continue
+                if lv == 0:
+                    for t in range(2):
+                        d2 = _ring_triangle_closest(rings, n, i, j, t, px, py, pz)[0]
+                        if d2 <= b2 and np.sqrt(d2) <= bound:
+                            hit = 2 * (i * m + j) + t
+                            break
+                    continue
+                sp = _push_near_children(px, py, pz, box, off, shape, lv, i, j, b2, cd, ci_, cj_,
+                                         stack_l, stack_i, stack_j, sp)
         if hit >= 0:
             out[p] = True
             last = hit
@@ -1359,60 +1494,61 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
 
 
 @njit(cache=True)
-def box_submesh(v, faces, edge_faces, face_edges, lo, hi):  # pragma: no cover - compiled
-    """The faces whose three vertices lie in the box ``[lo, hi]``, their edges, and the part's index maps.
+def box_part(v, faces, edges, edge_faces, face_edges, lo, hi):  # pragma: no cover - compiled
+    """The faces whose three vertices lie in the box ``[lo, hi]``, their edges, the part's index maps and rows.
 
     Returns the kept faces ``(f,)`` and edges ``(e,)`` (increasing), the part's ``edge_faces (e, 2)``
-    (-1 for a face not kept) and ``face_edges (f, 3)`` (indices into the kept edges).
+    (-1 for a face not kept) and ``face_edges (f, 3)`` (indices into the kept edges), and the kept
+    rows of ``faces`` and ``edges`` (as numpy's ``faces[keep]``, ``edges[used]``): one pass over
+    the vertices, the faces and the edges each.
     """
     n_v = len(v)
     inside = np.empty(n_v, np.bool_)
     for i in range(n_v):
         inside[i] = (lo[0] <= v[i, 0] <= hi[0]) and (lo[1] <= v[i, 1] <= hi[1]) and (lo[2] <= v[i, 2] <= hi[2])
     n_f = len(faces)
-    face_index = np.full(n_f, -1, np.int64)
+    n_e = len(edge_faces)
+    face_index = np.empty(n_f, np.int64)
+    edge_index = np.full(n_e, -1, np.int64)
+    keep_all = np.empty(n_f, np.int64)
     n_keep = 0
     for f in range(n_f):
         if inside[faces[f, 0]] and inside[faces[f, 1]] and inside[faces[f, 2]]:
             face_index[f] = n_keep
+            keep_all[n_keep] = f
             n_keep += 1
-    keep = np.empty(n_keep, np.int64)
-    n_e = len(edge_faces)
-    edge_index = np.full(n_e, -1, np.int64)
-    for f in range(n_f):
-        if face_index[f] >= 0:
-            keep[face_index[f]] = f
             for k in range(3):
                 edge_index[face_edges[f, k]] = 0
+        else:
+            face_index[f] = -1
+    keep = keep_all[:n_keep].copy()
+    sub_faces = np.empty((n_keep, 3), faces.dtype)
+    for r in range(n_keep):
+        f = keep[r]
+        sub_faces[r, 0], sub_faces[r, 1], sub_faces[r, 2] = faces[f, 0], faces[f, 1], faces[f, 2]
+    used_all = np.empty(n_e, np.int64)
     n_used = 0
     for e in range(n_e):
         if edge_index[e] == 0:
             edge_index[e] = n_used
+            used_all[n_used] = e
             n_used += 1
-    used = np.empty(n_used, np.int64)
+    used = used_all[:n_used].copy()
     ef = np.empty((n_used, 2), np.int64)
-    for e in range(n_e):
-        r = edge_index[e]
-        if r >= 0:
-            used[r] = e
-            for k in range(2):
-                g = edge_faces[e, k]
-                ef[r, k] = face_index[g] if g >= 0 else -1
+    sub_edges = np.empty((n_used, edges.shape[1]), edges.dtype)
+    for r in range(n_used):
+        e = used[r]
+        for k in range(2):
+            g = edge_faces[e, k]
+            ef[r, k] = face_index[g] if g >= 0 else -1
+        for c in range(edges.shape[1]):
+            sub_edges[r, c] = edges[e, c]
     fe = np.empty((n_keep, 3), np.int64)
     for r in range(n_keep):
+        f = keep[r]
         for k in range(3):
-            fe[r, k] = edge_index[face_edges[keep[r], k]]
-    return keep, used, ef, fe
-
-
-@njit(cache=True)
-def take_rows(a, idx):  # pragma: no cover - compiled
-    """``a[idx]`` for a 2-d array ``a`` and indices ``idx (k,)`` in range (no checks): the rows copied."""
-    out = np.empty((len(idx), a.shape[1]), a.dtype)
-    for r in range(len(idx)):
-        for c in range(a.shape[1]):
-            out[r, c] = a[idx[r], c]
-    return out
+            fe[r, k] = edge_index[face_edges[f, k]]
+    return keep, used, ef, fe, sub_faces, sub_edges
 
 
 # ------------------------------------------------------------------------------ per-face passes of the fit

@@ -343,7 +343,9 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
                             {"axes": len(axes), "tried": tried, "candidates": len(arcs), "fit": fits}))
 
     t = step("fit")
-    good = [p for p in raw if _fits(p, params)] + [p for p in arcs if _fits(p, short)]
+    good = [p for p in raw if _fits(p, params)]
+    n_good = len(good)
+    good += [p for p in arcs if _fits(p, short)]
     raw = raw + arcs
     kept: list[SweepPatch] = []
     taken = np.zeros(len(m.faces), bool)
@@ -363,12 +365,14 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
     # the faces a patch holds whole, and the sampled share of the others (docs/sweeps.md, "Coverage")
     shares = area_coverage(m, kept, params.eps_prox, params.coverage_samples, areas)
     coverage = float(min(1.0, (shares * areas).sum() / area)) if area > 0 else 0.0
+    of_arcs = (f", {len(good) - n_good} of them arcs' patches covering >= {short.min_patch_area:.3g} and sweeping "
+               f">= {short.min_sweep_length:.3g}" if arcs else "")
     stages.append(Stage("fit", time.perf_counter() - t,
                         f"{len(patches)} of {len(raw)} patch(es) kept ({len(good)} within fit error {bound:.3g}, "
-                        f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}; "
-                        f"then overlaps dropped); coverage {coverage:.3f} of the area ({face_coverage:.3f} in whole "
-                        f"faces, {params.coverage_samples} samples); {fitted} profile(s) fitted with lines "
-                        f"and arcs within {params.profile_fit_tolerance:.3g}",
+                        f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}"
+                        f"{of_arcs}; then overlaps dropped); coverage {coverage:.3f} of the area "
+                        f"({face_coverage:.3f} in whole faces, {params.coverage_samples} samples); {fitted} "
+                        f"profile(s) fitted with lines and arcs within {params.profile_fit_tolerance:.3g}",
                         {"candidates": len(raw), "patches": len(patches), "coverage": coverage,
                          "face_coverage": face_coverage, "profile_fits": fitted}))
     if progress is not None:

@@ -40,11 +40,13 @@ def test_random_bumps_are_no_sweep(eps, most):
     assert r.stage("kinematic").numbers["kinematic"] == 0
     # nothing covers 0.95 after the first pass, so the coarse pass runs as well, and finds no sweep
     # either; then the kinematic parts are sought, and none fits; then the mirror images of the
-    # candidates that fit in the mesh's mirror planes (bumps at random have none, nor any candidate)
+    # candidates that fit in the mesh's mirror planes (bumps at random have none, nor any candidate);
+    # then the rotations about the axes of exact arcs among the creases (smooth bumps have no crease)
     general = ["match", "families", "motion"]
     assert [s.name for s in r.stages] == ["normalise", "cut", "kinematic", *general, *general, "parts", "mirror",
-                                          "fit"]
+                                          "arcs", "fit"]
     assert r.stage("mirror").numbers["fit"] == 0
+    assert r.stage("arcs").numbers["axes"] == 0 and r.stage("arcs").numbers["fit"] == 0
     assert [s.numbers.get("curvature_window") for s in r.stages[6:9]] == [DEFAULT.coarse_window] * 3
     assert all(s.summary.startswith("coarse pass") for s in r.stages[6:9])
     assert r.stage("parts").numbers["fit"] == 0

@@ -28,9 +28,16 @@ Stages (each also callable alone, see :mod:`auszug.sweeps`):
    and the mirror images of the candidates that fit, each fitted against the mesh
    (:func:`~auszug.sweeps.mirror.mirror_candidates`): a sweep found on one side of a symmetric
    piece is sought on the other;
-7. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
-   ``min_patch_area`` of the mesh are dropped; the rest are converted to the input's coordinates,
-   each profile fitted with exact lines and arcs (``profile_fit_tolerance``, docs/sweeps.md section 6).
+7. ``arcs`` (beyond the paper; with ``arc_axes`` above 0, where the candidates that fit still leave
+   at least ``min_patch_area``): rotations about the axes of the exact circular arcs among the mesh's
+   creases beside the faces left (:func:`~auszug.sweeps.arcs.crease_circles`), searched as parts
+   (:func:`~auszug.sweeps.arcs.arc_candidates`): sweeps along arcs too short for
+   ``min_sweep_length``, such as a lancet's head; such a patch is kept when it sweeps at least
+   ``arc_sweep_length`` and covers ``arc_min_area``;
+8. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
+   ``min_patch_area`` of the mesh (the arcs' patches: ``arc_min_area``) are dropped; the rest are
+   converted to the input's coordinates, each profile fitted with exact lines and arcs
+   (``profile_fit_tolerance``, docs/sweeps.md section 6).
 
 Each stage reports what it kept in a :class:`Stage` (for ``auszug sweeps --explain``).
 """
@@ -46,6 +53,7 @@ from numpy.typing import NDArray
 
 from auszug.errors import GeometryError
 from auszug.limits import LIMITS
+from auszug.sweeps.arcs import arc_bounds, arc_candidates, crease_circles
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import kinematic_axis
 from auszug.sweeps.mesh import SweepMesh, normalise
@@ -62,7 +70,7 @@ Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
 #: The stages in the order :func:`detect` runs them (the general ones only on non-kinematic meshes).
-STAGES = ("normalise", "cut", "kinematic", "match", "families", "motion", "parts", "mirror", "fit")
+STAGES = ("normalise", "cut", "kinematic", "match", "families", "motion", "parts", "mirror", "arcs", "fit")
 
 Progress = Callable[[str, int, int], None]
 
@@ -315,8 +323,30 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
                             f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}",
                             {"planes": len(planes), "candidates": len(found), "fit": fits}))
 
+    free = np.ones(len(m.faces), bool)
+    for p in raw:
+        if _fits(p, params):
+            free[p.faces] = False
+    arcs: list[SweepPatch] = []
+    short = arc_bounds(params)
+    if params.arc_axes > 0 and areas.sum() > 0 and float(areas[free].sum() / areas.sum()) >= params.min_patch_area:
+        # rotations about the axes of the exact arcs among the creases beside the faces left: sweeps
+        # along arcs too short for min_sweep_length (a lancet's head; beyond the paper, docs/sweeps.md)
+        t = step("arcs")
+        axes = crease_circles(m, free, params)
+        arcs, tried = arc_candidates(m, free, params, MeshTree.of(m), first_id=len(raw), axes=axes)
+        fits = sum(_fits(p, short) for p in arcs)
+        stages.append(Stage("arcs", time.perf_counter() - t,
+                            f"{len(axes)} axis/axes of crease arcs within {params.arc_fit * params.eps_prox:.3g} "
+                            f"of a circle; {len(arcs)} patch(es), {fits} within fit error {bound:.3g}, covering "
+                            f">= {short.min_patch_area:.3g} and sweeping >= {short.min_sweep_length:.3g}",
+                            {"axes": len(axes), "tried": tried, "candidates": len(arcs), "fit": fits}))
+
     t = step("fit")
     good = [p for p in raw if _fits(p, params)]
+    n_good = len(good)
+    good += [p for p in arcs if _fits(p, short)]
+    raw = raw + arcs
     kept: list[SweepPatch] = []
     taken = np.zeros(len(m.faces), bool)
     for p in sorted(good, key=lambda p: (-p.coverage, p.fit_error)):
@@ -335,12 +365,14 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
     # the faces a patch holds whole, and the sampled share of the others (docs/sweeps.md, "Coverage")
     shares = area_coverage(m, kept, params.eps_prox, params.coverage_samples, areas)
     coverage = float(min(1.0, (shares * areas).sum() / area)) if area > 0 else 0.0
+    of_arcs = (f", {len(good) - n_good} of them arcs' patches covering >= {short.min_patch_area:.3g} and sweeping "
+               f">= {short.min_sweep_length:.3g}" if arcs else "")
     stages.append(Stage("fit", time.perf_counter() - t,
                         f"{len(patches)} of {len(raw)} patch(es) kept ({len(good)} within fit error {bound:.3g}, "
-                        f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}; "
-                        f"then overlaps dropped); coverage {coverage:.3f} of the area ({face_coverage:.3f} in whole "
-                        f"faces, {params.coverage_samples} samples); {fitted} profile(s) fitted with lines "
-                        f"and arcs within {params.profile_fit_tolerance:.3g}",
+                        f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}"
+                        f"{of_arcs}; then overlaps dropped); coverage {coverage:.3f} of the area "
+                        f"({face_coverage:.3f} in whole faces, {params.coverage_samples} samples); {fitted} "
+                        f"profile(s) fitted with lines and arcs within {params.profile_fit_tolerance:.3g}",
                         {"candidates": len(raw), "patches": len(patches), "coverage": coverage,
                          "face_coverage": face_coverage, "profile_fits": fitted}))
     if progress is not None:

@@ -262,6 +262,23 @@ class SweepParams:
         ``eps_prox`` of the mesh for at least this share of the area. Default 0.95.
     mirror_planes : int
         At most this many mirror planes, best first (0..3; 0: none, as ``mirror`` false). Default 2.
+    arc_axes : int
+        At most this many rotation axes of crease arcs tried by the stage ``arcs`` of
+        :func:`~auszug.sweeps.detect` (beyond the paper, :mod:`auszug.sweeps.arcs`: sweeps along
+        arcs too short for ``min_sweep_length``, a lancet's head). 0 turns the stage off; at most
+        256. Default 16.
+    arc_crease : float
+        An edge is a crease when its two faces' normals differ by at least this many degrees
+        (0 < ``arc_crease`` < 180). Default 20.
+    arc_fit : float
+        A crease chain is an arc when all its vertices lie within this share of ``eps_prox`` of
+        its fitted circle, in (0, 1]. Default 0.05.
+    arc_sweep_length : float
+        The least sweep length (diameters) of a patch about a crease arc's axis, in place of
+        ``min_sweep_length`` (the smaller of the two holds). Default 0.1.
+    arc_min_area : float
+        The least coverage of a patch about a crease arc's axis, in place of ``min_patch_area``
+        (the smaller of the two holds). Default 0.005.
     coverage_samples : int
         The report's ``coverage`` is of the mesh's area, not of whole faces: the faces that no
         kept patch covers whole (all three corners within ``eps_prox`` of its swept surface) are
@@ -344,6 +361,11 @@ class SweepParams:
     mirror: bool = True
     mirror_share: float = 0.95
     mirror_planes: int = 2
+    arc_axes: int = 16
+    arc_crease: float = 20.0
+    arc_fit: float = 0.05
+    arc_sweep_length: float = 0.1
+    arc_min_area: float = 0.005
 
     def __post_init__(self) -> None:
         checks = [
@@ -426,6 +448,11 @@ class SweepParams:
             ("mirror_share", _real(self.mirror_share) and 0.5 <= self.mirror_share <= 1,
              "in [0.5, 1] (a share of the area)"),
             ("mirror_planes", _whole(self.mirror_planes) and 0 <= self.mirror_planes <= 3, "a whole number in 0..3"),
+            ("arc_axes", _whole(self.arc_axes) and 0 <= self.arc_axes <= 256, "a whole number in 0..256"),
+            ("arc_crease", _real(self.arc_crease) and 0 < self.arc_crease < 180, "in (0, 180) (degrees)"),
+            ("arc_fit", _real(self.arc_fit) and 0 < self.arc_fit <= 1, "in (0, 1] (a share of eps_prox)"),
+            ("arc_sweep_length", _real(self.arc_sweep_length) and self.arc_sweep_length >= 0, ">= 0"),
+            ("arc_min_area", _real(self.arc_min_area) and 0 <= self.arc_min_area <= 1, "in [0, 1]"),
         ]
         for name, ok, want in checks:
             if not ok:

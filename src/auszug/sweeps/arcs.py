@@ -1,0 +1,286 @@
+"""Short arcs: rotation candidates from the mesh's crease circles, for sweeps too short for the parts.
+
+Beyond the paper. The heads of a window's lancets and the fillets between them are mouldings
+swept along arcs that turn by less than a radian at a small radius: their profiles' centroids
+travel about 0.12-0.16 of the mesh's diameter, under ``min_sweep_length`` (0.2, the bound that
+keeps smooth bumps from passing as sweeps), and none of the cuts through them glides as a whole
+curve under their rotations, so the stage ``parts`` proposes no such axis
+(:mod:`auszug.sweeps.parts`). Here the axis comes from the mesh itself:
+
+1. :func:`crease_circles`: the creases (edges whose faces' normals differ by at least
+   ``arc_crease`` degrees) beside the faces left open, chained at vertices with two crease edges
+   and split where a chain turns by more than 30 degrees at a vertex; each piece of at least 4
+   vertices is fitted with a circle (plane by SVD, circle by least squares in it), and it is an
+   arc when every vertex lies within ``arc_fit * eps_prox`` of the circle, the piece bends away
+   from its chord by at least ``eps_prox`` and the radius is at most the mesh's diameter. On a
+   surface of revolution the profile's corners sweep such circles about the axis exactly. The
+   arcs' axes (the circle's normal through its centre), merged within 0.5 degrees and
+   ``eps_prox``, are the candidates, most crease vertices first, at most ``arc_axes``;
+2. :func:`arc_candidates`: each axis is a rotation part whose gliding points are the vertices of
+   the open faces within ``part_l_min`` of its arcs, searched as the stage ``parts`` searches one
+   (:func:`~auszug.sweeps.parts._part_patches`: profile cuts, trimming, the fit check), with
+   ``arc_sweep_length`` and ``arc_min_area`` in place of ``min_sweep_length`` and
+   ``min_patch_area``, and a patch is a candidate only when its faces hold one of the axis' arcs
+   whole (every vertex); :func:`~auszug.sweeps.detect` keeps such a patch when it fits within
+   ``fit_factor * eps_prox``, covers ``arc_min_area`` and sweeps ``arc_sweep_length``.
+
+The lower bounds hold only for axes that the mesh's own creases give as exact circles, and the
+creases are what keeps smooth bumps out: a Gaussian bump is locally a surface of revolution, and
+given the random bumps' own 40 axes the relaxed bounds keep 4 patches at ``eps_prox`` 0.005
+(0.0077-0.0097 of the area each; none at 0.001), but no edge of the bumps turns by even 13
+degrees, so no axis is proposed (``tests/sweeps/test_arcs.py``; docs/sweeps.md, "Short arcs").
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.spatial import cKDTree
+
+from auszug.sweeps.mesh import SweepMesh
+from auszug.sweeps.params import DEFAULT, SweepParams
+from auszug.sweeps.parts import _axis, _part_patches
+from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas
+
+__all__ = ["ArcAxis", "arc_bounds", "arc_candidates", "crease_circles", "fit_circle"]
+
+Array = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+#: A crease chain is split where it turns by more than this at a vertex (degrees).
+CHAIN_TURN = 30.0
+#: Least number of vertices of an arc.
+ARC_VERTICES = 4
+#: Axes within this angle (degrees) and ``eps_prox`` of each other are one.
+SAME_AXIS = 0.5
+
+
+@dataclass(frozen=True)
+class ArcAxis:
+    """A rotation axis proposed by crease arcs (normalised mesh coordinates).
+
+    Attributes
+    ----------
+    direction : (3,) float array
+        Unit direction (signed so that it has a positive dot product with (0.3, 0.5, 0.8)).
+    point : (3,) float array
+        The axis' point nearest the origin.
+    chains : tuple of (k,) int arrays
+        The arcs' vertex indices.
+    error : float
+        Largest distance of an arc's vertex from its fitted circle.
+    """
+
+    direction: Array
+    point: Array
+    chains: tuple[IntArray, ...]
+    error: float
+
+    @property
+    def n_vertices(self) -> int:
+        """Crease vertices on the arcs of this axis."""
+        return int(sum(len(c) for c in self.chains))
+
+
+def fit_circle(points: Array) -> tuple[Array, Array, float, float]:
+    """The least-squares circle through ``points (k, 3)``: centre, unit normal, radius and largest error.
+
+    The plane by SVD, the circle by the algebraic (Kasa) fit in it; the error is the larger of the
+    points' distances from the plane and from the circle within it.
+
+    Examples
+    --------
+    >>> t = np.linspace(0.0, 1.0, 6)
+    >>> c, n, r, e = fit_circle(np.c_[2 * np.cos(t) + 1, 2 * np.sin(t), np.full(6, 3.0)])
+    >>> np.round(c, 9).tolist(), np.round(np.abs(n), 9).tolist(), round(r, 9), e < 1e-12
+    ([1.0, 0.0, 3.0], [0.0, 0.0, 1.0], 2.0, True)
+    """
+    p = np.asarray(points, float)
+    c0 = p.mean(axis=0)
+    _, _, vt = np.linalg.svd(p - c0)
+    e1, e2, n = vt
+    q = np.column_stack([(p - c0) @ e1, (p - c0) @ e2])
+    sol = np.linalg.lstsq(np.column_stack([2 * q, np.ones(len(q))]), (q**2).sum(axis=1), rcond=None)[0]
+    cc = sol[:2]
+    r = float(np.sqrt(max(sol[2] + cc @ cc, 0.0)))
+    err = max(float(np.abs(np.linalg.norm(q - cc, axis=1) - r).max()), float(np.abs((p - c0) @ n).max()))
+    return c0 + cc[0] * e1 + cc[1] * e2, n, r, err
+
+
+def _chains(edges: IntArray) -> list[list[int]]:
+    """The edges ``(k, 2)`` as vertex chains, broken at vertices of other than two of them."""
+    inc: dict[int, list[int]] = {}
+    for i, (a, b) in enumerate(edges.tolist()):
+        inc.setdefault(a, []).append(i)
+        inc.setdefault(b, []).append(i)
+    used = np.zeros(len(edges), bool)
+    out: list[list[int]] = []
+    for s in range(len(edges)):
+        if used[s]:
+            continue
+        used[s] = True
+        path = [int(edges[s, 0]), int(edges[s, 1])]
+        for forward in (True, False):
+            while True:
+                x = path[-1] if forward else path[0]
+                nxt = [i for i in inc[x] if not used[i]]
+                if len(inc[x]) != 2 or not nxt or path[0] == path[-1]:
+                    break
+                i = nxt[0]
+                used[i] = True
+                y = int(edges[i, 1] if edges[i, 0] == x else edges[i, 0])
+                if forward:
+                    path.append(y)
+                else:
+                    path.insert(0, y)
+        out.append(path)
+    return out
+
+
+def _split(path: list[int], vertices: Array) -> list[list[int]]:
+    """A chain cut where it turns by more than :data:`CHAIN_TURN` degrees at a vertex."""
+    p = vertices[path]
+    seg = np.diff(p, axis=0)
+    seg /= np.maximum(np.linalg.norm(seg, axis=1, keepdims=True), 1e-300)
+    turn = np.einsum("ij,ij->i", seg[:-1], seg[1:]) < np.cos(np.radians(CHAIN_TURN))
+    cuts = np.flatnonzero(turn) + 1            # vertex index where a new piece starts (shared)
+    bounds = [0, *cuts.tolist(), len(path) - 1]
+    return [path[a:b + 1] for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
+
+
+def arc_bounds(params: SweepParams) -> SweepParams:
+    """``params`` with the arcs' least sweep length and area as ``min_sweep_length`` and ``min_patch_area``.
+
+    Each the smaller of ``arc_sweep_length`` and ``min_sweep_length`` (``arc_min_area`` and
+    ``min_patch_area``).
+    """
+    return params.with_(min_sweep_length=min(params.arc_sweep_length, params.min_sweep_length),
+                        min_patch_area=min(params.arc_min_area, params.min_patch_area))
+
+
+def crease_circles(mesh: SweepMesh, free: NDArray[np.bool_] | None = None,
+                   params: SweepParams = DEFAULT) -> list[ArcAxis]:
+    """The rotation axes of the exact circular arcs among the creases beside the open faces.
+
+    Parameters
+    ----------
+    mesh : SweepMesh
+    free : (m,) bool array, optional
+        The faces left open (default all): a crease counts when one of its faces is open.
+    params : SweepParams
+        ``arc_crease``, ``arc_fit``, ``arc_axes`` and ``eps_prox``.
+
+    Returns
+    -------
+    list of ArcAxis
+        Most crease vertices first, at most ``arc_axes``.
+
+    Examples
+    --------
+    A box has creases but no arcs:
+
+    >>> from auszug.sweeps.mesh import normalise
+    >>> v = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+    >>> f = np.array([[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4],
+    ...               [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]])
+    >>> crease_circles(normalise(v, f))
+    []
+    """
+    if params.arc_axes == 0 or len(mesh.faces) == 0:
+        return []
+    free_f = np.ones(len(mesh.faces), bool) if free is None else np.asarray(free, bool)
+    tri = mesh.vertices[mesh.faces]
+    fn = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    fn /= np.maximum(np.linalg.norm(fn, axis=1, keepdims=True), 1e-300)
+    ef = mesh.edge_faces
+    inner = np.flatnonzero((ef >= 0).all(axis=1))
+    a, b = ef[inner, 0], ef[inner, 1]
+    crease = (np.einsum("ij,ij->i", fn[a], fn[b]) <= np.cos(np.radians(params.arc_crease))) & (free_f[a] | free_f[b])
+    edges = mesh.edges[inner[crease]]
+    eps = params.eps_prox
+    up = np.array([0.3, 0.5, 0.8])
+    found: list[tuple[Array, Array, list[IntArray], list[float]]] = []
+    for chain in _chains(edges):
+        for piece in _split(chain, mesh.vertices):
+            if len(set(piece)) < ARC_VERTICES:
+                continue
+            p = mesh.vertices[piece]
+            chord = p[-1] - p[0]
+            lc = float(np.linalg.norm(chord))
+            off = p - p[0]
+            bend = (np.linalg.norm(off - np.outer(off @ chord, chord) / lc**2, axis=1).max() if lc > 0
+                    else np.linalg.norm(off, axis=1).max())
+            if bend < eps:
+                continue            # (nearly) straight: no circle is determined
+            centre, n, r, err = fit_circle(p)
+            if err > params.arc_fit * eps or r > 1.0:
+                continue
+            n = n if n @ up >= 0 else -n
+            point = centre - (centre @ n) * n
+            ids = np.asarray(piece, np.int64)
+            for d, q, chains, errs in found:
+                if abs(float(d @ n)) >= np.cos(np.radians(SAME_AXIS)) and float(np.linalg.norm(q - point)) <= eps:
+                    chains.append(ids)
+                    errs.append(err)
+                    break
+            else:
+                found.append((n, point, [ids], [err]))
+    axes = [ArcAxis(d, q, tuple(c), max(e)) for d, q, c, e in found]
+    axes.sort(key=lambda x: -x.n_vertices)
+    return axes[:params.arc_axes]
+
+
+def arc_candidates(mesh: SweepMesh, free: NDArray[np.bool_], params: SweepParams = DEFAULT,
+                   tree: MeshTree | None = None, first_id: int = 0,
+                   axes: list[ArcAxis] | None = None) -> tuple[list[SweepPatch], int]:
+    """Rotation patches about the crease arcs' axes (normalised coordinates), fitted, not filtered.
+
+    Parameters
+    ----------
+    mesh : SweepMesh
+    free : (m,) bool array
+        The faces the candidates so far leave open.
+    params : SweepParams
+    tree : MeshTree, optional
+        The whole mesh's tree (built here if not given).
+    first_id : int
+        Id of the first patch.
+    axes : list of ArcAxis, optional
+        The axes (default :func:`crease_circles` of ``mesh`` and ``free``).
+
+    Returns
+    -------
+    patches : list of SweepPatch
+        Faces index ``mesh.faces``; trimmed with ``arc_sweep_length`` as the least sweep.
+    tried : int
+        Axes tried.
+    """
+    free_f = np.asarray(free, bool)
+    axes = crease_circles(mesh, free_f, params) if axes is None else axes
+    if not axes:
+        return [], 0
+    areas = face_areas(mesh.vertices, mesh.faces)
+    arc_params = arc_bounds(params)
+    part_params = arc_params.with_(l_min=params.part_l_min, profile_cuts=params.part_profile_cuts)
+    grow = (tree if tree is not None else MeshTree.of(mesh)) if params.part_grow else None
+    open_v = np.unique(mesh.faces[free_f].ravel())
+    out: list[SweepPatch] = []
+    for ax in axes:
+        c = np.r_[ax.direction, np.cross(ax.point, ax.direction)]
+        axis = _axis(c / np.linalg.norm(c), params)
+        if axis.kind != "rotation":
+            continue
+        near = cKDTree(mesh.vertices[np.concatenate(ax.chains)]).query(mesh.vertices[open_v],
+                                                                      distance_upper_bound=params.part_l_min)[0]
+        pts = mesh.vertices[open_v[np.isfinite(near)]]
+        if len(pts) < ARC_VERTICES:
+            continue
+        for p in _part_patches(mesh, axis, pts, free_f, areas, part_params, arc_params, grow):
+            # the patch must hold one of the arcs that gave its axis whole (the evidence it sweeps)
+            on = np.zeros(len(mesh.vertices), bool)
+            on[mesh.faces[p.faces].ravel()] = True
+            if any(bool(on[c].all()) for c in ax.chains):
+                out.append(replace(p, id=first_id + len(out)))
+    return out, len(axes)

@@ -1,0 +1,161 @@
+"""Short arcs (auszug.sweeps.arcs): rotation candidates from the mesh's crease circles.
+
+The synthetic fixture is a stepped moulding swept exactly about a known axis by 0.9 rad (as a
+lancet's head turns) beside a large flat plate, so that the moulding's sweep is short against the
+mesh's diameter: its profile's centroid travels less than ``min_sweep_length``. The truth is the
+axis it was built with.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from auszug.errors import GeometryError
+from auszug.sweeps import DEFAULT, SweepParams, detect, normalise
+from auszug.sweeps.arcs import arc_bounds, arc_candidates, crease_circles, fit_circle
+from auszug.sweeps.detect import sweep_length
+from auszug.sweeps.fixtures import bumps
+from auszug.sweeps.kinematic import axis_angle
+from auszug.sweeps.patches import face_areas
+
+#: The moulding's profile in (radius, height) about its axis: a step, a chamfer, a fillet-like bend.
+PROFILE = np.array([[1.0, 0.0], [1.0, 0.1], [1.05, 0.1], [1.05, 0.2], [1.1, 0.25], [1.2, 0.25], [1.25, 0.22],
+                    [1.3, 0.15], [1.3, 0.0]])
+TURN = 0.9                                      # radians, as a lancet's head (0.89 on the window fig20a)
+ROT = Rotation.from_rotvec([0.4, -0.7, 0.25])   # the axis z, turned: not along a coordinate axis
+SHIFT = np.array([0.3, -0.2, 0.5])
+
+
+def _grid(k: int, n: int, first: int) -> np.ndarray:
+    i, j = np.meshgrid(np.arange(k - 1), np.arange(n - 1), indexing="ij")
+    a = first + i * n + j
+    return np.vstack([np.c_[a.ravel(), (a + n).ravel(), (a + 1).ravel()],
+                      np.c_[(a + 1).ravel(), (a + n).ravel(), (a + n + 1).ravel()]])
+
+
+@cache
+def _arc_mesh():
+    """The moulding (profile densified to 5 points a segment, 24 steps of turn) and a plate 5 x 5 beside it.
+
+    Returns the vertices, faces, the number of the moulding's faces (first), the true axis'
+    direction and a point of it."""
+    prof = np.vstack([np.linspace(a, b, 5, endpoint=False) for a, b in zip(PROFILE[:-1], PROFILE[1:], strict=True)]
+                     + [PROFILE[-1:]])
+    t = np.linspace(0.0, TURN, 25)
+    r, h = prof[:, 0], prof[:, 1]
+    ring = np.stack([np.c_[r * np.cos(a), r * np.sin(a), h] for a in t])        # (25, n, 3)
+    v = ring.reshape(-1, 3)
+    f = _grid(len(t), len(prof), 0)
+    plate = np.array([[x, y, -1.0] for x in (-2.5, 2.5) for y in (-2.5, 2.5)])
+    fp = len(v) + np.array([[0, 1, 2], [1, 3, 2]])
+    v = ROT.apply(np.vstack([v, plate])) + SHIFT
+    return v, np.vstack([f, fp]), len(f), ROT.apply([0.0, 0.0, 1.0]), SHIFT
+
+
+def _axis_of(p):
+    rot, tr = p.motion.rotation[-1], p.motion.translation[-1]
+    w = np.array([rot[2, 1] - rot[1, 2], rot[0, 2] - rot[2, 0], rot[1, 0] - rot[0, 1]])
+    return w / np.linalg.norm(w), np.linalg.lstsq(np.eye(3) - rot, tr, rcond=None)[0]
+
+
+def test_fit_circle_recovers_a_circle_in_space_and_measures_its_error():
+    rng = np.random.default_rng(3)
+    rot = Rotation.from_rotvec(rng.normal(size=3))
+    t = np.linspace(0.2, 0.7, 7)
+    pts = rot.apply(np.c_[0.4 * np.cos(t), 0.4 * np.sin(t), np.zeros_like(t)]) + [1.0, 2.0, 3.0]
+    c, n, r, err = fit_circle(pts)
+    assert np.allclose(c, [1.0, 2.0, 3.0], atol=1e-9) and r == pytest.approx(0.4, abs=1e-9) and err < 1e-9
+    assert float(axis_angle(n, rot.apply([0.0, 0.0, 1.0]))) < 1e-6
+    bent = pts + 1e-3 * np.array([0.0, 0.0, 1.0]) * np.sin(np.arange(7))[:, None]
+    assert fit_circle(bent)[3] > 1e-4            # off the circle: measured, not hidden
+
+
+def test_a_short_arc_swept_exactly_gives_its_true_axis():
+    v, f, n_arc, d, q = _arc_mesh()
+    m = normalise(v, f)
+    axes = crease_circles(m)
+    assert axes, "no crease arc found"
+    top = axes[0]
+    # every axis found is the true one (the moulding's corners sweep circles about it, and nothing else is round)
+    for ax in axes:
+        assert float(axis_angle(ax.direction, d)) <= 0.2
+        y = m.to_input(ax.point) - q
+        assert np.linalg.norm(y - (y @ d) * d) <= 1e-6 * m.scale
+    assert top.n_vertices >= 6 * 25 and top.error <= DEFAULT.arc_fit * DEFAULT.eps_prox
+
+
+def test_the_short_arc_is_swept_by_patches_about_its_axis_shorter_than_min_sweep_length():
+    v, f, n_arc, d, q = _arc_mesh()
+    m = normalise(v, f)
+    found, tried = arc_candidates(m, np.ones(len(f), bool))
+    assert tried == 1
+    short = arc_bounds(DEFAULT)
+    good = [p for p in found if p.fit_error <= DEFAULT.fit_factor * DEFAULT.eps_prox
+            and p.coverage >= short.min_patch_area and sweep_length(p) >= short.min_sweep_length]
+    assert good
+    # the sweep is short: below the general bound (0.2), which would have dropped it
+    assert all(sweep_length(p) < DEFAULT.min_sweep_length for p in good)
+    on = np.zeros(len(f), bool)
+    for p in good:
+        on[p.faces] = True
+    areas = face_areas(v, f)
+    assert float(areas[:n_arc][on[:n_arc]].sum() / areas[:n_arc].sum()) >= 0.95
+    assert not on[n_arc:].any()                  # the plate is not a rotation about that axis
+
+
+def test_detect_keeps_the_short_arc_in_the_stage_arcs():
+    v, f, n_arc, d, q = _arc_mesh()
+    r = detect((v, f))
+    st = r.stage("arcs")
+    assert st is not None and st.numbers["axes"] >= 1 and st.numbers["fit"] >= 1
+    least = DEFAULT.min_sweep_length * r.bbox_diameter
+    rots = [p for p in r.patches if p.kind == "rotation" and sweep_length(p) < least]
+    assert rots
+    for p in rots:
+        w, c = _axis_of(p)
+        assert float(axis_angle(w, d)) <= 0.2
+        y = c - q
+        assert np.linalg.norm(y - (y @ d) * d) <= 1e-3
+    on = np.zeros(len(f), bool)
+    for p in rots:
+        on[p.faces] = True
+    areas = face_areas(v, f)
+    assert float(areas[:n_arc][on[:n_arc]].sum() / areas[:n_arc].sum()) >= 0.95
+    # without the stage no patch sweeps that short
+    r0 = detect((v, f), DEFAULT.with_(arc_axes=0))
+    assert r0.stage("arcs") is None
+    assert all(sweep_length(p) >= DEFAULT.min_sweep_length * r0.bbox_diameter for p in r0.patches)
+
+
+@pytest.mark.parametrize("sigma", [0.0, 5e-4])
+@pytest.mark.parametrize("eps", [0.001, 0.005])
+def test_bumps_have_no_crease_arc_even_when_every_edge_is_a_crease(sigma, eps):
+    """Random Gaussian bumps: no edge turns by 20 deg (so no crease at all at the defaults); with
+    every edge a crease (``arc_crease`` 0.01 deg) the chains are no circles within ``arc_fit``."""
+    fx = bumps(sigma=sigma)
+    m = normalise(fx.vertices, fx.faces)
+    p = DEFAULT.with_(eps_prox=eps)
+    assert crease_circles(m, None, p) == []
+    assert crease_circles(m, None, p.with_(arc_crease=0.01)) == []
+
+
+@pytest.mark.parametrize("name, value", [
+    ("arc_axes", -1), ("arc_axes", 257), ("arc_axes", 1.5), ("arc_axes", True),
+    ("arc_crease", 0.0), ("arc_crease", 180.0), ("arc_crease", float("nan")),
+    ("arc_fit", 0.0), ("arc_fit", 1.5), ("arc_fit", "0.05"),
+    ("arc_sweep_length", -0.1), ("arc_sweep_length", float("nan")),
+    ("arc_min_area", -0.01), ("arc_min_area", 1.5), ("arc_min_area", None),
+])
+def test_bad_arc_settings_are_refused(name, value):
+    with pytest.raises(GeometryError, match=rf"sweep parameter {name} = .*: expected "):
+        SweepParams(**{name: value})
+
+
+def test_the_arcs_bounds_are_the_smaller_ones():
+    p = DEFAULT.with_(min_sweep_length=0.05, arc_sweep_length=0.1, min_patch_area=0.02, arc_min_area=0.005)
+    b = arc_bounds(p)
+    assert (b.min_sweep_length, b.min_patch_area) == (0.05, 0.005)

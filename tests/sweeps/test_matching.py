@@ -264,27 +264,3 @@ def test_align_loops_undoes_a_square_loops_quarter_turns_and_flips_but_not_a_tru
     got = align_loops(ss, 1e-3)
     assert np.allclose(got[1], sq @ Rotation.from_rotvec([0, 0, np.radians(-30.0)]).as_matrix().T, atol=1e-12)
 
-
-def test_an_open_familys_parts_on_closed_cuts_are_aligned_on_their_loops():
-    """A partial match (an open family) of two closed cuts of a square: the member's part starts a
-    quarter turn round its loop from where the seed's does. With a tolerance (``order_ribs`` passes
-    eps_prox) the member's part is the window of its loop turning least from the seed's; without,
-    the parts are as matched. A member on an open cut keeps its part."""
-    from auszug.sweeps.matching import Family, family_parts
-
-    sq = _square_loop()
-    off = np.array([0.0, 0.0, 0.02])
-    loops = [sq, np.roll(sq + off, -12, axis=0)]
-    pts = np.vstack([np.vstack([lp, lp[:1]]) for lp in loops])            # each plot: its loop and its start again
-    start = np.array([0, 49, 98])
-    plots = CurvaturePlots(pts, np.zeros(len(pts)), start, np.arange(2), np.tile([0, 0, 1.0], (2, 1)), 0.01,
-                           np.array([48, 48]), np.vstack(loops), np.zeros(96))
-    fam = Family(0, np.array([0, 1]), np.array([0, 0]), np.zeros(2, bool), np.zeros(2, bool), 30)
-    as_matched = family_parts(fam, plots)
-    assert np.allclose(as_matched[1], loops[1][:30])
-    got = family_parts(fam, plots, 1e-3)
-    assert np.allclose(got[0], sq[:30]) and np.allclose(got[1], sq[:30] + off, atol=1e-12)
-    # the member on an open cut (period 0): kept as matched
-    open_plots = CurvaturePlots(pts, np.zeros(len(pts)), start, np.arange(2), np.tile([0, 0, 1.0], (2, 1)), 0.01,
-                                np.array([48, 0]), loops[0], np.zeros(48))
-    assert np.array_equal(family_parts(fam, open_plots, 1e-3), family_parts(fam, open_plots))

@@ -480,11 +480,9 @@ def family_parts(family: Family, plots: CurvaturePlots, tolerance: float | None 
     """
     k = len(family.members)
     if family.period is None:
-        out = np.stack([plots.samples(int(family.members[j]))[family.indices(j)] for j in range(k)])
-        return out if tolerance is None else _align_on_loops(out, family, plots, tolerance)
+        return np.stack([plots.samples(int(family.members[j]))[family.indices(j)] for j in range(k)])
     if not family.closed:
-        out = np.stack([plots.loop(int(family.members[j]))[0][family.indices(j)] for j in range(k)])
-        return out if tolerance is None else _align_on_loops(out, family, plots, tolerance)
+        return np.stack([plots.loop(int(family.members[j]))[0][family.indices(j)] for j in range(k)])
     n = int(family.period[0])
     out = np.empty((k, n, 3))
     t = np.arange(n, dtype=float)
@@ -496,52 +494,6 @@ def family_parts(family: Family, plots: CurvaturePlots, tolerance: float | None 
         w = (u - i0)[:, None]
         out[j] = (1 - w) * loop[i0 % p] + w * loop[(i0 + 1) % p]
     return out if tolerance is None else align_loops(out, tolerance)
-
-
-def _align_on_loops(parts: Array, family: Family, plots: CurvaturePlots, tolerance: float) -> Array:
-    """An open family's parts, each member on a closed cut re-aligned to the seed's part by the least turn.
-
-    As :func:`align_loops` for the parts of an open family (a partial match) whose member is a
-    whole closed cut: every window of the part's length on the member's loop, either way round,
-    is an alignment; the local minima of the Kabsch residual within ``tolerance`` of the given
-    one's are as good, and the one turning least from the seed's part is taken. Members on open
-    cuts keep their parts.
-    """
-    x = parts.copy()
-    n = x.shape[1]
-    per = plots.periods()
-    if n < 3:
-        return x
-    t = np.arange(n)
-    for j in range(1, len(family.members)):
-        m = int(family.members[j])
-        p = int(per[m])
-        if p < n:
-            continue
-        loop = plots.loop(m)[0]
-        given = np.asarray(family.indices(j)) % p if family.period is not None else None
-        if given is None:      # the plot's samples are the loop's first ones (and its start again, at most)
-            ns = min(len(plots.samples(m)), p)
-            if not np.allclose(loop[:ns], plots.samples(m)[:ns]):
-                continue
-            given = np.asarray(family.indices(j)) % p
-        s = np.arange(p)
-        idx = np.concatenate([(s[:, None] + t[None, :]) % p, (s[:, None] - t[None, :]) % p])
-        # the given alignment first: a window on the loop starting at its first index, its way round
-        step = 1 if n < 2 or (given[1] - given[0]) % p == 1 else -1
-        first = int(given[0]) if step == 1 else p + int(given[0])
-        order = np.r_[first, np.delete(np.arange(2 * p), first)]
-        rms, turn = _kabsch_fits(x[0], loop[idx[order]])
-        r2 = np.empty(2 * p)
-        r2[order] = rms
-        r2 = r2.reshape(2, p)
-        local = ((r2 <= np.roll(r2, 1, axis=1)) & (r2 <= np.roll(r2, -1, axis=1))).reshape(-1)[order]
-        ok = local & (rms <= rms[0] + tolerance)
-        ok[0] = True
-        best = int(np.flatnonzero(ok)[np.argmin(turn[ok])])
-        if turn[best] < turn[0]:
-            x[j] = loop[idx[order[best]]]
-    return x
 
 
 def _kabsch_fits(x: Array, ys: Array) -> tuple[Array, Array]:

@@ -193,3 +193,14 @@ def test_one_member_with_noise_is_turned_right_within_a_degree():
     assert r.coverage >= 0.95 and e.recall >= 0.85
     assert e.hausdorff.max() <= 1e-3
     assert e.median_rotation <= 1.0 and e.median_translation <= 3e-4
+
+
+def test_u30_clean_meets_every_target_at_eps_prox_0_002():
+    """U.XI.30's member, clean, eps_prox 0.002: measured coverage 0.998, plane recall 1.00, profile
+    Hausdorff 3.6e-4, rotation 0.33 deg, translation 3.1e-7, one patch (before the alignment and the
+    refinement: coverage 0.758, recall 0.75, Hausdorff 3.8e-3, 0.59 deg, two patches)."""
+    fx, r, e = _detected(U30, 0.0, 0.002)
+    assert r.coverage >= 0.99 and e.recall >= 0.95
+    assert len(r.patches) == 1
+    assert e.hausdorff.max() <= 1e-3
+    assert e.median_rotation <= 0.4 and e.median_translation <= 1e-6

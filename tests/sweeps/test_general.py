@@ -181,3 +181,55 @@ def test_hermite_motion_at_uneven_times_is_the_screw():
     q = np.linspace(0, 2.3, 47)
     rq, err = _screw_error(m, x, q, step)
     assert err <= 2e-4
+
+
+def _tube(outline, n_path=61, length=1.0):
+    """A tube along the x axis with the closed ``outline (n, 2)`` in the (y, z) planes, and its outline at x = 0."""
+    from auszug.sweeps.fixtures import grid_faces
+
+    n = len(outline)
+    xs = np.linspace(-length / 2, length / 2, n_path)
+    v = np.column_stack([np.repeat(xs, n), np.tile(outline[:, 0], n_path), np.tile(outline[:, 1], n_path)])
+    g = grid_faces(n_path, n + 1)
+    return v, (g // (n + 1)) * n + (g % (n + 1)) % n, np.column_stack([np.zeros(n), outline])
+
+
+def test_refine_motion_turns_each_knot_back_about_the_path_and_into_the_normal_plane():
+    """A square tube's sweep with every knot turned (up to 3 deg about the path, 2 deg out of the normal
+    plane) and shifted (1e-3 in the plane): refined, every map is the translation along the tube again. A
+    knot turned 30 deg (a third of the way to the square's next alignment) keeps its map (MAX_REFINE_TURN)."""
+    from scipy.spatial.transform import Rotation
+
+    from auszug.sweeps.general import MAX_REFINE_TURN, refine_motion
+    from auszug.sweeps.motion import Motion
+    from auszug.sweeps.patches import MeshTree
+
+    side = np.linspace(-0.02, 0.02, 9)[:-1]
+    one = np.full(8, 0.02)
+    sq = np.column_stack([np.r_[side, one, -side, -one], np.r_[-one, side, one, -side]])
+    v, f, prof = _tube(sq)
+    tree = MeshTree(v, f)
+    k = 41
+    t = np.arange(k, dtype=float)
+    rng = np.random.default_rng(3)
+    twist = np.radians(rng.uniform(-3, 3, k))
+    tilt = np.radians(rng.uniform(-2, 2, k))
+    rot = Rotation.from_rotvec(np.column_stack([twist, tilt, 0 * t])).as_matrix()
+    shift = np.column_stack([0 * t, rng.uniform(-1e-3, 1e-3, (k, 2))])
+    centre = np.column_stack([-0.4 + 0.02 * t, 0 * t, 0 * t])
+    wrong = Motion(t, rot, centre + shift)       # x -> R x + T: the outline at x = 0 turned about its centroid
+    got = refine_motion(prof, wrong, tree, DEFAULT)
+    turn = np.degrees(np.arccos(np.clip((np.trace(got.rotation, axis1=1, axis2=2) - 1) / 2, -1, 1)))
+    assert turn.max() < 0.01
+    assert np.abs(got.translation[:, 1:]).max() < 1e-5
+    # the sweep moves along the tube: the translations' x keep their place up to the turn's leverage
+    assert np.abs(got.translation[:, 0] - centre[:, 0]).max() < 1e-4
+    # a knot turned 30 deg about the path: the square's next alignment is 90 deg away, and the steps
+    # would turn it back, farther than MAX_REFINE_TURN: it keeps its map
+    rot30 = rot.copy()
+    rot30[20] = Rotation.from_rotvec([np.radians(30.0), 0, 0]).as_matrix()
+    got = refine_motion(prof, Motion(t, rot30, centre + shift), tree, DEFAULT)
+    assert MAX_REFINE_TURN < 30 and np.array_equal(got.rotation[20], rot30[20])
+    assert np.degrees(np.arccos(np.clip((np.trace(got.rotation[19]) - 1) / 2, -1, 1))) < 0.01
+    # off: the motion itself
+    assert refine_motion(prof, wrong, tree, DEFAULT.with_(twist_steps=0)) is wrong

@@ -223,3 +223,44 @@ def test_profile_cuts_of_a_closed_sweep_form_one_closed_family():
     for j in range(1, len(biggest.members)):
         kj = plots.loop(int(biggest.members[j]))[1][biggest.indices(j)] * (-1 if biggest.flipped[j] else 1)
         assert np.abs(ks - kj).mean() <= 0.2 * max(np.abs(ks).mean(), DEFAULT.kappa_floor)
+
+
+def _square_loop(n_side=12, half=0.01):
+    side = np.linspace(-half, half, n_side + 1)[:-1]
+    one = np.full(n_side, half)
+    return np.column_stack([np.r_[side, one, -side, -one], np.r_[-one, side, one, -side], np.zeros(4 * n_side)])
+
+
+def test_align_loops_undoes_a_square_loops_quarter_turns_and_flips_but_not_a_true_turn():
+    """A square's loop matches itself under 8 alignments (4 shifts, each also reversed); cuts a small
+    true turn apart, their samples shifted by quarter turns and reversed, are aligned back, the true
+    turn kept. A profile without symmetry (the closed quatrefoil) keeps its alignment."""
+    from auszug.sweeps.fixtures import closed_profile
+    from auszug.sweeps.matching import align_loops
+
+    sq = _square_loop()
+    n = len(sq)
+    turn = Rotation.from_rotvec([0.05, -0.03, np.radians(4.0)]).as_matrix()
+    true = [sq @ Rotation.from_rotvec([0.0, 0.0, np.radians(3.0 * i)]).as_matrix().T @ turn.T + [0.0, 0.0, 0.01 * i]
+            for i in range(5)]
+    given = [true[0], np.roll(true[1], 12, axis=0), np.roll(true[2], 24, axis=0), true[3][::-1],
+             np.roll(true[4][::-1], 36, axis=0)]
+    out = align_loops(np.stack(given), 1e-3)
+    # each aligned to the first sample for sample: the given one re-indexed, the true correspondence
+    for i in range(5):
+        assert np.allclose(out[i], true[i], atol=1e-12), i
+    # with no tolerance only exact ties would count: the shifts here are exact (the square's symmetry)
+    assert np.allclose(align_loops(np.stack(given), 0.0), np.stack(true), atol=1e-12)
+    assert n == 48
+    # the quatrefoil (four lobes of different sizes): its cut turned 30 deg about its normal keeps the
+    # given alignment (a quarter turn of its samples is the nearest other, farther than eps_prox 0.005);
+    # the square in its place is turned back to the least turn (0 deg: the square's 90 is its 0)
+    q = np.column_stack([closed_profile(96), np.zeros(96)])
+    r30 = Rotation.from_rotvec([0, 0, np.radians(30.0)]).as_matrix()
+    qs = np.stack([q, q @ r30.T + [0.02, 0.0, 0.0]])
+    assert np.array_equal(align_loops(qs, 0.005), qs)
+    r60 = Rotation.from_rotvec([0, 0, np.radians(60.0)]).as_matrix()
+    ss = np.stack([sq, sq @ r60.T])
+    got = align_loops(ss, 1e-3)
+    assert np.allclose(got[1], sq @ Rotation.from_rotvec([0, 0, np.radians(-30.0)]).as_matrix().T, atol=1e-12)
+

@@ -33,6 +33,8 @@ STEP = 0.02     # rib step of the seed motion (bounding-box diameters)
     ("grow_on_mesh", 0.05), ("grow_on_mesh", 1.2), ("grow_on_mesh", None),
     ("end_gap", 0.0), ("end_gap", 25.0), ("end_gap", float("nan")),
     ("rib_jump", 1.0), ("rib_jump", 0.5), ("rib_jump", float("nan")),
+    ("twist_steps", -1), ("twist_steps", 65), ("twist_steps", 2.0), ("twist_steps", True),
+    ("tangent_window", -0.01), ("tangent_window", 1.5), ("tangent_window", float("nan")), ("tangent_window", "0.06"),
     ("translation_step", 0.0), ("translation_step", -0.02), ("translation_step", 0.6),
     ("translation_steps", 0), ("translation_steps", LIMITS.sweep_steps + 1), ("translation_steps", 3.0),
     ("coarse_window", 0.005), ("coarse_window", -0.08), ("coarse_window", float("nan")), ("coarse_window", "0.08"),

@@ -61,6 +61,7 @@ from auszug.sweeps._kernels import (
     inverse_maps_at,
     kabsch_sums,
     polyline_closest_chunked,
+    rotations_of,
 )
 from auszug.sweeps.cut import Cuts, EdgeGrid, cut, cut_near
 from auszug.sweeps.matching import (
@@ -95,7 +96,8 @@ from auszug.sweeps.stage import Stage
 __all__ = ["kabsch", "kabsch_batch", "rib_velocity", "rib_velocities", "hermite_motion", "rib_parts", "general_patch",
            "general_stages", "split_ribs", "motion_planes", "profile_planes", "reslice", "GeneralSweep",
            "extend_profile",
-           "grow_ribs", "GrownRibs", "grown_patch", "trajectory_error", "translational_patch"]
+           "grow_ribs", "GrownRibs", "grown_patch", "trajectory_error", "translational_patch", "refine_motion",
+           "path_tangents"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -577,6 +579,173 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
     return GeneralSweep(best[0], best[1], best[2], fit.fit_error, fit.coverage, fit.faces, closed)
 
 
+#: :func:`refine_motion` leaves a knot's map as it was where the refined one turns farther than this (degrees).
+MAX_REFINE_TURN = 5.0
+
+
+def _twist_steps(profile: Array, rot: Array, tr: Array, tree: MeshTree, bound: float,
+                 steps: int) -> tuple[Array, Array]:
+    """``steps`` point-to-plane steps of every knot's map ``(rot (k, 3, 3), tr (k, 3))`` about its profile plane.
+
+    Per knot and step: the moved profile's points within ``bound`` of the mesh (not beyond it),
+    their closest mesh points ``q_j`` and face normals ``m_j``; the turn ``a`` about the profile
+    plane's normal ``n`` through the moved centroid ``c`` and the shift ``(u, v)`` in the plane
+    minimising ``sum (m_j . (x_j - q_j + a n x (x_j - c) + u e_1 + v e_2))^2`` (damped by 1e-3 of
+    the mean eigenvalue: what the profile leaves free, a circle's turn, stays).
+    """
+    n0, _ = _plane_of(profile)
+    c0 = profile.mean(axis=0)
+    rho = max(float(np.sqrt(np.mean(np.sum((profile - c0) ** 2, axis=1)))), 1e-300)
+    r, t = rot.copy(), tr.copy()
+    k, n = len(r), len(profile)
+    v, f = tree.vertices, tree.faces
+    for _ in range(steps):
+        x = apply_maps(np.ascontiguousarray(r), np.ascontiguousarray(t), np.ascontiguousarray(profile))
+        flat = x.reshape(-1, 3)
+        d, face, q = tree.query(flat)
+        inner = tree.interior_distance(flat)          # 0 beyond the mesh (closest point on its boundary)
+        use = (((inner > 0) | (d == 0)) & (d <= bound)).reshape(k, n)
+        fv = f[face]
+        m = np.cross(v[fv[:, 1]] - v[fv[:, 0]], v[fv[:, 2]] - v[fv[:, 0]])
+        m = (m / np.maximum(np.linalg.norm(m, axis=1, keepdims=True), 1e-300)).reshape(k, n, 3)
+        nn = r @ n0
+        c = r @ c0 + t
+        # a unit vector in each plane: n x the axis least along n
+        e1 = np.cross(nn, np.eye(3)[np.argmin(np.abs(nn), axis=1)])
+        e1 /= np.linalg.norm(e1, axis=1, keepdims=True)
+        e2 = np.cross(nn, e1)
+        a = np.stack([np.einsum("kni,kni->kn", m, np.cross(nn[:, None], x - c[:, None])) / rho,
+                      np.einsum("kni,ki->kn", m, e1), np.einsum("kni,ki->kn", m, e2)], axis=2) * use[..., None]
+        b = -np.einsum("kni,kni->kn", m, x - q.reshape(k, n, 3)) * use
+        ata = np.einsum("kni,knj->kij", a, a)
+        lam = 1e-3 * np.trace(ata, axis1=1, axis2=2) / 3 + 1e-300
+        u = np.linalg.solve(ata + lam[:, None, None] * np.eye(3), np.einsum("kni,kn->ki", a, b)[..., None])[..., 0]
+        u[use.sum(axis=1) < 6] = 0.0                  # too few points on the mesh: the knot stays
+        turn = rotations_of(np.ascontiguousarray(nn * (u[:, :1] / rho)))
+        r = turn @ r
+        t = np.einsum("kij,kj->ki", turn, t - c) + c + u[:, 1:2] * e1 + u[:, 2:3] * e2
+    return r, t
+
+
+def path_tangents(points: Array, window: float) -> Array:
+    """Unit tangents ``(k, 3)`` of a path through ``points (k, 3)``: local cubic fits over ``window`` of arc length.
+
+    At each point, the cubic in arc length (chords) fitted by least squares to the points within
+    ``window`` of it along the path, its derivative there (a quadratic or a line where fewer
+    points lie within; central differences where none but the neighbours, and with ``window`` 0).
+
+    Examples
+    --------
+    >>> a = np.linspace(0, 1, 50)
+    >>> pts = np.column_stack([np.cos(a), np.sin(a), 0 * a])
+    >>> tan = path_tangents(pts + np.random.default_rng(0).normal(0, 1e-4, (50, 3)), 0.2)
+    >>> float(np.degrees(np.arccos(np.abs(np.einsum("ki,ki->k", tan, np.column_stack([-np.sin(a), np.cos(a),
+    ...     0 * a]))).min()))) < 0.5
+    True
+    """
+    x = np.asarray(points, float)
+    k = len(x)
+    s = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(x, axis=0), axis=1))]
+    out = np.gradient(x, s if np.all(np.diff(s) > 0) else np.arange(k, dtype=float), axis=0)
+    if window > 0:
+        lo = np.searchsorted(s, s - window, side="left")
+        hi = np.searchsorted(s, s + window, side="right")
+        for i in np.flatnonzero(hi - lo >= 4):        # a cubic needs 5 points, a quadratic 4
+            u = s[lo[i]:hi[i]] - s[i]
+            a = np.vander(u / window, min(4, hi[i] - lo[i] - 1), increasing=True)
+            coef = np.linalg.lstsq(a, x[lo[i]:hi[i]], rcond=None)[0]
+            out[i] = coef[1]
+    out /= np.maximum(np.linalg.norm(out, axis=1, keepdims=True), 1e-300)
+    result: Array = out
+    return result
+
+
+def _into_normal_planes(profile: Array, rot: Array, tr: Array, window: float) -> tuple[Array, Array]:
+    """Every knot's map turned about the moved centroid so that the profile's plane is normal to the centroid's path.
+
+    The path's tangent is :func:`path_tangents` of the moved centroids over ``window``; the turn
+    is the least one taking the plane's normal to it.
+    """
+    n0, _ = _plane_of(profile)
+    c = rot @ profile.mean(axis=0) + tr
+    vel = path_tangents(c, window)
+    nn = rot @ n0
+    vel = np.where((np.einsum("ki,ki->k", vel, nn) < 0)[:, None], -vel, vel)
+    ax = np.cross(nn, vel)
+    sn = np.linalg.norm(ax, axis=1)
+    ang = np.arctan2(sn, np.einsum("ki,ki->k", nn, vel))
+    turn = rotations_of(np.ascontiguousarray(ax / np.maximum(sn, 1e-300)[:, None] * ang[:, None]))
+    return turn @ rot, np.einsum("kij,kj->ki", turn, tr - c) + c
+
+
+def refine_motion(profile: Array, motion: Motion, tree: MeshTree, params: SweepParams = DEFAULT) -> Motion:
+    """Each knot's rigid map refined against the mesh about its profile plane (beyond the paper).
+
+    The fit check bounds the largest distance by ``fit_factor * eps_prox``; a profile small
+    against that (a member's square bar, 1.5-2 % of the diameter, against 1 % at eps_prox 0.005)
+    fits turned the wrong way about the path, and the motion's turn about the profile plane's
+    normal follows the ribs' errors (docs/sweeps.md, "Microarch members"). Here every knot's map
+    is refined by ``twist_steps`` point-to-plane steps (ICP) of the moved profile's points to
+    their closest mesh points, in the three freedoms the surface fixes: the turn about the
+    plane's normal through the moved centroid and the shift within the plane (the plane itself,
+    the profile's tilt and its place along the path, a prism's surface does not fix); then each
+    map is turned so that the profile lies in the normal plane of its centroid's path (the
+    convention of :func:`profile_planes`, the centroids now on the surface's path; its tangents
+    by local cubic fits over ``tangent_window`` of arc length, :func:`path_tangents`) and refined
+    by as many steps again. Small steps from the fitted maps: a symmetric profile does not jump
+    to another of its alignments.
+
+    Parameters
+    ----------
+    profile : (n, 3) float array
+        The profile at the motion's parameter 0 (its points are moved by the knots' maps).
+    motion : Motion
+    tree : MeshTree
+        The mesh's closest points.
+    params : SweepParams
+        ``twist_steps`` (0: the motion unchanged), ``fit_factor * eps_prox`` (points farther from
+        the mesh do not count).
+
+    Returns
+    -------
+    Motion
+        The same knots with the refined maps.
+
+    Examples
+    --------
+    A square tube along the x axis, its sweep turned 3 degrees about the path at every knot: turned back.
+
+    >>> from auszug.sweeps.motion import rotation_about
+    >>> side = np.linspace(-0.05, 0.05, 6)[:-1]
+    >>> sq = np.column_stack([np.r_[side, 0.05 + 0 * side, -side, -0.05 + 0 * side],
+    ...                       np.r_[-0.05 + 0 * side, side, 0.05 + 0 * side, -side]])
+    >>> xs = np.linspace(-0.5, 0.5, 41)
+    >>> v = np.column_stack([np.repeat(xs, 20), np.tile(sq[:, 0], 41), np.tile(sq[:, 1], 41)])
+    >>> from auszug.sweeps.fixtures import grid_faces
+    >>> g = grid_faces(41, 21)
+    >>> f = (g // 21) * 20 + (g % 21) % 20
+    >>> prof = np.column_stack([np.full(20, -0.4), sq])
+    >>> t = np.arange(9.0)
+    >>> rot = np.broadcast_to(rotation_about([1.0, 0, 0], np.radians(3.0)), (9, 3, 3))
+    >>> wrong = Motion(t, rot, np.column_stack([0.1 * t, 0 * t, 0 * t]))
+    >>> fixed = refine_motion(prof, wrong, MeshTree(v, f))
+    >>> float(np.degrees(np.arccos((np.trace(fixed.rotation[4]) - 1) / 2))) < 1e-3
+    True
+    """
+    if params.twist_steps <= 0 or len(profile) < 3:
+        return motion
+    bound = params.fit_factor * params.eps_prox
+    r, t = _twist_steps(profile, motion.rotation, motion.translation, tree, bound, params.twist_steps)
+    r, t = _into_normal_planes(profile, r, t, params.tangent_window)
+    r, t = _twist_steps(profile, r, t, tree, bound, params.twist_steps)
+    # a knot turned farther than MAX_REFINE_TURN keeps its map (an end past the mesh, its centroid's path
+    # bent by the end's few points; a symmetric profile sliding towards another alignment)
+    cos = (np.einsum("kij,kij->k", r, motion.rotation) - 1) / 2
+    far = cos < np.cos(np.radians(MAX_REFINE_TURN))
+    r[far], t[far] = motion.rotation[far], motion.translation[far]
+    return Motion(motion.t.copy(), r, t)
+
+
 def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Array, Array]:
     """The profile planes (:func:`profile_planes`) at the motion's knots, ``per_knot`` per knot interval."""
     t = np.interp(np.arange((len(motion) - 1) * per_knot + 1) / per_knot, np.arange(len(motion)), motion.t)
@@ -670,7 +839,7 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     out: list[SweepPatch] = []
     tree = MeshTree.of(mesh)
     grown = np.zeros(len(mesh.faces), bool)
-    skipped = 0
+    skipped = n_refined = 0
     # a family's ordered ribs may jump across a gap (parallel cuts of two parallel stretches of a
     # border): each stretch between such jumps is fitted on its own
     stretches = [(q, r.family.closed) for r in ribs for q in split_ribs(rib_parts(r, plots), params.rib_jump)
@@ -688,15 +857,20 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
                          float(areas[faces[g.faces]].sum() / total) if total > 0 else 0.0, faces[g.faces], closed)
         if params.grow and g.fit_error <= params.fit_factor * params.eps_prox:
             g = grown_patch(mesh, g, params, tree, areas)
+        refined = False
+        if params.twist_steps > 0 and g.fit_error <= params.fit_factor * params.eps_prox:
+            g, refined = _refined(mesh, g, params, tree, areas)
         if translations and not closed:
             tp = translational_patch(mesh, g.profile, g.motion, params, tree, areas)
             if tp is not None and tp.fit_error <= params.fit_factor * params.eps_prox and tp.coverage > g.coverage:
-                g = tp
+                g, refined = tp, False
+        n_refined += refined
         if g.fit_error <= params.fit_factor * params.eps_prox:
             grown[g.faces] = True
         out.append(SweepPatch(len(out), "general", g.profile, g.closed, g.motion, g.faces, g.fit_error, g.coverage))
-    numbers: dict[str, float | int] = {"candidates": len(out)}
-    summary = f"{len(out)} general sweep(s) fitted ({skipped} families on grown patches skipped)" + (
+    numbers: dict[str, float | int] = {"candidates": len(out), "refined": n_refined}
+    summary = (f"{len(out)} general sweep(s) fitted ({skipped} families on grown patches skipped, {n_refined} "
+               "motion(s) refined against the mesh)") + (
         ": fit errors " + ", ".join(f"{p.fit_error:.2e}" for p in out) if out else "")
     if true_planes is not None and len(np.asarray(true_planes)):
         found = [motion_planes(p.profile, p.motion) for p in out]
@@ -705,6 +879,17 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
         numbers["recall"] = plane_recall(true_planes, n, d)
     stages.append(Stage("motion", time.perf_counter() - t, summary, numbers))
     return out, stages
+
+
+def _refined(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTree,
+             areas: Array) -> tuple[GeneralSweep, bool]:
+    """``g`` with its motion refined (:func:`refine_motion`) and checked again, if it still fits; else ``g``."""
+    motion = refine_motion(g.profile, g.motion, tree, params)
+    err = swept_error(g.profile, g.closed, motion, params.eps_prox, tree)
+    if err.fit_error > params.fit_factor * params.eps_prox:
+        return g, False
+    fit = swept_coverage(mesh, err, params.eps_prox, areas, distances=False)
+    return GeneralSweep(g.profile, motion, g.velocities, fit.fit_error, fit.coverage, fit.faces, g.closed), True
 
 
 # --- growing a patch along its motion and across its profile ---------------------------------------------------

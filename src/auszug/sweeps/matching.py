@@ -49,7 +49,7 @@ from auszug.sweeps.movability import Movability
 from auszug.sweeps.params import DEFAULT, SweepParams
 
 __all__ = ["CurvaturePlots", "Matches", "Family", "Ribs", "resample", "signed_curvature", "curvature_plots",
-           "match_cuts", "families", "family_parts", "order_energy", "order_ribs", "ordered_parts",
+           "match_cuts", "families", "family_parts", "align_loops", "order_energy", "order_ribs", "ordered_parts",
            "split_family"]
 
 Array = NDArray[np.float64]
@@ -469,12 +469,14 @@ def _meet(lo: int, hi: int, s: int, n: int, period: int) -> tuple[int, int, int]
     return best
 
 
-def family_parts(family: Family, plots: CurvaturePlots) -> Array:
+def family_parts(family: Family, plots: CurvaturePlots, tolerance: float | None = None) -> Array:
     """The members' parts ``(k, n, 3)``, sample ``i`` corresponding across members.
 
     An open family's parts are the common part (``n = length``); a closed family's are the
     members' whole loops, each resampled (linearly between its samples) to ``n`` = the seed's
     period, starting at its sample matching the seed's first and running in the seed's direction.
+    With ``tolerance``, each closed family's loop is then aligned to the seed's by the least turn
+    among the alignments as good as the match's (:func:`align_loops`).
     """
     k = len(family.members)
     if family.period is None:
@@ -491,7 +493,83 @@ def family_parts(family: Family, plots: CurvaturePlots) -> Array:
         i0 = np.floor(u).astype(np.int64)
         w = (u - i0)[:, None]
         out[j] = (1 - w) * loop[i0 % p] + w * loop[(i0 + 1) % p]
-    return out
+    return out if tolerance is None else align_loops(out, tolerance)
+
+
+def _kabsch_fits(x: Array, ys: Array) -> tuple[Array, Array]:
+    """Residuals and turns of the best proper rigid maps of ``x (n, 3)`` onto each ``ys[c] (n, 3)``.
+
+    Kabsch with equal weights: the root-mean-square residual ``(c,)`` and the turn (degrees, ``(c,)``).
+    """
+    xc = x - x.mean(axis=0)
+    yc = ys - ys.mean(axis=1, keepdims=True)
+    h = np.einsum("ni,cnj->cij", xc, yc)
+    u, sv, vt = np.linalg.svd(h)
+    d = np.sign(np.linalg.det(np.swapaxes(vt, 1, 2) @ np.swapaxes(u, 1, 2)))
+    d = np.where(d != 0, d, 1.0)
+    sv[:, 2] *= d
+    vt[:, 2, :] *= d[:, None]
+    r = np.swapaxes(vt, 1, 2) @ np.swapaxes(u, 1, 2)
+    sq = float((xc**2).sum()) + (yc**2).sum(axis=(1, 2)) - 2 * sv.sum(axis=1)
+    rms = np.sqrt(np.maximum(sq, 0.0) / len(x))
+    turn = np.degrees(np.arccos(np.clip((np.trace(r, axis1=1, axis2=2) - 1) / 2, -1.0, 1.0)))
+    return rms, turn
+
+
+def align_loops(parts: ArrayLike, tolerance: float) -> Array:
+    """Closed parts ``(k, n, 3)`` each re-aligned to the first by the least turn (beyond the paper).
+
+    A profile with symmetries (the square of a bar: four turns and four flips) matches itself
+    under several alignments of its loop, all equally congruent, and the curvature match picks
+    any of them: one member's samples may correspond to the seed's turned by a quarter turn or
+    flipped, and a sweep fitted to such ribs turns the profile where the surface does not (the
+    fit bound cannot tell when the profile is small). Every cyclic shift of part ``j``, in both
+    directions, is an alignment; those that are local minima of the Kabsch residual (rms) over
+    the shifts and within ``tolerance`` of the given alignment's residual are as good a match,
+    and the one whose best rigid map from the first part turns least is taken (neighbouring
+    cuts of a sweep differ by a small turn). A profile without symmetry has no other alignment
+    within the tolerance: its parts are returned as given.
+
+    Parameters
+    ----------
+    parts : (k, n, 3) array_like
+        Closed loops, sample ``i`` corresponding across parts.
+    tolerance : float
+        Residual (rms, the parts' units) by which another alignment may exceed the given one.
+
+    Returns
+    -------
+    (k, n, 3) float array
+
+    Examples
+    --------
+    A square's loop, its copy moved a little and its samples shifted by a quarter turn: aligned back.
+
+    >>> t = np.arange(16)
+    >>> side = np.r_[np.linspace(-1, 1, 5)[:-1]]
+    >>> sq = np.column_stack([np.r_[side, np.ones(4), -side, -np.ones(4)],
+    ...                       np.r_[-np.ones(4), side, np.ones(4), -side], np.zeros(16)])
+    >>> moved = np.roll(sq + [0.1, 0.0, 0.3], 4, axis=0)
+    >>> out = align_loops(np.stack([sq, moved]), 0.01)
+    >>> bool(np.allclose(out[1], sq + [0.1, 0.0, 0.3]))
+    True
+    """
+    x = np.array(parts, dtype=float)
+    k, n = x.shape[:2]
+    if k < 2 or n < 3:
+        return x
+    t = np.arange(n)
+    idx = np.concatenate([(t[None, :] + t[:, None]) % n, (t[:, None] - t[None, :]) % n])   # shifts, both ways
+    for j in range(1, k):
+        rms, turn = _kabsch_fits(x[0], x[j][idx])
+        r2 = rms.reshape(2, n)
+        local = ((r2 <= np.roll(r2, 1, axis=1)) & (r2 <= np.roll(r2, -1, axis=1))).reshape(-1)
+        ok = local & (rms <= rms[0] + tolerance)
+        ok[0] = True
+        best = int(np.flatnonzero(ok)[np.argmin(turn[ok])])
+        if turn[best] < turn[0]:
+            x[j] = x[j][idx[best]]
+    return x
 
 
 @dataclass(frozen=True)
@@ -505,11 +583,14 @@ class Ribs:
         Positions in ``family.members``, in rib order (the seed somewhere inside).
     energy : (k - 1,) float array
         ``E_order`` of each successive pair.
+    tolerance : float or None
+        The alignment tolerance of a closed family's parts (:func:`family_parts`), or None.
     """
 
     family: Family
     order: IntArray
     energy: Array
+    tolerance: float | None = None
 
     @property
     def plots(self) -> IntArray:
@@ -572,7 +653,8 @@ def order_ribs(family: Family, plots: CurvaturePlots, params: SweepParams = DEFA
     True
     """
     k = len(family.members)
-    parts = family_parts(family, plots)
+    # a closed family's loops aligned by the least turn within eps_prox (a symmetric profile's alignments)
+    parts = family_parts(family, plots, params.eps_prox)
     e = order_energy(parts, params.omega)
     centre = parts.mean(axis=1)
     normal = plots.normal[family.members]
@@ -598,14 +680,14 @@ def order_ribs(family: Family, plots: CurvaturePlots, params: SweepParams = DEFA
             used[nxt] = True
     order = np.array(chains[1][::-1] + chains[0][1:], np.int64)
     energy = e[order[:-1], order[1:]]
-    ribs = Ribs(family, order, energy)
+    ribs = Ribs(family, order, energy, params.eps_prox)
     # the parts in rib order, kept with the ribs for these plots (:func:`ordered_parts`: not taken again)
     object.__setattr__(ribs, "_parts", (plots, parts[order]))
     return ribs
 
 
 def ordered_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
-    """The ribs' common parts ``(k, n, 3)`` in rib order: ``family_parts(ribs.family, plots)[ribs.order]``.
+    """The ribs' common parts ``(k, n, 3)`` in rib order: ``family_parts(family, plots, tolerance)[order]``.
 
     The parts :func:`order_ribs` took for the same ``plots`` are kept with the ribs and given
     (a copy); other plots' are taken anew.
@@ -614,7 +696,7 @@ def ordered_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
     if kept is not None and kept[0] is plots:
         out: Array = kept[1].copy()
         return out
-    return family_parts(ribs.family, plots)[ribs.order]
+    return family_parts(ribs.family, plots, ribs.tolerance)[ribs.order]
 
 
 def split_family(family: Family, component: ArrayLike) -> tuple[Family, ...]:

@@ -75,6 +75,16 @@ def spacing_for(vertices, frequency, target):
 
 
 def build_only(mesh, params, spacing, n_families, reps):
+    """Row 3 alone, twice: the paper's stages (``twist_steps`` 0) and with the motion's refinement against the
+    mesh (beyond the paper, sweeps-members3; the default), each by :func:`_build_only`."""
+    for label, steps in (("the paper's stages (twist_steps 0)", 0),
+                         (f"with the motion's refinement (twist_steps {params.twist_steps}, beyond the paper)",
+                          params.twist_steps)):
+        print(f"-- build, {label}", flush=True)
+        _build_only(mesh, params.with_(twist_steps=steps), spacing, n_families, reps)
+
+
+def _build_only(mesh, params, spacing, n_families, reps):
     """Row 3 alone: the motion stage of ``general_stages`` (not grown), ``reps`` timed runs after a warm-up.
 
     The mesh's closest-point tree (``MeshTree.of``) is built once per mesh, by the first stage that

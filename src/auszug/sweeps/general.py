@@ -345,11 +345,19 @@ def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
 def _normals_at(mesh: SweepMesh, points: Array, tree: MeshTree) -> Array:
     """Unit face normals of the mesh at the closest points of ``points (..., 3)``."""
     _, face, _ = tree.query(points)
+    return _face_normals(tree, face).reshape(points.shape)
+
+
+def _face_normals(tree: MeshTree, face: IntArray) -> Array:
+    """Unit normals ``(k, 3)`` of the tree's faces ``face (k,)``.
+
+    The tree's own faces: it may be of the whole mesh where the caller's mesh is a part.
+    """
     v = tree.vertices
-    f = tree.faces[face]     # the tree's own faces: it may be of the whole mesh, ``mesh`` a part
+    f = tree.faces[face]
     n = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
     n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
-    return n.reshape(points.shape)
+    return n
 
 
 def _plane_of(points: Array) -> tuple[Array, float]:
@@ -598,16 +606,13 @@ def _twist_steps(profile: Array, rot: Array, tr: Array, tree: MeshTree, bound: f
     rho = max(float(np.sqrt(np.mean(np.sum((profile - c0) ** 2, axis=1)))), 1e-300)
     r, t = rot.copy(), tr.copy()
     k, n = len(r), len(profile)
-    v, f = tree.vertices, tree.faces
     for _ in range(steps):
         x = apply_maps(np.ascontiguousarray(r), np.ascontiguousarray(t), np.ascontiguousarray(profile))
         flat = x.reshape(-1, 3)
         d, face, q = tree.query(flat)
         inner = tree.interior_distance(flat)          # 0 beyond the mesh (closest point on its boundary)
         use = (((inner > 0) | (d == 0)) & (d <= bound)).reshape(k, n)
-        fv = f[face]
-        m = np.cross(v[fv[:, 1]] - v[fv[:, 0]], v[fv[:, 2]] - v[fv[:, 0]])
-        m = (m / np.maximum(np.linalg.norm(m, axis=1, keepdims=True), 1e-300)).reshape(k, n, 3)
+        m = _face_normals(tree, face).reshape(k, n, 3)
         nn = r @ n0
         c = r @ c0 + t
         # a unit vector in each plane: n x the axis least along n

@@ -132,6 +132,11 @@ def test_two_million_triangles_refused_without_running_out_of_memory():
     (["--mirror-planes", "4"], "mirror_planes = 4: expected a whole number in 0..3"),
     (["--mirror-planes", "-1"], ">= 0"),
     (["--coverage-samples", "10000001"], "coverage_samples = 10000001"),
+    (["--twist-steps", "65"], "twist_steps = 65: expected a whole number in 0..64"),
+    (["--twist-steps", "-2"], ">= 0"),
+    (["--arc-axes", "257"], "arc_axes = 257: expected a whole number in 0..256"),
+    (["--arc-crease", "180"], "arc_crease = 180"),
+    (["--arc-crease", "0"], "> 0"),
 ])
 def test_bad_options_exit_2(cli, tmp_path, args, message):
     src = tmp_path / "a.stl"
@@ -214,6 +219,19 @@ def test_mirror_and_coverage_options_are_recorded_in_the_result(cli, tmp_path):
     rep = load(out, kind="sweeps")
     assert rep.params.mirror_planes == 0 and rep.params.coverage_samples == 0
     assert rep.coverage == rep.face_coverage
+    assert [p.kind for p in rep.patches] == ["translation"]
+
+
+def test_twist_and_arc_options_are_recorded_in_the_result(cli, tmp_path):
+    """``--twist-steps N`` is ``twist_steps``, ``--arc-axes N`` is ``arc_axes``, ``--arc-crease DEG`` is
+    ``arc_crease``; the result file carries them and reads them back."""
+    src = tmp_path / "a.stl"
+    save(_mesh("extruded"), src, kind="mesh")
+    out = tmp_path / "a.sweeps.json"
+    r = cli("sweeps", src, "-o", out, "--twist-steps", "0", "--arc-axes", "3", "--arc-crease", "35.5", "--quiet")
+    assert r.code == 0, r.err
+    rep = load(out, kind="sweeps")
+    assert (rep.params.twist_steps, rep.params.arc_axes, rep.params.arc_crease) == (0, 3, 35.5)
     assert [p.kind for p in rep.patches] == ["translation"]
 
 

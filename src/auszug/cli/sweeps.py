@@ -86,6 +86,15 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--coverage-samples", type=_common.at_least(0), default=None, metavar="N",
                    help="at most N area samples for the coverage of faces no patch covers whole "
                         "(default 100000, at most 10000000; 0: whole faces only)")
+    g.add_argument("--twist-steps", type=_common.at_least(0), default=None, metavar="N",
+                   help="point-to-plane steps refining each knot's rigid map of a general sweep, 0 = the "
+                        "paper's motion only (default 4, at most 64; beyond the paper, docs/sweeps.md)")
+    g.add_argument("--arc-axes", type=_common.at_least(0), default=None, metavar="N",
+                   help="at most N axes of crease arcs tried as short rotations, 0 = no stage 'arcs' "
+                        "(default 16, at most 256; beyond the paper, docs/sweeps.md)")
+    g.add_argument("--arc-crease", type=_common.positive, default=None, metavar="DEG",
+                   help="an edge is a crease for the stage 'arcs' when its faces' normals differ by at "
+                        "least DEG (default 20, below 180)")
 
 
 def _params(args: argparse.Namespace) -> Any:
@@ -95,7 +104,8 @@ def _params(args: argparse.Namespace) -> Any:
         ("eps_prox", "eps_prox"), ("planes", "initial_plane_count"), ("percentile", "percentile"),
         ("refinements", "refinements"), ("eps_match", "eps_match"), ("match_runs", "max_match_runs"),
         ("match_angle", "match_angle"), ("parts", "max_parts"), ("mirror_planes", "mirror_planes"),
-        ("coverage_samples", "coverage_samples")) if getattr(args, opt) is not None}
+        ("coverage_samples", "coverage_samples"), ("twist_steps", "twist_steps"), ("arc_axes", "arc_axes"),
+        ("arc_crease", "arc_crease")) if getattr(args, opt) is not None}
     params = DEFAULT.with_(**changes)
     if args.match_scale is not None:
         params = params.with_scale(args.match_scale)

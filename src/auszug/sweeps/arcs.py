@@ -43,6 +43,7 @@ from auszug.sweeps.mesh import SweepMesh
 from auszug.sweeps.params import DEFAULT, SweepParams
 from auszug.sweeps.parts import _axis, _part_patches
 from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas
+from auszug.sweeps.profilefit import fit_circle_2d
 
 __all__ = ["ArcAxis", "arc_bounds", "arc_candidates", "crease_circles", "fit_circle"]
 
@@ -87,25 +88,23 @@ class ArcAxis:
 def fit_circle(points: Array) -> tuple[Array, Array, float, float]:
     """The least-squares circle through ``points (k, 3)``: centre, unit normal, radius and largest error.
 
-    The plane by SVD, the circle by the algebraic (Kasa) fit in it; the error is the larger of the
-    points' distances from the plane and from the circle within it.
+    The plane by SVD, the circle in it by :func:`~auszug.sweeps.profilefit.fit_circle_2d` (the
+    profile fit's: algebraic, refined geometrically); the error is the larger of the points'
+    distances from the plane and from the circle within it.
 
     Examples
     --------
     >>> t = np.linspace(0.0, 1.0, 6)
     >>> c, n, r, e = fit_circle(np.c_[2 * np.cos(t) + 1, 2 * np.sin(t), np.full(6, 3.0)])
-    >>> np.round(c, 9).tolist(), np.round(np.abs(n), 9).tolist(), round(r, 9), e < 1e-12
+    >>> (np.round(c, 9) + 0.0).tolist(), np.round(np.abs(n), 9).tolist(), round(r, 9), e < 1e-12
     ([1.0, 0.0, 3.0], [0.0, 0.0, 1.0], 2.0, True)
     """
     p = np.asarray(points, float)
     c0 = p.mean(axis=0)
     _, _, vt = np.linalg.svd(p - c0)
     e1, e2, n = vt
-    q = np.column_stack([(p - c0) @ e1, (p - c0) @ e2])
-    sol = np.linalg.lstsq(np.column_stack([2 * q, np.ones(len(q))]), (q**2).sum(axis=1), rcond=None)[0]
-    cc = sol[:2]
-    r = float(np.sqrt(max(sol[2] + cc @ cc, 0.0)))
-    err = max(float(np.abs(np.linalg.norm(q - cc, axis=1) - r).max()), float(np.abs((p - c0) @ n).max()))
+    cc, r, err = fit_circle_2d(np.column_stack([(p - c0) @ e1, (p - c0) @ e2]))
+    err = max(err, float(np.abs((p - c0) @ n).max()))
     return c0 + cc[0] * e1 + cc[1] * e2, n, r, err
 
 

@@ -33,8 +33,8 @@ from numpy.typing import ArrayLike, NDArray
 from auszug.errors import GeometryError
 from auszug.meshing.profile import Profile
 
-__all__ = ["Piece", "ProfileFit", "FittedProfile", "fit_lines_arcs", "fit_profile", "profile_frame",
-           "polyline_hausdorff_2d"]
+__all__ = ["Piece", "ProfileFit", "FittedProfile", "fit_circle_2d", "fit_lines_arcs", "fit_profile",
+           "profile_frame", "polyline_hausdorff_2d"]
 
 Array = NDArray[np.float64]
 #: A piece's vertices must lie within this share of the tolerance of its line or circle (tighter than
@@ -109,8 +109,21 @@ def _fit_line(p: Array) -> tuple[Array, Array, float]:
     return c, d, err
 
 
-def _fit_circle(p: Array) -> tuple[Array, float, float]:
-    """Kasa's algebraic fit refined by geometric least squares: centre, radius, max |distance - r|."""
+def fit_circle_2d(p: Array) -> tuple[Array, float, float]:
+    """The circle nearest to the points ``p (k, 2)``: centre ``(2,)``, radius and max |distance - radius|.
+
+    Kasa's algebraic fit, refined by geometric least squares on the points' distances to the
+    circle (``scipy.optimize.least_squares``, Levenberg-Marquardt); lengths in the points' units.
+    Fewer than three points, coincident points or a radius beyond 1e6 times their extent give
+    radius and error ``inf``.
+
+    Examples
+    --------
+    >>> t = np.linspace(0.0, 1.0, 6)
+    >>> c, r, e = fit_circle_2d(np.c_[2 * np.cos(t) + 1, 2 * np.sin(t)])
+    >>> (np.round(c, 9) + 0.0).tolist(), round(r, 9), e < 1e-12
+    ([1.0, 0.0], 2.0, True)
+    """
     from scipy.optimize import least_squares
 
     if len(p) < 3:
@@ -152,7 +165,7 @@ def _piece(p: Array, i0: int, i1: int, tol: float) -> Piece | None:
     if err <= tol:
         return Piece("line", i0, i1, c, d, 0.0, err)
     if len(q) >= MIN_ARC_POINTS:
-        cc, r, cerr = _fit_circle(q)
+        cc, r, cerr = fit_circle_2d(q)
         if cerr <= tol:
             return Piece("arc", i0, i1, cc, np.zeros(2), r, cerr)
     return None

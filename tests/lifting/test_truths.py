@@ -412,3 +412,53 @@ def test_robust_baseline_and_depth_anchor_against_the_truth(name, bound, counts)
     if name in ("revolve", "saddle"):
         err0, _ = T.depth_rmse(tr, _clean(name)[1])
         assert err < 0.45 * err0, (err, err0)
+
+
+# Consistency check of the parallel cues (branch lift-cues2, docs/lifting.md "Consistency check"): beyond the
+# paper, off by default. Each parallel round is solved once more without the pull of the cues it would apply,
+# and those whose angle then leaves I_b are rejected. With the robust baseline and the depth anchor (ROBUST)
+# the check solve is held near the class's starting depths, so that a cue that only its own pull made parallel
+# comes apart: measured noise-free at each truth's own view (ROBUST alone in brackets): revolve 1.15 (1.23),
+# spiral 34.14 (34.42), saddle 2.93 (2.93), wrinkle 8.96 (8.96), cross 13.63 (13.66), turret 11.01 (11.01) %;
+# parallel cues applied revolve 28 (38: F1 0.90 instead of 0.75), spiral 6 (13), saddle 23 (24), cross 27 (60).
+CONFIRM = LiftParams(parallel_robust_deg=5.0, w_depth_anchor=10.0, parallel_confirm=1)
+CONFIRM_LIFTED = [
+    ("revolve", 0.0120, {"parallel": (23, 28, 23), "planar": (9, 9, 10)}),
+    ("spiral", 0.3440, {"parallel": (5, 6, 5)}),
+    ("saddle", 0.0295, {"parallel": (12, 23, 12), "planar": (8, 8, 8)}),
+    ("wrinkle", 0.0900, {"parallel": (22, 22, 22), "planar": (3, 3, 3)}),
+    ("cross", 0.1370, {"parallel": (20, 27, 20), "orthogonal": (4, 12, 12), "planar": (6, 6, 6)}),
+    ("turret", 0.1105, {"parallel": (22, 22, 22), "orthogonal": (8, 9, 10)}),
+]
+
+
+@pytest.mark.parametrize("name, bound, counts", CONFIRM_LIFTED)
+def test_parallel_consistency_check_against_the_truth(name, bound, counts):
+    """``parallel_confirm`` = 1 with ``ROBUST``: the revolve's parallel F1 reaches the issue's 0.9 (23 true of 28
+    applied, none true lost) and its depth RMSE 1.15 %; no truth loses a true parallel cue. Every check
+    solve converges, and a rejected cue was applied by no round (the round's stage counts it as rejected)."""
+    tr = T.make(name)
+    r = lift(tr.sketch, params=CONFIRM)
+    err, sign = T.depth_rmse(tr, r)
+    assert r.converged and sign == 1 and err <= bound, (err, sign)
+    scores = T.cue_scores(r, T.labels(tr))
+    assert {k: scores[k][:3] for k in counts} == counts
+    checks = [s for s in r.stages if s.name.startswith("parallel round") and s.name.endswith(" check")]
+    assert checks and all(s.converged for s in checks)
+    rounds = [s for s in r.stages if s.name.startswith("parallel round") and not s.name.endswith(" check")]
+    assert sum(s.applied for s in rounds) == scores["parallel"][1]
+    if name == "revolve":
+        assert scores["parallel"][3] >= 0.9
+
+
+def test_parallel_consistency_check_alone_on_the_cross():
+    """Without the depth anchor the check solve is free in depth: on the cross it rejects 48 of the 50 false
+    parallel cues the default lift applies (F1 0.95 against 0.44) and the lift comes within 3.65 % of the truth
+    (16.21 % by default), while on the revolve it loses true cues too (11.45 %, docs/lifting.md); so a check
+    against the fidelity alone is no rule for every sketch."""
+    tr = T.make("cross")
+    r = lift(tr.sketch, params=LiftParams(parallel_confirm=1))
+    err, sign = T.depth_rmse(tr, r)
+    assert r.converged and sign == 1 and err <= 0.0370, (err, sign)
+    scores = T.cue_scores(r, T.labels(tr))
+    assert scores["parallel"][:3] == (20, 22, 20)

@@ -146,6 +146,17 @@ class LiftParams:
         control points' depths, ``z0`` the depths when the class's resolution
         began: the class's cues bend the network in depth only against it
         (the fidelity energy hardly resists depth changes; docs/lifting.md).
+    parallel_confirm : int
+        *Beyond the paper* (0: off, the paper's rule). A consistency check in
+        the tangent-parallelism class: after each round, the round is solved
+        once more without the soft pull of the cues it would apply (every
+        other term and cue as in the round), and a cue whose angle then leaves
+        I_b is rejected instead of applied; the round's own solution is kept.
+        1: every cue the round would apply is checked; 2: only those the
+        round brought within I_b (within it before the round, a cue is
+        applied as the paper says). A check solve that does not converge
+        checks nothing. Measured (docs/lifting.md, "Consistency check"): not
+        the default, it helps some truths and makes others worse.
     nd_ordering : bool
         Factorise the KKT matrices of the solves that take more than two Newton steps in a
         nested-dissection ordering (METIS, by ``pymetis``) with our compiled LDL^T
@@ -189,6 +200,7 @@ class LiftParams:
     parallel_robust_deg: float = 0.0
     robust_rounds: int = 3
     w_depth_anchor: float = 0.0
+    parallel_confirm: int = 0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -199,6 +211,8 @@ class LiftParams:
             raise GeometryError(f"need 0 < inner_deg < outer_deg, got {self.inner_deg}, {self.outer_deg}")
         if not self.soc_tol < 1:
             raise GeometryError(f"soc_tol must lie in [0, 1), got {self.soc_tol}")
+        if self.parallel_confirm not in (0, 1, 2):
+            raise GeometryError(f"parallel_confirm must be 0, 1 or 2, got {self.parallel_confirm!r}")
         if not 0 < self.outer_value < 1:
             raise GeometryError(f"outer_value must lie in (0, 1), got {self.outer_value}")
 

@@ -461,7 +461,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     pending = {"applied": 0}
 
     def resolve(name: str, fam, hard_add, soft_add, pre: NDArray[np.bool_] | None = None,
-                skip: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
+                skip: NDArray[np.bool_] | None = None, confirm: int = 0) -> NDArray[np.bool_]:
         nonlocal ok
         m = len(fam)
         applied = np.zeros(m, dtype=bool) if pre is None else pre.copy()   # pre: applied by global symmetry
@@ -482,15 +482,36 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             for f in hard:
                 f(C)
             r = pr.run(f"{name} round {rnd + 1}", E, C)
+            k_round = len(pr.stages) - 1
             pending["applied"] = 0
             ok &= r.converged
             L = cu.likelihood(fam.angles(pr.X()), params)
             acc = undecided & (L >= 1.0)
             rej = undecided & ~acc & ((L <= 0.0) | (L <= Lp))
+            chk = acc if confirm == 1 else acc & (Lp < 1.0)
+            if confirm and chk.any():
+                # consistency check (beyond the paper): the round re-solved without the pull of the cues it
+                # would apply; those whose angle then leaves I_b are rejected instead
+                keep_v, keep_lam = pr.v.copy(), pr.lam
+                E = pr.energy(params.w_a, anchor)
+                for f in soft_kept:
+                    f(E)
+                rest = np.nonzero(undecided & ~chk & ~rej)[0]
+                soft_add(E, rest, params.w_c * L[rest])
+                C = pr.constraints()
+                for f in hard:
+                    f(C)
+                rc = pr.run(f"{name} round {rnd + 1} check", E, C)
+                if rc.converged:
+                    L2 = cu.likelihood(fam.angles(pr.X()), params)
+                    bad = chk & (L2 < 1.0)
+                    acc &= ~bad
+                    rej |= bad
+                pr.v, pr.lam = keep_v, keep_lam
             applied |= acc
             undecided &= ~(acc | rej)
             Lp = L
-            pr.stages[-1] = replace(pr.stages[-1], applied=int(acc.sum()), rejected=int(rej.sum()))
+            pr.stages[k_round] = replace(pr.stages[k_round], applied=int(acc.sum()), rejected=int(rej.sum()))
             if acc.any():
                 sel = np.nonzero(applied)[0]
                 hard_add(sel)
@@ -552,7 +573,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         n_forced = int(forced.parallel.sum() + forced.orthogonal.sum() + forced.planar.sum()) + len(sym_glob)
         ok &= held_solve("global symmetry", n_forced).converged
 
-    par_applied = resolve("parallel", par, par_apply, lambda E, i, w: par.add(E, i, w), forced.parallel)
+    par_applied = resolve("parallel", par, par_apply, lambda E, i, w: par.add(E, i, w), forced.parallel,
+                          confirm=params.parallel_confirm)
 
     orth_applied = resolve("orthogonal", orth, lambda s: orth_state.update(sel=s),
                            lambda E, i, w: orth.add(E, i, w), forced.orthogonal)

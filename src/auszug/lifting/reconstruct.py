@@ -247,15 +247,17 @@ class _Problem:
                              else " (NOT converged)"))
         return r
 
-    def energy(self, w_a: float, anchor: Array | None = None) -> Poly2:
-        """Fidelity with accuracy weight ``w_a``; with ``anchor``, ``params.w_depth_anchor (z - anchor)^2`` too."""
+    def energy(self, w_a: float, anchor: Array | None = None, w_anchor: float | None = None) -> Poly2:
+        """Fidelity with accuracy weight ``w_a``; with ``anchor``, ``w_anchor (z - anchor)^2`` too
+        (default ``params.w_depth_anchor``)."""
         base = self.fid[w_a]
         P = Poly2(self.n)
         P.const, P.weight, P.lin, P.bil, P.rows = list(base.const), list(base.weight), list(base.lin), \
             list(base.bil), base.rows
-        if anchor is not None and self.params.w_depth_anchor > 0:
+        w = self.params.w_depth_anchor if w_anchor is None else w_anchor
+        if anchor is not None and w > 0:
             cols = 3 * np.arange(self.N) + 2
-            P.add(-anchor, self.params.w_depth_anchor, lin=(np.arange(self.N), cols, np.ones(self.N)))
+            P.add(-anchor, w, lin=(np.arange(self.N), cols, np.ones(self.N)))
         return P
 
     def constraints(self) -> Poly2:
@@ -461,7 +463,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     pending = {"applied": 0}
 
     def resolve(name: str, fam, hard_add, soft_add, pre: NDArray[np.bool_] | None = None,
-                skip: NDArray[np.bool_] | None = None, confirm: int = 0) -> NDArray[np.bool_]:
+                skip: NDArray[np.bool_] | None = None, confirm: bool = False) -> NDArray[np.bool_]:
         nonlocal ok
         m = len(fam)
         applied = np.zeros(m, dtype=bool) if pre is None else pre.copy()   # pre: applied by global symmetry
@@ -472,6 +474,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             return applied
         Lp = cu.likelihood(fam.angles(pr.X()), params)
         anchor = pr.X()[:, 2].copy() if params.w_depth_anchor > 0 else None
+        check_anchor = pr.X()[:, 2].copy() if confirm and params.w_confirm_anchor > 0 else None
         for rnd in range(params.rounds):
             E = pr.energy(params.w_a, anchor)
             for f in soft_kept:
@@ -488,23 +491,22 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             L = cu.likelihood(fam.angles(pr.X()), params)
             acc = undecided & (L >= 1.0)
             rej = undecided & ~acc & ((L <= 0.0) | (L <= Lp))
-            chk = acc if confirm == 1 else acc & (Lp < 1.0)
-            if confirm and chk.any():
-                # consistency check (beyond the paper): the round re-solved without the pull of the cues it
-                # would apply; those whose angle then leaves I_b are rejected instead
+            if confirm and acc.any():
+                # consistency check (beyond the paper, off by default): the round solved again without the pull
+                # of the cues it would apply, its depths held near the class's first ones; a cue whose angle
+                # then leaves I_b was made regular by its own pull only, and is rejected
                 keep_v, keep_lam = pr.v.copy(), pr.lam
-                E = pr.energy(params.w_a, anchor)
+                E = pr.energy(params.w_a, check_anchor, params.w_confirm_anchor)
                 for f in soft_kept:
                     f(E)
-                rest = np.nonzero(undecided & ~chk & ~rej)[0]
+                rest = np.nonzero(undecided & ~acc & ~rej)[0]
                 soft_add(E, rest, params.w_c * L[rest])
                 C = pr.constraints()
                 for f in hard:
                     f(C)
                 rc = pr.run(f"{name} round {rnd + 1} check", E, C)
                 if rc.converged:
-                    L2 = cu.likelihood(fam.angles(pr.X()), params)
-                    bad = chk & (L2 < 1.0)
+                    bad = acc & (cu.likelihood(fam.angles(pr.X()), params) < 1.0)
                     acc &= ~bad
                     rej |= bad
                 pr.v, pr.lam = keep_v, keep_lam

@@ -417,13 +417,13 @@ def test_robust_baseline_and_depth_anchor_against_the_truth(name, bound, counts)
 # Consistency check of the parallel cues (branch lift-cues2, docs/lifting.md "Consistency check"): beyond the
 # paper, off by default. Each parallel round is solved once more without the pull of the cues it would apply, the
 # depths held near the class's first ones (w_confirm_anchor 10), and the cues whose angle then leaves I_b are
-# rejected. Measured noise-free at each truth's own view: alone (CHECK), the parallel F1 rises on every truth with a
-# false candidate (revolve 0.75 -> 0.85, spiral 0.56 -> 0.80, saddle 0.67 -> 0.69, cross 0.44 -> 0.85, turret 0.96 ->
-# 1.00) and one true cue is lost (the spiral's), but the depth RMSE goes both ways: revolve 3.14 (3.11), spiral 41.21 (34.31), saddle
-# 7.45, wrinkle 8.95, cross 4.43 (16.21), turret 15.09 (10.28) %. With the robust baseline and the per-class depth
-# anchor (CONFIRM; ROBUST alone in brackets): revolve 1.15 (1.23), spiral 34.14 (34.42), saddle 2.93 (2.93), wrinkle
-# 8.96 (8.96), cross 13.63 (13.66), turret 11.01 (11.01) %, parallel cues applied revolve 28 (38), spiral 6 (13),
-# saddle 23 (24), cross 27 (60).
+# rejected. Measured noise-free at each truth's own view: alone (CHECK), the parallel F1 rises on every truth with
+# a false candidate (revolve 0.75 -> 0.85, spiral 0.56 -> 0.80, saddle 0.67 -> 0.69, cross 0.44 -> 0.85, turret
+# 0.96 -> 1.00) and one true cue is lost (the spiral's), but the depth RMSE goes both ways: revolve 3.14 (3.11),
+# spiral 41.21 (34.31), saddle 7.45, wrinkle 8.95, cross 4.43 (16.21), turret 15.09 (10.28) %. With the robust
+# baseline and the per-class depth anchor (CONFIRM; ROBUST alone in brackets): revolve 1.15 (1.23), spiral 34.14
+# (34.42), saddle 2.93 (2.93), wrinkle 8.96 (8.96), cross 13.63 (13.66), turret 11.01 (11.01) %, parallel cues
+# applied revolve 28 (38), spiral 6 (13), saddle 23 (24), cross 27 (60).
 CHECK = LiftParams(parallel_confirm=True)
 CONFIRM = LiftParams(parallel_robust_deg=5.0, w_depth_anchor=10.0, parallel_confirm=True)
 CONFIRM_LIFTED = [

@@ -248,13 +248,12 @@ class _Problem:
         return r
 
     def energy(self, w_a: float, anchor: Array | None = None, w_anchor: float | None = None) -> Poly2:
-        """Fidelity with accuracy weight ``w_a``; with ``anchor``, ``w_anchor (z - anchor)^2`` too
-        (default ``params.w_depth_anchor``)."""
+        """Fidelity with accuracy weight ``w_a``; with ``anchor``, ``w (z - anchor)^2`` (w: ``w_anchor``)."""
         base = self.fid[w_a]
         P = Poly2(self.n)
         P.const, P.weight, P.lin, P.bil, P.rows = list(base.const), list(base.weight), list(base.lin), \
             list(base.bil), base.rows
-        w = self.params.w_depth_anchor if w_anchor is None else w_anchor
+        w = self.params.w_depth_anchor if w_anchor is None else w_anchor   # by default the class's anchor
         if anchor is not None and w > 0:
             cols = 3 * np.arange(self.N) + 2
             P.add(-anchor, w, lin=(np.arange(self.N), cols, np.ones(self.N)))

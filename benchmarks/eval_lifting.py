@@ -18,10 +18,15 @@ Usage (from the repository root)::
 
     python -m benchmarks.eval_lifting noise [--truths a,b] [--cues default|none] [--markdown]
     python -m benchmarks.eval_lifting views [--truths a,b] [--cues none|default]
+    python -m benchmarks.eval_lifting signs [--cues none|default]
     python -m benchmarks.eval_lifting energy [--truths a,b]
 
 ``--params k=v,...`` lifts with those :class:`~auszug.lifting.LiftParams` fields (noise and views modes),
-e.g. ``--params parallel_robust_deg=5,w_depth_anchor=10`` (branch lift-energy, docs/lifting.md).
+e.g. ``--params parallel_robust_deg=5,w_depth_anchor=10`` (branch lift-energy, docs/lifting.md) or
+``--params parallel_confirm=1`` (the consistency check of the parallel cues, branch lift-cues2).
+
+``signs``: the depth-sign grid of docs/lifting.md (the bundled examples' objects, the box and the revolve; 3 tilts
+x 4 turns, no view rejected), wrong signs and depth RMSE per object.
 
 ``energy`` (branch lift-acc): the baseline energy term by term (accuracy, minimal variation,
 foreshortening, soft parallelism) at the truth, at the baseline lift, and at the minimum of the
@@ -165,6 +170,44 @@ def views_table(names: list[str], classes: tuple[str, ...], out, params: LiftPar
     print(f"\nwrong sign: {wrong_total} of {total} lifts ({100 * wrong_total / max(total, 1):.1f} %)", file=out)
 
 
+SIGN_TILTS = (15.0, 25.0, 35.0)
+SIGN_TURNS = (-50.0, -25.0, 25.0, 50.0)
+SIGN_OBJECTS = ("vase", "ogee-roof", "arches", "box", "revolve")
+
+
+def signs_table(classes: tuple[str, ...], out, params: LiftParams = DEFAULT) -> None:
+    """The depth-sign grid of docs/lifting.md ("Depth sign"): the three bundled examples' objects, the box and the
+    revolve at tilts 15, 25, 35 deg and turns -50, -25, 25, 50 deg (60 lifts, noise-free, no view rejected)."""
+    from tests.lifting.test_lifting import _example_truth
+
+    print("| object | wrong sign | depth RMSE mean / max | not converged |", file=out)
+    print("|---|---|---|---|", file=out)
+    total = 0
+    for name in SIGN_OBJECTS:
+        errs, wrong, unconv = [], [], 0
+        for tilt in SIGN_TILTS:
+            for turn in SIGN_TURNS:
+                if name == "box":
+                    tr = T.box(tilt=tilt, turn=turn)
+                elif name == "revolve":
+                    tr = T.revolve(tilt=tilt, turn=turn)
+                else:
+                    tr = _example_truth(name, T.rotation(tilt, turn))
+                r = lift(tr.sketch, params=params, classes=classes)   # no labels: crossings off the examples' knots
+                err, sign = T.depth_rmse(tr, r)
+                errs.append(err)
+                unconv += not r.converged
+                if sign != 1:
+                    wrong.append(f"{tilt:g}/{turn:g} ({100 * err:.1f} %)")
+                e = {"err": err, "sign": sign, "converged": r.converged}
+                print(f"# {name} {tilt:g} {turn:g}: {_fmt_err(e)} %", file=sys.stderr, flush=True)
+        total += len(wrong)
+        print(f"| {name} | {len(wrong)}{': ' + ', '.join(wrong) if wrong else ''} | {100 * np.mean(errs):.2f} / "
+              f"{100 * np.max(errs):.2f} % | {unconv} |", file=out, flush=True)
+    n = len(SIGN_OBJECTS) * len(SIGN_TILTS) * len(SIGN_TURNS)
+    print(f"\nwrong sign: {total} of {n} lifts ({100 * total / n:.1f} %)", file=out)
+
+
 def energy_table(names: list[str], out) -> None:
     """The baseline energy by term at the truth, at the lift and at the truth's own basin (docs/lifting.md)."""
     print("| truth | w_p | energy: truth (acc, var, fore, par) | lift: energy, depth RMSE | truth's basin: energy, "
@@ -184,7 +227,7 @@ def energy_table(names: list[str], out) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("mode", choices=("noise", "views", "energy"))
+    ap.add_argument("mode", choices=("noise", "views", "signs", "energy"))
     ap.add_argument("--truths", default=",".join(T.TRUTHS))
     ap.add_argument("--cues", default="default", choices=("default", "none"))
     ap.add_argument("--params", default="", help="LiftParams fields, e.g. parallel_robust_deg=5,w_depth_anchor=10")
@@ -196,6 +239,8 @@ def main(argv: list[str] | None = None) -> int:
     print(f"cues: {a.cues}; params: {a.params or 'default'}; load {os.getloadavg()[0]:.1f} at start", file=sys.stdout)
     if a.mode == "energy":
         energy_table(names, sys.stdout)
+    elif a.mode == "signs":
+        signs_table(classes, sys.stdout, params)
     else:
         (noise_table if a.mode == "noise" else views_table)(names, classes, sys.stdout, params)
     print(f"load {os.getloadavg()[0]:.1f} at the end", file=sys.stdout)

@@ -412,3 +412,67 @@ def test_robust_baseline_and_depth_anchor_against_the_truth(name, bound, counts)
     if name in ("revolve", "saddle"):
         err0, _ = T.depth_rmse(tr, _clean(name)[1])
         assert err < 0.45 * err0, (err, err0)
+
+
+# Consistency check of the parallel cues (branch lift-cues2, docs/lifting.md "Consistency check"): beyond the
+# paper, off by default. Each parallel round is solved once more without the pull of the cues it would apply, the
+# depths held near the class's first ones (w_confirm_anchor 10), and the cues whose angle then leaves I_b are
+# rejected. Measured noise-free at each truth's own view: alone (CHECK), the parallel F1 rises on every truth with
+# a false candidate (revolve 0.75 -> 0.85, spiral 0.56 -> 0.80, saddle 0.67 -> 0.69, cross 0.44 -> 0.85, turret
+# 0.96 -> 1.00) and one true cue is lost (the spiral's), but the depth RMSE goes both ways: revolve 3.14 (3.11),
+# spiral 41.21 (34.31), saddle 7.45, wrinkle 8.95, cross 4.43 (16.21), turret 15.09 (10.28) %. With the robust
+# baseline and the per-class depth anchor (CONFIRM; ROBUST alone in brackets): revolve 1.15 (1.23), spiral 34.14
+# (34.42), saddle 2.93 (2.93), wrinkle 8.96 (8.96), cross 13.63 (13.66), turret 11.01 (11.01) %, parallel cues
+# applied revolve 28 (38), spiral 6 (13), saddle 23 (24), cross 27 (60).
+CHECK = LiftParams(parallel_confirm=True)
+CONFIRM = LiftParams(parallel_robust_deg=5.0, w_depth_anchor=10.0, parallel_confirm=True)
+CONFIRM_LIFTED = [
+    (CHECK, "revolve", 0.0316, {"parallel": (23, 31, 23), "planar": (9, 9, 10)}),
+    (CHECK, "spiral", 0.4140, {"parallel": (4, 5, 5), "planar": (0, 2, 0)}),
+    (CHECK, "saddle", 0.0750, {"parallel": (12, 23, 12), "planar": (8, 8, 8)}),
+    (CHECK, "wrinkle", 0.0900, {"parallel": (22, 22, 22), "planar": (3, 3, 3)}),
+    (CHECK, "cross", 0.0450, {"parallel": (20, 27, 20), "orthogonal": (8, 18, 12), "planar": (2, 2, 6)}),
+    (CHECK, "turret", 0.1520, {"parallel": (22, 22, 22), "orthogonal": (8, 12, 10)}),
+    (CONFIRM, "revolve", 0.0120, {"parallel": (23, 28, 23), "planar": (9, 9, 10)}),
+    (CONFIRM, "spiral", 0.3440, {"parallel": (5, 6, 5), "planar": (0, 2, 0)}),
+    (CONFIRM, "saddle", 0.0295, {"parallel": (12, 23, 12), "planar": (8, 8, 8)}),
+    (CONFIRM, "wrinkle", 0.0900, {"parallel": (22, 22, 22), "planar": (3, 3, 3)}),
+    (CONFIRM, "cross", 0.1370, {"parallel": (20, 27, 20), "orthogonal": (4, 12, 12), "planar": (6, 6, 6)}),
+    (CONFIRM, "turret", 0.1105, {"parallel": (22, 22, 22), "orthogonal": (8, 9, 10)}),
+]
+
+
+@pytest.mark.parametrize("params, name, bound, counts", CONFIRM_LIFTED)
+def test_parallel_consistency_check_against_the_truth(params, name, bound, counts):
+    """``parallel_confirm``: every truth with a false candidate applies fewer false ones than the paper's rule (the
+    default lift's counts are pinned in ``LIFTED``), and only the spiral loses a true one (alone); with ``CONFIRM`` the
+    revolve's parallel F1 reaches the issue's 0.9 and its depth RMSE 1.15 %. Every check solve converges, and the
+    rounds' stage counts add up to the applied cues."""
+    tr = T.make(name)
+    r = lift(tr.sketch, params=params)
+    err, sign = T.depth_rmse(tr, r)
+    assert r.converged and sign == 1 and err <= bound, (err, sign)
+    scores = T.cue_scores(r, T.labels(tr))
+    assert {k: scores[k][:3] for k in counts} == counts
+    checks = [s for s in r.stages if s.name.startswith("parallel round") and s.name.endswith(" check")]
+    assert checks and all(s.converged for s in checks)
+    rounds = [s for s in r.stages if s.name.startswith("parallel round") and not s.name.endswith(" check")]
+    assert sum(s.applied for s in rounds) == scores["parallel"][1]
+    if params is CONFIRM and name == "revolve":
+        assert scores["parallel"][3] >= 0.9
+
+
+def test_parallel_consistency_check_without_its_depth_anchor():
+    """With ``w_confirm_anchor`` 0 the check solve is free in depth: on the cross it rejects 48 of the 50 false
+    parallel cues the default lift applies (F1 0.95 against 0.44) and the lift comes within 3.65 % of the truth
+    (16.21 % by default), but on the revolve it rejects 12 of the 23 true cues too (11.45 %, the wrong sign)."""
+    free = LiftParams(parallel_confirm=True, w_confirm_anchor=0.0)
+    tr = T.make("cross")
+    r = lift(tr.sketch, params=free)
+    err, sign = T.depth_rmse(tr, r)
+    assert r.converged and sign == 1 and err <= 0.0370, (err, sign)
+    assert T.cue_scores(r, T.labels(tr))["parallel"][:3] == (20, 22, 20)
+    tr = T.make("revolve")
+    r = lift(tr.sketch, params=free)
+    assert T.cue_scores(r, T.labels(tr))["parallel"][:3] == (11, 15, 23)
+    assert T.depth_rmse(tr, r)[0] > 0.10

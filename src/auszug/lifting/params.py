@@ -146,6 +146,24 @@ class LiftParams:
         control points' depths, ``z0`` the depths when the class's resolution
         began: the class's cues bend the network in depth only against it
         (the fidelity energy hardly resists depth changes; docs/lifting.md).
+    parallel_confirm : bool
+        *Beyond the paper* (off: the paper's rule). A consistency check in the
+        tangent-parallelism class: after each round, the round is solved once
+        more without the soft pull of the cues it would apply (every other
+        term and cue as in the round, the depths held by
+        ``w_confirm_anchor``), and a cue whose angle then leaves I_b is
+        rejected instead of applied (its likelihood rose by its own pull
+        only); the round's own solution is kept. A check solve that does not
+        converge checks nothing. Measured (docs/lifting.md, "Consistency
+        check"): it raises the parallel F1 of the noise-free truths, but the
+        depth error goes both ways and noise costs recall, so it is not the
+        default.
+    w_confirm_anchor : float
+        Weight of ``sum_k (z_k - z0_k)^2`` in the check solves of
+        ``parallel_confirm``, z0 the depths when the class's resolution began
+        (10, the measured setting; 0: none). Without it the check solve is
+        free along the fidelity's near-null space in depth, and true cues
+        leave I_b too (the revolve loses 12 of its 23 true cues).
     nd_ordering : bool
         Factorise the KKT matrices of the solves that take more than two Newton steps in a
         nested-dissection ordering (METIS, by ``pymetis``) with our compiled LDL^T
@@ -189,6 +207,8 @@ class LiftParams:
     parallel_robust_deg: float = 0.0
     robust_rounds: int = 3
     w_depth_anchor: float = 0.0
+    parallel_confirm: bool = False
+    w_confirm_anchor: float = 10.0
 
     def __post_init__(self) -> None:
         for f in fields(self):

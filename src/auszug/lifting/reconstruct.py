@@ -247,15 +247,16 @@ class _Problem:
                              else " (NOT converged)"))
         return r
 
-    def energy(self, w_a: float, anchor: Array | None = None) -> Poly2:
-        """Fidelity with accuracy weight ``w_a``; with ``anchor``, ``params.w_depth_anchor (z - anchor)^2`` too."""
+    def energy(self, w_a: float, anchor: Array | None = None, w_anchor: float | None = None) -> Poly2:
+        """Fidelity with accuracy weight ``w_a``; with ``anchor``, ``w (z - anchor)^2`` (w: ``w_anchor``)."""
         base = self.fid[w_a]
         P = Poly2(self.n)
         P.const, P.weight, P.lin, P.bil, P.rows = list(base.const), list(base.weight), list(base.lin), \
             list(base.bil), base.rows
-        if anchor is not None and self.params.w_depth_anchor > 0:
+        w = self.params.w_depth_anchor if w_anchor is None else w_anchor   # by default the class's anchor
+        if anchor is not None and w > 0:
             cols = 3 * np.arange(self.N) + 2
-            P.add(-anchor, self.params.w_depth_anchor, lin=(np.arange(self.N), cols, np.ones(self.N)))
+            P.add(-anchor, w, lin=(np.arange(self.N), cols, np.ones(self.N)))
         return P
 
     def constraints(self) -> Poly2:
@@ -461,7 +462,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     pending = {"applied": 0}
 
     def resolve(name: str, fam, hard_add, soft_add, pre: NDArray[np.bool_] | None = None,
-                skip: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
+                skip: NDArray[np.bool_] | None = None, confirm: bool = False) -> NDArray[np.bool_]:
         nonlocal ok
         m = len(fam)
         applied = np.zeros(m, dtype=bool) if pre is None else pre.copy()   # pre: applied by global symmetry
@@ -472,6 +473,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             return applied
         Lp = cu.likelihood(fam.angles(pr.X()), params)
         anchor = pr.X()[:, 2].copy() if params.w_depth_anchor > 0 else None
+        check_anchor = pr.X()[:, 2].copy() if confirm and params.w_confirm_anchor > 0 else None
         for rnd in range(params.rounds):
             E = pr.energy(params.w_a, anchor)
             for f in soft_kept:
@@ -482,15 +484,35 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             for f in hard:
                 f(C)
             r = pr.run(f"{name} round {rnd + 1}", E, C)
+            k_round = len(pr.stages) - 1
             pending["applied"] = 0
             ok &= r.converged
             L = cu.likelihood(fam.angles(pr.X()), params)
             acc = undecided & (L >= 1.0)
             rej = undecided & ~acc & ((L <= 0.0) | (L <= Lp))
+            if confirm and acc.any():
+                # consistency check (beyond the paper, off by default): the round solved again without the pull
+                # of the cues it would apply, its depths held near the class's first ones; a cue whose angle
+                # then leaves I_b was made regular by its own pull only, and is rejected
+                keep_v, keep_lam = pr.v.copy(), pr.lam
+                E = pr.energy(params.w_a, check_anchor, params.w_confirm_anchor)
+                for f in soft_kept:
+                    f(E)
+                rest = np.nonzero(undecided & ~acc & ~rej)[0]
+                soft_add(E, rest, params.w_c * L[rest])
+                C = pr.constraints()
+                for f in hard:
+                    f(C)
+                rc = pr.run(f"{name} round {rnd + 1} check", E, C)
+                if rc.converged:
+                    bad = acc & (cu.likelihood(fam.angles(pr.X()), params) < 1.0)
+                    acc &= ~bad
+                    rej |= bad
+                pr.v, pr.lam = keep_v, keep_lam
             applied |= acc
             undecided &= ~(acc | rej)
             Lp = L
-            pr.stages[-1] = replace(pr.stages[-1], applied=int(acc.sum()), rejected=int(rej.sum()))
+            pr.stages[k_round] = replace(pr.stages[k_round], applied=int(acc.sum()), rejected=int(rej.sum()))
             if acc.any():
                 sel = np.nonzero(applied)[0]
                 hard_add(sel)
@@ -552,7 +574,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         n_forced = int(forced.parallel.sum() + forced.orthogonal.sum() + forced.planar.sum()) + len(sym_glob)
         ok &= held_solve("global symmetry", n_forced).converged
 
-    par_applied = resolve("parallel", par, par_apply, lambda E, i, w: par.add(E, i, w), forced.parallel)
+    par_applied = resolve("parallel", par, par_apply, lambda E, i, w: par.add(E, i, w), forced.parallel,
+                          confirm=params.parallel_confirm)
 
     orth_applied = resolve("orthogonal", orth, lambda s: orth_state.update(sel=s),
                            lambda E, i, w: orth.add(E, i, w), forced.orthogonal)

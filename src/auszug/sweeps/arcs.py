@@ -9,8 +9,9 @@ curve under their rotations, so the stage ``parts`` proposes no such axis
 
 1. :func:`crease_circles`: the creases (edges whose faces' normals differ by at least
    ``arc_crease`` degrees) beside the faces left open, chained at vertices with two crease edges
-   and split where a chain turns by more than 30 degrees at a vertex; each piece of at least 4
-   vertices is fitted with a circle (plane by SVD, circle by least squares in it), and it is an
+   and split where a chain turns by more than 30 degrees at a vertex, then cut into its longest
+   circles (:func:`circle_pieces`: tangent arcs, a foil's lobes, meet at no corner); each piece of
+   at least 4 vertices is fitted with a circle (plane by SVD, circle by least squares in it), and it is an
    arc when every vertex lies within ``arc_fit * eps_prox`` of the circle, the piece bends away
    from its chord by at least ``eps_prox`` and the radius is at most the mesh's diameter. On a
    surface of revolution the profile's corners sweep such circles about the axis exactly. The
@@ -22,13 +23,18 @@ curve under their rotations, so the stage ``parts`` proposes no such axis
    ``arc_sweep_length`` and ``arc_min_area`` in place of ``min_sweep_length`` and
    ``min_patch_area``, and a patch is a candidate only when its faces hold one of the axis' arcs
    whole (every vertex); :func:`~auszug.sweeps.detect` keeps such a patch when it fits within
-   ``fit_factor * eps_prox``, covers ``arc_min_area`` and sweeps ``arc_sweep_length``.
+   ``fit_factor * eps_prox``, covers ``arc_min_area`` and sweeps ``arc_sweep_length``;
+3. :func:`flat_candidates` (``arc_flat``): the planar faces normal to an axis, in the plane of one
+   of its arcs, swept about it by a straight radial profile from the arc (a wall's face around an
+   arch, where the translations' rectangular blocks do not reach); ``detect`` keeps such a patch
+   when it adds ``arc_min_area`` of the area to the others (:func:`~auszug.sweeps.patches.add_by_area`).
 
 The lower bounds hold only for axes that the mesh's own creases give as exact circles, and the
 creases are what keeps smooth bumps out: a Gaussian bump is locally a surface of revolution, and
-given the random bumps' own 40 axes the relaxed bounds keep 4 patches at ``eps_prox`` 0.005
-(0.0077-0.0097 of the area each; none at 0.001), but no edge of the bumps turns by even 13
-degrees, so no axis is proposed (``tests/sweeps/test_arcs.py``; docs/sweeps.md, "Short arcs").
+given the random bumps' own 40 axes the relaxed bounds of branch sweeps-window6 (0.1, 0.005) keep
+4 patches at ``eps_prox`` 0.005 (0.0077-0.0097 of the area each; none at 0.001), but no edge of the
+bumps turns by even 13 degrees, so no axis is proposed, whatever the bounds
+(``tests/sweeps/test_arcs.py``; docs/sweeps.md, "Short arcs" and "Planar patches about crease arcs").
 """
 
 from __future__ import annotations
@@ -40,12 +46,14 @@ from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
 from auszug.sweeps.mesh import SweepMesh
+from auszug.sweeps.motion import Motion
 from auszug.sweeps.params import DEFAULT, SweepParams
-from auszug.sweeps.parts import _axis, _part_patches
+from auszug.sweeps.parts import _axis, _part_patches, _trimmed
 from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas
 from auszug.sweeps.profilefit import fit_circle_2d
 
-__all__ = ["ArcAxis", "arc_bounds", "arc_candidates", "crease_circles", "fit_circle"]
+__all__ = ["ArcAxis", "arc_bounds", "arc_candidates", "circle_pieces", "crease_circles", "fit_circle",
+           "flat_candidates"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -149,6 +157,58 @@ def _split(path: list[int], vertices: Array) -> list[list[int]]:
     return [path[a:b + 1] for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
 
 
+def circle_pieces(path: list[int], vertices: Array, tol: float) -> list[list[int]]:
+    """A vertex chain cut into its longest pieces that are circles within ``tol``, from its start on.
+
+    Greedy: from the first vertex the piece grows (by doubling, then bisection) as long as the
+    least-squares circle (:func:`fit_circle`) of its vertices stays within ``tol`` of every one; the
+    next piece starts at its last vertex. A chain of tangent arcs (a foil's lobes, a lancet's head
+    running into its jamb: no corner splits them) is so cut into its arcs and lines; a piece of
+    fewer than :data:`ARC_VERTICES` vertices is dropped.
+
+    Examples
+    --------
+    A quarter circle running tangentially into a line (collinear points fit no circle):
+
+    >>> t = np.linspace(np.pi / 2, 0.0, 9)
+    >>> line = np.c_[np.ones(8), -0.25 * np.arange(1, 9), np.zeros(8)]
+    >>> v = np.vstack([np.c_[np.cos(t), np.sin(t), np.zeros(9)], line])
+    >>> [(p[0], p[-1]) for p in circle_pieces(list(range(17)), v, 1e-9)]
+    [(0, 8)]
+    """
+    n = len(path)
+    p = vertices[path]
+
+    def ok(i: int, j: int) -> bool:
+        return j - i < 2 or fit_circle(p[i:j + 1])[3] <= tol
+
+    out: list[list[int]] = []
+    i = 0
+    while i < n - 1:
+        lo, step = min(i + 2, n - 1), 1
+        if not ok(i, lo):
+            i += 1
+            continue
+        hi = lo
+        while hi < n - 1:
+            nxt = min(hi + step, n - 1)
+            if not ok(i, nxt):
+                hi = nxt
+                break
+            lo = hi = nxt
+            step *= 2
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            if ok(i, mid):
+                lo = mid
+            else:
+                hi = mid
+        if lo + 1 - i >= ARC_VERTICES:
+            out.append(path[i:lo + 1])
+        i = lo
+    return out
+
+
 def arc_bounds(params: SweepParams) -> SweepParams:
     """``params`` with the arcs' least sweep length and area as ``min_sweep_length`` and ``min_patch_area``.
 
@@ -201,31 +261,32 @@ def crease_circles(mesh: SweepMesh, free: NDArray[np.bool_] | None = None,
     eps = params.eps_prox
     up = np.array([0.3, 0.5, 0.8])
     found: list[tuple[Array, Array, list[IntArray], list[float]]] = []
-    for chain in _chains(edges):
-        for piece in _split(chain, mesh.vertices):
-            if len(set(piece)) < ARC_VERTICES:
-                continue
-            p = mesh.vertices[piece]
-            chord = p[-1] - p[0]
-            lc = float(np.linalg.norm(chord))
-            off = p - p[0]
-            bend = (np.linalg.norm(off - np.outer(off @ chord, chord) / lc**2, axis=1).max() if lc > 0
-                    else np.linalg.norm(off, axis=1).max())
-            if bend < eps:
-                continue            # (nearly) straight: no circle is determined
-            centre, n, r, err = fit_circle(p)
-            if err > params.arc_fit * eps or r > 1.0:
-                continue
-            n = n if n @ up >= 0 else -n
-            point = centre - (centre @ n) * n
-            ids = np.asarray(piece, np.int64)
-            for d, q, chains, errs in found:
-                if abs(float(d @ n)) >= np.cos(np.radians(SAME_AXIS)) and float(np.linalg.norm(q - point)) <= eps:
-                    chains.append(ids)
-                    errs.append(err)
-                    break
-            else:
-                found.append((n, point, [ids], [err]))
+    pieces = [c for chain in _chains(edges) for piece in _split(chain, mesh.vertices)
+              for c in circle_pieces(piece, mesh.vertices, params.arc_fit * eps)]
+    for piece in pieces:
+        if len(set(piece)) < ARC_VERTICES:
+            continue
+        p = mesh.vertices[piece]
+        chord = p[-1] - p[0]
+        lc = float(np.linalg.norm(chord))
+        off = p - p[0]
+        bend = (np.linalg.norm(off - np.outer(off @ chord, chord) / lc**2, axis=1).max() if lc > 0
+                else np.linalg.norm(off, axis=1).max())
+        if bend < eps:
+            continue            # (nearly) straight: no circle is determined
+        centre, n, r, err = fit_circle(p)
+        if err > params.arc_fit * eps or r > 1.0:
+            continue
+        n = n if n @ up >= 0 else -n
+        point = centre - (centre @ n) * n
+        ids = np.asarray(piece, np.int64)
+        for d, q, chains, errs in found:
+            if abs(float(d @ n)) >= np.cos(np.radians(SAME_AXIS)) and float(np.linalg.norm(q - point)) <= eps:
+                chains.append(ids)
+                errs.append(err)
+                break
+        else:
+            found.append((n, point, [ids], [err]))
     axes = [ArcAxis(d, q, tuple(c), max(e)) for d, q, c, e in found]
     axes.sort(key=lambda x: -x.n_vertices)
     return axes[:params.arc_axes]
@@ -283,3 +344,90 @@ def arc_candidates(mesh: SweepMesh, free: NDArray[np.bool_], params: SweepParams
             if any(bool(on[c].all()) for c in ax.chains):
                 out.append(replace(p, id=first_id + len(out)))
     return out, len(axes)
+
+
+def flat_candidates(mesh: SweepMesh, free: NDArray[np.bool_], axes: list[ArcAxis], params: SweepParams = DEFAULT,
+                    tree: MeshTree | None = None, first_id: int = 0) -> list[SweepPatch]:
+    """Rotations of straight radial profiles over the planar faces normal to the crease arcs' axes.
+
+    A flat face is swept by a straight line under every motion in its plane: a translation along it
+    (the stage ``parts`` tries those, ``part_across``), or a rotation about an axis normal to it. A
+    crease arc lying in a plane of the mesh (a wall's face meeting the reveal of an arch, a plate's
+    face meeting a foil's moulding) says which rotation: the one about that arc's axis, whose
+    circles run along the face's curved border, where no translation's block reaches. Per axis and
+    arc, when the faces whose normals lie within ``part_across`` (a sine) of the axis and whose
+    vertices lie within ``arc_fit * eps_prox`` of the arc's plane hold an open face, the profile is
+    the segment of the ray from the axis through the arc's middle vertex that lies on those faces,
+    from the arc outwards and from the arc inwards, in steps of ``eps_prox``; each at least
+    ``part_l_min`` long is trimmed over a whole turn on the whole mesh (the blocks of the stage
+    ``parts``, with the arcs' bounds: :func:`arc_bounds`) and fitted.
+
+    Parameters
+    ----------
+    mesh : SweepMesh
+    free : (m,) bool array
+        The faces the candidates so far leave open.
+    axes : list of ArcAxis
+        From :func:`crease_circles`.
+    params : SweepParams
+    tree : MeshTree, optional
+        The whole mesh's tree (built here if not given).
+    first_id : int
+
+    Returns
+    -------
+    list of SweepPatch
+        Rotations; faces index ``mesh.faces`` (a face is the patch's when all its corners lie on
+        the swept surface, so a long face of the plane, reaching beyond the block, is not: the fit
+        stage of :func:`~auszug.sweeps.detect` counts these patches by the area they cover).
+    """
+    free_f = np.asarray(free, bool)
+    if not axes or not free_f.any():
+        return []
+    tree = tree if tree is not None else MeshTree.of(mesh)
+    eps = params.eps_prox
+    tol = params.arc_fit * eps
+    tri = mesh.vertices[mesh.faces]
+    fn = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    fn /= np.maximum(np.linalg.norm(fn, axis=1, keepdims=True), 1e-300)
+    arc_params = arc_bounds(params)
+    part_params = arc_params.with_(l_min=params.part_l_min, profile_cuts=params.part_profile_cuts)
+    still = Motion(np.array([0.0, 1.0]), np.stack([np.eye(3)] * 2), np.zeros((2, 3)))   # _trimmed reads the profile
+    out: list[SweepPatch] = []
+    for ax in axes:
+        c = np.r_[ax.direction, np.cross(ax.point, ax.direction)]
+        axis = _axis(c / np.linalg.norm(c), params)
+        if axis.kind != "rotation" or axis.point is None:
+            continue
+        d, q = axis.direction / np.linalg.norm(axis.direction), axis.point
+        across = np.linalg.norm(np.cross(fn, d), axis=1) <= params.part_across
+        h_v = (mesh.vertices - q) @ d
+        done: set[tuple[int, int, int]] = set()
+        for chain in ax.chains:
+            h0 = float(h_v[chain].mean())
+            plane = across & (np.abs(h_v[mesh.faces] - h0) <= tol).all(axis=1)
+            if not (plane & free_f).any():
+                continue
+            mid = mesh.vertices[chain[len(chain) // 2]] - q
+            u = mid - (mid @ d) * d
+            r0 = float(np.linalg.norm(u))
+            if r0 <= 0:
+                continue
+            u /= r0
+            flat = MeshTree(mesh.vertices, mesh.faces[plane])
+            for side in (1, -1):
+                key = (int(round(h0 / tol)), side, int(round(r0 / eps)))
+                if key in done:
+                    continue        # another piece of the same circle in the same plane: its rings are the same
+                done.add(key)
+                reach = float(np.max(np.abs((mesh.vertices - q) @ u))) + eps if side > 0 else r0
+                s = np.arange(0.0, reach, eps)
+                pts = q + h0 * d + (r0 + side * s)[:, None] * u
+                on = flat.query(pts)[0] <= tol
+                n_on = int(np.argmin(on)) if not on.all() else len(on)
+                if n_on < 2 or s[n_on - 1] < params.part_l_min:
+                    continue
+                stub = SweepPatch(0, "rotation", pts[:n_on], False, still, np.zeros(0, np.int64), 0.0, 0.0)
+                for p in _trimmed(mesh, tree, axis, stub, part_params, (-np.pi, np.pi)):
+                    out.append(replace(p, id=first_id + len(out)))
+    return out

@@ -33,11 +33,15 @@ Stages (each also callable alone, see :mod:`auszug.sweeps`):
    creases beside the faces left (:func:`~auszug.sweeps.arcs.crease_circles`), searched as parts
    (:func:`~auszug.sweeps.arcs.arc_candidates`): sweeps along arcs too short for
    ``min_sweep_length``, such as a lancet's head; such a patch is kept when it sweeps at least
-   ``arc_sweep_length`` and covers ``arc_min_area``;
+   ``arc_sweep_length`` and covers ``arc_min_area``; with ``arc_flat``, also the planar faces
+   normal to such an axis swept about it by radial lines (:func:`~auszug.sweeps.arcs.flat_candidates`);
 8. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
-   ``min_patch_area`` of the mesh (the arcs' patches: ``arc_min_area``) are dropped; the rest are
-   converted to the input's coordinates, each profile fitted with exact lines and arcs
-   (``profile_fit_tolerance``, docs/sweeps.md section 6).
+   ``min_patch_area`` of the mesh (the arcs' patches: ``arc_min_area``) are dropped, and of those
+   left, most coverage first, each whose faces the ones before hold (``patch_overlap``); then
+   the planar patches about the arcs' axes, each while it adds ``arc_min_area`` of the area
+   (:func:`~auszug.sweeps.patches.add_by_area`); the rest are converted to the input's
+   coordinates, each profile fitted with exact lines and arcs (``profile_fit_tolerance``,
+   docs/sweeps.md section 6).
 
 Each stage reports what it kept in a :class:`Stage` (for ``auszug sweeps --explain``).
 """
@@ -53,14 +57,14 @@ from numpy.typing import NDArray
 
 from auszug.errors import GeometryError
 from auszug.limits import LIMITS
-from auszug.sweeps.arcs import arc_bounds, arc_candidates, crease_circles
+from auszug.sweeps.arcs import arc_bounds, arc_candidates, crease_circles, flat_candidates
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import kinematic_axis
 from auszug.sweeps.mesh import SweepMesh, normalise
 from auszug.sweeps.mirror import mirror_candidates, mirror_planes
 from auszug.sweeps.movability import movability
 from auszug.sweeps.params import DEFAULT, SweepParams
-from auszug.sweeps.patches import MeshTree, SweepPatch, area_coverage, face_areas, kinematic_patches
+from auszug.sweeps.patches import MeshTree, SweepPatch, add_by_area, area_coverage, face_areas, kinematic_patches
 from auszug.sweeps.planes import initial_planes, spacing_for
 from auszug.sweeps.stage import Stage
 
@@ -328,19 +332,29 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         if _fits(p, params):
             free[p.faces] = False
     arcs: list[SweepPatch] = []
+    flats: list[SweepPatch] = []
     short = arc_bounds(params)
     if params.arc_axes > 0 and areas.sum() > 0 and float(areas[free].sum() / areas.sum()) >= params.min_patch_area:
         # rotations about the axes of the exact arcs among the creases beside the faces left: sweeps
-        # along arcs too short for min_sweep_length (a lancet's head; beyond the paper, docs/sweeps.md)
+        # along arcs too short for min_sweep_length (a lancet's head; beyond the paper, docs/sweeps.md),
+        # and the planar faces normal to such an axis swept about it by radial lines (a wall's face
+        # around an arch)
         t = step("arcs")
         axes = crease_circles(m, free, params)
-        arcs, tried = arc_candidates(m, free, params, MeshTree.of(m), first_id=len(raw), axes=axes)
+        tree = MeshTree.of(m)
+        arcs, tried = arc_candidates(m, free, params, tree, first_id=len(raw), axes=axes)
+        if params.arc_flat:
+            flats = flat_candidates(m, free, axes, params, tree, first_id=len(raw) + len(arcs))
         fits = sum(_fits(p, short) for p in arcs)
+        flat_fits = sum(p.fit_error <= bound and sweep_length(p) >= short.min_sweep_length for p in flats)
         stages.append(Stage("arcs", time.perf_counter() - t,
                             f"{len(axes)} axis/axes of crease arcs within {params.arc_fit * params.eps_prox:.3g} "
                             f"of a circle; {len(arcs)} patch(es), {fits} within fit error {bound:.3g}, covering "
-                            f">= {short.min_patch_area:.3g} and sweeping >= {short.min_sweep_length:.3g}",
-                            {"axes": len(axes), "tried": tried, "candidates": len(arcs), "fit": fits}))
+                            f">= {short.min_patch_area:.3g} and sweeping >= {short.min_sweep_length:.3g}; "
+                            f"{len(flats)} planar patch(es) about them, {flat_fits} within fit error {bound:.3g} "
+                            f"and sweeping >= {short.min_sweep_length:.3g}",
+                            {"axes": len(axes), "tried": tried, "candidates": len(arcs), "fit": fits,
+                             "flat_candidates": len(flats), "flat_fit": flat_fits}))
 
     t = step("fit")
     good = [p for p in raw if _fits(p, params)]
@@ -355,6 +369,12 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
             continue
         kept.append(p)
         taken[p.faces] = True
+    # the planar patches about the crease arcs' axes, each kept when it adds arc_min_area of the area
+    # to what the others cover (their long faces are mostly not theirs whole; docs/sweeps.md)
+    flat_ok = [p for p in flats if p.fit_error <= bound and sweep_length(p) >= short.min_sweep_length]
+    added = add_by_area(m, kept, flat_ok, params.eps_prox, params.coverage_samples, short.min_patch_area, areas)
+    kept += added
+    raw = raw + flats
     patches = tuple(_to_input(p, m, i, params.profile_fit_tolerance) for i, p in enumerate(kept))
     fitted = sum(p.profile_fit is not None for p in patches)
     covered = np.zeros(len(m.faces), bool)
@@ -367,13 +387,15 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
     coverage = float(min(1.0, (shares * areas).sum() / area)) if area > 0 else 0.0
     of_arcs = (f", {len(good) - n_good} of them arcs' patches covering >= {short.min_patch_area:.3g} and sweeping "
                f">= {short.min_sweep_length:.3g}" if arcs else "")
+    of_arcs += (f"; {len(added)} planar patch(es) about crease arcs' axes adding >= {short.min_patch_area:.3g} "
+                "of the area each" if flats else "")
     stages.append(Stage("fit", time.perf_counter() - t,
                         f"{len(patches)} of {len(raw)} patch(es) kept ({len(good)} within fit error {bound:.3g}, "
                         f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}"
                         f"{of_arcs}; then overlaps dropped); coverage {coverage:.3f} of the area "
                         f"({face_coverage:.3f} in whole faces, {params.coverage_samples} samples); {fitted} "
                         f"profile(s) fitted with lines and arcs within {params.profile_fit_tolerance:.3g}",
-                        {"candidates": len(raw), "patches": len(patches), "coverage": coverage,
+                        {"candidates": len(raw), "patches": len(patches), "coverage": coverage, "flat": len(added),
                          "face_coverage": face_coverage, "profile_fits": fitted}))
     if progress is not None:
         progress("fit", total, total)

@@ -287,10 +287,17 @@ class SweepParams:
         its fitted circle, in (0, 1]. Default 0.05.
     arc_sweep_length : float
         The least sweep length (diameters) of a patch about a crease arc's axis, in place of
-        ``min_sweep_length`` (the smaller of the two holds). Default 0.1.
+        ``min_sweep_length`` (the smaller of the two holds). Default 0.03 (0.1 before the crease
+        chains were cut into their arcs, :func:`~auszug.sweeps.arcs.circle_pieces`: a foil's lobe
+        sweeps 0.04-0.09).
     arc_min_area : float
         The least coverage of a patch about a crease arc's axis, in place of ``min_patch_area``
-        (the smaller of the two holds). Default 0.005.
+        (the smaller of the two holds); for the planar patches of ``arc_flat`` the least share of
+        the area each adds. Default 0.001 (0.005 before; a foil's lobe covers 0.0016-0.003).
+    arc_flat : bool
+        Whether the stage ``arcs`` also sweeps the planar faces normal to a crease arc's axis by
+        the rotation about it, a straight radial profile from the arc
+        (:func:`~auszug.sweeps.arcs.flat_candidates`: a wall's face around an arch). Default true.
     coverage_samples : int
         The report's ``coverage`` is of the mesh's area, not of whole faces: the faces that no
         kept patch covers whole (all three corners within ``eps_prox`` of its swept surface) are
@@ -378,8 +385,9 @@ class SweepParams:
     arc_axes: int = 16
     arc_crease: float = 20.0
     arc_fit: float = 0.05
-    arc_sweep_length: float = 0.1
-    arc_min_area: float = 0.005
+    arc_sweep_length: float = 0.03
+    arc_min_area: float = 0.001
+    arc_flat: bool = True
 
     def __post_init__(self) -> None:
         checks = [
@@ -470,6 +478,7 @@ class SweepParams:
             ("arc_fit", _real(self.arc_fit) and 0 < self.arc_fit <= 1, "in (0, 1] (a share of eps_prox)"),
             ("arc_sweep_length", _real(self.arc_sweep_length) and self.arc_sweep_length >= 0, ">= 0"),
             ("arc_min_area", _real(self.arc_min_area) and 0 <= self.arc_min_area <= 1, "in [0, 1]"),
+            ("arc_flat", isinstance(self.arc_flat, bool), "true or false"),
         ]
         for name, ok, want in checks:
             if not ok:

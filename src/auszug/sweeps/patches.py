@@ -56,7 +56,8 @@ if TYPE_CHECKING:
 
 __all__ = ["SweepPatch", "Fit", "MeshTree", "RingTree", "kinematic_patches", "fit_patch", "face_areas", "sweep_surface",
            "closest_distance", "polyline_hausdorff", "SweptError", "swept_error", "swept_coverage", "improve_flat",
-           "improve_bounded", "area_coverage", "area_samples"]
+           "improve_bounded", "area_coverage", "area_samples", "sample_hits",
+           "add_by_area"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -794,24 +795,37 @@ def area_coverage(mesh: SweepMesh, patches: Sequence[SweepPatch], eps: float, sa
         return share
     hit = np.zeros(len(fid), bool)
     for p in patches:
-        if len(p.profile) < 2:
-            continue
-        rings = _sweep_rings(p.profile, p.motion, eps / 10)[1]
-        tree = RingTree(rings, p.closed)
-        sv = rings.reshape(-1, 3)
-        lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
-        inside = face_vertices_in_box(mesh.vertices, mesh.faces, lo, hi)
-        near = np.zeros(mesh.n_vertices, bool)
-        near[inside] = tree.within(mesh.vertices[inside], eps)
-        held: NDArray[np.bool_] = np.asarray(near[mesh.faces].any(axis=1))
-        ask = ~hit & held[fid] & np.all((x >= lo) & (x <= hi), axis=1)
-        if ask.any():
-            hit[ask] = tree.within(x[ask], eps)
+        ask = ~hit
+        hit[ask] = sample_hits(mesh, p, eps, fid[ask], x[ask])
     count = np.bincount(fid, minlength=m)
     got = np.bincount(fid, weights=hit.astype(float), minlength=m)
     sampled = count > 0
     share[sampled] = got[sampled] / count[sampled]
     return share
+
+
+def sample_hits(mesh: SweepMesh, patch: SweepPatch, eps: float, fid: IntArray, x: Array) -> NDArray[np.bool_]:
+    """Which of the points ``x (n, 3)`` on the faces ``fid (n,)`` a patch covers (:func:`area_coverage`'s test).
+
+    A point is covered when it lies within ``eps`` of the patch's swept surface (rings as in the
+    fit check, chords within ``eps / 10``) and the patch holds at least one corner of its face
+    within ``eps``. The faces of ``patch.faces`` are not special here (their points lie on it).
+    """
+    hit = np.zeros(len(fid), bool)
+    if len(patch.profile) < 2 or len(fid) == 0:
+        return hit
+    rings = _sweep_rings(patch.profile, patch.motion, eps / 10)[1]
+    tree = RingTree(rings, patch.closed)
+    sv = rings.reshape(-1, 3)
+    lo, hi = sv.min(axis=0) - eps, sv.max(axis=0) + eps
+    inside = face_vertices_in_box(mesh.vertices, mesh.faces, lo, hi)
+    near = np.zeros(mesh.n_vertices, bool)
+    near[inside] = tree.within(mesh.vertices[inside], eps)
+    held: NDArray[np.bool_] = np.asarray(near[mesh.faces].any(axis=1))
+    ask = held[fid] & np.all((x >= lo) & (x <= hi), axis=1)
+    if ask.any():
+        hit[ask] = tree.within(x[ask], eps)
+    return hit
 
 
 def kinematic_patches(mesh: SweepMesh, axis: KinematicAxis, params: SweepParams = DEFAULT,
@@ -884,4 +898,66 @@ def kinematic_patches(mesh: SweepMesh, axis: KinematicAxis, params: SweepParams 
         kind: Kind = kin.kind  # type: ignore[assignment]
         out.append(SweepPatch(first_id + len(out), kind, prof, closed, motion, fit.faces, fit.fit_error,
                               fit.coverage))
+    return out
+
+
+def add_by_area(mesh: SweepMesh, kept: Sequence[SweepPatch], candidates: Sequence[SweepPatch], eps: float,
+                samples: int, least: float, areas: Array | None = None) -> list[SweepPatch]:
+    """The candidates that each add at least ``least`` of the mesh's area to what ``kept`` covers, greedily.
+
+    The area is :func:`area_coverage`'s (the same samples): per face, the share of its samples
+    that lie within ``eps`` of a patch's swept surface and on a face of which the patch holds a
+    corner (faces a patch holds whole count whole). Repeatedly the candidate that adds the most is
+    taken while it adds at least ``least``. For patches whose faces are mostly partly covered (a
+    plane's long faces reaching beyond the swept block), whose whole faces say little of what they
+    cover.
+
+    Parameters
+    ----------
+    mesh : SweepMesh
+    kept : sequence of SweepPatch
+        The patches kept so far.
+    candidates : sequence of SweepPatch
+        Fitted candidates (filtered by fit error and sweep length before).
+    eps : float
+    samples : int
+        As :func:`area_coverage` (0: nothing is added).
+    least : float
+        Least share of the mesh's area a candidate must add.
+    areas : (m,) float array, optional
+
+    Returns
+    -------
+    list of SweepPatch
+        The candidates taken, in the order taken.
+    """
+    a = face_areas(mesh.vertices, mesh.faces) if areas is None else np.asarray(areas, float)
+    total = float(a.sum())
+    if not candidates or samples <= 0 or not total > 0:
+        return []
+    fid, x = area_samples(mesh.vertices, mesh.faces, samples, a)
+    count = np.bincount(fid, minlength=len(mesh.faces))
+    weight = a[fid] / np.maximum(count[fid], 1) / total        # each sample's share of the area
+    whole = np.zeros(len(mesh.faces), bool)
+    for p in kept:
+        whole[p.faces] = True
+    hit = whole[fid].copy()
+    for p in kept:
+        ask = ~hit
+        hit[ask] = sample_hits(mesh, p, eps, fid[ask], x[ask])
+    own = []
+    for p in candidates:
+        on = np.zeros(len(mesh.faces), bool)
+        on[p.faces] = True
+        own.append(sample_hits(mesh, p, eps, fid, x) | on[fid])
+    left = list(range(len(candidates)))
+    out: list[SweepPatch] = []
+    while left:
+        gains = [float(weight[own[i] & ~hit].sum()) for i in left]
+        j = int(np.argmax(gains))
+        if gains[j] < least:
+            break
+        i = left.pop(j)
+        out.append(candidates[i])
+        hit |= own[i]
     return out

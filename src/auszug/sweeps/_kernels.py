@@ -1823,6 +1823,31 @@ def rotvecs_of(r):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
+def face_grid_cell(v, faces, per_edge, per_face):  # pragma: no cover - compiled
+    """The cell size of :func:`face_grid`: ``per_edge`` mean edge lengths, larger for at most ``per_face`` cells a face.
+
+    The cells are counted in the box of the faces' vertices.
+    """
+    m = len(faces)
+    if m == 0:
+        return 1.0
+    lo = np.full(3, np.inf)
+    hi = np.full(3, -np.inf)
+    total = 0.0
+    for f in range(m):
+        for k in range(3):
+            a, b = faces[f, k], faces[f, (k + 1) % 3]
+            total += np.sqrt((v[a, 0] - v[b, 0]) ** 2 + (v[a, 1] - v[b, 1]) ** 2 + (v[a, 2] - v[b, 2]) ** 2)
+            for ax in range(3):
+                lo[ax] = min(lo[ax], v[a, ax])
+                hi[ax] = max(hi[ax], v[a, ax])
+    vol = 1.0
+    for ax in range(3):
+        vol *= max(hi[ax] - lo[ax], 1e-12)
+    return max(per_edge * total / (3 * m), (vol / (per_face * m)) ** (1.0 / 3.0), 1e-12)
+
+
+@njit(cache=True)
 def face_grid(v, faces, h):  # pragma: no cover - compiled
     """The faces binned in a uniform grid of cell size ``h``: each face in every cell its bounding box meets.
 
@@ -1924,6 +1949,24 @@ def _grid_nearest(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, best,
     ci = min(max(int(np.floor(max(min((px - lo[0]) / h, 1e9), -1e9))), 0), dims[0] - 1)
     cj = min(max(int(np.floor(max(min((py - lo[1]) / h, 1e9), -1e9))), 0), dims[1] - 1)
     ck = min(max(int(np.floor(max(min((pz - lo[2]) / h, 1e9), -1e9))), 0), dims[2] - 1)
+    if bf < 0:
+        # no start: first the face of p's cell whose box centre is nearest (the best then bounds the rest)
+        oc = (ci * dims[1] + cj) * dims[2] + ck
+        near, dn = -1, np.inf
+        for e in range(start[oc], start[oc + 1]):
+            ex = 0.5 * (fbox[e, 0] + fbox[e, 3]) - px
+            ey = 0.5 * (fbox[e, 1] + fbox[e, 4]) - py
+            ez = 0.5 * (fbox[e, 2] + fbox[e, 5]) - pz
+            if ex * ex + ey * ey + ez * ez < dn:
+                near, dn = entries[e], ex * ex + ey * ey + ez * ez
+        if near >= 0:
+            a, b, c = faces[near, 0], faces[near, 1], faces[near, 2]
+            d2, qx, qy, qz = _triangle_closest(px, py, pz, v[a, 0], v[a, 1], v[a, 2], v[b, 0], v[b, 1], v[b, 2],
+                                               v[c, 0], v[c, 1], v[c, 2])
+            if d2 <= best:
+                best, bf, bx, by, bz = d2, near, qx, qy, qz
+            else:
+                sec = min(sec, d2)
     top = max(dims[0], max(dims[1], dims[2]))
     for sh in range(top):
         gap = (sh - 1) * h

@@ -37,6 +37,7 @@ from auszug.errors import GeometryError
 from auszug.sweeps._kernels import (
     boundary_edges_of,
     face_grid,
+    face_grid_cell,
     face_vertices_in_box,
     faces_within,
     improve_sums,
@@ -284,13 +285,7 @@ class MeshTree:
         got = self.__dict__.get("_grid")
         if got is None:
             v, f = self.vertices, self.faces
-            if len(f):
-                e = np.linalg.norm(v[f] - v[np.roll(f, 1, axis=1)], axis=2)
-                ext = np.ptp(v[f.reshape(-1)], axis=0)
-                h = max(FACE_GRID_CELL * float(e.mean()),
-                        float(np.prod(np.maximum(ext, 1e-12)) / (FACE_GRID_CELLS * len(f))) ** (1 / 3), 1e-12)
-            else:
-                h = 1.0
+            h = float(face_grid_cell(v, f, float(FACE_GRID_CELL), float(FACE_GRID_CELLS)))
             lo, dims, start, entries, fbox = face_grid(v, f, h)
             got = (lo, dims, h, start, entries, fbox)
             self._grid = got

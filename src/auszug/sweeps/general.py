@@ -731,8 +731,9 @@ def refine_motion(profile: Array, motion: Motion, tree: MeshTree, params: SweepP
     tree : MeshTree
         The mesh's closest points.
     params : SweepParams
-        ``twist_steps`` (0: the motion unchanged), ``fit_factor * eps_prox`` (points farther from
-        the mesh do not count).
+        ``twist_steps`` (0: the motion unchanged), ``twist_tolerance`` (a knot whose step moves
+        its points by less takes no more), ``fit_factor * eps_prox`` (points farther from the
+        mesh do not count).
 
     Returns
     -------

@@ -478,3 +478,71 @@ def test_ring_tree_within_of_points_in_surface_order_is_its_distance_within_the_
         want = tree.query(pts, bound)[0] <= bound
         got = tree.within(pts, bound)
         assert np.array_equal(got, want) and 0 < got.sum() < len(pts)
+
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_face_grid_nearest_is_libigls_closest_points_within_the_bound(hole):
+    """The face grid's exact search (the motion's refinement): libigl's distances, a closest point on
+    the face returned, and nothing farther than the bound; the same from points far off the grid."""
+    mesh = _mesh(hole)
+    tree = MeshTree.of(mesh)
+    rng = np.random.default_rng(5)
+    near = mesh.vertices[rng.integers(0, len(mesh.vertices), 400)] + rng.normal(0, 0.004, (400, 3))
+    far = rng.uniform(-0.9, 0.9, (200, 3))
+    pts = np.ascontiguousarray(np.vstack([near, far]))
+    d0, _, _ = tree.query(pts)
+    bound = 0.02
+    d, face, cp = _kernels.grid_nearest(tree.vertices, tree.faces, *tree.face_grid(), pts, bound)
+    inside = d0 <= bound
+    assert inside[:400].mean() > 0.9 and (~inside).sum() > 50          # both kinds tested
+    assert np.all(np.isinf(d[~inside]) & (face[~inside] == -1))
+    assert np.abs(d[inside] - d0[inside]).max() <= 1e-14
+    # the closest point lies on the face returned, at the distance returned
+    for i in np.flatnonzero(inside)[::10]:
+        assert closest_distance(cp[i][None], mesh.vertices, mesh.faces[face[i]][None])[0][0] <= 1e-14
+    assert np.abs(np.linalg.norm(cp[inside] - pts[inside], axis=1) - d[inside]).max() <= 1e-14
+
+
+def test_refined_motions_bounds_bound_the_distances_and_the_early_stop_changes_little():
+    """A square tube's sweep with every knot turned and shifted a little, refined: the bounds of the
+    moved profile's distances at the knots (for the fit check) are upper bounds, and the early stop
+    (``twist_tolerance``) leaves every map within a small multiple of it of all the steps' map."""
+    from scipy.spatial.transform import Rotation
+
+    from auszug.sweeps.fixtures import grid_faces
+    from auszug.sweeps.general import _refine_bounded
+    from auszug.sweeps.motion import Motion
+    from auszug.sweeps.params import DEFAULT
+
+    side = np.linspace(-0.02, 0.02, 9)[:-1]
+    one = np.full(8, 0.02)
+    sq = np.column_stack([np.r_[side, one, -side, -one], np.r_[-one, side, one, -side]])
+    n, n_path = len(sq), 61
+    xs = np.linspace(-0.5, 0.5, n_path)
+    rng = np.random.default_rng(7)
+    v = np.column_stack([np.repeat(xs, n), np.tile(sq[:, 0], n_path), np.tile(sq[:, 1], n_path)])
+    v[:, 1:] += rng.normal(0, 3e-4, (len(v), 2))                   # a noisy tube: the steps do not end at once
+    g = grid_faces(n_path, n + 1)
+    tree = MeshTree(v, (g // (n + 1)) * n + (g % (n + 1)) % n)
+    prof = np.column_stack([np.zeros(n), sq])
+    k = 41
+    t = np.arange(k, dtype=float)
+    rot = Rotation.from_rotvec(np.column_stack([np.radians(rng.uniform(-1, 1, (k, 2))), 0 * t])).as_matrix()
+    wrong = Motion(t, rot, np.column_stack([-0.4 + 0.02 * t, rng.uniform(-5e-4, 5e-4, (k, 2))]))
+    got, upper = _refine_bounded(prof, wrong, tree, DEFAULT)
+    d = tree.query(got.apply(prof, got.t).reshape(-1, 3))[0].reshape(k, n)
+    assert np.isfinite(upper).mean() > 0.95
+    assert np.all(d[np.isfinite(upper)] <= upper[np.isfinite(upper)] + 1e-15)
+    every, _ = _refine_bounded(prof, wrong, tree, DEFAULT.with_(twist_tolerance=0.0))
+    more, _ = _refine_bounded(prof, wrong, tree, DEFAULT.with_(twist_tolerance=0.0, twist_steps=5))
+    fine, _ = _refine_bounded(prof, wrong, tree, DEFAULT.with_(twist_tolerance=1e-9))
+    assert DEFAULT.twist_tolerance == 1e-7
+
+    def apart(a, b):
+        return float(np.abs(a.apply(prof, t) - b.apply(prof, t)).max())
+
+    # on the noisy tube the steps have not settled: a 5th moves points by 9.4e-5 (measured); the early stop
+    # at 1e-7 by 2.8e-5 (a knot whose step fell below it takes a larger one later), at 1e-9 by 4.8e-9
+    assert 0 < apart(got, every) <= apart(more, every) <= 2e-4
+    assert apart(fine, every) <= 1e-7

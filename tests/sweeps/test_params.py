@@ -34,6 +34,7 @@ STEP = 0.02     # rib step of the seed motion (bounding-box diameters)
     ("end_gap", 0.0), ("end_gap", 25.0), ("end_gap", float("nan")),
     ("rib_jump", 1.0), ("rib_jump", 0.5), ("rib_jump", float("nan")),
     ("twist_steps", -1), ("twist_steps", 65), ("twist_steps", 2.0), ("twist_steps", True),
+    ("twist_tolerance", -1e-9), ("twist_tolerance", 0.01), ("twist_tolerance", float("nan")),
     ("tangent_window", -0.01), ("tangent_window", 1.5), ("tangent_window", float("nan")), ("tangent_window", "0.06"),
     ("translation_step", 0.0), ("translation_step", -0.02), ("translation_step", 0.6),
     ("translation_steps", 0), ("translation_steps", LIMITS.sweep_steps + 1), ("translation_steps", 3.0),

@@ -1817,3 +1817,378 @@ def rotvecs_of(r):  # pragma: no cover - compiled
             s = ang / np.sin(ang / 2.0)
         out[p, 0], out[p, 1], out[p, 2] = s * x, s * y, s * z
     return out
+
+
+# ------------------------------------------------------------------- the motion's refinement against the mesh
+
+
+@njit(cache=True)
+def face_grid_cell(v, faces, per_edge, per_face):  # pragma: no cover - compiled
+    """The cell size of :func:`face_grid`: ``per_edge`` mean edge lengths, larger for at most ``per_face`` cells a face.
+
+    The cells are counted in the box of the faces' vertices.
+    """
+    m = len(faces)
+    if m == 0:
+        return 1.0
+    lo = np.full(3, np.inf)
+    hi = np.full(3, -np.inf)
+    total = 0.0
+    for f in range(m):
+        for k in range(3):
+            a, b = faces[f, k], faces[f, (k + 1) % 3]
+            total += np.sqrt((v[a, 0] - v[b, 0]) ** 2 + (v[a, 1] - v[b, 1]) ** 2 + (v[a, 2] - v[b, 2]) ** 2)
+            for ax in range(3):
+                lo[ax] = min(lo[ax], v[a, ax])
+                hi[ax] = max(hi[ax], v[a, ax])
+    vol = 1.0
+    for ax in range(3):
+        vol *= max(hi[ax] - lo[ax], 1e-12)
+    return max(per_edge * total / (3 * m), (vol / (per_face * m)) ** (1.0 / 3.0), 1e-12)
+
+
+@njit(cache=True)
+def face_grid(v, faces, h):  # pragma: no cover - compiled
+    """The faces binned in a uniform grid of cell size ``h``: each face in every cell its bounding box meets.
+
+    Returns the grid's origin ``(3,)``, its cell counts ``(3,)``, the first entry of each cell
+    ``(c + 1,)``, the faces cell after cell ``(e,)`` and their bounding boxes ``(e, 6)`` (min then
+    max; stored with the entries, so a cell's search reads them in a row).
+    """
+    m = len(faces)
+    lo = np.full(3, np.inf)
+    hi = np.full(3, -np.inf)
+    fbox = np.empty((m, 6))
+    for f in range(m):
+        for ax in range(3):
+            a, b, c = v[faces[f, 0], ax], v[faces[f, 1], ax], v[faces[f, 2], ax]
+            fbox[f, ax] = min(a, min(b, c))
+            fbox[f, 3 + ax] = max(a, max(b, c))
+            lo[ax] = min(lo[ax], fbox[f, ax])
+            hi[ax] = max(hi[ax], fbox[f, 3 + ax])
+    dims = np.ones(3, np.int64)
+    if m == 0:
+        lo[:] = 0.0
+    else:
+        for ax in range(3):
+            dims[ax] = max(1, int((hi[ax] - lo[ax]) / h) + 1)
+    count = np.zeros(dims[0] * dims[1] * dims[2] + 1, np.int64)
+    cells = np.empty((m, 6), np.int64)          # each face's cell range
+    for f in range(m):
+        for ax in range(3):
+            cells[f, ax] = min(int((fbox[f, ax] - lo[ax]) / h), dims[ax] - 1)
+            cells[f, 3 + ax] = min(int((fbox[f, 3 + ax] - lo[ax]) / h), dims[ax] - 1)
+        for i in range(cells[f, 0], cells[f, 3] + 1):
+            for j in range(cells[f, 1], cells[f, 4] + 1):
+                for k in range(cells[f, 2], cells[f, 5] + 1):
+                    count[(i * dims[1] + j) * dims[2] + k + 1] += 1
+    for c in range(1, len(count)):
+        count[c] += count[c - 1]
+    fill = count[:-1].copy()
+    out = np.empty(count[-1], np.int64)
+    ebox = np.empty((count[-1], 6))
+    for f in range(m):
+        for i in range(cells[f, 0], cells[f, 3] + 1):
+            for j in range(cells[f, 1], cells[f, 4] + 1):
+                for k in range(cells[f, 2], cells[f, 5] + 1):
+                    c = (i * dims[1] + j) * dims[2] + k
+                    out[fill[c]] = f
+                    ebox[fill[c]] = fbox[f]
+                    fill[c] += 1
+    return lo, dims, count, out, ebox
+
+
+@njit(cache=True, inline="always")
+def _cell_faces_nearest(px, py, pz, v, faces, start, entries, fbox, c, best, bf, bx, by, bz,
+                        sec):  # pragma: no cover - compiled
+    """:func:`_grid_nearest`'s search of cell ``c``'s faces: the best so far and the bound of the others updated."""
+    for e in range(start[c], start[c + 1]):
+        f = entries[e]
+        if f == bf:
+            continue
+        db = _box_sq(px, py, pz, fbox, e)
+        if db > best:
+            sec = min(sec, db)
+            continue
+        a, b, cc = faces[f, 0], faces[f, 1], faces[f, 2]
+        d2, qx, qy, qz = _triangle_closest(px, py, pz, v[a, 0], v[a, 1], v[a, 2], v[b, 0], v[b, 1],
+                                           v[b, 2], v[cc, 0], v[cc, 1], v[cc, 2])
+        if d2 < best or (bf < 0 and d2 <= best):
+            if bf >= 0:
+                sec = min(sec, best)
+            best, bf, bx, by, bz = d2, f, qx, qy, qz
+        else:
+            sec = min(sec, d2)
+    return best, bf, bx, by, bz, sec
+
+
+@njit(cache=True, inline="always")
+def _grid_nearest(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, best, warm0, warm1):  # pragma: no cover
+    """The face closest to p within squared distance ``best`` (exact), trying faces ``warm0, warm1`` first (-1: none).
+
+    The cells are searched in shells about p's cell (clamped to the grid), each cell and face
+    skipped when its box is farther than the best so far, until a shell's cells all lie farther
+    (those ``s`` cells out are at least ``(s - 1) h`` away). Returns the squared distance, the face
+    (-1 if none within), the closest point and a lower bound of the squared distance of every
+    other face (the faces tested, the boxes of those skipped, the shells not searched).
+    """
+    bf = -1
+    bx, by, bz = 0.0, 0.0, 0.0
+    sec = np.inf
+    for w in (warm0, warm1):
+        if w >= 0 and w != bf:
+            a, b, c = faces[w, 0], faces[w, 1], faces[w, 2]
+            d2, qx, qy, qz = _triangle_closest(px, py, pz, v[a, 0], v[a, 1], v[a, 2], v[b, 0], v[b, 1], v[b, 2],
+                                               v[c, 0], v[c, 1], v[c, 2])
+            if d2 < best or (bf < 0 and d2 <= best):
+                if bf >= 0:
+                    sec = min(sec, best)
+                best, bf, bx, by, bz = d2, w, qx, qy, qz
+            else:
+                sec = min(sec, d2)
+    ci = min(max(int(np.floor(max(min((px - lo[0]) / h, 1e9), -1e9))), 0), dims[0] - 1)
+    cj = min(max(int(np.floor(max(min((py - lo[1]) / h, 1e9), -1e9))), 0), dims[1] - 1)
+    ck = min(max(int(np.floor(max(min((pz - lo[2]) / h, 1e9), -1e9))), 0), dims[2] - 1)
+    if bf < 0:
+        # no start: first the face of p's cell whose box centre is nearest (the best then bounds the rest)
+        oc = (ci * dims[1] + cj) * dims[2] + ck
+        near, dn = -1, np.inf
+        for e in range(start[oc], start[oc + 1]):
+            ex = 0.5 * (fbox[e, 0] + fbox[e, 3]) - px
+            ey = 0.5 * (fbox[e, 1] + fbox[e, 4]) - py
+            ez = 0.5 * (fbox[e, 2] + fbox[e, 5]) - pz
+            if ex * ex + ey * ey + ez * ez < dn:
+                near, dn = entries[e], ex * ex + ey * ey + ez * ez
+        if near >= 0:
+            a, b, c = faces[near, 0], faces[near, 1], faces[near, 2]
+            d2, qx, qy, qz = _triangle_closest(px, py, pz, v[a, 0], v[a, 1], v[a, 2], v[b, 0], v[b, 1], v[b, 2],
+                                               v[c, 0], v[c, 1], v[c, 2])
+            if d2 <= best:
+                best, bf, bx, by, bz = d2, near, qx, qy, qz
+            else:
+                sec = min(sec, d2)
+    top = max(dims[0], max(dims[1], dims[2]))
+    for sh in range(top):
+        gap = (sh - 1) * h
+        if sh > 1 and gap * gap > best:
+            sec = min(sec, gap * gap)
+            break
+        for i in range(max(ci - sh, 0), min(ci + sh, dims[0] - 1) + 1):
+            dx = max(lo[0] + i * h - px, 0.0, px - (lo[0] + (i + 1) * h))
+            if dx * dx > best:
+                sec = min(sec, dx * dx)
+                continue
+            for j in range(max(cj - sh, 0), min(cj + sh, dims[1] - 1) + 1):
+                dy = max(lo[1] + j * h - py, 0.0, py - (lo[1] + (j + 1) * h))
+                if dx * dx + dy * dy > best:
+                    sec = min(sec, dx * dx + dy * dy)
+                    continue
+                edge_ij = abs(i - ci) == sh or abs(j - cj) == sh
+                k = max(ck - sh, 0)
+                while k <= min(ck + sh, dims[2] - 1):
+                    dz = max(lo[2] + k * h - pz, 0.0, pz - (lo[2] + (k + 1) * h))
+                    dc = dx * dx + dy * dy + dz * dz
+                    if dc <= best:
+                        best, bf, bx, by, bz, sec = _cell_faces_nearest(px, py, pz, v, faces, start, entries, fbox,
+                                                                        (i * dims[1] + j) * dims[2] + k, best, bf,
+                                                                        bx, by, bz, sec)
+                    else:
+                        sec = min(sec, dc)
+                    # inside the shell only its two faces in k
+                    k = k + 1 if edge_ij or k == ck + sh else ck + sh
+    return best, bf, bx, by, bz, sec
+
+
+@njit(cache=True)
+def grid_nearest(v, faces, lo, dims, h, start, entries, fbox, points, bound):  # pragma: no cover - compiled
+    """Closest points on the mesh of :func:`face_grid` within ``bound``: distances (inf beyond), faces (-1), points.
+
+    Exact (every face within the distance found is tested); each point first tries the previous
+    point's face.
+    """
+    q = len(points)
+    dist = np.full(q, np.inf)
+    face = np.full(q, -1, np.int64)
+    cp = np.zeros((q, 3))
+    last = -1
+    for p in range(q):
+        d2, f, x, y, z, _ = _grid_nearest(points[p, 0], points[p, 1], points[p, 2], v, faces, lo, dims, h, start,
+                                          entries, fbox, bound * bound, last, -1)
+        if f >= 0:
+            dist[p], face[p] = np.sqrt(d2), f
+            cp[p, 0], cp[p, 1], cp[p, 2] = x, y, z
+            last = f
+    return dist, face, cp
+
+
+@njit(cache=True, inline="always")
+def _on_boundary(v, bnd, f, cx, cy, cz):  # pragma: no cover - compiled
+    """Whether the closest point ``c`` on face ``f`` lies on one of its boundary edges (``bnd (m, 3, 2)``, -1 inner).
+
+    As :meth:`~auszug.sweeps.patches.MeshTree.interior_distance`: within 1e-9 of the edge.
+    """
+    for e in range(3):
+        i0, i1 = bnd[f, e, 0], bnd[f, e, 1]
+        if i0 < 0:
+            continue
+        abx, aby, abz = v[i1, 0] - v[i0, 0], v[i1, 1] - v[i0, 1], v[i1, 2] - v[i0, 2]
+        w = abx * abx + aby * aby + abz * abz
+        t = ((cx - v[i0, 0]) * abx + (cy - v[i0, 1]) * aby + (cz - v[i0, 2]) * abz) / (w if w > 0 else 1.0)
+        t = min(max(t, 0.0), 1.0)
+        gx, gy, gz = cx - (v[i0, 0] + t * abx), cy - (v[i0, 1] + t * aby), cz - (v[i0, 2] + t * abz)
+        if np.sqrt(gx * gx + gy * gy + gz * gz) <= 1e-9:
+            return True
+    return False
+
+
+@njit(cache=True)
+def _solve3(a, b, out):  # pragma: no cover - compiled
+    """``out = a^-1 b`` for a symmetric positive definite ``a (3, 3)`` (Cholesky)."""
+    l00 = np.sqrt(a[0, 0])
+    l10 = a[1, 0] / l00
+    l20 = a[2, 0] / l00
+    l11 = np.sqrt(a[1, 1] - l10 * l10)
+    l21 = (a[2, 1] - l20 * l10) / l11
+    l22 = np.sqrt(a[2, 2] - l20 * l20 - l21 * l21)
+    y0 = b[0] / l00
+    y1 = (b[1] - l10 * y0) / l11
+    y2 = (b[2] - l20 * y0 - l21 * y1) / l22
+    out[2] = y2 / l22
+    out[1] = (y1 - l21 * out[2]) / l11
+    out[0] = (y0 - l10 * out[1] - l20 * out[2]) / l00
+
+
+@njit(cache=True)
+def twist_steps(profile, r, t, n0, c0, rho, steps, bound, tol, warm_in, v, faces, bnd, lo, dims, h, start, entries,
+                fbox):  # pragma: no cover - compiled
+    """``steps`` point-to-plane steps of every knot's map about its profile plane (``general._twist_steps``).
+
+    Per knot and step: the moved profile's points ``x_j`` within ``bound`` of the mesh whose closest
+    point is not on its boundary (or on the mesh), their closest points ``q_j`` and unit face
+    normals ``m_j``; the turn ``a`` about the plane's normal ``n = R n0`` through ``c = R c0 + T`` and
+    the shift ``(u, v)`` in the plane minimising ``sum (m_j . (x_j - q_j + a n x (x_j - c) + u e_1 +
+    v e_2))^2``, damped by 1e-3 of the mean eigenvalue; no step with fewer than 6 points. A knot
+    whose step moves its points by at most about ``tol`` (``|a| rho``, ``|u|``, ``|v|`` all within)
+    takes no more steps. Closest points on the grid of :func:`face_grid` (exact), each from the
+    point's face of the step before (at the first, ``warm_in (k, n)``, -1 for none, and the
+    previous point's face); where a point has moved since its last search by less than half the
+    gap between its distance then and the bound of every other face's, that face is still the
+    closest and the only one tested.
+
+    Returns the maps ``r (k, 3, 3)``, ``t (k, 3)``, upper bounds ``(k, n)`` of the moved points'
+    distances to the mesh at the returned maps (the last step's distance plus how far the step
+    moved the point; inf where no face was within ``bound``) and the points' last closest faces
+    ``(k, n)`` (-1 for none).
+    """
+    k, n = r.shape[0], profile.shape[0]
+    r = r.copy()
+    t = t.copy()
+    upper = np.full((k, n), np.inf)
+    last = warm_in.copy()
+    x = np.empty((n, 3))
+    dq = np.empty(n)
+    b2 = bound * bound
+    xr = np.empty((n, 3))
+    dr = np.empty(n)
+    lr = np.empty(n)
+    ref_ok = np.zeros(n, np.bool_)
+    for kn in range(k):
+        warm = last[kn]
+        ref_ok[:] = False
+        for s in range(steps):
+            nn = np.empty(3)
+            cc = np.empty(3)
+            for i in range(3):
+                nn[i] = r[kn, i, 0] * n0[0] + r[kn, i, 1] * n0[1] + r[kn, i, 2] * n0[2]
+                cc[i] = r[kn, i, 0] * c0[0] + r[kn, i, 1] * c0[1] + r[kn, i, 2] * c0[2] + t[kn, i]
+            # a unit vector in the plane: n x the axis least along n
+            ax = 0
+            for i in range(1, 3):
+                if abs(nn[i]) < abs(nn[ax]):
+                    ax = i
+            ex = np.zeros(3)
+            ex[ax] = 1.0
+            e1 = np.array([nn[1] * ex[2] - nn[2] * ex[1], nn[2] * ex[0] - nn[0] * ex[2], nn[0] * ex[1] - nn[1] * ex[0]])
+            e1 /= np.sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2])
+            e2 = np.array([nn[1] * e1[2] - nn[2] * e1[1], nn[2] * e1[0] - nn[0] * e1[2], nn[0] * e1[1] - nn[1] * e1[0]])
+            ata = np.zeros((3, 3))
+            atb = np.zeros(3)
+            used = 0
+            for p in range(n):
+                for i in range(3):
+                    x[p, i] = r[kn, i, 0] * profile[p, 0] + r[kn, i, 1] * profile[p, 1] + r[kn, i, 2] * profile[p, 2] \
+                        + t[kn, i]
+                f = -1
+                if ref_ok[p]:
+                    # the face found last is still the closest while the point has moved by less than half the
+                    # gap between its distance and the bound of every other face's then (one face tested)
+                    mv = np.sqrt((x[p, 0] - xr[p, 0]) ** 2 + (x[p, 1] - xr[p, 1]) ** 2 + (x[p, 2] - xr[p, 2]) ** 2)
+                    if dr[p] + 2.0 * mv + 1e-12 < lr[p]:
+                        wf = warm[p]
+                        a, b, c = faces[wf, 0], faces[wf, 1], faces[wf, 2]
+                        d2, qx, qy, qz = _triangle_closest(x[p, 0], x[p, 1], x[p, 2], v[a, 0], v[a, 1], v[a, 2],
+                                                           v[b, 0], v[b, 1], v[b, 2], v[c, 0], v[c, 1], v[c, 2])
+                        f = wf if d2 <= b2 else -2
+                if f == -1:
+                    d2, f, qx, qy, qz, sec = _grid_nearest(x[p, 0], x[p, 1], x[p, 2], v, faces, lo, dims, h, start,
+                                                           entries, fbox, b2, warm[p], warm[p - 1] if p > 0 else -1)
+                    ref_ok[p] = f >= 0
+                    if f >= 0:
+                        xr[p, 0], xr[p, 1], xr[p, 2] = x[p, 0], x[p, 1], x[p, 2]
+                        dr[p], lr[p] = np.sqrt(d2), np.sqrt(sec)
+                elif f == -2:
+                    f = -1
+                dq[p] = np.sqrt(d2) if f >= 0 else np.inf
+                if f < 0:
+                    continue
+                warm[p] = f
+                if d2 > 0.0 and _on_boundary(v, bnd, f, qx, qy, qz):
+                    continue
+                a, b, c = faces[f, 0], faces[f, 1], faces[f, 2]
+                ux, uy, uz = v[b, 0] - v[a, 0], v[b, 1] - v[a, 1], v[b, 2] - v[a, 2]
+                wx, wy, wz = v[c, 0] - v[a, 0], v[c, 1] - v[a, 1], v[c, 2] - v[a, 2]
+                mx, my, mz = uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx
+                ml = max(np.sqrt(mx * mx + my * my + mz * mz), 1e-300)
+                mx, my, mz = mx / ml, my / ml, mz / ml
+                rx, ry, rz = x[p, 0] - cc[0], x[p, 1] - cc[1], x[p, 2] - cc[2]
+                # m . (n x (x - c)) / rho, m . e1, m . e2
+                row0 = (mx * (nn[1] * rz - nn[2] * ry) + my * (nn[2] * rx - nn[0] * rz)
+                        + mz * (nn[0] * ry - nn[1] * rx)) / rho
+                row1 = mx * e1[0] + my * e1[1] + mz * e1[2]
+                row2 = mx * e2[0] + my * e2[1] + mz * e2[2]
+                rhs = -(mx * (x[p, 0] - qx) + my * (x[p, 1] - qy) + mz * (x[p, 2] - qz))
+                row = (row0, row1, row2)
+                for i in range(3):
+                    for j in range(3):
+                        ata[i, j] += row[i] * row[j]
+                    atb[i] += row[i] * rhs
+                used += 1
+            u = np.zeros(3)
+            if used >= 6:
+                lam = 1e-3 * (ata[0, 0] + ata[1, 1] + ata[2, 2]) / 3 + 1e-300
+                for i in range(3):
+                    ata[i, i] += lam
+                _solve3(ata, atb, u)
+            w = np.empty((1, 3))
+            for i in range(3):
+                w[0, i] = nn[i] * (u[0] / rho)
+            turn = rotations_of(w)[0]
+            nr = turn @ r[kn]
+            tc = t[kn] - cc
+            for i in range(3):
+                t[kn, i] = turn[i, 0] * tc[0] + turn[i, 1] * tc[1] + turn[i, 2] * tc[2] + cc[i] + u[1] * e1[i] \
+                    + u[2] * e2[i]
+            r[kn] = nr
+            done = abs(u[0]) <= tol and abs(u[1]) <= tol and abs(u[2]) <= tol
+            if done or s == steps - 1:
+                for p in range(n):
+                    if np.isfinite(dq[p]):
+                        mv = 0.0
+                        for i in range(3):
+                            y = r[kn, i, 0] * profile[p, 0] + r[kn, i, 1] * profile[p, 1] \
+                                + r[kn, i, 2] * profile[p, 2] + t[kn, i]
+                            mv += (y - x[p, i]) ** 2
+                        upper[kn, p] = dq[p] + np.sqrt(mv)
+            if done:
+                break
+    return r, t, upper, last

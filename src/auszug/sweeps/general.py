@@ -62,6 +62,7 @@ from auszug.sweeps._kernels import (
     kabsch_sums,
     polyline_closest_chunked,
     rotations_of,
+    twist_steps,
 )
 from auszug.sweeps.cut import Cuts, EdgeGrid, cut, cut_near
 from auszug.sweeps.matching import (
@@ -547,6 +548,20 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
     ribs, improves the profile, checks the fit and re-slices again. The round of least fit
     error is returned (the first round is fitted only if re-slicing fails).
     """
+    got = _general_fit(mesh, parts, params, areas, tree, times, closed)
+    assert isinstance(got, GeneralSweep)
+    return got
+
+
+def _general_fit(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
+                 areas: Array | None = None, tree: MeshTree | None = None,
+                 times: Array | None = None, closed: bool = False,
+                 faces: bool = True) -> GeneralSweep | tuple[GeneralSweep, SweptError]:
+    """:func:`general_patch`, or without the covered faces and with the fit error.
+
+    With ``faces`` False the covered faces are not found (coverage nan, no faces) and the fit
+    error is returned with the sweep (:func:`_covered` finds them later).
+    """
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     tr_ = MeshTree(mesh.vertices, mesh.faces) if tree is None else tree
     grid = EdgeGrid.of(mesh)       # the local cuts of every round
@@ -583,53 +598,49 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
             ribs = reslice(mesh, profile, motion, params.end_gap * params.eps_prox, times, _far(params),
                            grid)
     assert best is not None
-    fit = swept_coverage(mesh, best[3], params.eps_prox, a, distances=False)    # the faces, not the distances
-    return GeneralSweep(best[0], best[1], best[2], fit.fit_error, fit.coverage, fit.faces, closed)
+    if not faces:
+        return GeneralSweep(best[0], best[1], best[2], best[3].fit_error, float("nan"), np.zeros(0, np.int64),
+                            closed), best[3]
+    return _covered(mesh, best[0], best[1], best[2], best[3], params, a, closed)
+
+
+def _covered(mesh: SweepMesh, profile: Array, motion: Motion, vel: Array, err: SweptError, params: SweepParams,
+             areas: Array, closed: bool) -> GeneralSweep:
+    """The general sweep of a profile and motion fitted with fit error ``err``: the faces it covers found."""
+    fit = swept_coverage(mesh, err, params.eps_prox, areas, distances=False)    # the faces, not the distances
+    return GeneralSweep(profile, motion, vel, fit.fit_error, fit.coverage, fit.faces, closed)
 
 
 #: :func:`refine_motion` leaves a knot's map as it was where the refined one turns farther than this (degrees).
 MAX_REFINE_TURN = 5.0
 
 
-def _twist_steps(profile: Array, rot: Array, tr: Array, tree: MeshTree, bound: float,
-                 steps: int) -> tuple[Array, Array]:
+def _twist_steps(profile: Array, rot: Array, tr: Array, tree: MeshTree, bound: float, steps: int, tol: float = 0.0,
+                 warm: IntArray | None = None) -> tuple[Array, Array, Array, IntArray]:
     """``steps`` point-to-plane steps of every knot's map ``(rot (k, 3, 3), tr (k, 3))`` about its profile plane.
 
     Per knot and step: the moved profile's points within ``bound`` of the mesh (not beyond it),
     their closest mesh points ``q_j`` and face normals ``m_j``; the turn ``a`` about the profile
     plane's normal ``n`` through the moved centroid ``c`` and the shift ``(u, v)`` in the plane
     minimising ``sum (m_j . (x_j - q_j + a n x (x_j - c) + u e_1 + v e_2))^2`` (damped by 1e-3 of
-    the mean eigenvalue: what the profile leaves free, a circle's turn, stays).
+    the mean eigenvalue: what the profile leaves free, a circle's turn, stays). One compiled pass
+    (:func:`~auszug.sweeps._kernels.twist_steps`): the closest points exact, on the tree's face
+    grid (:meth:`~auszug.sweeps.patches.MeshTree.face_grid`), each from the point's face of the
+    step before (at the first, ``warm (k, n)``: faces near each point, -1 for none). A knot whose
+    step moves its points by at most about ``tol`` takes no more. Also returns upper bounds
+    ``(k, n)`` of the moved points' distances to the mesh at the returned maps (inf where unknown)
+    and the points' last closest faces ``(k, n)``.
     """
     n0, _ = _plane_of(profile)
     c0 = profile.mean(axis=0)
     rho = max(float(np.sqrt(np.mean(np.sum((profile - c0) ** 2, axis=1)))), 1e-300)
-    r, t = rot.copy(), tr.copy()
-    k, n = len(r), len(profile)
-    for _ in range(steps):
-        x = apply_maps(np.ascontiguousarray(r), np.ascontiguousarray(t), np.ascontiguousarray(profile))
-        flat = x.reshape(-1, 3)
-        d, face, q = tree.query(flat)
-        inner = tree.interior_distance(flat)          # 0 beyond the mesh (closest point on its boundary)
-        use = (((inner > 0) | (d == 0)) & (d <= bound)).reshape(k, n)
-        m = _face_normals(tree, face).reshape(k, n, 3)
-        nn = r @ n0
-        c = r @ c0 + t
-        # a unit vector in each plane: n x the axis least along n
-        e1 = np.cross(nn, np.eye(3)[np.argmin(np.abs(nn), axis=1)])
-        e1 /= np.linalg.norm(e1, axis=1, keepdims=True)
-        e2 = np.cross(nn, e1)
-        a = np.stack([np.einsum("kni,kni->kn", m, np.cross(nn[:, None], x - c[:, None])) / rho,
-                      np.einsum("kni,ki->kn", m, e1), np.einsum("kni,ki->kn", m, e2)], axis=2) * use[..., None]
-        b = -np.einsum("kni,kni->kn", m, x - q.reshape(k, n, 3)) * use
-        ata = np.einsum("kni,knj->kij", a, a)
-        lam = 1e-3 * np.trace(ata, axis1=1, axis2=2) / 3 + 1e-300
-        u = np.linalg.solve(ata + lam[:, None, None] * np.eye(3), np.einsum("kni,kn->ki", a, b)[..., None])[..., 0]
-        u[use.sum(axis=1) < 6] = 0.0                  # too few points on the mesh: the knot stays
-        turn = rotations_of(np.ascontiguousarray(nn * (u[:, :1] / rho)))
-        r = turn @ r
-        t = np.einsum("kij,kj->ki", turn, t - c) + c + u[:, 1:2] * e1 + u[:, 2:3] * e2
-    return r, t
+    lo, dims, h, start, entries, fbox = tree.face_grid()
+    w = np.full((len(rot), len(profile)), -1, np.int64) if warm is None else np.ascontiguousarray(warm, dtype=np.int64)
+    out: tuple[Array, Array, Array, IntArray] = twist_steps(
+        np.ascontiguousarray(profile, dtype=float), np.ascontiguousarray(rot, dtype=float),
+        np.ascontiguousarray(tr, dtype=float), n0, c0, rho, int(steps), float(bound), float(tol), w,
+        tree.vertices, tree.faces, tree._boundary_edges(), lo, dims, h, start, entries, fbox)
+    return out
 
 
 def path_tangents(points: Array, window: float) -> Array:
@@ -655,11 +666,23 @@ def path_tangents(points: Array, window: float) -> Array:
     if window > 0:
         lo = np.searchsorted(s, s - window, side="left")
         hi = np.searchsorted(s, s + window, side="right")
-        for i in np.flatnonzero(hi - lo >= 4):        # a cubic needs 5 points, a quadratic 4
-            u = s[lo[i]:hi[i]] - s[i]
-            a = np.vander(u / window, min(4, hi[i] - lo[i] - 1), increasing=True)
-            coef = np.linalg.lstsq(a, x[lo[i]:hi[i]], rcond=None)[0]
-            out[i] = coef[1]
+        count = hi - lo
+        # a cubic needs 5 points, a quadratic 4: the fits of each degree at once (least squares by the
+        # normal equations, batched; in window units the powers are within 1, the equations well
+        # conditioned; rows of zeros pad the windows to the longest, and change no fit)
+        for deg, pick in ((3, count >= 5), (2, count == 4)):
+            at = np.flatnonzero(pick)
+            if not len(at):
+                continue
+            width = int(count[at].max())
+            rows = lo[at, None] + np.arange(width)[None, :]                        # (q, width)
+            inside = rows < hi[at, None]
+            rows = np.minimum(rows, k - 1)
+            u = np.where(inside, (s[rows] - s[at, None]) / window, 0.0)
+            a = (u[:, :, None] ** np.arange(deg + 1)[None, None, :]) * inside[:, :, None]
+            y = x[rows] * inside[:, :, None]
+            at_ = np.swapaxes(a, 1, 2)
+            out[at] = np.linalg.solve(at_ @ a, at_ @ y)[:, 1]
     out /= np.maximum(np.linalg.norm(out, axis=1, keepdims=True), 1e-300)
     result: Array = out
     return result
@@ -708,8 +731,9 @@ def refine_motion(profile: Array, motion: Motion, tree: MeshTree, params: SweepP
     tree : MeshTree
         The mesh's closest points.
     params : SweepParams
-        ``twist_steps`` (0: the motion unchanged), ``fit_factor * eps_prox`` (points farther from
-        the mesh do not count).
+        ``twist_steps`` (0: the motion unchanged), ``twist_tolerance`` (a knot whose step moves
+        its points by less takes no more), ``fit_factor * eps_prox`` (points farther from the
+        mesh do not count).
 
     Returns
     -------
@@ -739,16 +763,27 @@ def refine_motion(profile: Array, motion: Motion, tree: MeshTree, params: SweepP
     """
     if params.twist_steps <= 0 or len(profile) < 3:
         return motion
+    return _refine_bounded(profile, motion, tree, params)[0]
+
+
+def _refine_bounded(profile: Array, motion: Motion, tree: MeshTree, params: SweepParams) -> tuple[Motion, Array]:
+    """:func:`refine_motion` (``twist_steps`` > 0) and bounds of the refined sweep's distances to the mesh.
+
+    The bounds ``(k, n)`` are upper bounds of the moved profile's distances to the mesh at the
+    refined knots (inf where unknown), for :func:`~auszug.sweeps.patches.swept_error`.
+    """
     bound = params.fit_factor * params.eps_prox
-    r, t = _twist_steps(profile, motion.rotation, motion.translation, tree, bound, params.twist_steps)
+    tol = params.twist_tolerance
+    r, t, _, faces = _twist_steps(profile, motion.rotation, motion.translation, tree, bound, params.twist_steps, tol)
     r, t = _into_normal_planes(profile, r, t, params.tangent_window)
-    r, t = _twist_steps(profile, r, t, tree, bound, params.twist_steps)
+    r, t, upper, _ = _twist_steps(profile, r, t, tree, bound, params.twist_steps, tol, faces)
     # a knot turned farther than MAX_REFINE_TURN keeps its map (an end past the mesh, its centroid's path
     # bent by the end's few points; a symmetric profile sliding towards another alignment)
     cos = (np.einsum("kij,kij->k", r, motion.rotation) - 1) / 2
     far = cos < np.cos(np.radians(MAX_REFINE_TURN))
     r[far], t[far] = motion.rotation[far], motion.translation[far]
-    return Motion(motion.t.copy(), r, t)
+    upper[far] = np.inf
+    return Motion(motion.t.copy(), r, t), upper
 
 
 def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Array, Array]:
@@ -857,13 +892,23 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
         # the sweep between the first and the last rib stays near them: fit it to that part of the
         # mesh (distances to a part are never smaller than to the whole: the fit error is safe)
         sub, faces = _around(mesh, parts, params.l_min / 4 + 4 * params.eps_prox)
-        g = general_patch(sub, parts, params, areas[faces], tree, closed=closed)
-        g = GeneralSweep(g.profile, g.motion, g.velocities, g.fit_error,
-                         float(areas[faces[g.faces]].sum() / total) if total > 0 else 0.0, faces[g.faces], closed)
-        if params.grow and g.fit_error <= params.fit_factor * params.eps_prox:
+        fitted = _general_fit(sub, parts, params, areas[faces], tree, closed=closed, faces=False)
+        assert isinstance(fitted, tuple)
+        g0, err0 = fitted
+        bound = params.fit_factor * params.eps_prox
+        refined = tried = False
+        if not params.grow and params.twist_steps > 0 and g0.fit_error <= bound:
+            # the refined motion's fit replaces the fitted one's: the latter's covered faces are found only if
+            # the refinement fails (the same sweeps, one search of the covered faces less)
+            g, refined = _refined(mesh, g0, params, tree, areas)
+            tried = True
+        if not refined:
+            g = _covered(sub, g0.profile, g0.motion, g0.velocities, err0, params, areas[faces], closed)
+            g = GeneralSweep(g.profile, g.motion, g.velocities, g.fit_error,
+                             float(areas[faces[g.faces]].sum() / total) if total > 0 else 0.0, faces[g.faces], closed)
+        if params.grow and g.fit_error <= bound:
             g = grown_patch(mesh, g, params, tree, areas)
-        refined = False
-        if params.twist_steps > 0 and g.fit_error <= params.fit_factor * params.eps_prox:
+        if params.twist_steps > 0 and g.fit_error <= bound and not tried:
             g, refined = _refined(mesh, g, params, tree, areas)
         if translations and not closed:
             tp = translational_patch(mesh, g.profile, g.motion, params, tree, areas)
@@ -889,8 +934,10 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
 def _refined(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTree,
              areas: Array) -> tuple[GeneralSweep, bool]:
     """``g`` with its motion refined (:func:`refine_motion`) and checked again, if it still fits; else ``g``."""
-    motion = refine_motion(g.profile, g.motion, tree, params)
-    err = swept_error(g.profile, g.closed, motion, params.eps_prox, tree)
+    motion, upper = (_refine_bounded(g.profile, g.motion, tree, params) if len(g.profile) >= 3
+                     else (g.motion, None))
+    # the same fit error as without the bounds, fewer closest points (swept_error)
+    err = swept_error(g.profile, g.closed, motion, params.eps_prox, tree, upper)
     if err.fit_error > params.fit_factor * params.eps_prox:
         return g, False
     fit = swept_coverage(mesh, err, params.eps_prox, areas, distances=False)

@@ -181,6 +181,11 @@ class SweepParams:
         plane, then set into the normal plane of its centroid's path and refined again by as many
         steps (a profile small against ``eps_prox`` fits the bound turned the wrong way; default
         4; 0: no refinement).
+    twist_tolerance : float
+        The refinement's early stop: a knot whose step moves its profile's points by at most
+        about this much (bounding-box diameters; its turn times the profile's radius and its
+        shift) takes no more steps. Default 1e-7 (2e-5 of the default ``eps_prox``); 0: every
+        knot takes all ``twist_steps``.
     tangent_window : float
         The refinement's path tangents: local cubic fits to the moved centroids within this arc
         length (bounding-box diameters) on either side (0: central differences). Default 0.06: on
@@ -355,6 +360,7 @@ class SweepParams:
     grow_skip: int = 2
     grow_on_mesh: float = 0.5
     twist_steps: int = 4
+    twist_tolerance: float = 1e-7
     tangent_window: float = 0.06
     rib_jump: float = 3.0
     end_gap: float = 0.5
@@ -436,6 +442,8 @@ class SweepParams:
             ("grow_on_mesh", _real(self.grow_on_mesh) and 0.1 <= self.grow_on_mesh <= 1,
              "in [0.1, 1] (a share of the profile's points)"),
             ("twist_steps", _whole(self.twist_steps) and 0 <= self.twist_steps <= 64, "a whole number in 0..64"),
+            ("twist_tolerance", _real(self.twist_tolerance) and 0 <= self.twist_tolerance <= 1e-3,
+             "in [0, 1e-3] (bounding-box diameters)"),
             ("tangent_window", _real(self.tangent_window) and 0 <= self.tangent_window <= 1,
              "in [0, 1] (bounding-box diameters)"),
             ("rib_jump", _real(self.rib_jump) and self.rib_jump > 1, "> 1 (times the median rib step)"),

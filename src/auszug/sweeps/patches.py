@@ -36,6 +36,8 @@ from numpy.typing import ArrayLike, NDArray
 from auszug.errors import GeometryError
 from auszug.sweeps._kernels import (
     boundary_edges_of,
+    face_grid,
+    face_grid_cell,
     face_vertices_in_box,
     faces_within,
     improve_sums,
@@ -192,6 +194,12 @@ def closest_distance(points: ArrayLike, vertices: ArrayLike, elements: ArrayLike
     return np.sqrt(np.maximum(sq, 0.0)), np.asarray(c)
 
 
+#: :meth:`MeshTree.face_grid`'s cell size in mean edge lengths of the mesh.
+FACE_GRID_CELL = 1.5
+
+#: :meth:`MeshTree.face_grid` has at most this many cells per face (the cell grows on a sparse mesh).
+FACE_GRID_CELLS = 8
+
 #: Where :meth:`MeshTree.of` keeps a mesh's tree (an attribute of the mesh object, not a dataclass field).
 _TREE_KEY = "_mesh_tree"
 
@@ -265,6 +273,24 @@ class MeshTree:
         out = np.sqrt(np.maximum(sq, 0.0)), np.asarray(face, np.int64), np.asarray(c)
         self._last = (p.copy(), out[0].copy(), out[1].copy(), out[2].copy())
         return out
+
+    def face_grid(self) -> tuple[Array, IntArray, float, IntArray, IntArray, Array]:
+        """The tree's faces binned in a uniform grid (compiled :func:`~auszug.sweeps._kernels.face_grid`), built once.
+
+        For compiled exact closest-point searches that start near the answer (the motion's
+        refinement, :func:`~auszug.sweeps.general.refine_motion`). The cell is
+        :data:`FACE_GRID_CELL` mean edge lengths, larger where the grid would have more than
+        :data:`FACE_GRID_CELLS` cells per face. Returns the origin, the cell counts, the cell
+        size, each cell's first entry, the faces cell after cell and the faces' bounding boxes.
+        """
+        got = self.__dict__.get("_grid")
+        if got is None:
+            v, f = self.vertices, self.faces
+            h = float(face_grid_cell(v, f, float(FACE_GRID_CELL), float(FACE_GRID_CELLS)))
+            lo, dims, start, entries, fbox = face_grid(v, f, h)
+            got = (lo, dims, h, start, entries, fbox)
+            self._grid = got
+        return got
 
     def _boundary_edges(self) -> IntArray:
         """Per face its boundary edges as vertex pairs ``(m, 3, 2)`` (-1 where the edge is inner)."""

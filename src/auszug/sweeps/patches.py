@@ -603,8 +603,11 @@ def consistent_pieces(profile: Array, closed: bool, pts: Array, piece_start: Int
     ring = np.vstack([profile, profile[:1]]) if closed else profile
     d = polyline_closest_chunked(np.ascontiguousarray(pts, dtype=float), np.ascontiguousarray(ring, dtype=float))[0]
     key_of = np.repeat(np.asarray(piece_key, np.int64), np.diff(piece_start))
-    keys = np.unique(key_of)
-    med = np.array([np.median(d[key_of == k]) for k in keys])
+    # per key the median of its points' distances: sorted by key, then distance
+    order = np.lexsort((d, key_of))
+    keys, first, count = np.unique(key_of[order], return_index=True, return_counts=True)
+    ds = d[order]
+    med = (ds[first + (count - 1) // 2] + ds[first + count // 2]) / 2
     far = keys[med > trim * np.median(med)]
     if not len(far):
         return pts, piece_start, piece_key

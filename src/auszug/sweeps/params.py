@@ -199,7 +199,7 @@ class SweepParams:
         the knots (a grown sweep's knots where the mesh ends or past it; default 2; 0: every piece
         counts). On a member's square bar the mean of all pieces cut its corners by 1.5e-3.
     corner_tolerance : float
-        Beyond the paper: a finished general sweep's profile segment gets the median of the recut
+        Beyond the paper: a finished general sweep's closed profile segment gets the median of the recut
         pieces' farthest points from it inserted when that lies farther than this (bounding-box
         diameters; the corner of a square profile between two profile points;
         :func:`~auszug.sweeps.patches.fill_corners`; default 5e-4; 0: none).

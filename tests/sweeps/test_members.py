@@ -24,6 +24,7 @@ from auszug.sweeps.patches import SweepPatch
 
 U30 = "legacy/U.XI.30.uc"          # one ogee member, cut at a mirror plane at both ends
 U29 = "web/U.XI.29.uc"             # two ogee members, free ends
+U91 = "web/U.XI.91.uc"             # four members
 
 
 @cache
@@ -167,13 +168,14 @@ def test_a_member_at_the_defaults_is_no_general_sweep():
 def test_one_member_clean_meets_every_target_at_eps_prox_0_002():
     """tn-2's member, clean, with_scale(0.25), eps_prox 0.002: measured coverage 0.999, plane recall
     1.00, fit error 9.8e-4, profile Hausdorff 4.6e-4, rotation 0.03 deg, translation 8.0e-7 (one patch,
-    closed; before the motion's refinement 0.998, 1.00, 5.2e-4, 4.5e-4, 0.46 deg, 4.7e-5). Every target
-    of the issue met; asserted at the targets, the motion just above what is measured."""
+    closed; before the motion's refinement 0.998, 1.00, 5.2e-4, 4.5e-4, 0.46 deg, 4.7e-5); since
+    sweeps-members4 (pieces off the profile left out, corners put back, one-sided tangents) 0.999,
+    1.00, fit error 5.5e-5, Hausdorff 4.0e-4, 0.02 deg, 6.1e-7. Every target of the issue met."""
     fx, r, e = _detected("teaching-sheet/tn-2.uc", 0.0, 0.002)
     assert r.coverage >= 0.95 and e.recall >= 0.95
     assert len(r.patches) == 1 and r.patches[0].closed
-    assert e.hausdorff.max() <= 1e-3
-    assert e.median_rotation <= 0.1 and e.median_translation <= 5e-6
+    assert e.hausdorff.max() <= 5e-4
+    assert e.median_rotation <= 0.05 and e.median_translation <= 2e-6
 
 
 def test_the_square_bar_is_not_turned_the_wrong_way_at_eps_prox_0_005():
@@ -182,32 +184,65 @@ def test_the_square_bar_is_not_turned_the_wrong_way_at_eps_prox_0_005():
     against the mesh (``general.refine_motion``) tn-2's patch was 84 deg off (its family's ribs a
     quarter turn and a flip apart), U.XI.30's 0.65 deg. Measured after: tn-2 rotation 0.052 deg,
     translation 1.6e-6, profile Hausdorff 6.2e-4, coverage 0.999, recall 1.00 (one closed patch);
-    U.XI.30 0.024 deg, 2.3e-7, 5.3e-4, 0.999, 1.00. Every target of the issue met at eps_prox 0.005."""
-    for name, rot, trans in (("teaching-sheet/tn-2.uc", 0.1, 5e-6), (U30, 0.05, 1e-6)):
+    U.XI.30 0.024 deg, 2.3e-7, 5.3e-4, 0.999, 1.00. With the pieces of the knots off the profile left
+    out of its improvement, the corners put back and the one-sided tangents (sweeps-members4): tn-2
+    0.029 deg, 1.1e-6, Hausdorff 4.6e-4; U.XI.30 0.027 deg, 2.6e-7, 3.6e-4 (coverage, recall kept).
+    Every target of the issue met at eps_prox 0.005."""
+    for name, rot, trans in (("teaching-sheet/tn-2.uc", 0.05, 3e-6), (U30, 0.05, 1e-6)):
         fx, r, e = _detected(name, 0.0, 0.005)
         assert r.coverage >= 0.99 and e.recall >= 0.95, name
         assert len(r.patches) == 1 and r.patches[0].closed, name
-        assert e.hausdorff.max() <= 1e-3, name
+        assert e.hausdorff.max() <= 5e-4, name
         assert e.median_rotation <= rot and e.median_translation <= trans, name
         assert r.stage("motion").numbers["refined"] >= 1, name
 
 
 def test_one_member_with_noise_is_turned_right_within_a_degree():
     """tn-2's member, normal noise 5e-4, eps_prox 0.005: measured coverage 1.000, plane recall 1.00,
-    profile Hausdorff 7.3e-4, rotation 0.74 deg (49 deg before), translation 1.9e-4 (one closed patch).
-    The rotation target (0.5 deg) is missed: per knot the twist follows the noisy faces (about 1 deg)."""
+    profile Hausdorff 7.3e-4, rotation 0.74 deg (49 deg before), translation 1.9e-4 (one closed patch);
+    since sweeps-members4 6.7e-4 and 0.64 deg (the pieces of the knots off the profile left out of
+    its improvement, the one-sided tangents). The rotation target (0.5 deg) is missed: per knot the
+    twist follows the noisy faces (about 1 deg)."""
     fx, r, e = _detected("teaching-sheet/tn-2.uc", 5e-4, 0.005)
     assert r.coverage >= 0.95 and e.recall >= 0.85
-    assert e.hausdorff.max() <= 1e-3
-    assert e.median_rotation <= 1.0 and e.median_translation <= 3e-4
+    assert e.hausdorff.max() <= 8e-4
+    assert e.median_rotation <= 0.7 and e.median_translation <= 3e-4
+
+
+def test_two_members_clean_meet_every_target():
+    """U.XI.29's two members (two mesh components), clean, eps_prox 0.005: before sweeps-members4 the
+    profile Hausdorff was 8.6e-4 and 1.8e-3 (the mean of all recut pieces, the grown sweep's ends and
+    the other member among them, cut the square's corners; the improvement never put a corner back)
+    and the rotation 0.32 and 1.07 deg (the middle knot, the reference, lies at the ogee's
+    inflection, where the centred cubics turned the path's tangent by 1.08 deg). Measured after:
+    coverage 1.000, plane recall 0.97, Hausdorff 4.2e-4 and 3.2e-4, rotation 0.03 and 0.01 deg,
+    translation 6.9e-8 and 2.0e-7, two closed patches (median 0.02 deg, 1.3e-7)."""
+    fx, r, e = _detected(U29, 0.0, 0.005)
+    assert r.coverage >= 0.99 and e.recall >= 0.95
+    assert len(r.patches) == 2 and all(p.closed for p in r.patches)
+    assert e.hausdorff.max() <= 5e-4
+    assert e.rotation.max() <= 0.1 and e.translation.max() <= 1e-6
 
 
 def test_u30_clean_meets_every_target_at_eps_prox_0_002():
     """U.XI.30's member, clean, eps_prox 0.002: measured coverage 0.998, plane recall 1.00, profile
     Hausdorff 3.6e-4, rotation 0.33 deg, translation 3.1e-7, one patch (before the alignment and the
-    refinement: coverage 0.758, recall 0.75, Hausdorff 3.8e-3, 0.59 deg, two patches)."""
+    refinement: coverage 0.758, recall 0.75, Hausdorff 3.8e-3, 0.59 deg, two patches); since
+    sweeps-members4 0.998, 1.00, 3.3e-4, 0.03 deg (the middle knot at the ogee's inflection: its
+    one-sided tangent), 3.6e-7."""
     fx, r, e = _detected(U30, 0.0, 0.002)
     assert r.coverage >= 0.99 and e.recall >= 0.95
     assert len(r.patches) == 1
-    assert e.hausdorff.max() <= 1e-3
-    assert e.median_rotation <= 0.4 and e.median_translation <= 1e-6
+    assert e.hausdorff.max() <= 5e-4
+    assert e.median_rotation <= 0.05 and e.median_translation <= 1e-6
+
+
+def test_four_members_clean_meet_every_target():
+    """U.XI.91's four members, clean, eps_prox 0.005: before sweeps-members4 coverage 1.000, plane
+    recall 1.00, profile Hausdorff 1.1e-3 (worst patch), rotation 0.04 deg, translation 7.5e-8
+    (medians); after 1.000, 1.00, 4.9e-4, 0.10 deg, 5.3e-6, four patches."""
+    fx, r, e = _detected(U91, 0.0, 0.005)
+    assert r.coverage >= 0.99 and e.recall >= 0.95
+    assert len(r.patches) == 4
+    assert e.hausdorff.max() <= 6e-4
+    assert e.median_rotation <= 0.2 and e.median_translation <= 1e-5

@@ -47,16 +47,20 @@ def _recall(fx, r):
     return plane_recall(fx.planes, np.vstack([n for n, _ in planes]), np.concatenate([d for _, d in planes]))
 
 
-@pytest.mark.parametrize("name, coverage, recall", [
-    ("letter_g 5e-4", 0.85, 0.85),     # measured 0.997, 1.00 (main: 0.748, 0.52)
-    ("letter_g 1e-3", 0.85, 0.85),     # measured 0.995, 0.93 (main: no patch)
+@pytest.mark.parametrize("name, coverage, recall, coarse", [
+    ("letter_g 5e-4", 0.85, 0.85, False),   # measured 1.000, 1.00 (0.997, 1.00 by the coarse pass before
+                                            # sweeps-members4; main then: 0.748, 0.52)
+    ("letter_g 1e-3", 0.85, 0.85, True),    # measured 0.995, 0.93 (main: no patch)
 ])
-def test_noisy_letter_g_is_found_by_the_coarse_pass(name, coverage, recall):
+def test_noisy_letter_g_is_found_by_the_coarse_pass(name, coverage, recall, coarse):
     """Over the short window (0.05) the noisy cuts' curvature is mostly noise (at 1e-3: 16 of 16 245
     pairs matched, no patch kept); the coarse pass (0.08) matches the G again and one sweep grows
-    over the whole mesh, its profile (nearly) the whole G, in the true profile planes."""
+    over the whole mesh, its profile (nearly) the whole G, in the true profile planes. At 5e-4 the
+    first pass covers it since the profile improvement leaves out the pieces of the knots off the
+    profile (sweeps-members4: coverage 1.000 in one patch, fit error 4.7e-3): no coarse pass runs."""
     fx, r = _run(name)
-    assert any(s.name == "match" and s.numbers.get("curvature_window") == DEFAULT.coarse_window for s in r.stages)
+    ran = any(s.name == "match" and s.numbers.get("curvature_window") == DEFAULT.coarse_window for s in r.stages)
+    assert ran == coarse
     assert r.patches and all(p.kind == "general" for p in r.patches)
     assert all(p.fit_error <= PARAMS.fit_factor * PARAMS.eps_prox for p in r.patches)
     assert r.coverage >= coverage

@@ -303,3 +303,56 @@ def test_area_samples_are_spread_by_area():
     w = (g[:, 0] * r[:, 1] - g[:, 1] * r[:, 0]) / det
     assert np.all((u >= -1e-9) & (w >= -1e-9) & (u + w <= 1 + 1e-9))
     assert len(area_samples(fx.vertices, fx.faces, 0)[0]) == 0
+
+
+def _square(n_side: int, half: float = 0.01, phase: float = 0.0) -> np.ndarray:
+    """A closed square loop in the plane z = 0, ``n_side`` points a side, shifted ``phase`` of a step along it."""
+    u = (np.arange(n_side) + phase) / n_side * 2 * half - half
+    one = np.full(n_side, half)
+    return np.column_stack([np.r_[u, one, -u, -one], np.r_[-one, u, one, -u], np.zeros(4 * n_side)])
+
+
+def test_fill_corners_puts_back_the_corners_the_profiles_chords_cut(monkeypatch):
+    """A square profile sampled past its corners (every chord across a corner cuts it by 1.8e-3) and cuts
+    of the square (its corners among their points): each corner is inserted, the profile is then the
+    square (Hausdorff 0 up to round-off). Cuts that scatter to both sides of a segment (noise 5e-4) add
+    nothing; nor does a tolerance above the chord's cut."""
+    import auszug.sweeps.patches as patches_module
+    from auszug.sweeps.patches import fill_corners
+
+    truth = _square(8, phase=0.0)
+    profile = _square(4, phase=0.5)                 # no point at a corner
+    assert polyline_hausdorff(profile, truth, True, True) > 1.7e-3
+    pieces = [np.vstack([truth, truth[:1]])] * 5
+    pts, starts = np.vstack(pieces), np.cumsum([0] + [len(q) for q in pieces])
+    out, new = fill_corners(profile, True, pts, starts, 5e-4, 0.005)
+    assert len(new) == 4 and len(out) == len(profile) + 4
+    assert polyline_hausdorff(out, truth, True, True) < 1e-12
+    assert np.array_equal(np.delete(out, new, axis=0), profile)           # the old points kept, in order
+    same, none = fill_corners(profile, True, pts, starts, 3e-3, 0.005)   # above the cut: nothing
+    assert same is profile and len(none) == 0
+    # a profile on the square with a point at each corner, cuts of the square with noise across it
+    # (5e-4, a tolerance of 5e-5: 12 of the 16 segments would get a point were one side not asked for)
+    rng = np.random.default_rng(0)
+    noisy = [truth + rng.normal(0, 5e-4, truth.shape) * [1, 1, 0] for _ in range(40)]
+    pts, starts = np.vstack(noisy), np.cumsum([0] + [len(q) for q in noisy])
+    out, new = fill_corners(truth[::2], True, pts, starts, 5e-5, 0.005)
+    assert len(new) == 0
+    monkeypatch.setattr(patches_module, "CORNER_AGREEMENT", 0.5)
+    assert len(fill_corners(truth[::2], True, pts, starts, 5e-5, 0.005)[1]) >= 8
+
+
+def test_consistent_pieces_leave_out_the_knots_off_the_profile():
+    """Pieces of 10 knots on the profile (within 1e-4) and of 2 knots 3e-3 off it (a grown sweep's ends): the
+    2 knots' pieces are left out, the others kept as they were; trim 0 keeps all."""
+    from auszug.sweeps.patches import consistent_pieces
+
+    sq = _square(8)
+    rng = np.random.default_rng(2)
+    pieces = [sq + rng.normal(0, 5e-5, sq.shape) for _ in range(10)] + [sq * 1.3, sq * 1.3]
+    pts, starts = np.vstack(pieces), np.cumsum([0] + [len(q) for q in pieces])
+    key = np.arange(12)
+    p, s, k = consistent_pieces(sq, True, pts, starts, key, 2.0)
+    assert k.tolist() == list(range(10)) and np.array_equal(p, pts[:starts[10]]) and np.array_equal(s, starts[:11])
+    p, s, k = consistent_pieces(sq, True, pts, starts, key, 0.0)
+    assert p is pts and k is key

@@ -191,6 +191,23 @@ class SweepParams:
         length (bounding-box diameters) on either side (0: central differences). Default 0.06: on
         a member's mesh with noise 5e-4 the tangents of single knots turned the profile planes by
         2.4 deg (median), over 0.06 by 0.75 deg; clean, 0.02-0.04 deg either way.
+    tangent_switch : float
+        The refinement's path tangents at a jump of the path's curvature (arcs meeting G1, as a
+        member's ogee at its inflection): a point whose centred cubic's residual variance is more
+        than this many times a one-sided cubic's (over the window behind or ahead) takes the
+        one-sided tangent (:func:`~auszug.sweeps.general.path_tangents`; default 10; 0: centred
+        fits only). On U.XI.29's member the centred tangent at the inflection was 1.08 deg off,
+        the one-sided 0.02.
+    piece_trim : float
+        Beyond the paper: the profile improvement (sec. 2.3.3) leaves out the recut pieces of the
+        knots whose median distance to the profile is more than this many times the median over
+        the knots (a grown sweep's knots where the mesh ends or past it; default 2; 0: every piece
+        counts). On a member's square bar the mean of all pieces cut its corners by 1.5e-3.
+    corner_tolerance : float
+        Beyond the paper: a finished general sweep's closed profile segment gets the median of the recut
+        pieces' farthest points from it inserted when that lies farther than this (bounding-box
+        diameters; the corner of a square profile between two profile points;
+        :func:`~auszug.sweeps.patches.fill_corners`; default 5e-4; 0: none).
     rib_jump : float
         A family's ordered ribs are split where the step between consecutive ribs' centroids is
         more than this many times the median step; each stretch (of at least 3 ribs) is fitted on
@@ -362,6 +379,9 @@ class SweepParams:
     twist_steps: int = 4
     twist_tolerance: float = 1e-7
     tangent_window: float = 0.06
+    tangent_switch: float = 10.0
+    piece_trim: float = 2.0
+    corner_tolerance: float = 5e-4
     rib_jump: float = 3.0
     end_gap: float = 0.5
     translation_step: float = 0.02
@@ -446,6 +466,13 @@ class SweepParams:
              "in [0, 1e-3] (bounding-box diameters)"),
             ("tangent_window", _real(self.tangent_window) and 0 <= self.tangent_window <= 1,
              "in [0, 1] (bounding-box diameters)"),
+            ("tangent_switch",
+             _real(self.tangent_switch) and (self.tangent_switch == 0 or 1 <= self.tangent_switch <= 1e6),
+             "0 or in [1, 1e6] (a ratio of residual variances)"),
+            ("piece_trim", _real(self.piece_trim) and (self.piece_trim == 0 or 1 <= self.piece_trim <= 100),
+             "0 or in [1, 100] (times the median)"),
+            ("corner_tolerance", _real(self.corner_tolerance) and 0 <= self.corner_tolerance <= 0.1,
+             "in [0, 0.1] (bounding-box diameters)"),
             ("rib_jump", _real(self.rib_jump) and self.rib_jump > 1, "> 1 (times the median rib step)"),
             ("end_gap", _real(self.end_gap) and 0.05 <= self.end_gap <= 20, "in [0.05, 20] (multiples of eps_prox)"),
             ("translation_step", _real(self.translation_step) and 1e-4 <= self.translation_step <= 0.5,

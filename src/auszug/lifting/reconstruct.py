@@ -228,12 +228,11 @@ class _Problem:
         P.add(-self.v[cols], 1e-8, lin=(np.arange(len(cols)), cols, np.ones(len(cols))))
 
     def run(self, name: str, energy: Poly2, cons: Poly2, applied: int = 0, rejected: int = 0,
-            candidate: bool = False, iterations: int | None = None) -> SolveResult:
+            candidate: bool = False) -> SolveResult:
         t0 = time.perf_counter()
         self._normal_anchor(energy)
         lam0 = self.lam if self.lam is not None and len(self.lam) == cons.rows else None
-        r = solve(energy, cons, self.v, lam0,
-                  iterations=self.params.newton_iterations if iterations is None else iterations,
+        r = solve(energy, cons, self.v, lam0, iterations=self.params.newton_iterations,
                   tol=self.params.newton_tol, kkt_reg=self.params.kkt_reg, hessian_reg=self.params.hessian_reg,
                   soc_tol=self.params.soc_tol, refine_inexact=bool(self.params.refine_inexact),
                   orderings=self.orderings)

@@ -11,8 +11,8 @@ Measured per lift: depth RMSE relative to the diagonal after the best depth offs
 (``truth.depth_rmse``), the sign, convergence, precision / recall / F1 of the applied cues per class
 against the true labels, and the largest residual angle of the applied cues per class on the final
 network (degrees): smooth-crossing orthogonality (hard), corner orthogonality (hard), planarity (the
-last class: its last round's accepted cues are not solved again, docs/lifting.md) and parallelism
-(soft by design).
+last class: its last round's applied cues held by ``LiftParams.final_hold`` since lift-final,
+docs/lifting.md), parallelism (soft by design) and any applied cue of any class.
 
 Usage (from the repository root)::
 
@@ -67,6 +67,7 @@ def evaluate(tr: T.Truth, classes: tuple[str, ...], params: LiftParams = DEFAULT
     scores = T.cue_scores(r, lab)
     worst = {k: max((c.angle for c in r.cues if c.applied and c.kind == k), default=0.0)
              for k in ("smooth-orthogonal", "orthogonal", "planar", "parallel")}
+    worst["any"] = max((c.angle for c in r.cues if c.applied), default=0.0)
     return {"err": err, "sign": sign, "converged": r.converged, "seconds": sec, "scores": scores, "worst": worst,
             "classes": classes}
 
@@ -92,7 +93,7 @@ def _f1(rows: list[dict], k: str) -> str:
 
 def _worst(rows: list[dict]) -> str:
     return ", ".join(f"{max((r['worst'][k] for r in rows), default=0.0):.2g}"
-                     for k in ("smooth-orthogonal", "orthogonal", "planar", "parallel"))
+                     for k in ("smooth-orthogonal", "orthogonal", "planar", "parallel", "any"))
 
 
 def noise_table(names: list[str], classes: tuple[str, ...], out, params: LiftParams = DEFAULT) -> None:
@@ -136,7 +137,7 @@ def noise_table(names: list[str], classes: tuple[str, ...], out, params: LiftPar
 def views_table(names: list[str], classes: tuple[str, ...], out, params: LiftParams = DEFAULT) -> None:
     """Wrong-sign rate and depth RMSE over the grid TILTS x TURNS (noise-free), accidental views rejected."""
     print("| truth | views lifted (rejected) | wrong sign | depth RMSE median / max | F1 parallel | "
-          "F1 corner orthogonal | F1 planar | largest applied angle (deg): smooth, corner, planar, parallel | "
+          "F1 corner orthogonal | F1 planar | largest applied angle (deg): smooth, corner, planar, parallel, any | "
           "not converged |", file=out)
     print("|---|---|---|---|---|---|---|---|---|", file=out)
     total = wrong_total = 0

@@ -272,6 +272,83 @@ def test_the_final_solve_meets_every_applied_hard_cue():
     assert r1.stages[-1].name == "final" and all(s.name != "final" for s in r0.stages)
 
 
+#: The rule for the last round's applied cues (lift-final, docs/lifting.md "Applied cues within 0.5 deg").
+HOLD = LiftParams(final_hold=True)
+
+
+@pytest.mark.parametrize("name", list(T.TRUTHS))
+def test_every_applied_cue_holds_within_half_a_degree(name):
+    """Issue 12's target "applied cues within 0.5 deg" with ``LiftParams(final_hold=True)`` (lift-final; off by
+    default for its cost on the 100-curve benchmark sketch, docs/lifting.md):
+    the last round's applied cues are held by that round solved once more with them hard, its depths held
+    near its solution, so on every truth at its own view, noise-free, every applied hard cue holds to
+    1e-6 deg and applied parallelism (soft) within 0.1 deg (measured at most 0.05); at 1 % noise (seed 1)
+    every applied cue holds within 0.5 deg. Without the rule the revolve's planar cues end up to 3.85 deg
+    off, the cross's 4.73, the saddle's 0.91 (measured); the depth RMSE moves by at most 0.17 % points
+    (the cross: 16.21 -> 16.38 %; docs/lifting.md)."""
+    tr = T.make(name)
+    r = lift(tr.sketch, params=HOLD)
+    applied = [c for c in r.cues if c.applied]
+    assert applied and r.stages
+    assert max(c.angle for c in applied if c.kind not in ("parallel", "linear")) < 1e-6
+    assert max((c.angle for c in applied if c.kind == "parallel"), default=0.0) < 0.1
+    # the depth RMSE within 0.2 % points of the default's (measured -0.03 to +0.17, the cross's the +0.17)
+    err, sign = T.depth_rmse(tr, r)
+    err0, sign0 = T.depth_rmse(tr, _clean(name)[1])
+    assert sign == sign0 == 1 and abs(err - err0) <= 0.002, (err, err0)
+    tr1 = T.make(name, noise=0.01, seed=1)
+    r1 = lift(tr1.sketch, params=HOLD)
+    assert max(c.angle for c in r1.cues if c.applied) <= DEFAULT.applied_tol_deg
+    if name == "revolve":   # the test can fail: the same lift without the rule
+        r0 = _clean(name)[1]   # the default: without the rule
+        assert max(c.angle for c in r0.cues if c.applied) > 1.0
+        assert [s.name for s in r.stages] == [s.name for s in r0.stages] + ["planar held"]
+
+
+def _same_lift(r, r0) -> None:
+    ts = np.linspace(0.0, 1.0, 5)
+    for a, b in zip(r.network.pieces, r0.network.pieces, strict=True):
+        assert np.array_equal(a.point_t(ts), b.point_t(ts))
+    assert [(c.kind, c.where) for c in r.cues] == [(c.kind, c.where) for c in r0.cues]
+
+
+def test_a_held_round_that_breaks_an_applied_cue_rejects_its_cues_beyond_half_a_degree():
+    """The rule's fallback when the held round converges but breaks another applied cue: the spiral seen at
+    tilt 30, turn 30, whose last planar round applies one (false) helix planarity at 3.43 deg; held hard, it
+    converges but pulls an applied (soft) tangent parallelism 14.5 deg off (measured). So the round's
+    solution stays (the lift is the one without the rule, to the bit) and that cue is rejected."""
+    tr = T.make("spiral", 30.0, 30.0)
+    r, r0 = lift(tr.sketch, params=HOLD), lift(tr.sketch)
+    held = r.stages[-1]
+    assert held.name == "planar held" and held.converged and held.discarded
+    assert (held.applied, held.rejected) == (0, 1)
+    _same_lift(r, r0)
+    dropped = [(c0.kind, c0.angle) for c, c0 in zip(r.cues, r0.cues, strict=True) if c0.applied and not c.applied]
+    assert len(dropped) == 1 and dropped[0][0] == "planar" and dropped[0][1] > DEFAULT.applied_tol_deg
+    assert max(c.angle for c in r.cues if c.applied) <= DEFAULT.applied_tol_deg
+    assert max(c.angle for c in r0.cues if c.applied) > 1.0
+
+
+def test_a_held_round_that_does_not_converge_keeps_the_rounds_solution():
+    """The rule's fallback when the held round does not converge (at the anchor weight nor a third of it): the
+    saddle at 1 % noise (seed 0), whose last planar round applies one cue at 0.24 deg. The round's
+    solution stays (to the bit) and the cue, within 0.5 deg there, stays applied; a solve that does not
+    converge at the first weight and does at the second is kept (the wrinkle at 1 % noise, seeds 0 and 1)."""
+    tr = T.make("saddle", noise=0.01, seed=0)
+    r, r0 = lift(tr.sketch, params=HOLD), lift(tr.sketch)
+    held = [s for s in r.stages if "held" in s.name]
+    assert [(s.converged, s.discarded) for s in held] == [(False, True), (False, True)]
+    assert (held[-1].applied, held[-1].rejected) == (1, 0)
+    _same_lift(r, r0)
+    assert [c.applied for c in r.cues] == [c.applied for c in r0.cues]
+    assert 0.1 < max(c.angle for c in r.cues if c.applied) <= DEFAULT.applied_tol_deg
+    tr = T.make("wrinkle", noise=0.01, seed=1)
+    r = lift(tr.sketch, params=HOLD)
+    held = [s for s in r.stages if "held" in s.name]
+    assert [(s.converged, s.discarded, s.applied) for s in held] == [(False, True, 0), (True, False, 8)]
+    assert max(c.angle for c in r.cues if c.applied and c.kind == "planar") < 1e-6
+
+
 # Structural diagnosis (branch lift-acc, docs/lifting.md "Structural diagnosis"): where the large errors of
 # the spiral, the cross and the wrinkle come from.
 

@@ -360,9 +360,16 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        undecided cues, subject to the applied ones; L = 1 applies a cue
        (parallelism stays soft with weight w_c), L = 0 or no increase rejects
        it; after ``params.rounds`` rounds the rest is rejected. Cues applied
-       in a class's final round are held by the next class's solves; after the
-       last class, with ``params.final_solve``, one *final* solve holds them
-       (every applied hard cue met, not only within I_b). The class
+       in a class's final round are held by the next class's solves; those of
+       the last round run only within I_b, unless ``params.final_hold`` (our
+       rule, off by default for its time): one more solve of that round with
+       them hard, the round's soft terms kept, its depths held near its
+       solution by ``params.w_final_anchor``, kept if it converges and every
+       applied cue then holds within ``params.applied_tol_deg``; otherwise the
+       round's solution stays and its applied cues beyond that angle there are
+       rejected. ``params.final_solve`` instead solves fidelity and the kept
+       cues once more with every applied cue hard and no depth anchor (the
+       paper's fixed point). The class
        ``"plane"`` (plane parallelism and orthogonality) comes after planarity:
        its candidates are the single-linkage clusters of the applied planar
        strokes' normals (:func:`~auszug.lifting.cues.plane_cues`);
@@ -459,7 +466,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
 
     # cues applied after the last solve (a class's final round): the next class's first solve holds
     # them; after the last class one more solve does (see the docstring, 3.)
-    pending = {"applied": 0}
+    pending: dict = {"applied": 0, "redo": None}
 
     def resolve(name: str, fam, hard_add, soft_add, pre: NDArray[np.bool_] | None = None,
                 skip: NDArray[np.bool_] | None = None, confirm: bool = False) -> NDArray[np.bool_]:
@@ -479,13 +486,14 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             for f in soft_kept:
                 f(E)
             idx = np.nonzero(undecided)[0]
-            soft_add(E, idx, params.w_c * Lp[idx])
+            w_round = params.w_c * Lp
+            soft_add(E, idx, w_round[idx])
             C = pr.constraints()
             for f in hard:
                 f(C)
             r = pr.run(f"{name} round {rnd + 1}", E, C)
             k_round = len(pr.stages) - 1
-            pending["applied"] = 0
+            pending["applied"], pending["redo"] = 0, None
             ok &= r.converged
             L = cu.likelihood(fam.angles(pr.X()), params)
             acc = undecided & (L >= 1.0)
@@ -517,6 +525,9 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
                 sel = np.nonzero(applied)[0]
                 hard_add(sel)
                 pending["applied"] = int(acc.sum())
+                rest = idx[~acc[idx]]
+                pending["redo"] = (name, fam, np.nonzero(acc)[0], applied, hard_add, soft_add, rest,
+                                   w_round[rest], anchor)
             if not undecided.any():
                 break
         return applied
@@ -561,6 +572,49 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         for f in hard:
             f(C)
         return pr.run(name, E, C, applied=applied)
+
+    def hold_last(worst_applied: Callable[[], float]) -> None:
+        """The rule of ``params.final_hold`` for the cues the last round run applied.
+
+        That round is solved again with them hard, its depths held near its solution (weight
+        ``params.w_final_anchor``); kept if it converges and every applied cue (``worst_applied``, degrees)
+        then holds within ``params.applied_tol_deg``, else the round's solution is kept and its applied
+        cues that do not hold there within that angle are rejected (as L = 0 would).
+        """
+        name, fam, acc, mask, hard_add, soft_add, rest, w, anchor = pending["redo"]
+        keep_v, keep_lam = pr.v.copy(), pr.lam
+        z0 = pr.X()[:, 2].copy()
+        ang0 = fam.angles(pr.X())[acc]
+        # a solve that does not converge is tried once more from the round's solution with a third of the weight
+        for k, w_anchor in enumerate((params.w_final_anchor, params.w_final_anchor / 3.0)):
+            if k:
+                pr.v, pr.lam = keep_v.copy(), keep_lam
+            E = pr.energy(params.w_a, z0, w_anchor) if w_anchor > 0 else pr.energy(params.w_a, anchor)
+            for f in soft_kept:
+                f(E)
+            soft_add(E, rest, w)
+            C = pr.constraints()
+            for f in hard:
+                f(C)
+            r = pr.run(f"{name} held" + (f" (anchor {w_anchor:.3g})" if k else ""), E, C, applied=len(acc))
+            if r.converged or w_anchor == 0:
+                break
+            pr.stages[-1] = replace(pr.stages[-1], applied=0, discarded=True)
+        worst = worst_applied() if r.converged else np.inf
+        if progress is not None:
+            progress(f"layer {layer} {name} held: largest angle before {ang0.max():.3g} deg, {len(acc)} cues, "
+                     f"converged {r.converged}, largest applied angle after {worst:.3g} deg")
+        if worst <= params.applied_tol_deg:
+            return
+        pr.v, pr.lam = keep_v, keep_lam
+        drop = acc[ang0 > params.applied_tol_deg]
+        mask[drop] = False
+        hard_add(np.nonzero(mask)[0])
+        pr.stages[-1] = replace(pr.stages[-1], applied=len(acc) - len(drop), rejected=len(drop), discarded=True)
+        if progress is not None:
+            progress(f"layer {layer} {name} held: {'an applied cue broken' if r.converged else 'not converged'}; "
+                     f"the round's solution kept, {len(drop)} of its "
+                     f"{len(acc)} cues rejected (beyond {params.applied_tol_deg:g} deg there)")
 
     # global symmetry: its cues hold from here on (the paper's sec. 4), before any class is resolved
     sym_glob = forced.symmetry
@@ -611,7 +665,16 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     hard.append(lambda c: pp.add(c, pp_state["sel"], 1.0))
     pp_applied = resolve("plane", pp, lambda s: pp_state.update(sel=s), lambda E, i, w: pp.add(E, i, w))
 
-    if pending["applied"] and params.final_solve:
+    if pending["applied"] and params.final_hold and not params.final_solve:
+        def worst_applied() -> float:
+            X = pr.X()
+            fams = ((par, par_applied), (orth, orth_applied), (sym, sym_applied), (lin, lin_applied),
+                    (pla, pla_applied), (pp, pp_applied), (sym_glob, np.ones(len(sym_glob), bool)),
+                    (pr.smooth, np.ones(len(pr.smooth), bool)))
+            return max((float(fam.angles(X)[app].max()) for fam, app in fams if app.any()), default=0.0)
+
+        hold_last(worst_applied)
+    elif pending["applied"] and params.final_solve:
         # the last class's cues applied in its final round have not been held by a solve yet: one
         # more solve, every applied cue hard (parallelism and linearity soft with w_c, as before)
         ok &= held_solve("final").converged

@@ -625,6 +625,81 @@ def polyline_closest_chunked(points, polyline):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
+def key_distance_medians(points, polyline, piece_start, piece_key, n_keys):  # pragma: no cover - compiled
+    """Per key the median distance of its pieces' points to a polyline: ``(n_keys,)`` medians and point counts.
+
+    Piece ``j`` is ``points[piece_start[j]:piece_start[j + 1]]``, of key ``piece_key[j]`` in
+    ``0 .. n_keys - 1``. A point's distance is that of :func:`polyline_closest` bit for bit (the
+    square root of the least squared distance of the same formula over all segments): the search
+    starts at the segment nearest the piece's previous point, then visits only the chunks of 8
+    segments, and in them the segments, whose box is not farther than the best so far (with
+    :func:`_prune_limit`'s margin: a box passed over holds no segment as near). A key's median is
+    ``(s[(c - 1) // 2] + s[c // 2]) / 2`` of its ``c`` sorted distances ``s`` (both found by a
+    partition; nan where ``c`` is 0). One pass over all pieces.
+    """
+    m = len(points)
+    n_seg = len(polyline) - 1
+    d = np.empty(m)
+    if n_seg < 1:
+        d = polyline_closest(points, polyline)[0]
+    else:
+        chunk = 8
+        raw = _chunk_boxes(polyline, n_seg, chunk)
+        seg_box = _chunk_boxes(polyline, n_seg, 1)
+        n_chunk = len(raw)
+        for j in range(len(piece_start) - 1):
+            g0 = -1
+            for i in range(piece_start[j], piece_start[j + 1]):
+                px, py, pz = points[i, 0], points[i, 1], points[i, 2]
+                best = np.inf
+                bg = -1
+                if g0 >= 0:
+                    best, _, _, _ = _segment_closest(px, py, pz, polyline, g0)
+                    bg = g0
+                limit = _prune_limit(px, py, pz, best)
+                for h in range(n_chunk):
+                    if _box_sq(px, py, pz, raw, h) > limit:
+                        continue
+                    for g in range(h * chunk, min((h + 1) * chunk, n_seg)):
+                        if _box_sq(px, py, pz, seg_box, g) > limit:
+                            continue
+                        d2, _, _, _ = _segment_closest(px, py, pz, polyline, g)
+                        if d2 < best:
+                            best, bg = d2, g
+                            limit = _prune_limit(px, py, pz, best)
+                d[i] = np.sqrt(best)
+                g0 = bg
+    # per key its points' distances, sorted; the median of each
+    count = np.zeros(n_keys, np.int64)
+    for j in range(len(piece_start) - 1):
+        count[piece_key[j]] += piece_start[j + 1] - piece_start[j]
+    off = np.zeros(n_keys + 1, np.int64)
+    for k in range(n_keys):
+        off[k + 1] = off[k] + count[k]
+    fill = off[:-1].copy()
+    buf = np.empty(off[n_keys])
+    for j in range(len(piece_start) - 1):
+        k = piece_key[j]
+        for i in range(piece_start[j], piece_start[j + 1]):
+            buf[fill[k]] = d[i]
+            fill[k] += 1
+    med = np.full(n_keys, np.nan)
+    for k in range(n_keys):
+        c = count[k]
+        if c > 0:
+            # s[c // 2] by a partition; for even c, s[c // 2 - 1] is the largest of the part before it
+            half = c // 2
+            s = np.partition(buf[off[k]:off[k + 1]], half)
+            lo = s[half]
+            if c % 2 == 0:
+                lo = s[0]
+                for r in range(1, half):
+                    lo = max(lo, s[r])
+            med[k] = (lo + s[half]) / 2
+    return med, count
+
+
+@njit(cache=True)
 def closest_on_plane_curves(target, pts, curve_start, curve_plane, curve_closed, plane):  # pragma: no cover - compiled
     """Closest points of ``target (n, 3)`` on the cut curves of one plane together (each as :func:`polyline_closest`).
 

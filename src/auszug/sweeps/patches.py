@@ -625,16 +625,15 @@ def consistent_pieces(profile: Array, closed: bool, pts: Array, piece_start: Int
     n_pieces = len(piece_start) - 1
     if trim <= 0 or n_pieces < 1 or len(profile) < 2:
         return pts, piece_start, piece_key
-    from auszug.sweeps._kernels import polyline_closest_chunked
+    from auszug.sweeps._kernels import key_distance_medians
 
     ring = np.vstack([profile, profile[:1]]) if closed else profile
-    d = polyline_closest_chunked(np.ascontiguousarray(pts, dtype=float), np.ascontiguousarray(ring, dtype=float))[0]
-    key_of = np.repeat(np.asarray(piece_key, np.int64), np.diff(piece_start))
-    # per key the median of its points' distances: sorted by key, then distance
-    order = np.lexsort((d, key_of))
-    keys, first, count = np.unique(key_of[order], return_index=True, return_counts=True)
-    ds = d[order]
-    med = (ds[first + (count - 1) // 2] + ds[first + count // 2]) / 2
+    key = np.asarray(piece_key, np.int64)
+    # per key the median of its points' distances to the profile polyline (one compiled pass)
+    med, count = key_distance_medians(np.ascontiguousarray(pts, dtype=float), np.ascontiguousarray(ring, dtype=float),
+                                      np.asarray(piece_start, np.int64), key, int(key.max()) + 1)
+    keys = np.flatnonzero(count > 0)
+    med = med[keys]
     far = keys[med > trim * np.median(med)]
     if not len(far):
         return pts, piece_start, piece_key

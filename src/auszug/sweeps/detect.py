@@ -57,7 +57,7 @@ from numpy.typing import NDArray
 
 from auszug.errors import GeometryError
 from auszug.limits import LIMITS
-from auszug.sweeps.arcs import arc_bounds, arc_candidates, crease_circles, flat_candidates
+from auszug.sweeps.arcs import arc_bounds, arc_candidates, crease_circles, flat_candidates, ring_circles
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import kinematic_axis
 from auszug.sweeps.mesh import SweepMesh, normalise
@@ -333,6 +333,7 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
             free[p.faces] = False
     arcs: list[SweepPatch] = []
     flats: list[SweepPatch] = []
+    by_rings: list[SweepPatch] = []
     short = arc_bounds(params)
     if params.arc_axes > 0 and areas.sum() > 0 and float(areas[free].sum() / areas.sum()) >= params.min_patch_area:
         # rotations about the axes of the exact arcs among the creases beside the faces left: sweeps
@@ -345,16 +346,24 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         arcs, tried = arc_candidates(m, free, params, tree, first_id=len(raw), axes=axes)
         if params.arc_flat:
             flats = flat_candidates(m, free, axes, params, tree, first_id=len(raw) + len(arcs))
+        # the axes of exact coaxial rings among the edge lines (round mouldings: no crease); their
+        # patches are counted by the area they add, as the planar ones
+        rings = ring_circles(m, free, params)
+        by_rings, _ = arc_candidates(m, free, params, tree, first_id=len(raw) + len(arcs) + len(flats), axes=rings)
         fits = sum(_fits(p, short) for p in arcs)
         flat_fits = sum(p.fit_error <= bound and sweep_length(p) >= short.min_sweep_length for p in flats)
+        ring_fits = sum(p.fit_error <= bound and sweep_length(p) >= short.min_sweep_length for p in by_rings)
         stages.append(Stage("arcs", time.perf_counter() - t,
                             f"{len(axes)} axis/axes of crease arcs within {params.arc_fit * params.eps_prox:.3g} "
                             f"of a circle; {len(arcs)} patch(es), {fits} within fit error {bound:.3g}, covering "
                             f">= {short.min_patch_area:.3g} and sweeping >= {short.min_sweep_length:.3g}; "
                             f"{len(flats)} planar patch(es) about them, {flat_fits} within fit error {bound:.3g} "
-                            f"and sweeping >= {short.min_sweep_length:.3g}",
+                            f"and sweeping >= {short.min_sweep_length:.3g}; {len(rings)} axis/axes of >= "
+                            f"{params.arc_rings} exact coaxial rings, {len(by_rings)} patch(es) about them, "
+                            f"{ring_fits} within fit error {bound:.3g} and sweeping >= {short.min_sweep_length:.3g}",
                             {"axes": len(axes), "tried": tried, "candidates": len(arcs), "fit": fits,
-                             "flat_candidates": len(flats), "flat_fit": flat_fits}))
+                             "flat_candidates": len(flats), "flat_fit": flat_fits, "ring_axes": len(rings),
+                             "ring_candidates": len(by_rings), "ring_fit": ring_fits}))
 
     t = step("fit")
     good = [p for p in raw if _fits(p, params)]
@@ -371,10 +380,10 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         taken[p.faces] = True
     # the planar patches about the crease arcs' axes, each kept when it adds arc_min_area of the area
     # to what the others cover (their long faces are mostly not theirs whole; docs/sweeps.md)
-    flat_ok = [p for p in flats if p.fit_error <= bound and sweep_length(p) >= short.min_sweep_length]
+    flat_ok = [p for p in flats + by_rings if p.fit_error <= bound and sweep_length(p) >= short.min_sweep_length]
     added = add_by_area(m, kept, flat_ok, params.eps_prox, params.coverage_samples, short.min_patch_area, areas)
     kept += added
-    raw = raw + flats
+    raw = raw + flats + by_rings
     patches = tuple(_to_input(p, m, i, params.profile_fit_tolerance) for i, p in enumerate(kept))
     fitted = sum(p.profile_fit is not None for p in patches)
     covered = np.zeros(len(m.faces), bool)
@@ -387,8 +396,8 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
     coverage = float(min(1.0, (shares * areas).sum() / area)) if area > 0 else 0.0
     of_arcs = (f", {len(good) - n_good} of them arcs' patches covering >= {short.min_patch_area:.3g} and sweeping "
                f">= {short.min_sweep_length:.3g}" if arcs else "")
-    of_arcs += (f"; {len(added)} planar patch(es) about crease arcs' axes adding >= {short.min_patch_area:.3g} "
-                "of the area each" if flats else "")
+    of_arcs += (f"; {len(added)} planar patch(es) about crease arcs' axes and patches about rings' axes adding >= "
+                f"{short.min_patch_area:.3g} of the area each" if flats or by_rings else "")
     stages.append(Stage("fit", time.perf_counter() - t,
                         f"{len(patches)} of {len(raw)} patch(es) kept ({len(good)} within fit error {bound:.3g}, "
                         f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}"

@@ -212,9 +212,9 @@ def test_the_border_rounded_to_float32_gives_the_same_parts():
 
 
 #: Measured (docs/sweeps.md, "Planar patches about crease arcs" and "Round mouldings' rings"): fig20c
-#: 0.973 of the area, its wall's face 0.999 and foils 0.715; fig20d 0.964 (0.935 before the rings' axes),
-#: 0.986, 1.000.
-WINDOWS = [("fig20c", 0.97, 0.99, 0.70), ("fig20d", 0.95, 0.98, 0.99)]
+#: 0.978 of the area (0.973 before the rings' axes), its wall's face 0.999 and foils 1.000 (0.715); fig20d
+#: 0.968 (0.935), 0.986, 1.000.
+WINDOWS = [("fig20c", 0.975, 0.99, 0.99), ("fig20d", 0.96, 0.98, 0.99)]
 
 
 def _area2(ring):
@@ -361,8 +361,9 @@ def test_the_windows_with_foils_are_found_by_area(name, least, wall, foils):
     st, fit = r.stage("arcs"), r.stage("fit")
     assert st is not None and fit is not None and st.numbers["flat_fit"] >= 2 and fit.numbers["flat"] >= 2
     if name == "fig20d":
-        # its round mouldings have no crease: their axes come from their exact rings (measured: the
-        # lancets' mouldings 0.913 of their area, the trefoil heads' cusps 0.020 of the mesh's left before)
+        # its round mouldings have no crease: their axes come from their exact rings (measured: 14 axes,
+        # 61 patches fitted; the lancets' mouldings 0.913 of their area, 0.79 before, when their trefoil
+        # heads left 0.020 of the mesh's area)
         assert st.numbers["ring_axes"] >= 4 and st.numbers["ring_fit"] >= 4
         assert by_area["lancet mouldings"] >= 0.9, by_area
     arch = [np.r_[c.center[0], 0.0, c.center[1]] for c in build(name).regions[0].curves if type(c).__name__ == "Arc"]

@@ -28,6 +28,9 @@ curve under their rotations, so the stage ``parts`` proposes no such axis
    of its arcs, swept about it by a straight radial profile from the arc (a wall's face around an
    arch, where the translations' rectangular blocks do not reach); ``detect`` keeps such a patch
    when it adds ``arc_min_area`` of the area to the others (:func:`~auszug.sweeps.patches.add_by_area`).
+4. :func:`ring_circles` (``arc_rings``): the axes of families of exact coaxial circles among the
+   mesh's straightest edge lines (:func:`edge_lines`), a round moulding's rings, which meet at no
+   crease; their patches (:func:`arc_candidates`) are kept, as the planar ones, by the area they add.
 
 The lower bounds hold only for axes that the mesh's own creases give as exact circles, and the
 creases are what keeps smooth bumps out: a Gaussian bump is locally a surface of revolution, and

@@ -16,7 +16,7 @@ from scipy.spatial.transform import Rotation
 
 from auszug.errors import GeometryError
 from auszug.sweeps import DEFAULT, SweepParams, detect, normalise
-from auszug.sweeps.arcs import arc_bounds, arc_candidates, crease_circles, fit_circle
+from auszug.sweeps.arcs import arc_bounds, arc_candidates, crease_circles, fit_circle, ring_circles
 from auszug.sweeps.detect import sweep_length
 from auszug.sweeps.fixtures import bumps
 from auszug.sweeps.kinematic import axis_angle
@@ -149,6 +149,8 @@ def test_bumps_have_no_crease_arc_even_when_every_edge_is_a_crease(sigma, eps):
     ("arc_fit", 0.0), ("arc_fit", 1.5), ("arc_fit", "0.05"),
     ("arc_sweep_length", -0.1), ("arc_sweep_length", float("nan")),
     ("arc_min_area", -0.01), ("arc_min_area", 1.5), ("arc_min_area", None),
+    ("arc_rings", -1), ("arc_rings", 65), ("arc_rings", 2.5), ("arc_ring_fit", 0.0), ("arc_ring_fit", 1.5),
+    ("arc_ring_fit", float("nan")),
 ])
 def test_bad_arc_settings_are_refused(name, value):
     with pytest.raises(GeometryError, match=rf"sweep parameter {name} = .*: expected "):
@@ -224,3 +226,53 @@ def test_a_plate_around_a_round_opening_is_swept_about_the_opening_s_axis():
     b = bumps()
     mb = normalise(b.vertices, b.faces)
     assert flat_candidates(mb, np.ones(len(b.faces), bool), crease_circles(mb)) == []
+
+
+def _round_moulding():
+    """A round moulding about a known axis (``ROT``'s z through ``SHIFT``), turning by ``TURN``: a flat
+    strip (radius 1.5 to 1.2, height 0) running tangentially into a quarter circle of radius 0.2
+    (centre (1.2, -0.2)) and on into a vertical line down to height -0.5: no crease anywhere. 25 steps
+    of turn, the profile 4 + 8 + 4 segments. Returns the vertices, faces, true direction and point."""
+    a = np.linspace(np.pi / 2, np.pi, 9)
+    prof = np.vstack([np.c_[np.linspace(1.5, 1.2, 4, endpoint=False), np.zeros(4)],
+                      np.c_[1.2 + 0.2 * np.cos(a), -0.2 + 0.2 * np.sin(a)],
+                      np.c_[np.ones(4), np.linspace(-0.275, -0.5, 4)]])
+    t = np.linspace(0.0, TURN, 25)
+    r, h = prof[:, 0], prof[:, 1]
+    v = np.stack([np.c_[r * np.cos(x), r * np.sin(x), h] for x in t]).reshape(-1, 3)
+    return ROT.apply(v) + SHIFT, _grid(len(t), len(prof), 0), ROT.apply([0.0, 0.0, 1.0]), SHIFT
+
+
+def test_a_round_moulding_has_no_crease_but_its_rings_give_its_axis():
+    """The rings of a moulding whose profile has no corner (``ring_circles``): exact coaxial circles
+    along the edge lines; one axis, the true one; the crease circles find nothing; the rotation
+    patches about it (``arc_candidates``) cover the moulding and fit."""
+    v, f, d, q = _round_moulding()
+    m = normalise(v, f)
+    assert crease_circles(m) == []
+    axes = ring_circles(m)
+    assert len(axes) == 1
+    assert float(axis_angle(axes[0].direction, d)) <= 1e-6
+    y = m.to_input(axes[0].point) - q
+    assert np.linalg.norm(y - (y @ d) * d) <= 1e-9 * m.scale
+    assert len(axes[0].chains) >= DEFAULT.arc_rings
+    # every profile point sweeps an exact ring: 17 of them, none missed
+    assert len(ring_circles(m, None, DEFAULT.with_(arc_rings=17))) == 1
+    assert ring_circles(m, None, DEFAULT.with_(arc_rings=18)) == []
+    found, tried = arc_candidates(m, np.ones(len(f), bool), DEFAULT, axes=axes)
+    bound = DEFAULT.fit_factor * DEFAULT.eps_prox
+    assert tried == 1 and found and all(p.kind == "rotation" and p.fit_error <= bound for p in found)
+    on = np.zeros(len(f), bool)
+    for p in found:
+        on[p.faces] = True
+    areas = face_areas(v, f)
+    assert float(areas[on].sum() / areas.sum()) >= 0.95
+
+
+@pytest.mark.parametrize("sigma", [0.0, 5e-4])
+@pytest.mark.parametrize("eps", [0.001, 0.005])
+def test_bumps_have_no_exact_ring(sigma, eps):
+    """Random Gaussian bumps: no run of an edge line is an exact circle (``arc_ring_fit``), not even one."""
+    fx = bumps(sigma=sigma)
+    m = normalise(fx.vertices, fx.faces)
+    assert ring_circles(m, None, DEFAULT.with_(eps_prox=eps, arc_rings=1)) == []

@@ -28,6 +28,9 @@ curve under their rotations, so the stage ``parts`` proposes no such axis
    of its arcs, swept about it by a straight radial profile from the arc (a wall's face around an
    arch, where the translations' rectangular blocks do not reach); ``detect`` keeps such a patch
    when it adds ``arc_min_area`` of the area to the others (:func:`~auszug.sweeps.patches.add_by_area`).
+4. :func:`ring_circles` (``arc_rings``): the axes of families of exact coaxial circles among the
+   mesh's straightest edge lines (:func:`edge_lines`), a round moulding's rings, which meet at no
+   crease; their patches (:func:`arc_candidates`) are kept, as the planar ones, by the area they add.
 
 The lower bounds hold only for axes that the mesh's own creases give as exact circles, and the
 creases are what keeps smooth bumps out: a Gaussian bump is locally a surface of revolution, and
@@ -52,8 +55,8 @@ from auszug.sweeps.parts import _axis, _part_patches, _trimmed
 from auszug.sweeps.patches import MeshTree, SweepPatch, face_areas
 from auszug.sweeps.profilefit import fit_circle_2d
 
-__all__ = ["ArcAxis", "arc_bounds", "arc_candidates", "circle_pieces", "crease_circles", "fit_circle",
-           "flat_candidates"]
+__all__ = ["ArcAxis", "arc_bounds", "arc_candidates", "circle_pieces", "crease_circles", "edge_lines", "fit_circle",
+           "flat_candidates", "ring_circles"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -64,6 +67,8 @@ CHAIN_TURN = 30.0
 ARC_VERTICES = 4
 #: Axes within this angle (degrees) and ``eps_prox`` of each other are one.
 SAME_AXIS = 0.5
+#: Least number of vertices of a ring circle (:func:`ring_circles`).
+RING_VERTICES = 5
 
 
 @dataclass(frozen=True)
@@ -431,3 +436,196 @@ def flat_candidates(mesh: SweepMesh, free: NDArray[np.bool_], axes: list[ArcAxis
                 for p in _trimmed(mesh, tree, axis, stub, part_params, (-np.pi, np.pi)):
                     out.append(replace(p, id=first_id + len(out)))
     return out
+
+
+def edge_lines(mesh: SweepMesh, free: NDArray[np.bool_] | None = None, turn: float = CHAIN_TURN) -> list[IntArray]:
+    """The mesh's straightest edge lines over the open faces, as vertex chains.
+
+    Among the edges of the open faces, an edge ``(a, b)`` continues at ``b`` with the edge ``(b, c)``
+    that turns least from it, when that turn is below ``turn`` degrees and the choice is mutual
+    (from ``(c, b)`` the straightest continuation at ``b`` is ``(b, a)``); so every edge lies on at
+    most one line. On a loft's grid (a moulding's rings and the edges across them) the lines run
+    along the rings and across them; a triangle's diagonal turns more and is no one's continuation.
+
+    Parameters
+    ----------
+    mesh : SweepMesh
+    free : (m,) bool array, optional
+        The faces whose edges count (default all).
+    turn : float
+        Largest turn at a vertex (degrees).
+
+    Returns
+    -------
+    list of (k,) int arrays
+        Vertex indices along each line (a closed line repeats its first vertex), at least 2 each.
+
+    Examples
+    --------
+    Two squares side by side, each cut by a diagonal: the two long sides, the three rungs and the two
+    diagonals (a line of one edge each: at 45 degrees to every neighbour).
+
+    >>> from auszug.sweeps.mesh import normalise
+    >>> v = np.array([[x, y, 0.0] for y in (0, 1) for x in (0, 1, 2)])
+    >>> f = np.array([[0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4]])
+    >>> sorted(len(line) for line in edge_lines(normalise(v, f)))
+    [2, 2, 2, 2, 2, 3, 3]
+    """
+    faces = mesh.faces if free is None else mesh.faces[np.asarray(free, bool)]
+    if len(faces) == 0:
+        return []
+    e = np.unique(np.sort(np.vstack([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
+    k = len(e)
+    src, dst = np.r_[e[:, 0], e[:, 1]], np.r_[e[:, 1], e[:, 0]]      # directed; the reverse of i is (i + k) % 2k
+    u = mesh.vertices[dst] - mesh.vertices[src]
+    u /= np.maximum(np.linalg.norm(u, axis=1, keepdims=True), 1e-300)
+    rev = (np.arange(2 * k) + k) % (2 * k)
+    order = np.argsort(src, kind="stable")                          # outgoing edges grouped by their start
+    first = np.searchsorted(src[order], np.arange(len(mesh.vertices) + 1))
+    n_out = first[dst + 1] - first[dst]                             # per directed edge i: the edges out of its end
+    i = np.repeat(np.arange(2 * k), n_out)
+    j = order[np.repeat(first[dst] - np.r_[0, np.cumsum(n_out)[:-1]], n_out) + np.arange(len(i))]
+    ok = j != rev[i]
+    i, j = i[ok], j[ok]
+    c = np.einsum("ij,ij->i", u[i], u[j])
+    best = np.lexsort((-c, i))
+    i, j, c = i[best], j[best], c[best]
+    head = np.r_[True, i[1:] != i[:-1]]
+    nxt = np.full(2 * k, -1, np.int64)
+    take = head & (c >= np.cos(np.radians(turn)))
+    nxt[i[take]] = j[take]
+    has = nxt >= 0
+    mutual = np.zeros(2 * k, bool)
+    mutual[has] = nxt[rev[nxt[has]]] == rev[np.flatnonzero(has)]
+    nxt[~mutual] = -1
+    prev = np.full(2 * k, -1, np.int64)
+    prev[nxt[nxt >= 0]] = np.flatnonzero(nxt >= 0)
+    seen = np.zeros(2 * k, bool)
+    out: list[IntArray] = []
+    starts = [*np.flatnonzero(prev < 0).tolist(), *range(2 * k)]    # open lines first, then cycles
+    for s0 in starts:
+        if seen[s0]:
+            continue
+        path = [int(src[s0])]
+        x = s0
+        while x >= 0 and not seen[x]:
+            seen[x] = seen[rev[x]] = True
+            path.append(int(dst[x]))
+            x = int(nxt[x])
+        out.append(np.asarray(path, np.int64))
+    return out
+
+
+def _ring_pieces(p: Array, tol: float) -> list[tuple[int, int]]:
+    """The runs of exact circles along a line's points ``p (n, 3)``.
+
+    A run ``(i, j)`` (the points ``p[i:j + 1]``, at least :data:`RING_VERTICES`) is where consecutive
+    triples share one circumcircle within ``tol`` (centre and plane).
+    """
+    if len(p) < RING_VERTICES:
+        return []
+    a, b, c = p[:-2], p[1:-1], p[2:]
+    ab, ac = b - a, c - a
+    n = np.cross(ab, ac)
+    nn = np.einsum("ij,ij->i", n, n)
+    good = nn > 0
+    safe = np.where(good, nn, 1.0)[:, None]
+    centre = a + (np.cross(n, ab) * np.einsum("ij,ij->i", ac, ac)[:, None]
+                  + np.cross(ac, n) * np.einsum("ij,ij->i", ab, ab)[:, None]) / (2 * safe)
+    good &= np.linalg.norm(centre - a, axis=1) <= 1.0
+    unit = n / np.sqrt(safe)
+    same = (good[:-1] & good[1:] & (np.linalg.norm(np.diff(centre, axis=0), axis=1) <= tol)
+            & (np.linalg.norm(np.cross(unit[:-1], unit[1:]), axis=1) * np.linalg.norm(b[1:] - centre[1:], axis=1)
+               <= tol))
+    out = []
+    t = 0
+    while t < len(good):
+        if not good[t]:
+            t += 1
+            continue
+        s = t
+        while t < len(same) and same[t]:
+            t += 1
+        if t + 3 - s >= RING_VERTICES:
+            out.append((s, t + 2))
+        t += 1
+    return out
+
+
+def ring_circles(mesh: SweepMesh, free: NDArray[np.bool_] | None = None,
+                 params: SweepParams = DEFAULT) -> list[ArcAxis]:
+    """The rotation axes of families of exact coaxial circles among the straightest edge lines.
+
+    A moulding swept about an axis whose profile is round (a quarter circle leaving a plate's face
+    tangentially) has no crease, so :func:`crease_circles` gives it no axis; but its mesh's rings
+    (the profile's points swept along the arc) are exact circles about that axis, several of them,
+    at different radii and heights. Here the edge lines of the open faces (:func:`edge_lines`) are
+    cut into their runs whose consecutive vertex triples share one circumcircle within
+    ``arc_ring_fit * eps_prox`` (at least :data:`RING_VERTICES` vertices, every vertex within that
+    of the run's least-squares circle, bending away from its chord by ``eps_prox``, radius at most
+    the diameter); circles about one axis (within 0.5 deg and ``eps_prox``) make a family, and an
+    axis is proposed when its family holds at least ``arc_rings`` distinct circles (radius or height
+    along the axis differing by more than ``eps_prox``). An axis may be a crease arc's too: its
+    chains, the rings, say where it sweeps (:func:`arc_candidates` searches the part about them).
+
+    The gate is the exactness and the repetition: on the random bumps (clean or noisy, ``eps_prox``
+    0.001 or 0.005) no run of an edge line is such a circle at all (``tests/sweeps/test_arcs.py``).
+
+    Parameters
+    ----------
+    mesh : SweepMesh
+    free : (m,) bool array, optional
+        The faces left open (default all).
+    params : SweepParams
+        ``arc_rings``, ``arc_ring_fit``, ``arc_axes`` and ``eps_prox``.
+
+    Returns
+    -------
+    list of ArcAxis
+        Most ring vertices first, at most ``arc_axes``.
+    """
+    if params.arc_rings == 0 or params.arc_axes == 0 or len(mesh.faces) == 0:
+        return []
+    eps = params.eps_prox
+    tol = params.arc_ring_fit * eps
+    up = np.array([0.3, 0.5, 0.8])
+    found: list[tuple[Array, Array, list[IntArray], list[tuple[float, float]], list[float]]] = []
+    for line in edge_lines(mesh, free):
+        p_line = mesh.vertices[line]
+        for i, j in _ring_pieces(p_line, tol):
+            ids = line[i:j + 1]
+            if len(np.unique(ids)) < RING_VERTICES:
+                continue
+            p = p_line[i:j + 1]
+            chord = p[-1] - p[0]
+            lc = float(np.linalg.norm(chord))
+            off = p - p[0]
+            bend = (np.linalg.norm(off - np.outer(off @ chord, chord) / lc**2, axis=1).max() if lc > 0
+                    else np.linalg.norm(off, axis=1).max())
+            if bend < eps:
+                continue
+            centre, n, r, err = fit_circle(p)
+            if err > tol or r > 1.0:
+                continue
+            n = n if n @ up >= 0 else -n
+            point = centre - (centre @ n) * n
+            ring = (r, float(centre @ n))
+            for d, q, chains, rings, errs in found:
+                if abs(float(d @ n)) >= np.cos(np.radians(SAME_AXIS)) and float(np.linalg.norm(q - point)) <= eps:
+                    chains.append(ids)
+                    rings.append(ring)
+                    errs.append(err)
+                    break
+            else:
+                found.append((n, point, [ids], [ring], [err]))
+    axes = []
+    for d, q, chains, rings, errs in found:
+        distinct: list[tuple[float, float]] = []
+        for r, h in rings:
+            if all(abs(r - r2) > eps or abs(h - h2) > eps for r2, h2 in distinct):
+                distinct.append((r, h))
+        if len(distinct) < params.arc_rings:
+            continue
+        axes.append(ArcAxis(d, q, tuple(chains), max(errs)))
+    axes.sort(key=lambda x: -x.n_vertices)
+    return axes[:params.arc_axes]

@@ -35,11 +35,14 @@ Stages (each also callable alone, see :mod:`auszug.sweeps`):
    ``min_sweep_length``, such as a lancet's head; such a patch is kept when it sweeps at least
    ``arc_sweep_length`` and covers ``arc_min_area``; with ``arc_flat``, also the planar faces
    normal to such an axis swept about it by radial lines (:func:`~auszug.sweeps.arcs.flat_candidates`);
+   with ``arc_rings``, also rotations about the axes of exact coaxial rings among the mesh's edge
+   lines (:func:`~auszug.sweeps.arcs.ring_circles`: round mouldings, which have no crease);
 8. ``fit``: patches whose fit error exceeds ``fit_factor * eps_prox`` or that cover less than
    ``min_patch_area`` of the mesh (the arcs' patches: ``arc_min_area``) are dropped, and of those
    left, most coverage first, each whose faces the ones before hold (``patch_overlap``); then
-   the planar patches about the arcs' axes, each while it adds ``arc_min_area`` of the area
-   (:func:`~auszug.sweeps.patches.add_by_area`); the rest are converted to the input's
+   the planar patches about the arcs' axes and the patches about the rings' axes, each while it
+   adds ``arc_min_area`` of the area (:func:`~auszug.sweeps.patches.add_by_area`), then so the
+   mirror images of those taken (in the stage ``mirror``'s planes); the rest are converted to the input's
    coordinates, each profile fitted with exact lines and arcs (``profile_fit_tolerance``,
    docs/sweeps.md section 6).
 
@@ -57,7 +60,7 @@ from numpy.typing import NDArray
 
 from auszug.errors import GeometryError
 from auszug.limits import LIMITS
-from auszug.sweeps.arcs import arc_bounds, arc_candidates, crease_circles, flat_candidates
+from auszug.sweeps.arcs import arc_bounds, arc_candidates, crease_circles, flat_candidates, ring_circles
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import kinematic_axis
 from auszug.sweeps.mesh import SweepMesh, normalise
@@ -305,6 +308,8 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
                             f">= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}",
                             {"tried": tried, "candidates": len(found), "fit": fits}))
 
+    planes: list[tuple[Array, float, float]] = []
+    tree: MeshTree | None = None
     free = np.ones(len(m.faces), bool)
     for p in raw:
         if _fits(p, params):
@@ -333,6 +338,7 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
             free[p.faces] = False
     arcs: list[SweepPatch] = []
     flats: list[SweepPatch] = []
+    by_rings: list[SweepPatch] = []
     short = arc_bounds(params)
     if params.arc_axes > 0 and areas.sum() > 0 and float(areas[free].sum() / areas.sum()) >= params.min_patch_area:
         # rotations about the axes of the exact arcs among the creases beside the faces left: sweeps
@@ -341,20 +347,28 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         # around an arch)
         t = step("arcs")
         axes = crease_circles(m, free, params)
-        tree = MeshTree.of(m)
+        tree = MeshTree.of(m) if tree is None else tree
         arcs, tried = arc_candidates(m, free, params, tree, first_id=len(raw), axes=axes)
         if params.arc_flat:
             flats = flat_candidates(m, free, axes, params, tree, first_id=len(raw) + len(arcs))
+        # the axes of exact coaxial rings among the edge lines (round mouldings: no crease); their
+        # patches are counted by the area they add, as the planar ones
+        rings = ring_circles(m, free, params)
+        by_rings, _ = arc_candidates(m, free, params, tree, first_id=len(raw) + len(arcs) + len(flats), axes=rings)
         fits = sum(_fits(p, short) for p in arcs)
         flat_fits = sum(p.fit_error <= bound and sweep_length(p) >= short.min_sweep_length for p in flats)
+        ring_fits = sum(p.fit_error <= bound and sweep_length(p) >= short.min_sweep_length for p in by_rings)
         stages.append(Stage("arcs", time.perf_counter() - t,
                             f"{len(axes)} axis/axes of crease arcs within {params.arc_fit * params.eps_prox:.3g} "
                             f"of a circle; {len(arcs)} patch(es), {fits} within fit error {bound:.3g}, covering "
                             f">= {short.min_patch_area:.3g} and sweeping >= {short.min_sweep_length:.3g}; "
                             f"{len(flats)} planar patch(es) about them, {flat_fits} within fit error {bound:.3g} "
-                            f"and sweeping >= {short.min_sweep_length:.3g}",
+                            f"and sweeping >= {short.min_sweep_length:.3g}; {len(rings)} axis/axes of >= "
+                            f"{params.arc_rings} exact coaxial rings, {len(by_rings)} patch(es) about them, "
+                            f"{ring_fits} within fit error {bound:.3g} and sweeping >= {short.min_sweep_length:.3g}",
                             {"axes": len(axes), "tried": tried, "candidates": len(arcs), "fit": fits,
-                             "flat_candidates": len(flats), "flat_fit": flat_fits}))
+                             "flat_candidates": len(flats), "flat_fit": flat_fits, "ring_axes": len(rings),
+                             "ring_candidates": len(by_rings), "ring_fit": ring_fits}))
 
     t = step("fit")
     good = [p for p in raw if _fits(p, params)]
@@ -371,10 +385,19 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
         taken[p.faces] = True
     # the planar patches about the crease arcs' axes, each kept when it adds arc_min_area of the area
     # to what the others cover (their long faces are mostly not theirs whole; docs/sweeps.md)
-    flat_ok = [p for p in flats if p.fit_error <= bound and sweep_length(p) >= short.min_sweep_length]
+    flat_ok = [p for p in flats + by_rings if p.fit_error <= bound and sweep_length(p) >= short.min_sweep_length]
     added = add_by_area(m, kept, flat_ok, params.eps_prox, params.coverage_samples, short.min_patch_area, areas)
+    raw = raw + flats + by_rings
+    if added and planes:
+        # their mirror images in the mesh's mirror planes (the stage mirror ran before them), each
+        # fitted against the mesh and kept, as they, by the area it adds
+        tree = MeshTree.of(m) if tree is None else tree
+        images = mirror_candidates(m, added, planes, params, tree, first_id=len(raw))
+        raw = raw + images
+        ok = [p for p in images if p.fit_error <= bound and sweep_length(p) >= short.min_sweep_length]
+        added += add_by_area(m, kept + added, ok, params.eps_prox, params.coverage_samples, short.min_patch_area,
+                             areas)
     kept += added
-    raw = raw + flats
     patches = tuple(_to_input(p, m, i, params.profile_fit_tolerance) for i, p in enumerate(kept))
     fitted = sum(p.profile_fit is not None for p in patches)
     covered = np.zeros(len(m.faces), bool)
@@ -387,8 +410,9 @@ def detect(mesh: Any, params: SweepParams = DEFAULT, progress: Progress | None =
     coverage = float(min(1.0, (shares * areas).sum() / area)) if area > 0 else 0.0
     of_arcs = (f", {len(good) - n_good} of them arcs' patches covering >= {short.min_patch_area:.3g} and sweeping "
                f">= {short.min_sweep_length:.3g}" if arcs else "")
-    of_arcs += (f"; {len(added)} planar patch(es) about crease arcs' axes adding >= {short.min_patch_area:.3g} "
-                "of the area each" if flats else "")
+    of_arcs += (f"; {len(added)} planar patch(es) about crease arcs' axes, patches about rings' axes and their "
+                f"mirror images adding >= "
+                f"{short.min_patch_area:.3g} of the area each" if flats or by_rings else "")
     stages.append(Stage("fit", time.perf_counter() - t,
                         f"{len(patches)} of {len(raw)} patch(es) kept ({len(good)} within fit error {bound:.3g}, "
                         f"covering >= {params.min_patch_area:.3g} and sweeping >= {params.min_sweep_length:.3g}"

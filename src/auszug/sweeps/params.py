@@ -320,6 +320,15 @@ class SweepParams:
         Whether the stage ``arcs`` also sweeps the planar faces normal to a crease arc's axis by
         the rotation about it, a straight radial profile from the arc
         (:func:`~auszug.sweeps.arcs.flat_candidates`: a wall's face around an arch). Default true.
+    arc_rings : int
+        The stage ``arcs`` also proposes the axes of families of at least this many distinct
+        coaxial exact circles among the mesh's straightest edge lines over the open faces (a round
+        moulding's rings, which meet at no crease: :func:`~auszug.sweeps.arcs.ring_circles`); their
+        patches are kept by the area they add. 0 turns it off; at most 64. Default 3.
+    arc_ring_fit : float
+        Such a circle's vertices lie within this share of ``eps_prox`` of it, in (0, 1]. Default
+        0.001: exact circles (the random bumps' edge lines have short pieces within 1e-6 of a
+        circle, but no three of them coaxial).
     coverage_samples : int
         The report's ``coverage`` is of the mesh's area, not of whole faces: the faces that no
         kept patch covers whole (all three corners within ``eps_prox`` of its swept surface) are
@@ -414,6 +423,8 @@ class SweepParams:
     arc_sweep_length: float = 0.03
     arc_min_area: float = 0.001
     arc_flat: bool = True
+    arc_rings: int = 3
+    arc_ring_fit: float = 0.001
 
     def __post_init__(self) -> None:
         checks = [
@@ -514,6 +525,9 @@ class SweepParams:
             ("arc_sweep_length", _real(self.arc_sweep_length) and self.arc_sweep_length >= 0, ">= 0"),
             ("arc_min_area", _real(self.arc_min_area) and 0 <= self.arc_min_area <= 1, "in [0, 1]"),
             ("arc_flat", isinstance(self.arc_flat, bool), "true or false"),
+            ("arc_rings", _whole(self.arc_rings) and 0 <= self.arc_rings <= 64, "a whole number in 0..64"),
+            ("arc_ring_fit", _real(self.arc_ring_fit) and 0 < self.arc_ring_fit <= 1,
+             "in (0, 1] (a share of eps_prox)"),
         ]
         for name, ok, want in checks:
             if not ok:

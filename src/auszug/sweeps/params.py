@@ -203,8 +203,9 @@ class SweepParams:
         normal is set to a robust local line's through the knots' turns within this arc length
         (bounding-box diameters) on either side (:func:`~auszug.sweeps.general.smooth_twists`;
         default 0.1; 0: off). With noise each knot's turn follows the noisy faces about it: on
-        tn-2's member at sigma 5e-4 +-0.4 deg per knot (median rotation error 0.62 deg); clean the
-        turns lie on such lines already (a member's frames twist linearly along the path).
+        tn-2's member at sigma 5e-4 +-0.4 deg per knot (median rotation error 0.62 deg; with the
+        lines 0.37); clean the turns lie on such lines already (a member's frames twist linearly
+        along the path; U.XI.30's member 0.027 -> 0.028 deg).
     piece_trim : float
         Beyond the paper: the profile improvement (sec. 2.3.3) leaves out the recut pieces of the
         knots whose median distance to the profile is more than this many times the median over

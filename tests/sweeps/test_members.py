@@ -197,16 +197,18 @@ def test_the_square_bar_is_not_turned_the_wrong_way_at_eps_prox_0_005():
         assert r.stage("motion").numbers["refined"] >= 1, name
 
 
-def test_one_member_with_noise_is_turned_right_within_a_degree():
+def test_one_member_with_noise_meets_the_rotation_target():
     """tn-2's member, normal noise 5e-4, eps_prox 0.005: measured coverage 1.000, plane recall 1.00,
     profile Hausdorff 7.3e-4, rotation 0.74 deg (49 deg before), translation 1.9e-4 (one closed patch);
     since sweeps-members4 6.7e-4 and 0.64 deg (the pieces of the knots off the profile left out of
-    its improvement, the one-sided tangents). The rotation target (0.5 deg) is missed: per knot the
-    twist follows the noisy faces (about 1 deg)."""
+    its improvement, the one-sided tangents; 0.62 on main at 77eb6b2). Per knot the twist followed the
+    noisy faces (+-0.4 deg against the truth's, the tilt 0.26 deg); since sweeps-members5 the knots'
+    twists are robust local lines over 0.1 of arc length (``twist_window``): 0.37 deg (twist per knot
+    0.10 deg, median), Hausdorff 6.6e-4, translation 1.8e-4: the rotation target (0.5 deg) met."""
     fx, r, e = _detected("teaching-sheet/tn-2.uc", 5e-4, 0.005)
     assert r.coverage >= 0.95 and e.recall >= 0.85
     assert e.hausdorff.max() <= 8e-4
-    assert e.median_rotation <= 0.7 and e.median_translation <= 3e-4
+    assert e.median_rotation <= 0.45 and e.median_translation <= 3e-4
 
 
 def test_two_members_clean_meet_every_target():

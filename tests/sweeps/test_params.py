@@ -37,6 +37,7 @@ STEP = 0.02     # rib step of the seed motion (bounding-box diameters)
     ("twist_tolerance", -1e-9), ("twist_tolerance", 0.01), ("twist_tolerance", float("nan")),
     ("tangent_window", -0.01), ("tangent_window", 1.5), ("tangent_window", float("nan")), ("tangent_window", "0.06"),
     ("tangent_switch", 0.5), ("tangent_switch", -1.0), ("tangent_switch", 2e6), ("tangent_switch", float("nan")),
+    ("twist_window", -0.01), ("twist_window", 1.5), ("twist_window", float("nan")),
     ("piece_trim", 0.5), ("piece_trim", 101.0), ("piece_trim", float("inf")), ("piece_trim", "2"),
     ("corner_tolerance", -1e-4), ("corner_tolerance", 0.2), ("corner_tolerance", float("nan")),
     ("translation_step", 0.0), ("translation_step", -0.02), ("translation_step", 0.6),

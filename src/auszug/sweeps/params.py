@@ -198,6 +198,14 @@ class SweepParams:
         one-sided tangent (:func:`~auszug.sweeps.general.path_tangents`; default 10; 0: centred
         fits only). On U.XI.29's member the centred tangent at the inflection was 1.08 deg off,
         the one-sided 0.02.
+    twist_window : float
+        The refinement's last step (beyond the paper): each knot's turn about its profile plane's
+        normal is set to a robust local line's through the knots' turns within this arc length
+        (bounding-box diameters) on either side (:func:`~auszug.sweeps.general.smooth_twists`;
+        default 0.1; 0: off). With noise each knot's turn follows the noisy faces about it: on
+        tn-2's member at sigma 5e-4 +-0.4 deg per knot (median rotation error 0.62 deg; with the
+        lines 0.37); clean the turns lie on such lines already (a member's frames twist linearly
+        along the path; U.XI.30's member 0.027 -> 0.028 deg).
     piece_trim : float
         Beyond the paper: the profile improvement (sec. 2.3.3) leaves out the recut pieces of the
         knots whose median distance to the profile is more than this many times the median over
@@ -389,6 +397,7 @@ class SweepParams:
     twist_tolerance: float = 1e-7
     tangent_window: float = 0.06
     tangent_switch: float = 10.0
+    twist_window: float = 0.1
     piece_trim: float = 2.0
     corner_tolerance: float = 5e-4
     rib_jump: float = 3.0
@@ -480,6 +489,8 @@ class SweepParams:
             ("tangent_switch",
              _real(self.tangent_switch) and (self.tangent_switch == 0 or 1 <= self.tangent_switch <= 1e6),
              "0 or in [1, 1e6] (a ratio of residual variances)"),
+            ("twist_window", _real(self.twist_window) and 0 <= self.twist_window <= 1,
+             "in [0, 1] (bounding-box diameters)"),
             ("piece_trim", _real(self.piece_trim) and (self.piece_trim == 0 or 1 <= self.piece_trim <= 100),
              "0 or in [1, 100] (times the median)"),
             ("corner_tolerance", _real(self.corner_tolerance) and 0 <= self.corner_tolerance <= 0.1,

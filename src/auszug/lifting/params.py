@@ -103,8 +103,10 @@ class LiftParams:
         probe fails (its line search accepts 1/256 first, then the solve
         crawls: 60 + 60 steps, not converged); on the 41 noise and 159 views
         lifts of the truths no held solve is given up (at 1/64 one is: the
-        wrinkle at 1 %, seed 2, whose held solve converges in 13 steps).
-        0: never.
+        wrinkle at 1 %, seed 2, whose held solve converges in 13 steps); on
+        the bundled arches and ogee roof sketches it gives up held solves
+        that converge in 12 and 10 steps (the arches then reject 2 of 6
+        cues; docs/lifting.md). 0: never.
     parallel_2d_deg : float
         Tangent pairs whose 2D angle is below this are parallelism candidates
         (our choice: twice O_b, since foreshortening changes angles).

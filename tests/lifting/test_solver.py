@@ -110,3 +110,19 @@ def test_ldl_and_lu_reach_the_same_point(duplicate):
     b = solve(e, c, v0, ldl_reg=0.0)
     assert a.converged and b.converged
     assert np.abs(a.v - b.v).max() < 1e-10
+
+
+def test_a_first_step_cut_below_first_step_min_gives_up_at_the_start():
+    """``first_step_min`` (final_hold's early fallback, lift-final2): from (1e-3, 2e-3), next to the sphere's
+    centre, the first Newton step overshoots and the line search cuts it below 1/64 (measured), so the solve
+    ends there: not converged, ``gave_up``, no step taken. Where the step shortened to that fraction does
+    decrease the merit (1/1024 here), the solve is the one without the rule, to the bit."""
+    p = np.array([3.0, 4.0])
+    e, c = _nearest_on_sphere(p)
+    v0 = np.array([1e-3, 2e-3])
+    r0 = solve(e, c, v0)
+    assert r0.converged and not r0.gave_up and np.allclose(r0.v, p / 5.0, atol=1e-9)
+    r = solve(e, c, v0, first_step_min=1 / 64)
+    assert r.gave_up and not r.converged and r.iterations == 0 and np.array_equal(r.v, v0)
+    r1 = solve(e, c, v0, first_step_min=1 / 1024)
+    assert not r1.gave_up and r1.converged and r1.iterations == r0.iterations and np.array_equal(r1.v, r0.v)

@@ -349,6 +349,28 @@ def test_a_held_round_that_does_not_converge_keeps_the_rounds_solution():
     assert max(c.angle for c in r.cues if c.applied and c.kind == "planar") < 1e-6
 
 
+def test_a_held_solve_given_up_at_its_first_step_is_not_retried():
+    """The rule's early fallback (lift-final2, ``LiftParams.hold_first_step``): a held solve whose first Newton
+    step, shortened to that fraction, does not decrease the merit is given up at once, not retried at the
+    second weight, and the fallback for a solve that does not converge follows. The wrinkle at 1 % noise,
+    seed 2: at 1/64 the probe fails (measured), so the round's solution stays (to the bit) and its applied
+    cues beyond 0.5 deg there are rejected; at the default 1/128 it passes and the held solve converges
+    (13 steps, measured), every cue kept."""
+    tr = T.make("wrinkle", noise=0.01, seed=2)
+    r0 = lift(tr.sketch)
+    r = lift(tr.sketch, params=LiftParams(final_hold=True, hold_first_step=1 / 64))
+    held = [s for s in r.stages if "held" in s.name]
+    assert [(s.iterations, s.converged, s.discarded) for s in held] == [(0, False, True)]
+    assert held[0].rejected > 0 and held[0].applied + held[0].rejected == 8
+    _same_lift(r, r0)
+    dropped = [c0.angle for c, c0 in zip(r.cues, r0.cues, strict=True) if c0.applied and not c.applied]
+    assert len(dropped) == held[0].rejected and min(dropped) > DEFAULT.applied_tol_deg
+    assert max(c.angle for c in r.cues if c.applied) <= DEFAULT.applied_tol_deg
+    r1 = lift(tr.sketch, params=HOLD)
+    held = [s for s in r1.stages if "held" in s.name]
+    assert [(s.converged, s.discarded, s.applied) for s in held] == [(True, False, 8)]
+
+
 # Structural diagnosis (branch lift-acc, docs/lifting.md "Structural diagnosis"): where the large errors of
 # the spiral, the cross and the wrinkle come from.
 

@@ -228,14 +228,14 @@ class _Problem:
         P.add(-self.v[cols], 1e-8, lin=(np.arange(len(cols)), cols, np.ones(len(cols))))
 
     def run(self, name: str, energy: Poly2, cons: Poly2, applied: int = 0, rejected: int = 0,
-            candidate: bool = False) -> SolveResult:
+            candidate: bool = False, first_step_min: float = 0.0) -> SolveResult:
         t0 = time.perf_counter()
         self._normal_anchor(energy)
         lam0 = self.lam if self.lam is not None and len(self.lam) == cons.rows else None
         r = solve(energy, cons, self.v, lam0, iterations=self.params.newton_iterations,
                   tol=self.params.newton_tol, kkt_reg=self.params.kkt_reg, hessian_reg=self.params.hessian_reg,
                   soc_tol=self.params.soc_tol, refine_inexact=bool(self.params.refine_inexact),
-                  orderings=self.orderings)
+                  orderings=self.orderings, first_step_min=first_step_min)
         self.v, self.lam = r.v, r.lam
         st = Stage(name, time.perf_counter() - t0, r.energy, r.violation, r.iterations, r.converged,
                    applied, rejected, self.layer, candidate and not r.converged)
@@ -244,7 +244,7 @@ class _Problem:
             self.progress(f"layer {self.layer} {name}: energy {r.energy:.3g}, {r.iterations} Newton steps"
                           + (f", {applied} applied, {rejected} rejected" if applied or rejected else "")
                           + ("" if r.converged else " (no convergence from this seed: discarded)" if candidate
-                             else " (NOT converged)"))
+                             else " (given up in its first line search)" if r.gave_up else " (NOT converged)"))
         return r
 
     def energy(self, w_a: float, anchor: Array | None = None, w_anchor: float | None = None) -> Poly2:
@@ -364,7 +364,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        the last round run only within I_b, unless ``params.final_hold`` (our
        rule, off by default for its time): one more solve of that round with
        them hard, the round's soft terms kept, its depths held near its
-       solution by ``params.w_final_anchor``, kept if it converges and every
+       solution by ``params.w_final_anchor`` (given up at its first step by
+       ``params.hold_first_step``), kept if it converges and every
        applied cue then holds within ``params.applied_tol_deg``; otherwise the
        round's solution stays and its applied cues beyond that angle there are
        rejected. ``params.final_solve`` instead solves fidelity and the kept
@@ -495,7 +496,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             k_round = len(pr.stages) - 1
             pending["applied"], pending["redo"] = 0, None
             ok &= r.converged
-            L = cu.likelihood(fam.angles(pr.X()), params)
+            ang = fam.angles(pr.X())
+            L = cu.likelihood(ang, params)
             acc = undecided & (L >= 1.0)
             rej = undecided & ~acc & ((L <= 0.0) | (L <= Lp))
             if confirm and acc.any():
@@ -526,7 +528,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
                 hard_add(sel)
                 pending["applied"] = int(acc.sum())
                 rest = idx[~acc[idx]]
-                pending["redo"] = (name, fam, np.nonzero(acc)[0], applied, hard_add, soft_add, rest,
+                pending["redo"] = (name, np.nonzero(acc)[0], ang[acc], applied, hard_add, soft_add, rest,
                                    w_round[rest], anchor)
             if not undecided.any():
                 break
@@ -581,10 +583,9 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         then holds within ``params.applied_tol_deg``, else the round's solution is kept and its applied
         cues that do not hold there within that angle are rejected (as L = 0 would).
         """
-        name, fam, acc, mask, hard_add, soft_add, rest, w, anchor = pending["redo"]
+        name, acc, ang0, mask, hard_add, soft_add, rest, w, anchor = pending["redo"]
         keep_v, keep_lam = pr.v.copy(), pr.lam
         z0 = pr.X()[:, 2].copy()
-        ang0 = fam.angles(pr.X())[acc]
         # a solve that does not converge is tried once more from the round's solution with a third of the weight
         for k, w_anchor in enumerate((params.w_final_anchor, params.w_final_anchor / 3.0)):
             if k:
@@ -596,8 +597,9 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             C = pr.constraints()
             for f in hard:
                 f(C)
-            r = pr.run(f"{name} held" + (f" (anchor {w_anchor:.3g})" if k else ""), E, C, applied=len(acc))
-            if r.converged or w_anchor == 0:
+            r = pr.run(f"{name} held" + (f" (anchor {w_anchor:.3g})" if k else ""), E, C, applied=len(acc),
+                       first_step_min=params.hold_first_step)
+            if r.converged or r.gave_up or w_anchor == 0:
                 break
             pr.stages[-1] = replace(pr.stages[-1], applied=0, discarded=True)
         worst = worst_applied() if r.converged else np.inf
@@ -612,7 +614,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         hard_add(np.nonzero(mask)[0])
         pr.stages[-1] = replace(pr.stages[-1], applied=len(acc) - len(drop), rejected=len(drop), discarded=True)
         if progress is not None:
-            progress(f"layer {layer} {name} held: {'an applied cue broken' if r.converged else 'not converged'}; "
+            why = "an applied cue broken" if r.converged else "given up" if r.gave_up else "not converged"
+            progress(f"layer {layer} {name} held: {why}; "
                      f"the round's solution kept, {len(drop)} of its "
                      f"{len(acc)} cues rejected (beyond {params.applied_tol_deg:g} deg there)")
 

@@ -160,6 +160,9 @@ class SolveResult:
         Largest absolute entry of the Lagrangian's gradient ``g + Jq^T lam`` at ``v``.
     factorisations : int
         KKT factorisations done (LDL^T, or LU where the LDL^T failed).
+    gave_up : bool
+        The solve ended at its first step, which shortened to ``first_step_min`` did not
+        decrease the merit (``v`` is ``v0``, not converged).
     """
 
     v: Array
@@ -170,6 +173,7 @@ class SolveResult:
     converged: bool
     stationarity: float = 0.0
     factorisations: int = 0
+    gave_up: bool = False
 
 
 def _pairs_in_rows(rows: Index) -> tuple[Index, Index]:
@@ -606,7 +610,7 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
           stat_tol: float = 1e-9, lam_bound: float = 1.0, soc_steps: int = 10, soc_rate: float = 0.5,
           step_growth: float = 2.0, ldl_reg: float = 1e-7, refine_steps: int = 1,
           stall_tol: float = 1e-6, soc_tol: float = 1e-8, refine_inexact: bool = True,
-          orderings: Orderings | None = None) -> SolveResult:
+          orderings: Orderings | None = None, first_step_min: float = 0.0) -> SolveResult:
     """Minimise ``sum w_r p_r(v)^2`` subject to ``q(v) = 0`` from ``v0``.
 
     Each step solves the KKT system
@@ -685,6 +689,11 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
         (:mod:`auszug.lifting._ldl`) in a nested-dissection ordering where that costs less
         (``ND_SPEED``), the ordering kept in ``orderings`` for the later solves of the same size.
         None: QDLDL's AMD ordering throughout.
+    first_step_min : float
+        When the first Newton step shortened to this fraction of it does not decrease the merit
+        (with its second-order corrections; tried before the line search), the solve ends there
+        (``v0``, not converged, ``gave_up``): a caller's early fallback for a solve that starts far
+        from its quadratic model (0: never).
 
     Examples
     --------
@@ -706,6 +715,7 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
     mu = 0.0
     delta = 0.0
     converged = False
+    gave_up = False
     it = 0
     stat = np.inf
     sticky = False
@@ -783,29 +793,38 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
         accepted = False
         v_new = v
         small = dvmax < 1e-12
+        slack = 1e-14 * max(1.0, abs(phi0))
+        # the caller's early fallback: the first step's merit tried at first_step_min before any longer step
+        probe = it == 0 and 0.0 < first_step_min < step
         while step >= 1e-10:
-            vt = v + step * dv
+            ts = first_step_min if probe else step
+            vt = v + ts * dv
             ft, qt = merit_parts(vt)
-            slack = 1e-14 * max(1.0, abs(phi0))
-            if small or ft + mu * float(np.abs(qt).sum()) <= phi0 + 1e-4 * step * slope + slack:
+            if small or ft + mu * float(np.abs(qt).sum()) <= phi0 + 1e-4 * ts * slope + slack:
                 v_new, accepted = vt, True
-                break
-            if k:   # second-order corrections: back onto the curved constraints
+            elif k:   # second-order corrections: back onto the curved constraints
                 vs, qs = vt, qt
                 qn = float(np.abs(qt).sum())
                 for _ in range(soc_steps):
                     vs = vs + lu(np.concatenate([np.zeros(n), -qs]), soc_tol if soc_tol > 0.0 else None)[:n]
                     fs, qs = merit_parts(vs)
                     qn_new = float(np.abs(qs).sum())
-                    if fs + mu * qn_new <= phi0 + 1e-4 * step * slope + slack:
+                    if fs + mu * qn_new <= phi0 + 1e-4 * ts * slope + slack:
                         v_new, accepted = vs, True
                         break
                     if not qn_new <= soc_rate * qn:    # the corrections do not contract: give up
                         break
                     qn = qn_new
-                if accepted:
+            if probe:   # passed: the line search proper, from the full step; failed: the solve ends
+                probe, gave_up, accepted, v_new = False, not accepted, False, v
+                if gave_up:
                     break
+                continue
+            if accepted:
+                break
             step *= 0.5
+        if gave_up:
+            break
         if not accepted:   # no decrease along the step: stalled
             # at the energy's float resolution with the remaining Newton step below stall_tol: done
             converged = feas <= tol and float(np.abs(dv).max(initial=0.0)) <= stall_tol
@@ -829,4 +848,4 @@ def solve(energy: Poly2, constraints: Poly2, v0: Array, lam0: Array | None = Non
         v = v_new
     p = energy.value(v)
     viol = float(np.abs(constraints.value(v)).max()) if k else 0.0
-    return SolveResult(v, lam, _dot(w, p * p), viol, it, converged, stat, kkt.count)
+    return SolveResult(v, lam, _dot(w, p * p), viol, it, converged, stat, kkt.count, gave_up)

@@ -983,6 +983,21 @@ def _triangle_closest(px, py, pz, ax, ay, az, bx, by, bz, cx, cy, cz):  # pragma
     return (px - qx) ** 2 + (py - qy) ** 2 + (pz - qz) ** 2, qx, qy, qz
 
 
+@njit(cache=True, inline="always")
+def _grid_dims(lo, hi, n, h):  # pragma: no cover - compiled
+    """Cells per axis ``(3,)`` of a grid of cell size ``h`` from ``lo`` to ``hi`` over ``n`` elements.
+
+    With no element ``lo`` is set to 0 (one cell).
+    """
+    dims = np.ones(3, np.int64)
+    if n == 0:
+        lo[:] = 0.0
+    else:
+        for ax in range(3):
+            dims[ax] = max(1, int((hi[ax] - lo[ax]) / h) + 1)
+    return dims
+
+
 @njit(cache=True)
 def ring_grid_boxes(rings, closed):  # pragma: no cover - compiled
     """Bounding boxes of the quads of a ring grid ``rings (k, n, 3)`` and of 2 x 2 blocks of them, level by level.
@@ -1243,12 +1258,7 @@ def edge_grid(v, edges, h):  # pragma: no cover - compiled
             hi[ax] = max(hi[ax], mid[e, ax])
             ll += (v[b, ax] - v[a, ax]) ** 2
         longest = max(longest, np.sqrt(ll))
-    dims = np.ones(3, np.int64)
-    if n_e == 0:
-        lo[:] = 0.0
-    else:
-        for ax in range(3):
-            dims[ax] = max(1, int((hi[ax] - lo[ax]) / h) + 1)
+    dims = _grid_dims(lo, hi, n_e, h)
     cell = np.empty(n_e, np.int64)
     count = np.zeros(dims[0] * dims[1] * dims[2] + 1, np.int64)
     for e in range(n_e):
@@ -1941,12 +1951,7 @@ def face_grid(v, faces, h):  # pragma: no cover - compiled
             fbox[f, 3 + ax] = max(a, max(b, c))
             lo[ax] = min(lo[ax], fbox[f, ax])
             hi[ax] = max(hi[ax], fbox[f, 3 + ax])
-    dims = np.ones(3, np.int64)
-    if m == 0:
-        lo[:] = 0.0
-    else:
-        for ax in range(3):
-            dims[ax] = max(1, int((hi[ax] - lo[ax]) / h) + 1)
+    dims = _grid_dims(lo, hi, m, h)
     count = np.zeros(dims[0] * dims[1] * dims[2] + 1, np.int64)
     cells = np.empty((m, 6), np.int64)          # each face's cell range
     for f in range(m):

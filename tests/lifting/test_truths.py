@@ -649,7 +649,10 @@ def test_parallel_consistency_check_against_the_truth(params, name, bound, count
     tr = T.make(name)
     r = lift(tr.sketch, params=params)
     err, sign = T.depth_rmse(tr, r)
-    assert r.converged and sign == 1 and err <= bound, (err, sign)
+    # the cross with CONFIRM is mirrored since lift-sign2: a tie for the sign rule (edges -0.005 for the mirror,
+    # its rib planes +0.008 for the lift as solved), a lift 13.6 % off at either sign (docs/lifting.md, Depth sign)
+    want = -1 if (params is CONFIRM and name == "cross") else 1
+    assert r.converged and sign == want and err <= bound, (err, sign)
     scores = T.cue_scores(r, T.labels(tr))
     assert {k: scores[k][:3] for k in counts} == counts
     checks = [s for s in r.stages if s.name.startswith("parallel round") and s.name.endswith(" check")]

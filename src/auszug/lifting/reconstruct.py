@@ -754,8 +754,7 @@ def from_above(controls: Array) -> float:
     return float(np.dot(r2, np.sin(4.0 * phi)) / total)
 
 
-def vertical_planes(controls: Array, seg_stroke: NDArray[np.intp], flat: float = 0.002,
-                    straight: float = 0.02) -> tuple[float, float]:
+def vertical_planes(controls: Array, seg_stroke: NDArray[np.intp], params: LiftParams = DEFAULT) -> tuple[float, float]:
     """The planar strokes' votes for a view from above, each stroke's plane read as a vertical plane.
 
     An upright object's vertical ``u = (0, cos b, sin b)`` in view
@@ -769,8 +768,9 @@ def vertical_planes(controls: Array, seg_stroke: NDArray[np.intp], flat: float =
     (Read this way, the planar strokes do not need the tilt below 45 deg that
     :func:`from_above` assumes.) A stroke's plane is the least-squares plane
     of its segments' control points (4 per segment), with singular values
-    ``s1 >= s2 >= s3``; it votes when ``s3 <= flat s2`` (planar) and ``s2 >=
-    straight s1`` (not straight), with weight ``A = s1 s2``.
+    ``s1 >= s2 >= s3``; it votes when ``s3 <= params.sign_plane_flat s2``
+    (planar) and ``s2 >= params.sign_plane_straight s1`` (not straight), with
+    weight ``A = s1 s2``.
 
     Parameters
     ----------
@@ -779,9 +779,9 @@ def vertical_planes(controls: Array, seg_stroke: NDArray[np.intp], flat: float =
         viewer).
     seg_stroke : (s,) int ndarray
         The stroke of each segment.
-    flat, straight : float
-        The planarity and straightness bounds above
-        (``LiftParams.sign_plane_flat``, ``sign_plane_straight``).
+    params : LiftParams
+        ``sign_plane_flat`` and ``sign_plane_straight``: the planarity and
+        straightness bounds above.
 
     Returns
     -------
@@ -804,6 +804,7 @@ def vertical_planes(controls: Array, seg_stroke: NDArray[np.intp], flat: float =
     """
     c = np.asarray(controls, dtype=float)
     ids = np.asarray(seg_stroke)
+    flat, straight = params.sign_plane_flat, params.sign_plane_straight
     vote = area = 0.0
     for k in np.unique(ids):
         q = c[ids == k].reshape(-1, 3)
@@ -873,7 +874,7 @@ def depth_sign_score(controls: Array, seg_stroke: NDArray[np.intp], params: Lift
     w = params.sign_plane_weight
     vote = area = 0.0
     if w > 0.0:
-        vote, area = vertical_planes(c, seg_stroke, params.sign_plane_flat, params.sign_plane_straight)
+        vote, area = vertical_planes(c, seg_stroke, params)
     total = edges + w * area
     if total <= 0.0:
         return 0.0

@@ -21,9 +21,10 @@ Usage (from the repository root)::
     python -m benchmarks.eval_lifting signs [--cues none|default]
     python -m benchmarks.eval_lifting energy [--truths a,b]
 
-``--params k=v,...`` lifts with those :class:`~auszug.lifting.LiftParams` fields (noise and views modes),
-e.g. ``--params parallel_robust_deg=5,w_depth_anchor=10`` (branch lift-energy, docs/lifting.md) or
-``--params parallel_confirm=1`` (the consistency check of the parallel cues, branch lift-cues2).
+``--params k=v,...`` lifts with those :class:`~auszug.lifting.LiftParams` fields (noise, views and signs modes),
+e.g. ``--params parallel_robust_deg=5,w_depth_anchor=10`` (branch lift-energy, docs/lifting.md),
+``--params parallel_confirm=1`` (the consistency check of the parallel cues, branch lift-cues2) or
+``--params sign_plane_weight=0`` (the depth sign by the control-polygon edges alone, the rule before lift-sign2).
 
 ``signs``: the depth-sign grid of docs/lifting.md (the bundled examples' objects, the box and the revolve; 3 tilts
 x 4 turns, no view rejected), wrong signs and depth RMSE per object.

@@ -355,8 +355,9 @@ def test_depth_sign_over_views():
 ])
 def test_consistency_check_lifts_of_the_depth_sign_grid(name, tilt, turn, bound):
     """The depth-sign grid of docs/lifting.md with the cues (branch lift-cues2, ``eval_lifting signs``): the
-    default cues get 12 of its 60 signs wrong (the vase and the revolve at tilts 25 and 35 deg), the baseline 4,
-    the consistency check of the parallel cues (``parallel_confirm``, off by default) none. Four of those views."""
+    default cues got 12 of its 60 signs wrong before lift-sign2 (the vase and the revolve at tilts 25 and 35 deg;
+    none since, by the vertical planes of ``depth_sign_score``), the baseline 4, the consistency check of the
+    parallel cues (``parallel_confirm``, off by default) none. Four of those views."""
     from auszug.lifting import LiftParams
     from tests.lifting.truth import rotation
 

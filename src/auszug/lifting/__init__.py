@@ -16,10 +16,12 @@ from auszug.lifting.reconstruct import (
     CueResult,
     LiftResult,
     Stage,
+    depth_sign_score,
     from_above,
     layer_graphs,
     lift,
     lift_graph,
+    vertical_planes,
 )
 from auszug.lifting.sketch import Crossing, Marker, Sketch, SketchGraph, Stroke, sketch_graph
 
@@ -29,10 +31,12 @@ __all__ = [
     "CueResult",
     "LiftResult",
     "Stage",
+    "depth_sign_score",
     "from_above",
     "layer_graphs",
     "lift",
     "lift_graph",
+    "vertical_planes",
     "DEFAULT",
     "LiftParams",
     "Crossing",

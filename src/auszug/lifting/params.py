@@ -133,11 +133,31 @@ class LiftParams:
         are one point.
     above_min : float
         The depth sign follows the "view from above" score
-        (:func:`auszug.lifting.reconstruct.from_above`, in [-1, 1]) when its
-        magnitude is above this; otherwise the convexity votes decide (0:
-        only for a score of exactly 0, a flat network. Measured over 130
-        lifts of the ground truths, the convexity votes picked the wrong
-        sign far more often; docs/lifting.md).
+        (:func:`auszug.lifting.reconstruct.depth_sign_score`, in [-1, 1]:
+        :func:`~auszug.lifting.reconstruct.from_above`'s edges and the
+        vertical planes) when its magnitude is above this; otherwise the
+        convexity votes decide (0: only for a score of exactly 0, a flat
+        network. Measured over 130 lifts of the ground truths, the convexity
+        votes picked the wrong sign far more often; docs/lifting.md).
+    sign_plane_weight : float
+        Weight of the planar strokes' votes (each stroke's plane read as a
+        vertical plane, :func:`~auszug.lifting.reconstruct.vertical_planes`)
+        against the control-polygon edges' votes of
+        :func:`~auszug.lifting.reconstruct.from_above` in the depth sign's
+        score (lift-sign2: 8, the middle of the range 6-10 that measured the
+        same on both sign grids and the noise table; 0: the edges alone, the
+        rule before).
+    sign_plane_flat : float
+        A stroke votes as a plane only when its control points' third
+        singular value is at most this share of the second: the strokes the
+        lift made planar (applied planarity holds to the solver's
+        precision); a curve left bent out of its plane by noise or by the
+        energy does not vote (0.002: the middle of the measured range
+        0.0005-0.005; at 0.04, 4-5 more noisy lifts of the spiral and the
+        cross took the mirror).
+    sign_plane_straight : float
+        ... and their second singular value at least this share of the
+        first (a straight stroke has no plane; 0-0.05 measured the same).
     newton_iterations : int
         Most Newton steps of one solve.
     newton_tol : float
@@ -238,6 +258,9 @@ class LiftParams:
     snap: float = 0.01
     merge: float = 1e-7
     above_min: float = 0.0
+    sign_plane_weight: float = 8.0
+    sign_plane_flat: float = 0.002
+    sign_plane_straight: float = 0.02
     newton_iterations: int = 60
     newton_tol: float = 1e-10
     kkt_reg: float = 1e-11

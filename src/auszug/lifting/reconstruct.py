@@ -26,8 +26,8 @@ from auszug.lifting.sketch import Sketch, SketchGraph, Stroke, sketch_graph
 from auszug.lifting.solver import Orderings, Poly2, SolveResult, solve
 from auszug.lifting.terms import fidelity, structure
 
-__all__ = ["CueResult", "Stage", "LiftResult", "lift", "lift_graph", "layer_graphs", "from_above", "CLASSES",
-           "DEFAULT_CLASSES", "mirror_plane", "symmetry_stroke"]
+__all__ = ["CueResult", "Stage", "LiftResult", "lift", "lift_graph", "layer_graphs", "from_above", "depth_sign_score",
+           "vertical_planes", "CLASSES", "DEFAULT_CLASSES", "mirror_plane", "symmetry_stroke"]
 
 Array = NDArray[np.float64]
 
@@ -96,7 +96,7 @@ class LiftResult:
         Every solve converged with its hard constraints met.
     flipped : tuple of bool
         Per layer: whether the depth-sign rule (the view from above,
-        :func:`from_above`; convexity where that is 0) or a flip marker chose
+        :func:`depth_sign_score`; convexity where that is 0) or a flip marker chose
         the mirror image z -> -z of the solver's solution.
     points : tuple of (n, 3) ndarray
         Per layer: the lifted control points (sketch units).
@@ -375,7 +375,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        its candidates are the single-linkage clusters of the applied planar
        strokes' normals (:func:`~auszug.lifting.cues.plane_cues`);
     4. the depth sign: the solution or its mirror z -> -z, whichever is seen
-       from above (:func:`from_above`; where that score is not above
+       from above (:func:`depth_sign_score`: the edges of :func:`from_above`
+       and the vertical planes of :func:`vertical_planes`; where that score is not above
        ``params.above_min``, whichever is more convex seen from the viewer),
        flipped once more per flip marker.
     """
@@ -753,14 +754,141 @@ def from_above(controls: Array) -> float:
     return float(np.dot(r2, np.sin(4.0 * phi)) / total)
 
 
+def vertical_planes(controls: Array, seg_stroke: NDArray[np.intp], params: LiftParams = DEFAULT) -> tuple[float, float]:
+    """The planar strokes' votes for a view from above, each stroke's plane read as a vertical plane.
+
+    An upright object's vertical ``u = (0, cos b, sin b)`` in view
+    coordinates (drawn vertical; ``b`` the tilt, positive seen from above) lies
+    in every vertical plane, so a vertical plane of unit normal ``n`` gives
+    ``u`` parallel to ``(0, n_z, -n_y)`` and ``sin 2b = -2 n_y n_z / (n_y^2 +
+    n_z^2)``, which the mirror image z -> -z negates. A horizontal plane's
+    normal is ``u`` itself, with ``n_x = 0``, and read as a vertical one it
+    gives the mirror's tilt; so each plane votes ``n_x^2 sin 2b``: only as
+    much as its normal leaves the y-z plane, i.e. as it cannot be horizontal.
+    (Read this way, the planar strokes do not need the tilt below 45 deg that
+    :func:`from_above` assumes.) A stroke's plane is the least-squares plane
+    of its segments' control points (4 per segment), with singular values
+    ``s1 >= s2 >= s3``; it votes when ``s3 <= params.sign_plane_flat s2``
+    (planar) and ``s2 >= params.sign_plane_straight s1`` (not straight), with
+    weight ``A = s1 s2``.
+
+    Parameters
+    ----------
+    controls : (s, 4, 3) ndarray
+        The cubic Bezier segments' control points (x, y as drawn, z toward the
+        viewer).
+    seg_stroke : (s,) int ndarray
+        The stroke of each segment.
+    params : LiftParams
+        ``sign_plane_flat`` and ``sign_plane_straight``: the planarity and
+        straightness bounds above.
+
+    Returns
+    -------
+    tuple of float
+        ``sum A n_x^2 sin 2b`` and ``sum A`` over the voting strokes.
+
+    Examples
+    --------
+    A curve in a wall (a vertical plane turned 45 deg from the picture) seen
+    from 30 deg above, and its mirror image: ``n_x^2 sin 2b = 0.5 sin 60 deg``.
+
+    >>> import numpy as np
+    >>> from auszug.lifting.reconstruct import vertical_planes
+    >>> b = np.radians(30)
+    >>> u, h = np.array([0, np.cos(b), np.sin(b)]), np.array([1, -np.sin(b), np.cos(b)]) / 2 ** 0.5
+    >>> arc = np.array([[[0, 0, 0], u, u + h, 2 * h]])   # one segment, in the plane of u and h
+    >>> v, a = vertical_planes(arc, np.array([0]))
+    >>> round(v / a, 4), round(vertical_planes(arc * [1, 1, -1], np.array([0]))[0] / a, 4)
+    (0.433, -0.433)
+    """
+    c = np.asarray(controls, dtype=float)
+    ids = np.asarray(seg_stroke)
+    flat, straight = params.sign_plane_flat, params.sign_plane_straight
+    vote = area = 0.0
+    for k in np.unique(ids):
+        q = c[ids == k].reshape(-1, 3)
+        if len(q) < 3:
+            continue
+        _, sv, vt = np.linalg.svd(q - q.mean(axis=0), full_matrices=False)
+        if sv[0] <= 0.0 or sv[1] < straight * sv[0] or sv[2] > flat * sv[1]:
+            continue
+        n = vt[2]
+        a = float(sv[0] * sv[1])
+        yz = float(n[1] ** 2 + n[2] ** 2)
+        if yz > 0.0:
+            vote += a * float(n[0] ** 2) * (-2.0 * float(n[1] * n[2]) / yz)
+        area += a
+    return vote, area
+
+
+def depth_sign_score(controls: Array, seg_stroke: NDArray[np.intp], params: LiftParams = DEFAULT) -> float:
+    """The depth sign's score in [-1, 1]: positive when the network is seen from above.
+
+    The weighted mean of :func:`from_above`'s votes (every control-polygon
+    edge, weight ``r^2``) and :func:`vertical_planes`' (every planar stroke,
+    weight ``params.sign_plane_weight A``)::
+
+        (sum r^2 sin 4 phi + w sum A n_x^2 sin 2b) / (sum r^2 + w sum A)
+
+    The mirror image's score is its negative. With ``sign_plane_weight = 0``
+    it is :func:`from_above`. Why the planes (lift-sign2, docs/lifting.md,
+    Depth sign): :func:`from_above` reads an edge near the y axis as a
+    vertical and one near z as a horizontal, so it takes a lift whose depth
+    scale makes the object look tilted by more than 45 deg for its mirror
+    (the revolve lifted too deep at tilts 25-35 deg, the wrinkle's rulings
+    flattened); a vertical plane gives the tilt at any angle.
+
+    Parameters
+    ----------
+    controls : (s, 4, 3) ndarray
+        The cubic Bezier segments' control points.
+    seg_stroke : (s,) int ndarray
+        The stroke of each segment.
+    params : LiftParams
+        ``sign_plane_weight``, ``sign_plane_flat``, ``sign_plane_straight``.
+
+    Returns
+    -------
+    float
+        The score; 0 for a flat network.
+
+    Examples
+    --------
+    The curve in a wall of :func:`vertical_planes`, seen from 70 deg above:
+    its edges alone read as the mirror, the plane outweighs them.
+
+    >>> import numpy as np
+    >>> from auszug.lifting.reconstruct import depth_sign_score, from_above
+    >>> b = np.radians(70)
+    >>> u, h = np.array([0, np.cos(b), np.sin(b)]), np.array([1, -np.sin(b), np.cos(b)]) / 2 ** 0.5
+    >>> arc = np.array([[[0, 0, 0], u, u + h, 2 * h]])
+    >>> round(from_above(arc), 3), round(depth_sign_score(arc, np.array([0])), 3)
+    (-0.164, 0.228)
+    """
+    c = np.asarray(controls, dtype=float)
+    d = (c[:, 1:] - c[:, :-1]).reshape(-1, 3)
+    r2 = d[:, 1] ** 2 + d[:, 2] ** 2
+    edges = float(r2.sum())
+    num = float(np.dot(r2, np.sin(4.0 * np.arctan2(d[:, 2], d[:, 1])))) if edges > 0.0 else 0.0
+    w = params.sign_plane_weight
+    vote = area = 0.0
+    if w > 0.0:
+        vote, area = vertical_planes(c, seg_stroke, params)
+    total = edges + w * area
+    if total <= 0.0:
+        return 0.0
+    return (num + w * vote) / total
+
+
 def _flip_to_view_from_above(g: SketchGraph, X: Array, smooth: cu.Orthogonal, params: LiftParams) -> bool:
     """Whether to mirror ``X`` (z -> -z): the paper's "view from above" preference, then convexity.
 
-    :func:`from_above` decides when its score is above ``params.above_min`` in
-    magnitude (by default: unless it is exactly 0); otherwise the convexity
-    votes of :func:`_concave` do.
+    :func:`depth_sign_score` decides when its score is above
+    ``params.above_min`` in magnitude (by default: unless it is exactly 0);
+    otherwise the convexity votes of :func:`_concave` do.
     """
-    score = from_above(X[g.segments])
+    score = depth_sign_score(X[g.segments], g.seg_stroke, params)
     if abs(score) > params.above_min:
         return score < 0
     return _concave(g, X, smooth)

@@ -226,7 +226,7 @@ class LiftParams:
     outer_value: float = 0.005
     rounds: int = 8
     final_solve: bool = False
-    final_hold: bool = False
+    final_hold: bool = True
     w_final_anchor: float = 10.0
     applied_tol_deg: float = 0.5
     hold_first_step: float = 1.0 / 128.0

@@ -367,9 +367,9 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        it; after ``params.rounds`` rounds the rest is rejected. Cues applied
        in a class's final round are held by the next class's solves; those of
        the last round run only within I_b, unless ``params.final_hold`` (our
-       rule, off by default for its time): one more solve of that round with
-       them hard, the round's soft terms kept, its depths held near its
-       solution by ``params.w_final_anchor`` (given up at its first step by
+       rule, on by default): one more solve of that round with them hard, the
+       round's energy kept (its soft terms and class depth anchor), its depths
+       held near its solution by ``params.w_final_anchor`` (given up at its first step by
        ``params.hold_first_step``), kept if it converges and every
        applied cue then holds within ``params.applied_tol_deg``; otherwise the
        round's solution stays and its applied cues beyond that angle there are
@@ -379,7 +379,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        ``"plane"`` (plane parallelism and orthogonality) comes after planarity:
        its candidates are the single-linkage clusters of the applied planar
        strokes' normals (:func:`~auszug.lifting.cues.plane_cues`);
-    4. the depth sign: the solution or its mirror z -> -z, whichever is seen
+    4. the depth sign (decided on the last round's solution, before
+       ``final_hold``'s solve): the solution or its mirror z -> -z, whichever is seen
        from above (:func:`from_above`; where that score is not above
        ``params.above_min``, whichever is more convex seen from the viewer),
        flipped once more per flip marker.

@@ -11,7 +11,7 @@ Measured per lift: depth RMSE relative to the diagonal after the best depth offs
 (``truth.depth_rmse``), the sign, convergence, precision / recall / F1 of the applied cues per class
 against the true labels, and the largest residual angle of the applied cues per class on the final
 network (degrees): smooth-crossing orthogonality (hard), corner orthogonality (hard), planarity (the
-last class: its last round's applied cues held by ``LiftParams.final_hold`` since lift-final,
+last class: its last round's applied cues held by ``LiftParams.final_hold``, on by default since lift-hold3,
 docs/lifting.md), parallelism (soft by design) and any applied cue of any class.
 
 Usage (from the repository root)::

@@ -73,21 +73,21 @@ class LiftParams:
         "Applied cues within 0.5 deg"). When on, it replaces ``final_hold``.
     final_hold : bool
         Our rule for the cues applied in the last round run (branch
-        lift-final): that round solved once more with them hard, its soft
-        terms kept and its depths held near its solution (``w_final_anchor``;
-        if it does not converge, once more with a third of the weight), kept
-        if every applied cue then holds within ``applied_tol_deg``; else the
-        round's solution stays and its applied cues beyond that angle there
-        are rejected. Meets "applied cues within 0.5 deg" on every lift
-        measured, the depth RMSE within +-0.06 % points but the cross's +0.17.
-        Off by default: on the 100-curve benchmark sketch the held solve does
-        not converge (nor does ``final_solve``'s), two solves of 60 Newton
-        steps, the lift's CPU time 2.4-2.6 -> 19-21 s; with ``hold_first_step``
-        (lift-final2) it is given up at its first step, +0.27 s CPU (+0.17 to
-        +0.33 over 5 runs, the goal +0.2 s: not met, docs/lifting.md,
-        "Applied cues within 0.5 deg"). Off: the last round's cues are
-        reported after the soft solve that accepted them, within
-        ``inner_deg`` only (up to 4.9 deg measured).
+        lift-final; on by default since lift-hold3): that round solved once
+        more with them hard, its energy kept (soft terms and the class's
+        depth anchor, ``w_depth_anchor``) and its depths held near its solution
+        (``w_final_anchor``; if it does not converge, once more with a third
+        of the weight), kept if every applied cue then holds within
+        ``applied_tol_deg``; else the round's solution stays and its applied
+        cues beyond that angle there are rejected. The depth sign is decided
+        on the round's solution, before that solve (lift-hold3). Meets
+        "applied cues within 0.5 deg" on every lift measured, the depth RMSE
+        within +-0.06 % points but the cross's +0.17. Its cost on the
+        100-curve benchmark sketch: the held solve given up at its first step
+        (``hold_first_step``), one KKT factorisation, about +0.1 s CPU
+        (docs/lifting.md, "Applied cues within 0.5 deg"). Off: the last
+        round's cues are reported after the soft solve that accepted them,
+        within ``inner_deg`` only (up to 4.9 deg measured).
     w_final_anchor : float
         Weight of ``(z - z_round)^2`` per point in that solve (10; 3 and 100
         measured, docs/lifting.md); 0: the round's own anchor, if any.
@@ -246,7 +246,7 @@ class LiftParams:
     outer_value: float = 0.005
     rounds: int = 8
     final_solve: bool = False
-    final_hold: bool = False
+    final_hold: bool = True
     w_final_anchor: float = 10.0
     applied_tol_deg: float = 0.5
     hold_first_step: float = 1.0 / 128.0

@@ -254,10 +254,15 @@ class _Problem:
         P.const, P.weight, P.lin, P.bil, P.rows = list(base.const), list(base.weight), list(base.lin), \
             list(base.bil), base.rows
         w = self.params.w_depth_anchor if w_anchor is None else w_anchor   # by default the class's anchor
-        if anchor is not None and w > 0:
+        if anchor is not None:
+            self.add_anchor(P, anchor, w)
+        return P
+
+    def add_anchor(self, P: Poly2, anchor: Array, w: float) -> None:
+        """Add ``w sum_k (z_k - anchor_k)^2`` over the control points' depths to ``P`` (nothing if w <= 0)."""
+        if w > 0:
             cols = 3 * np.arange(self.N) + 2
             P.add(-anchor, w, lin=(np.arange(self.N), cols, np.ones(self.N)))
-        return P
 
     def constraints(self) -> Poly2:
         C = Poly2(self.n)
@@ -362,9 +367,9 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        it; after ``params.rounds`` rounds the rest is rejected. Cues applied
        in a class's final round are held by the next class's solves; those of
        the last round run only within I_b, unless ``params.final_hold`` (our
-       rule, off by default for its time): one more solve of that round with
-       them hard, the round's soft terms kept, its depths held near its
-       solution by ``params.w_final_anchor`` (given up at its first step by
+       rule, on by default): one more solve of that round with them hard, the
+       round's energy kept (its soft terms and class depth anchor), its depths
+       held near its solution by ``params.w_final_anchor`` (given up at its first step by
        ``params.hold_first_step``), kept if it converges and every
        applied cue then holds within ``params.applied_tol_deg``; otherwise the
        round's solution stays and its applied cues beyond that angle there are
@@ -374,7 +379,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
        ``"plane"`` (plane parallelism and orthogonality) comes after planarity:
        its candidates are the single-linkage clusters of the applied planar
        strokes' normals (:func:`~auszug.lifting.cues.plane_cues`);
-    4. the depth sign: the solution or its mirror z -> -z, whichever is seen
+    4. the depth sign (decided on the last round's solution, before
+       ``final_hold``'s solve): the solution or its mirror z -> -z, whichever is seen
        from above (:func:`depth_sign_score`: the edges of :func:`from_above`
        and the vertical planes of :func:`vertical_planes`; where that score is not above
        ``params.above_min``, whichever is more convex seen from the viewer),
@@ -591,7 +597,10 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         for k, w_anchor in enumerate((params.w_final_anchor, params.w_final_anchor / 3.0)):
             if k:
                 pr.v, pr.lam = keep_v.copy(), keep_lam
-            E = pr.energy(params.w_a, z0, w_anchor) if w_anchor > 0 else pr.energy(params.w_a, anchor)
+            # the round's own energy (its class depth anchor too, when ``w_depth_anchor`` > 0: without it the
+            # held solve drifts along the fidelity's flat directions that anchor holds), plus the hold's anchor
+            E = pr.energy(params.w_a, anchor)
+            pr.add_anchor(E, z0, w_anchor)
             for f in soft_kept:
                 f(E)
             soft_add(E, rest, w)
@@ -669,6 +678,11 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     hard.append(lambda c: pp.add(c, pp_state["sel"], 1.0))
     pp_applied = resolve("plane", pp, lambda s: pp_state.update(sel=s), lambda E, i, w: pp.add(E, i, w))
 
+    # the depth sign is decided on the last round's solution, before the held solve: the hold only meets the
+    # applied cues near that solution (within its anchor), it is not a new shape to decide the sign on (held,
+    # the cross's from-above score under the robust baseline and the depth anchor went -0.016 -> +0.011, the
+    # wrong sign; docs/lifting.md "Applied cues within 0.5 deg")
+    X_sign = pr.X().copy()
     if pending["applied"] and params.final_hold and not params.final_solve:
         def worst_applied() -> float:
             X = pr.X()
@@ -694,7 +708,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     results = [CueResult("smooth-orthogonal", w, True, float(x), layer)
                for w, x in zip(pr.smooth.where, pr.smooth.angles(X), strict=True)] + results
 
-    flip = _flip_to_view_from_above(g, X, pr.smooth, params)
+    flip = _flip_to_view_from_above(g, X if params.final_solve else X_sign, pr.smooth, params)
     flip ^= sum(c.flipped for c in g.crossings) % 2 == 1
     if flip:
         X[:, 2] *= -1.0

@@ -614,8 +614,9 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             pr.stages[-1] = replace(pr.stages[-1], applied=0, discarded=True)
         worst = worst_applied() if r.converged else np.inf
         if progress is not None:
+            after = f"largest applied angle after {worst:.3g} deg" if r.converged else "no angle after"
             progress(f"layer {layer} {name} held: largest angle before {ang0.max():.3g} deg, {len(acc)} cues, "
-                     f"converged {r.converged}, largest applied angle after {worst:.3g} deg")
+                     f"converged {r.converged}, {after}")
         if worst <= params.applied_tol_deg:
             return
         pr.v, pr.lam = keep_v, keep_lam

@@ -179,3 +179,30 @@ def test_bad_parameters_say_what_was_expected():
         DEFAULT.with_(betta=3)
     with pytest.raises(GeometryError, match="grow = 'yes': expected true or false"):
         DEFAULT.with_(grow="yes")
+
+
+def test_a_loop_that_also_glides_out_of_its_plane_is_not_dropped_as_sliding():
+    """A round loop in z = 0 whose normals tilt by ``eps sin 3t`` out of its plane: the turn about
+    z glides it exactly and slides (share 1), so Eq. 4 returns the turn; a translation along z
+    glides it within Alg. 1's tolerance when eps is small (mean f = eps^2 / 2 against f* = 0.035)
+    and does not slide. ``loop_sliding`` keeps such a whole closed run, a loop that glides only by
+    its turn (eps 0.2: mean f 0.02, 0.56 f*) stays dropped, and open runs are judged as before."""
+    t = np.linspace(0, 2 * np.pi, 120, endpoint=False)
+    x = 0.1 * np.column_stack([np.cos(t), np.sin(t), 0 * t])
+    for eps, kept in ((0.05, True), (0.2, False)):
+        n = np.column_stack([np.cos(t), np.sin(t), eps * np.sin(3 * t)])
+        n /= np.linalg.norm(n, axis=1, keepdims=True)
+        curve = _one_curve(x, n, True)
+        off = movability(curve, DEFAULT.with_(loop_sliding=0.0))
+        assert off.n_runs == 0 and abs(abs(off.velocity[0, 2]) - 1) < 1e-6       # Eq. 4: the turn about z
+        assert np.all(off.weights > 0.99)                                         # it glides the whole loop
+        on = movability(curve)
+        assert on.n_runs == int(kept)
+        if kept:
+            assert on.run_length[0] == pytest.approx(2 * np.pi * 0.1, rel=1e-3)
+            assert on.run_sliding[0] <= DEFAULT.loop_sliding
+        # the same points as an open curve (half the loop): no second look, dropped as before
+        half = _one_curve(x[:60], n[:60], False)
+        assert movability(half).n_runs == movability(half, DEFAULT.with_(loop_sliding=0.0)).n_runs == 0
+    with pytest.raises(GeometryError):
+        SweepParams(loop_sliding=-0.1)

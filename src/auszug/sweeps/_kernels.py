@@ -286,9 +286,60 @@ def _sliding(x, w, c, j, closed):  # pragma: no cover - compiled
     return w[j] * d * d, w[j] * vv
 
 
+@njit(cache=True, inline="always")
+def _add_row(m, wt, x, j, dx, dy, dz):  # pragma: no cover - compiled
+    """``m += wt r r^T`` with ``r = (x_j x d, d)``: ``r . C`` is the speed of point ``j`` along ``d``."""
+    r0 = x[j, 1] * dz - x[j, 2] * dy
+    r1 = x[j, 2] * dx - x[j, 0] * dz
+    r2 = x[j, 0] * dy - x[j, 1] * dx
+    row = (r0, r1, r2, dx, dy, dz)
+    for a in range(6):
+        ra = wt * row[a]
+        for b in range(6):
+            m[a, b] += ra * row[b]
+
+
 @njit(cache=True)
-def _runs_of_curve(x, nrm, w, f, c, closed, thresh, l_min, gap, max_slide, min_spread, out_i0, out_i1, out_len,
-                   out_e, out_s, k0, write):  # pragma: no cover - compiled
+def _least_sliding(x, nrm, w, idx, closed, glide_f):  # pragma: no cover - compiled
+    """Least ``sliding share + mean f / glide_f`` over all velocity states, on the points ``idx``.
+
+    The share of the weighted squared speed along the curve's tangent plus the weighted mean
+    squared normal speed (over the squared speed) in units of ``glide_f``: the smallest
+    eigenvalue of ``T + N / glide_f`` against ``S`` (``T``, ``N``, ``S`` the weighted quadratic
+    forms of tangential, normal and whole squared speed), by a Cholesky factor of ``S``.
+    """
+    n = len(x)
+    t_m = np.zeros((6, 6))
+    n_m = np.zeros((6, 6))
+    s_m = np.zeros((6, 6))
+    for j in idx:
+        a = (j - 1) % n if closed else max(j - 1, 0)
+        b = (j + 1) % n if closed else min(j + 1, n - 1)
+        tx, ty, tz = x[b, 0] - x[a, 0], x[b, 1] - x[a, 1], x[b, 2] - x[a, 2]
+        tl = np.sqrt(tx * tx + ty * ty + tz * tz)
+        if tl == 0.0:
+            continue
+        _add_row(t_m, w[j], x, j, tx / tl, ty / tl, tz / tl)
+        _add_row(n_m, w[j], x, j, nrm[j, 0], nrm[j, 1], nrm[j, 2])
+        _add_row(s_m, w[j], x, j, 1.0, 0.0, 0.0)
+        _add_row(s_m, w[j], x, j, 0.0, 1.0, 0.0)
+        _add_row(s_m, w[j], x, j, 0.0, 0.0, 1.0)
+    tr = 0.0
+    for a in range(6):
+        tr += s_m[a, a]
+    if tr <= 0.0:
+        return np.inf
+    for a in range(6):
+        s_m[a, a] += 1e-12 * tr
+    low = np.linalg.cholesky(s_m)
+    inv = np.linalg.inv(low)
+    m = inv @ (t_m + n_m / glide_f) @ inv.T
+    return np.linalg.eigvalsh(0.5 * (m + m.T))[0]
+
+
+@njit(cache=True)
+def _runs_of_curve(x, nrm, w, f, c, closed, thresh, l_min, gap, max_slide, min_spread, glide_f, loop_slide,
+                   out_i0, out_i1, out_len, out_e, out_s, k0, write):  # pragma: no cover - compiled
     n = len(w)
     if n == 0:
         return 0
@@ -336,6 +387,16 @@ def _runs_of_curve(x, nrm, w, f, c, closed, thresh, l_min, gap, max_slide, min_s
             length += _dist(x, n - 1, 0)
         slide = sl_num / sl_den if sl_den > 0 else 0.0
         spread = np.linalg.eigvalsh(cov / (j - i))[1] if length >= l_min else 0.0
+        if slide > max_slide and loop_slide > 0.0 and closed and all_good and length >= l_min \
+                and spread >= min_spread:
+            # a whole closed cut whose Eq. 4 velocity slides: does another velocity state glide it
+            # without sliding? (a loop slides along itself only by turning in its plane)
+            idx = np.empty(j - i, np.int64)
+            for q in range(i, j):
+                idx[q - i] = (s0 + q) % n if closed else q
+            q = _least_sliding(x, nrm, w, idx, closed, glide_f)
+            if q <= loop_slide:
+                slide = q
         if length >= l_min and slide <= max_slide and spread >= min_spread:
             if write:
                 out_i0[k0 + count] = (s0 + i) % n if closed else i
@@ -350,12 +411,15 @@ def _runs_of_curve(x, nrm, w, f, c, closed, thresh, l_min, gap, max_slide, min_s
 
 @njit(cache=True)
 def movable_runs(x, nrm, w, f, cs, curve_start, closed, thresh, l_min, gap, max_slide,
-                 min_spread):  # pragma: no cover - compiled
+                 min_spread, glide_f, loop_slide):  # pragma: no cover - compiled
     """Alg. 1 step 4: runs of weight above ``thresh`` at least ``l_min`` long, with gliding energy.
 
     Gaps of at most ``gap`` arc length are bridged; runs whose velocity is more than
-    ``max_slide`` (share of squared speed) along the curve itself are dropped, and so are runs
-    whose normals hardly turn (second eigenvalue of their mean ``n n^T`` below ``min_spread``).
+    ``max_slide`` (share of squared speed) along the curve itself are dropped, unless (``loop_slide``
+    > 0) the run is a whole closed curve and some velocity state's sliding share plus its mean
+    normal speed in units of ``glide_f`` (:func:`_least_sliding`) is at most ``loop_slide``; and so
+    are runs whose normals hardly turn
+    (second eigenvalue of their mean ``n n^T`` below ``min_spread``).
     """
     n_curves = len(curve_start) - 1
     dummy_i = np.zeros(1, np.int64)
@@ -364,7 +428,7 @@ def movable_runs(x, nrm, w, f, cs, curve_start, closed, thresh, l_min, gap, max_
     for k in range(n_curves):
         a, b = curve_start[k], curve_start[k + 1]
         counts[k] = _runs_of_curve(x[a:b], nrm[a:b], w[a:b], f[a:b], cs[k], closed[k], thresh, l_min, gap,
-                                   max_slide, min_spread,
+                                   max_slide, min_spread, glide_f, loop_slide,
                                    dummy_i, dummy_i, dummy_f, dummy_f, dummy_f, 0, False)
     offs = np.zeros(n_curves + 1, np.int64)
     offs[1:] = np.cumsum(counts)
@@ -378,7 +442,7 @@ def movable_runs(x, nrm, w, f, cs, curve_start, closed, thresh, l_min, gap, max_
     for k in range(n_curves):
         a, b = curve_start[k], curve_start[k + 1]
         _runs_of_curve(x[a:b], nrm[a:b], w[a:b], f[a:b], cs[k], closed[k], thresh, l_min, gap, max_slide,
-                       min_spread, i0, i1, length, energy, slide, offs[k], True)
+                       min_spread, glide_f, loop_slide, i0, i1, length, energy, slide, offs[k], True)
         for r in range(offs[k], offs[k + 1]):
             curve[r] = k
     return curve, i0, i1, length, energy, slide

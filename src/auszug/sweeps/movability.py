@@ -14,7 +14,12 @@ a stretch of low weight no longer than ``gap`` of arc length between two movable
 bridged (one noisy vertex must not cut a profile in two), and a run whose velocity slides it
 along itself (more than ``max_sliding`` of its squared speed along its own tangent) is dropped:
 every helix, and over a short length every smooth curve, glides within any surface that contains
-it by moving along itself, which is no evidence of a sweep. And a run whose normals hardly turn (the second eigenvalue
+it by moving along itself, which is no evidence of a sweep. A run that is a whole closed cut is kept all the
+same when another velocity state glides it with little sliding (``loop_sliding``; a loop slides
+along itself only by turning in its plane): the least sliding share plus mean
+movability, in units of the threshold's, over all velocity states is at most ``max_sliding``
+(a coarse closed cut nearly glides under the turn in its own plane too, and Eq. 4's eigenvector
+is any mix of that turn and the motions out of the plane). And a run whose normals hardly turn (the second eigenvalue
 of their mean ``n n^T`` below ``min_spread``) lies in a nearly flat strip, where every in-plane
 motion glides: dropped too.
 
@@ -68,7 +73,9 @@ class Movability:
     run_energy : (r,) float array
         Its gliding energy.
     run_sliding : (r,) float array
-        Share of the run's (weighted) squared speed along the curve's own tangent.
+        Share of the run's (weighted) squared speed along the curve's own tangent; where that is
+        more than ``max_sliding`` on a whole closed cut, the least sliding share plus mean
+        movability over all velocity states where that is at most ``loop_sliding``.
     """
 
     velocity: Array
@@ -157,7 +164,10 @@ def movability(cuts: Cuts, params: SweepParams = DEFAULT) -> Movability:
     cs, ev, w, f, mats = _kernels.weight_iteration(cuts.points, cuts.normals, cuts.curve_start, float(params.beta),
                                              float(params.gamma), int(params.iterations),
                                              float(params.speed_floor))
+    # the movability at which Alg. 1's weight falls to the threshold: the unit of loop_sliding's mean f
+    f_star = ((1.0 / params.weight_threshold - 1.0) / params.beta) ** (1.0 / params.gamma)
     rc, r0, r1, rl, re, rs = _kernels.movable_runs(
         cuts.points, cuts.normals, w, f, cs, cuts.curve_start, cuts.curve_closed, float(params.weight_threshold),
-        float(params.l_min), float(params.gap), float(params.max_sliding), float(params.min_spread))
+        float(params.l_min), float(params.gap), float(params.max_sliding), float(params.min_spread),
+        float(f_star), float(params.loop_sliding))
     return Movability(cs, ev, mats, w, f, rc, r0, r1, rl, re, rs)

@@ -51,6 +51,20 @@ class SweepParams:
     max_sliding : float
         Runs whose velocity has more than this share of its squared length along the curve's
         own tangent are dropped (our choice: a curve sliding along itself is no evidence).
+    loop_sliding : float
+        Beyond the paper, with ``max_sliding``: a run that is a whole closed cut curve (a loop
+        slides along itself only by turning in its own plane) and whose Eq. 4 velocity slides along
+        it is still kept when another velocity state glides it with little sliding: when the least
+        ``sliding share + mean f / f*`` over all velocity states is at most ``loop_sliding``
+        (``mean f``: the run's weighted squared normal speed over its squared speed; ``f* = ((1 /
+        weight_threshold - 1) / beta)^(1 / gamma)``, the movability at which Alg. 1's weight falls
+        to the threshold, 0.035 at the defaults). A coarse closed cut (a square bar's cut loop of 8
+        points, its corners' normals diagonal) nearly glides under the turn in its own plane as
+        well as under the motions out of it, and the eigenvector Eq. 4 returns is any mix of them:
+        with noise 5e-4 on a member's bar 127 of 140 cut loops within 25 deg of a profile plane
+        were dropped as sliding. A loop at angle ``a`` to a tube's normal plane moving along the
+        tube slides by about ``sin^2(a) / 2``; default 0.1 (about 27 deg, near ``match_angle``:
+        the profile planes' loops, not the oblique ones); 0: the Eq. 4 velocity's share only.
     min_spread : float
         Runs whose normals hardly turn, second eigenvalue of their mean ``n n^T`` below this, are
         dropped (our choice: in a nearly flat strip everything glides). 0.03: normals turning by
@@ -355,6 +369,7 @@ class SweepParams:
     speed_floor: float = 0.05
     gap: float = 0.01
     max_sliding: float = 0.5
+    loop_sliding: float = 0.1
     min_spread: float = 0.03
     sphere_frequency: int = 4
     offset_spacing: float = 0.055
@@ -444,6 +459,7 @@ class SweepParams:
             ("speed_floor", self.speed_floor >= 0, ">= 0"),
             ("gap", self.gap >= 0, ">= 0"),
             ("max_sliding", 0 < self.max_sliding <= 1, "in (0, 1]"),
+            ("loop_sliding", _real(self.loop_sliding) and 0 <= self.loop_sliding <= 1, "in [0, 1] (a share)"),
             ("min_spread", 0 <= self.min_spread < 0.5, "in [0, 0.5)"),
             ("sphere_frequency", 1 <= self.sphere_frequency <= 64, "in 1..64"),
             ("offset_spacing", 0 < self.offset_spacing <= 1, "in (0, 1]"),

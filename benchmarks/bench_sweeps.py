@@ -12,7 +12,7 @@ faster on this machine: 14.3 s and 11.7 s.
 3. Build the sweeps (sec. 2.3): from the initial planes' cuts, match every movable run, order the
    ribs of the ``--families`` families of most support and fit each a general sweep (Eq. 7
    velocities, Hermite interpolation, projection to rigid motions, profile improvement, 3 rounds
-   of re-slicing, the fit check with exact closest points on the mesh), not grown. The paper optimised
+   of re-slicing, the fit check with libigl closest points), not grown. The paper optimised
    N_opt = 152 sweeps in T_opt = 86 s (0.57 s each); we compare per sweep. Then the same with
    growing (the default: the first family grows over the mesh, the others are skipped), and the
    whole ``detect``.

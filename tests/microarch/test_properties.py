@@ -58,6 +58,9 @@ def test_top_view_unchanged_by_side_view_edits(d, h, f):
 
 @SETTINGS
 @given(drawings(), point)
+@example(Drawing((BasicCurve(vertices=((0.3160508445930683, 0.2420454734250741), (0.0, 0.6276197293254628)),
+                             segments=(Segment(kind="arc", handles=((0.5150530133796702, 0.0),)),),
+                             marks=("ground", "apex"), height=0.21875),)), (0.0, 0.0))
 def test_side_view_unchanged_by_top_view_edits(d, xy):
     # stored PRCs (an automatic PRC follows the top view by design)
     d = Drawing(tuple(c.with_(prc=(c.prc[0] or 0.5,)) for c in d.curves))
@@ -70,7 +73,11 @@ def test_side_view_unchanged_by_top_view_edits(d, xy):
     # arc length: bottom, PRC and apex heights are kept
     a, b = _build(d), _build(d2)
     pa, pb = a.ogee_of(0), b.ogee_of(0)
-    assert pa.prc[2] == pb.prc[2] or math.isclose(pa.prc[2], pb.prc[2], abs_tol=1e-12)
+    # the heights are evaluated on the side view's arcs, whose size is its extent (the top view's arc
+    # length): rounding of order 1e-13 of it (hypothesis found a top-view arc of length 1057 under an
+    # ogee 0.22 high whose PRC height erred by 2.3e-10), so the tolerance scales with the extent
+    tol = 1e-12 * max(1.0, pa.side.extent, pb.side.extent)
+    assert pa.prc[2] == pb.prc[2] or math.isclose(pa.prc[2], pb.prc[2], abs_tol=tol)
     assert pa.points[0, 2] == pb.points[0, 2] and pa.points[-1, 2] == pb.points[-1, 2]
 
 

@@ -759,14 +759,22 @@ def from_above(controls: Array) -> float:
     >>> round(from_above(floor), 6), round(from_above(floor * [1, 1, -1]), 6)
     (0.96, -0.96)
     """
-    c = np.asarray(controls, dtype=float)
+    num, total = _edge_votes(np.asarray(controls, dtype=float))
+    return num / total if total > 0.0 else 0.0
+
+
+def _edge_votes(c: Array) -> tuple[float, float]:
+    """:func:`from_above`'s sums over the control-polygon edges of ``c`` (s, 4, 3).
+
+    The vote ``sum r^2 sin(4 phi)`` and the weight ``sum r^2`` (``r``, ``phi`` the polar form of an
+    edge's (y, z)); both 0 for a flat network.
+    """
     d = (c[:, 1:] - c[:, :-1]).reshape(-1, 3)
     r2 = d[:, 1] ** 2 + d[:, 2] ** 2
     total = float(r2.sum())
     if total <= 0.0:
-        return 0.0
-    phi = np.arctan2(d[:, 2], d[:, 1])
-    return float(np.dot(r2, np.sin(4.0 * phi)) / total)
+        return 0.0, 0.0
+    return float(np.dot(r2, np.sin(4.0 * np.arctan2(d[:, 2], d[:, 1])))), total
 
 
 def vertical_planes(controls: Array, seg_stroke: NDArray[np.intp], params: LiftParams = DEFAULT) -> tuple[float, float]:
@@ -882,10 +890,7 @@ def depth_sign_score(controls: Array, seg_stroke: NDArray[np.intp], params: Lift
     (-0.164, 0.228)
     """
     c = np.asarray(controls, dtype=float)
-    d = (c[:, 1:] - c[:, :-1]).reshape(-1, 3)
-    r2 = d[:, 1] ** 2 + d[:, 2] ** 2
-    edges = float(r2.sum())
-    num = float(np.dot(r2, np.sin(4.0 * np.arctan2(d[:, 2], d[:, 1])))) if edges > 0.0 else 0.0
+    num, edges = _edge_votes(c)
     w = params.sign_plane_weight
     vote = area = 0.0
     if w > 0.0:

@@ -17,7 +17,7 @@ every helix, and over a short length every smooth curve, glides within any surfa
 it by moving along itself, which is no evidence of a sweep. A run that is a whole closed cut is kept all the
 same when another velocity state glides it with little sliding (``loop_sliding``; a loop slides
 along itself only by turning in its plane): the least sliding share plus mean
-movability, in units of the threshold's, over all velocity states is at most ``max_sliding``
+movability, in units of the threshold's, over all velocity states is at most ``loop_sliding``
 (a coarse closed cut nearly glides under the turn in its own plane too, and Eq. 4's eigenvector
 is any mix of that turn and the motions out of the plane). And a run whose normals hardly turn (the second eigenvalue
 of their mean ``n n^T`` below ``min_spread``) lies in a nearly flat strip, where every in-plane

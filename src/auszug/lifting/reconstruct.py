@@ -281,6 +281,27 @@ class _Forced:
     symmetry: cu.Symmetry
 
 
+@dataclass(frozen=True, eq=False)
+class _Pending:
+    """The cues a class's last round applied, not yet held by a solve (``LiftParams.final_hold``).
+
+    ``acc`` (k,) the cues' indices in the class's family and ``ang0`` (k,) their angles (degrees) in that
+    round's solution; ``mask`` (m,) the class's applied flags (rejected cues are cleared in place);
+    ``hard_add`` / ``soft_add`` the class's callbacks; ``rest`` the round's undecided cues, soft with
+    weights ``w``; ``anchor`` the class's depth anchor (None without ``w_depth_anchor``).
+    """
+
+    name: str
+    acc: NDArray[np.intp]
+    ang0: Array
+    mask: NDArray[np.bool_]
+    hard_add: Callable[[NDArray[np.intp]], None]
+    soft_add: Callable[[Poly2, NDArray[np.intp], Array], None]
+    rest: NDArray[np.intp]
+    w: Array
+    anchor: Array | None
+
+
 def _take(fam, keep: NDArray[np.bool_]):
     """The candidates of a cue family where ``keep`` (every array field indexed, ``where`` filtered)."""
     out = {}
@@ -474,11 +495,11 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
 
     # cues applied after the last solve (a class's final round): the next class's first solve holds
     # them; after the last class one more solve does (see the docstring, 3.)
-    pending: dict = {"applied": 0, "redo": None}
+    pending: _Pending | None = None
 
     def resolve(name: str, fam, hard_add, soft_add, pre: NDArray[np.bool_] | None = None,
                 skip: NDArray[np.bool_] | None = None, confirm: bool = False) -> NDArray[np.bool_]:
-        nonlocal ok
+        nonlocal ok, pending
         m = len(fam)
         applied = np.zeros(m, dtype=bool) if pre is None else pre.copy()   # pre: applied by global symmetry
         if not m or name not in classes:
@@ -501,7 +522,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
                 f(C)
             r = pr.run(f"{name} round {rnd + 1}", E, C)
             k_round = len(pr.stages) - 1
-            pending["applied"], pending["redo"] = 0, None
+            pending = None
             ok &= r.converged
             ang = fam.angles(pr.X())
             L = cu.likelihood(ang, params)
@@ -533,9 +554,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             if acc.any():
                 sel = np.nonzero(applied)[0]
                 hard_add(sel)
-                pending["applied"] = int(acc.sum())
                 rest = idx[~acc[idx]]
-                pending["redo"] = (name, np.nonzero(acc)[0], ang[acc], applied, hard_add, soft_add, rest,
+                pending = _Pending(name, np.nonzero(acc)[0], ang[acc], applied, hard_add, soft_add, rest,
                                    w_round[rest], anchor)
             if not undecided.any():
                 break
@@ -582,15 +602,15 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             f(C)
         return pr.run(name, E, C, applied=applied)
 
-    def hold_last(worst_applied: Callable[[], float]) -> None:
-        """The rule of ``params.final_hold`` for the cues the last round run applied.
+    def hold_last(last: _Pending, worst_applied: Callable[[], float]) -> None:
+        """The rule of ``params.final_hold`` for the cues the last round run applied (``last``).
 
         That round is solved again with them hard, its depths held near its solution (weight
         ``params.w_final_anchor``); kept if it converges and every applied cue (``worst_applied``, degrees)
         then holds within ``params.applied_tol_deg``, else the round's solution is kept and its applied
         cues that do not hold there within that angle are rejected (as L = 0 would).
         """
-        name, acc, ang0, mask, hard_add, soft_add, rest, w, anchor = pending["redo"]
+        name, acc, ang0, mask, anchor = last.name, last.acc, last.ang0, last.mask, last.anchor
         keep_v, keep_lam = pr.v.copy(), pr.lam
         z0 = pr.X()[:, 2].copy()
         # a solve that does not converge is tried once more from the round's solution with a third of the weight
@@ -603,7 +623,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
             pr.add_anchor(E, z0, w_anchor)
             for f in soft_kept:
                 f(E)
-            soft_add(E, rest, w)
+            last.soft_add(E, last.rest, last.w)
             C = pr.constraints()
             for f in hard:
                 f(C)
@@ -622,7 +642,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         pr.v, pr.lam = keep_v, keep_lam
         drop = acc[ang0 > params.applied_tol_deg]
         mask[drop] = False
-        hard_add(np.nonzero(mask)[0])
+        last.hard_add(np.nonzero(mask)[0])
         pr.stages[-1] = replace(pr.stages[-1], applied=len(acc) - len(drop), rejected=len(drop), discarded=True)
         if progress is not None:
             why = "an applied cue broken" if r.converged else "given up" if r.gave_up else "not converged"
@@ -684,7 +704,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     # the cross's from-above score under the robust baseline and the depth anchor went -0.016 -> +0.011, the
     # wrong sign; docs/lifting.md "Applied cues within 0.5 deg")
     X_sign = pr.X().copy()
-    if pending["applied"] and params.final_hold and not params.final_solve:
+    if pending is not None and params.final_hold and not params.final_solve:
         def worst_applied() -> float:
             X = pr.X()
             fams = ((par, par_applied), (orth, orth_applied), (sym, sym_applied), (lin, lin_applied),
@@ -692,8 +712,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
                     (pr.smooth, np.ones(len(pr.smooth), bool)))
             return max((float(fam.angles(X)[app].max()) for fam, app in fams if app.any()), default=0.0)
 
-        hold_last(worst_applied)
-    elif pending["applied"] and params.final_solve:
+        hold_last(pending, worst_applied)
+    elif pending is not None and params.final_solve:
         # the last class's cues applied in its final round have not been held by a solve yet: one
         # more solve, every applied cue hard (parallelism and linearity soft with w_c, as before)
         ok &= held_solve("final").converged

@@ -36,7 +36,7 @@ from numpy.typing import NDArray
 
 from auszug.lifting.sketch import SketchGraph
 
-__all__ = ["depth_family", "family_member", "sample_points", "extent_spread", "extent_member"]
+__all__ = ["depth_family", "family_member", "extruded", "sample_points", "extent_spread", "extent_member"]
 
 Array = NDArray[np.float64]
 
@@ -135,6 +135,23 @@ def extent_spread(X: Array, g: SketchGraph) -> float:
     return float(np.log(e[0] / e[1]) ** 2) if e[1] > 0 else np.inf
 
 
+def extruded(X: Array, p: NDArray[np.intp], h1: NDArray[np.intp], h2: NDArray[np.intp], tol_deg: float) -> bool:
+    """Whether one 3D direction runs through every pair: one of its two tangents within ``tol_deg`` of it.
+
+    The structure of an extrusion (every crossing on a ruling, the rulings parallel), whose depth family is
+    exact; the near-families of other networks (a vase seen from the front) do not have it. The
+    candidates for the direction are the pairs' own tangents (as lines, either sign).
+    """
+    if not len(p):
+        return False
+    t = np.concatenate([X[h1] - X[p], X[h2] - X[p]])
+    t /= np.linalg.norm(t, axis=1)[:, None]
+    c = np.abs(t @ t.T) >= np.cos(np.radians(tol_deg))          # (2m, 2m): candidate k covers tangent j
+    m = len(p)
+    covered = c[:, :m] | c[:, m:]                                   # candidate k covers pair i
+    return bool(covered.all(axis=1).any())
+
+
 def _mapped(X: Array, m: Array) -> Array:
     Y = X.copy()
     Y[:, 2] = X @ m
@@ -142,8 +159,8 @@ def _mapped(X: Array, m: Array) -> Array:
 
 
 def extent_member(X: Array, g: SketchGraph, p: NDArray[np.intp], h1: NDArray[np.intp],
-                        h2: NDArray[np.intp], tol: float, span: float, max_cos: float,
-                        steps: int = 40) -> tuple[Array, float, float] | None:
+                  h2: NDArray[np.intp], tol: float, span: float, max_cos: float, parallel_deg: float = 1.0,
+                  steps: int = 40) -> tuple[Array, float, float] | None:
     """The member of a one-parameter depth family of least :func:`extent_spread` (the most isotropic extent).
 
     Parameters
@@ -160,16 +177,19 @@ def extent_member(X: Array, g: SketchGraph, p: NDArray[np.intp], h1: NDArray[np.
         identity (before projection onto the family), with ``gamma > 0`` (no mirror).
     max_cos : float
         A member is admissible when every pair's ``|cos|`` is at most this.
+    parallel_deg : float
+        The family is searched only on an extrusion (:func:`extruded` within this angle).
     steps : int
         Grid points on each side of the identity; the best is refined by golden-section search.
 
     Returns
     -------
     (alpha, beta, gamma), score of the lift, score of the member; or None
-        None when the pairs leave no one-parameter family (k != 1) or no member scores lower.
+        None when the pairs leave no one-parameter family (k != 1), the network is not an extrusion,
+        or no member scores lower.
     """
     N = depth_family(X, p, h1, h2, tol)
-    if N.shape[1] != 1:
+    if N.shape[1] != 1 or not extruded(X, p, h1, h2, parallel_deg):
         return None
     n = N[:, 0]
     base = extent_spread(X, g)

@@ -796,10 +796,10 @@ def _family_map(g: SketchGraph, X: Array, smooth: cu.Orthogonal, params: LiftPar
     """
     max_cos = float(np.sin(np.radians(params.family_max_deg)))
     found = extent_member(X, g, smooth.p, smooth.h1, smooth.h2, params.family_tol, params.family_span,
-                                max_cos)
+                          max_cos, params.family_parallel_deg)
     if found is None:
         if progress is not None:
-            progress(f"layer {layer} family prior: no one-parameter depth family, or the lift is its best member")
+            progress(f"layer {layer} family prior: no extrusion's depth family, or the lift is its best member")
         return None
     m, before, after = found
     if progress is not None:

@@ -5,8 +5,8 @@ Seen orthographically, a 3D network and its image under a *linear depth map*
 map keeps every affine relation: the accuracy and minimal-variation terms
 (Eq. 1-5, affine combinations with 2D weights), straight segments, G1
 joints, planarity and (exact) parallelism. It does not keep angles, so the
-hard orthogonality of the smooth crossings (and of applied corners) decides
-which maps are left: ``(M a) . (M b) = 0`` for every such pair of tangents
+hard orthogonality of the smooth crossings decides which maps are left (the
+applied corners are held again by the solve that follows the map): ``(M a) . (M b) = 0`` for every such pair of tangents
 ``a, b``, with ``M = [[1, 0, 0], [0, 1, 0], [alpha, beta, gamma]]``, one
 quadratic equation in ``(alpha, beta, gamma)`` per pair, met by the identity.
 Generic networks leave only the identity and its mirror; an extrusion (its
@@ -24,9 +24,10 @@ compact, isotropic interpretations (Brady and Yuille 1984, "An extremum
 principle for shape from contour"; Li, Pizlo and Steinman 2009, maximal 3D
 compactness), reduced to the one dimension the family leaves free: an
 extruded object is taken to be as deep as it is wide. It fails, by design,
-on objects much longer than wide (a long arcade). Off by default
-(``LiftParams.family_prior``; measured in docs/lifting.md, "Depth family
-prior").
+on objects much longer than wide (a long arcade). On by default since
+lift-wrinkle (``LiftParams.family_prior``; the search and the solve after it
+in :func:`auszug.lifting.reconstruct.lift_graph`; measured in docs/lifting.md,
+"Depth family prior").
 """
 
 from __future__ import annotations
@@ -70,7 +71,7 @@ def depth_family(X: Array, p: NDArray[np.intp], h1: NDArray[np.intp], h2: NDArra
         The pairs: ``X[h1] - X[p]`` orthogonal to ``X[h2] - X[p]``.
     tol : float
         A singular value of the pairs' cosine Jacobian at the identity below ``tol`` times the
-        largest (or below ``tol`` when all are) counts as null.
+        largest (times 1 when the largest is below 1) counts as null.
 
     Returns
     -------

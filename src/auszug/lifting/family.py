@@ -84,7 +84,7 @@ def depth_family(X: Array, p: NDArray[np.intp], h1: NDArray[np.intp], h2: NDArra
     if not len(p):
         return np.eye(3)
     _, J = _cosines(X, p, h1, h2, IDENTITY)
-    _, s, Vt = np.linalg.svd(J, full_matrices=True)
+    _, s, Vt = np.linalg.svd(J, full_matrices=len(J) < 3)        # Vt (3, 3) either way
     s = np.concatenate([s, np.zeros(3 - len(s))])
     null = s <= tol * max(float(s[0]), 1.0)
     return np.ascontiguousarray(Vt[null].T)

@@ -650,9 +650,9 @@ def test_robust_reweighting_within_its_trust_bound(case, same_as):
     baseline's depth spread is discarded, and with no reweighting kept the class depth anchor is off, so the lift
     is the default lift (to round-off: the reweighting's factorisations fill the ordering cache); within the bound
     it is ``ROBUST``'s. Where ROBUST takes the wrong sign on the depth-sign grid (14 of 60 lifts: the vase at tilt
-    15-25 and at 35/+-25, the revolve at 15/+-50, the arches at 35/+-25; the reweighting deepens the lift by 0.19-0.44
-    of its spread into another basin) the guard keeps the default's right sign; at the truths' own views it keeps
-    ROBUST's gains."""
+    15-25 and at 35/+-25, the revolve at 15/+-50, where the reweighting deepens the lift by 0.18-0.44 of its spread
+    into another basin; the arches at 35/+-25, whose reweighting moves nothing, by the class depth anchor alone)
+    the guard keeps the default's right sign (0 of 60); at the truths' own views it keeps ROBUST's gains."""
     from tests.lifting.test_lifting import _example_truth
 
     name, view = case

@@ -22,7 +22,8 @@ Usage (from the repository root)::
     python -m benchmarks.eval_lifting energy [--truths a,b]
 
 ``--params k=v,...`` lifts with those :class:`~auszug.lifting.LiftParams` fields (noise, views and signs modes),
-e.g. ``--params parallel_robust_deg=5,w_depth_anchor=10`` (branch lift-energy, docs/lifting.md),
+e.g. ``--params parallel_robust_deg=5,w_depth_anchor=10`` (branch lift-energy, docs/lifting.md; with
+``robust_max_move=0.12`` the trust bound on its reweighting, branch lift-robust3),
 ``--params parallel_confirm=1`` (the consistency check of the parallel cues, branch lift-cues2) or
 ``--params sign_plane_weight=0`` (the depth sign by the control-polygon edges alone, the rule before lift-sign2).
 

@@ -478,15 +478,32 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         ok = False
         if progress is not None:
             progress(f"layer {layer}: no seed's baseline converged (NOT converged)")
-    elif params.parallel_robust_deg > 0:
+    anchored = params.w_depth_anchor > 0   # the class depth anchor (beyond the paper, off by default)
+    if ok and params.parallel_robust_deg > 0:
         # beyond the paper (off by default): the kept baseline reweighted by its candidates' 3D angles
         c2 = params.parallel_robust_deg**2
+        z_base = pr.X()[:, 2].copy()
+        spread = float(np.std(z_base))
+        reach = params.robust_max_move * spread
+        kept = 0
         for k_ in range(params.robust_rounds):
             gm = (c2 / (c2 + par.angles(pr.X()) ** 2)) ** 2
             keep = (pr.v.copy(), pr.lam)
             if not baseline(gm, f"baseline reweighted {k_ + 1}").converged:
                 pr.v, pr.lam = keep     # an unconverged reweighting is discarded (its stage says so)
                 break
+            moved = float(np.std(pr.X()[:, 2] - z_base))
+            if reach > 0 and moved > reach:
+                # the reweighting left the baseline's basin (robust_max_move): the previous solve is kept
+                pr.v, pr.lam = keep
+                pr.stages[-1] = replace(pr.stages[-1], discarded=True)
+                if progress is not None:
+                    progress(f"layer {layer} baseline reweighted {k_ + 1}: depths moved {moved / spread:.3g} of "
+                             f"their spread (> {params.robust_max_move:g}): discarded")
+                break
+            kept += moved > UNMOVED * spread
+        if reach > 0 and not kept:
+            anchored = False    # with the bound, the class depth anchor holds a reweighted baseline only
     hard: list[Callable[[Poly2], None]] = [lambda c: pr.smooth.add(c, np.arange(len(pr.smooth)), 1.0)]
     soft_kept: list[Callable[[Poly2], None]] = []
     results: list[CueResult] = []
@@ -509,7 +526,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         if not undecided.any():
             return applied
         Lp = cu.likelihood(fam.angles(pr.X()), params)
-        anchor = pr.X()[:, 2].copy() if params.w_depth_anchor > 0 else None
+        anchor = pr.X()[:, 2].copy() if anchored else None
         check_anchor = pr.X()[:, 2].copy() if confirm and params.w_confirm_anchor > 0 else None
         for rnd in range(params.rounds):
             E = pr.energy(params.w_a, anchor)
@@ -807,6 +824,10 @@ def _family_map(g: SketchGraph, X: Array, smooth: cu.Orthogonal, params: LiftPar
                  f"extent score {before:.4g} -> {after:.4g}")
     return m
 
+#: A reweighted baseline whose depths moved by less than this share of the baseline's depth spread
+#: changed nothing (round-off; measured 1e-11 to 1e-9 where no candidate's weight changed): with
+#: ``LiftParams.robust_max_move``, no class depth anchor then (docs/lifting.md, "Robust baseline").
+UNMOVED = 1e-6
 
 #: Normal curvature (diagonal 1) below which a crossing's curves count as straight (no convexity vote).
 CURVED = 1e-6

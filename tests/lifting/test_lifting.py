@@ -245,9 +245,9 @@ def _example_truth(name: str, R: np.ndarray | None = None):
 
 
 @pytest.mark.parametrize("name, sign, base_bound, cue_bound", [
-    ("vase", 1, 0.020, 0.031),          # measured 1.96 % baseline, 3.00 % default cues
-    ("ogee-roof", 1, 0.035, 0.035),     # measured 3.48 %, 3.36 %
-    ("arches", 1, 0.100, 0.092),        # measured 9.96 %, 9.16 %
+    ("vase", 1, 0.020, 0.031),          # measured 1.96 % baseline, 2.95 % default cues (the family prior rejected)
+    ("ogee-roof", 1, 0.023, 0.021),     # measured 2.18 %, 1.96 % (3.48, 3.34 % before lift-wrinkle's family prior)
+    ("arches", 1, 0.043, 0.041),        # measured 4.15 %, 3.97 % (9.96, 9.17 % before it)
 ])
 def test_bundled_examples_against_their_truth(name, sign, base_bound, cue_bound):
     """Depth RMSE and depth sign of the three example sketches against the 3D truths they were drawn from.
@@ -255,8 +255,9 @@ def test_bundled_examples_against_their_truth(name, sign, base_bound, cue_bound)
     Measured on branch lifting6 (docs/lifting.md): none meets the issue's accuracy targets. The sign is
     right for all three since lifting6 (the view-from-above rule, ``from_above``); the convexity votes
     alone picked the mirror image for the ogee roof and the arches. The sketches are rebuilt from the
-    truths (noise-free; the bundled SVGs round the coordinates to 0.01 px). The arches come out flatter
-    than the truth (docs/lifting.md).
+    truths (noise-free; the bundled SVGs round the coordinates to 0.01 px). The arches came out flatter
+    than the truth (docs/lifting.md); since lift-wrinkle the depth family prior (``family_prior``: the
+    ogee roof and the arches are extrusions) takes the member of isotropic extent instead of the flattest.
     """
     tr = _example_truth(name)
     for classes, bound in (((), base_bound), (DEFAULT_CLASSES, cue_bound)):
@@ -265,15 +266,15 @@ def test_bundled_examples_against_their_truth(name, sign, base_bound, cue_bound)
         assert r.converged and s == sign and err <= bound, (name, classes, err, s)
 
 
-@pytest.mark.parametrize("name, bound", [("vase", 0.031), ("ogee-roof", 0.036), ("arches", 0.097)])
+@pytest.mark.parametrize("name, bound", [("vase", 0.031), ("ogee-roof", 0.022), ("arches", 0.071)])
 def test_shipped_example_svgs_lift_with_the_true_depth_sign(name, bound):
     """The bundled SVG files themselves (as a user opens them) against their 3D truths: right sign.
 
     make_sketches.svg maps a truth's view coordinates to SVG pixels by a uniform scale, a shift and
     the y flip that the reader undoes, so the truth in the reader's coordinates is the view scaled by
-    the same factor. Measured depth RMSE (default cues): 3.00, 3.50, 9.56 % (the rebuilt sketches
-    above: 3.00, 3.36, 9.16 %; the difference is the SVG's rounding); the sign was wrong for the ogee
-    roof and the arches before lifting6.
+    the same factor. Measured depth RMSE (default cues): 2.95, 2.13, 6.96 % (before lift-wrinkle's
+    family prior 2.95, 3.50, 9.56 %; the rebuilt sketches above: 2.95, 1.96, 3.97 %; the difference is
+    the SVG's rounding); the sign was wrong for the ogee roof and the arches before lifting6.
     """
     from auszug import examples
     from auszug.formats import load

@@ -137,17 +137,21 @@ def test_accidental_views_are_rejected(make, reason):
 
 # (truth, depth RMSE bound, {class: (true positives, applied, true)}) measured 2026-12-03 at each truth's
 # own view, noise-free, default cues (docs/lifting.md, "Measured"); the bounds are the measured figure
-# plus about 3 % of it. Targets of issue 12: spiral <= 1 %, saddle, wrinkle and cross <= 3 %: all missed.
+# plus about 3 % of it. Targets of issue 12: spiral <= 1 %, saddle, wrinkle and cross <= 3 %: all missed but
+# the wrinkle's since lift-wrinkle.
 LIFTED = [
     ("spiral", 0.3530, {"parallel": (5, 13, 5)}),                      # measured 34.31 %
-    ("saddle", 0.0770, {"parallel": (12, 24, 12), "planar": (8, 8, 8)}),  # measured 7.45 %
-    ("wrinkle", 0.0925, {"parallel": (22, 22, 22), "planar": (3, 3, 3)}),  # measured 8.95 %
+    # since lift-wrinkle the depth family prior (``family_prior``) moves the saddle, wrinkle and turret along
+    # the depth family their smooth crossings leave: saddle 7.47 -> 4.94 %, wrinkle 8.95 -> 1.82 % (the issue's
+    # 3 % met), turret 10.28 -> 10.03 % (the cue counts unchanged)
+    ("saddle", 0.0510, {"parallel": (12, 24, 12), "planar": (8, 8, 8)}),  # measured 4.94 % (7.45 before)
+    ("wrinkle", 0.0190, {"parallel": (22, 22, 22), "planar": (3, 3, 3)}),  # measured 1.82 % (8.95 before)
     # the cross: 22.11 % on main (lifting-speed's solver, every solve converged, no corner applied); since
     # lift-acc every seed is also propagated with w_p = 0.1 and the baseline reaches the truth's own basin
     # (energy 0.0341 against 0.0378): 16.21 %, 16 corners applied (8 true), the planar round unconverged
     # (residual 1.6e-9 > 1e-10)
     ("cross", 0.1670, {"parallel": (20, 70, 20), "orthogonal": (8, 16, 12), "planar": (6, 6, 6)}),
-    ("turret", 0.1060, {"parallel": (22, 24, 22), "orthogonal": (8, 12, 10)}),  # measured 10.28 %
+    ("turret", 0.1035, {"parallel": (22, 24, 22), "orthogonal": (8, 12, 10)}),  # measured 10.03 % (10.28 before)
 ]
 
 
@@ -157,8 +161,16 @@ def _clean(name: str):
     return tr, lift(tr.sketch)
 
 
-#: The lift without the rule for the last round's applied cues (``final_hold``, on by default since lift-hold3).
-UNHELD = LiftParams(final_hold=False)
+#: The lift without the rule for the last round's applied cues (``final_hold``, on by default since lift-hold3),
+#: and without the depth family prior (``family_prior``, on by default since lift-wrinkle), whose solve follows the
+#: rule's: the tests of the rule compare it with ``NOFAM``, the default without that prior.
+UNHELD = LiftParams(final_hold=False, family_prior=False)
+NOFAM = LiftParams(family_prior=False)
+
+
+@functools.cache
+def _nofam(name: str):
+    return lift(T.make(name).sketch, params=NOFAM)
 
 
 @functools.cache
@@ -198,7 +210,10 @@ def test_one_percent_noise_within_twice_the_noise_free_error(name):
     33.5, 28.3 against 34.3 %; saddle 8.30, 7.09, 4.80 against 7.45 %; wrinkle 4.07, 6.85, 8.31 against
     8.95 %; cross refused (seed 0), 13.1 (wrong sign), 22.2 against 16.2 % (since lift-acc: refused, 13.1
     (wrong sign), 35.6 against 16.2 %: seed 2 misses the target; on main 22.1 % noise-free); turret 11.5,
-    11.8, 17.0 against 10.3 %. Met at seed 1 everywhere, but only because the noise-free errors are large."""
+    11.8, 17.0 against 10.3 %. Met at seed 1 everywhere, but only because the noise-free errors are large.
+    Since lift-wrinkle's depth family prior (on by default): saddle 7.46 (unconverged), 5.07, 4.75 against
+    4.94 %; wrinkle 1.50, 1.64, 1.72 against 1.82 % (met with the noise-free error within the issue's 3 %);
+    turret 11.48, 11.23, 13.11 against 10.03 %; the others unchanged."""
     tr0, r0 = _clean(name)
     err0, _ = T.depth_rmse(tr0, r0)
     tr = T.make(name, noise=0.01, seed=1)
@@ -318,12 +333,17 @@ def test_vertical_planes_give_the_depth_sign_of_lifts_the_edges_mirror(name, til
     """Lifts (default cues) whose sign the edges alone (``sign_plane_weight = 0``, the rule before lift-sign2)
     take wrong: the wrinkle with its rulings flattened below 45 deg out of the page, the revolve lifted deeper
     than the truth (its meridian planes and rings read as a tilt of 46 deg instead of 25-35). With the
-    vertical planes the sign is right and the lift within its measured error of the truth."""
+    vertical planes the sign is right and the lift within its measured error of the truth. These are the lifts
+    without the depth family prior (lift-wrinkle, ``family_prior``), which lifts the two wrinkles unflattened
+    (1.87 and 1.93 %, measured; the edges then read them right too) and leaves the revolve as it is."""
     tr = T.revolve(tilt=tilt, turn=turn) if name == "revolve" else T.make(name, tilt, turn)
-    r = lift(tr.sketch)
+    r = lift(tr.sketch, params=NOFAM)
     err, sign = T.depth_rmse(tr, r)
     assert r.converged and sign == 1 and err <= bound, (err, sign)
-    r0 = lift(tr.sketch, params=LiftParams(sign_plane_weight=0.0))
+    if name == "wrinkle":
+        err1, sign1 = T.depth_rmse(tr, lift(tr.sketch))
+        assert sign1 == 1 and err1 < 0.02, (err1, sign1)
+    r0 = lift(tr.sketch, params=LiftParams(sign_plane_weight=0.0, family_prior=False))
     err0, sign0 = T.depth_rmse(tr, r0)
     assert sign0 == -1 and err0 == pytest.approx(err, abs=1e-9), (err0, sign0)     # the same lift, mirrored
     P, P0 = r.points[0], r0.points[0]
@@ -366,9 +386,9 @@ def test_the_final_solve_meets_every_applied_hard_cue():
     final round, so every applied hard cue is met (issue 12: within 0.5 deg); without it and without
     ``final_hold`` the revolve's planar cues stay as their last round left them (up to 3.85 deg measured).
     Measured on the revolve truth: 3.11 % -> 2.76 % depth RMSE (docs/lifting.md, "Final solve", for the cases
-    it makes worse)."""
+    it makes worse). Without the depth family prior (lift-wrinkle), whose solve would come last."""
     tr = T.make("revolve")
-    r0, r1 = _unheld("revolve"), lift(tr.sketch, params=LiftParams(final_solve=True))
+    r0, r1 = _unheld("revolve"), lift(tr.sketch, params=LiftParams(final_solve=True, family_prior=False))
     hard0 = [c.angle for c in r0.cues if c.applied and c.kind not in ("parallel", "linear")]
     hard1 = [c.angle for c in r1.cues if c.applied and c.kind not in ("parallel", "linear")]
     assert r1.converged and max(hard1) < 1e-3 and max(hard0) > 1.0
@@ -396,7 +416,9 @@ def test_every_applied_cue_holds_within_half_a_degree(name):
     1e-6 deg and applied parallelism (soft) within 0.1 deg (measured at most 0.05); at 1 % noise (seed 1)
     every applied cue holds within 0.5 deg. Without the rule the revolve's planar cues end up to 3.85 deg
     off, the cross's 4.73, the saddle's 0.91 (measured); the depth RMSE moves by at most 0.17 % points
-    (the cross: 16.21 -> 16.38 %; docs/lifting.md)."""
+    (the cross: 16.21 -> 16.38 %; docs/lifting.md). The angles are the default lift's (with the depth family
+    prior of lift-wrinkle, whose solve holds every applied cue too); the rule's effect on the depth is measured
+    without that prior."""
     tr, r = _clean(name)
     applied = [c for c in r.cues if c.applied]
     assert applied and r.stages
@@ -404,6 +426,7 @@ def test_every_applied_cue_holds_within_half_a_degree(name):
     assert max((c.angle for c in applied if c.kind == "parallel"), default=0.0) < 0.1
     # the depth RMSE within 0.2 % points of the lift's without the rule (measured -0.03 to +0.17, the cross's
     # the +0.17)
+    r = _nofam(name)
     err, sign = T.depth_rmse(tr, r)
     err0, sign0 = T.depth_rmse(tr, _unheld(name))
     assert sign == sign0 == 1 and abs(err - err0) <= 0.002, (err, err0)
@@ -429,7 +452,7 @@ def test_a_held_round_that_breaks_an_applied_cue_rejects_its_cues_beyond_half_a_
     converges but pulls an applied (soft) tangent parallelism 14.5 deg off (measured). So the round's
     solution stays (the lift is the one without the rule, to the bit) and that cue is rejected."""
     tr = T.make("spiral", 30.0, 30.0)
-    r, r0 = lift(tr.sketch), lift(tr.sketch, params=UNHELD)
+    r, r0 = lift(tr.sketch, params=NOFAM), lift(tr.sketch, params=UNHELD)
     held = r.stages[-1]
     assert held.name == "planar held" and held.converged and held.discarded
     assert (held.applied, held.rejected) == (0, 1)
@@ -446,7 +469,7 @@ def test_a_held_round_that_does_not_converge_keeps_the_rounds_solution():
     solution stays (to the bit) and the cue, within 0.5 deg there, stays applied; a solve that does not
     converge at the first weight and does at the second is kept (the wrinkle at 1 % noise, seeds 0 and 1)."""
     tr = T.make("saddle", noise=0.01, seed=0)
-    r, r0 = lift(tr.sketch), lift(tr.sketch, params=UNHELD)
+    r, r0 = lift(tr.sketch, params=NOFAM), lift(tr.sketch, params=UNHELD)
     held = [s for s in r.stages if "held" in s.name]
     assert [(s.converged, s.discarded) for s in held] == [(False, True), (False, True)]
     assert (held[-1].applied, held[-1].rejected) == (1, 0)
@@ -469,7 +492,7 @@ def test_a_held_solve_given_up_at_its_first_step_is_not_retried():
     (13 steps, measured), every cue kept."""
     tr = T.make("wrinkle", noise=0.01, seed=2)
     r0 = lift(tr.sketch, params=UNHELD)
-    r = lift(tr.sketch, params=LiftParams(hold_first_step=1 / 64))
+    r = lift(tr.sketch, params=LiftParams(hold_first_step=1 / 64, family_prior=False))
     held = [s for s in r.stages if "held" in s.name]
     assert [(s.iterations, s.converged, s.discarded) for s in held] == [(0, False, True)]
     assert held[0].rejected > 0 and held[0].applied + held[0].rejected == 8
@@ -540,11 +563,13 @@ def test_the_wrinkle_is_lifted_as_an_extrusion_with_less_foreshortening():
     a vertical in ``from_above``'s sin(4 phi), so the rule takes the mirror; that lift is 16.7 % off at its best
     sign. The wrong signs of the wrinkle (24 of 43 views before lift-sign2) were this depth scale read by the
     edges; the vertical planes of ``depth_sign_score`` fix 19 of them but not this view, where every section's
-    normal lies in the y-z plane (turn 0) and votes nothing."""
+    normal lies in the y-z plane (turn 0) and votes nothing. That is the paper's lift (``family_prior`` off);
+    the depth family prior (lift-wrinkle, on by default) takes the family's member of isotropic extent instead:
+    its rulings 66.9 deg out of the page, 2.05 % off at the right sign (measured)."""
     from auszug.lifting import from_above
 
     tr = T.make("wrinkle", 25.0, 0.0)
-    r = lift(tr.sketch)
+    r = lift(tr.sketch, params=NOFAM)
     err, sign = T.depth_rmse(tr, r)
     g = r.graphs[0]
     X, Xt = r.points[0] / g.scale, T.truth_xyz(tr, g)
@@ -568,6 +593,10 @@ def test_the_wrinkle_is_lifted_as_an_extrusion_with_less_foreshortening():
     assert 30 < out_of_page(u[0]) < 40 and np.isclose(np.mean([out_of_page(chord(Xt, s)) for s in rulings]), 65.0)
     assert from_above(np.concatenate(tr.chains3d)) > 0.98 and from_above(r.points[0][g.segments]) > 0.5
     assert sign == -1 and 0.16 < err < 0.175
+    r1 = lift(tr.sketch)
+    err1, sign1 = T.depth_rmse(tr, r1)
+    u1 = chord(r1.points[0] / g.scale, rulings[0])
+    assert sign1 == 1 and err1 < 0.022 and 65 < out_of_page(u1) < 69, (err1, sign1, out_of_page(u1))
 
 
 def test_the_second_propagation_reaches_the_vaults_lower_basin():
@@ -614,7 +643,8 @@ def test_robust_baseline_and_depth_anchor_against_the_truth(name, bound, counts)
     parallel candidate's 3D angle) and ``w_depth_anchor`` = 10 (each cue class's rounds held near the depths
     the class started from). The saddle comes within 3.05 % of the issue's 3 % (2.93 % without ``final_hold``:
     its planar cues, all true, held hard cost 0.12 % points) and the revolve within 1.33 % of its 1 % (1.23 %);
-    the default lift of both is 2.3 and 2.4 times as far off. Every applied cue within ``applied_tol_deg``. Not
+    the default lift of both without the depth family prior (lift-wrinkle) is 2.3 and 2.4 times as far off.
+    Every applied cue within ``applied_tol_deg``. Not
     the default: over the view grid 27 of 159 signs are wrong instead of 24, and the bundled arches get worse
     (docs/lifting.md); re-measured on lift-robust3 against today's default, 14 of 60 wrong signs on the depth-sign
     grid (0) and 8 of 159 on the views (5)."""
@@ -630,7 +660,7 @@ def test_robust_baseline_and_depth_anchor_against_the_truth(name, bound, counts)
     assert all(s.converged for s in r.stages[k: k + 3])
     assert max(c.angle for c in r.cues if c.applied) <= ROBUST.applied_tol_deg
     if name in ("revolve", "saddle"):
-        err0, _ = T.depth_rmse(tr, _clean(name)[1])
+        err0, _ = T.depth_rmse(tr, _nofam(name))
         assert err < 0.45 * err0, (err, err0)
 
 
@@ -671,8 +701,10 @@ def test_robust_reweighting_within_its_trust_bound(case, same_as):
     assert sign == 1, err
     discarded = [s for s in r.stages if s.name.startswith("baseline reweighted") and s.discarded]
     assert bool(discarded) == (same_as == "default")
-    if same_as == "default":   # and ROBUST itself takes the mirror there
-        assert T.depth_rmse(tr, lift(tr.sketch, params=ROBUST))[1] == -1
+    if same_as == "default":   # and ROBUST itself takes the mirror there, without the depth family prior
+        # (lift-wrinkle, on by default): with it ROBUST's revolve at 15/-50 is an extrusion-like lift that the
+        # prior moves to 5.76 % at the right sign (22.8 % and the mirror without it; measured)
+        assert T.depth_rmse(tr, lift(tr.sketch, params=replace(ROBUST, family_prior=False)))[1] == -1
 
 
 def test_the_depth_sign_is_decided_before_the_held_solve():

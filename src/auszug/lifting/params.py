@@ -240,6 +240,39 @@ class LiftParams:
         (10, the measured setting; 0: none). Without it the check solve is
         free along the fidelity's near-null space in depth, and true cues
         leave I_b too (the revolve loses 12 of its 23 true cues).
+    family_prior : bool
+        *Beyond the paper* (on by default since lift-wrinkle). Where the lift's smooth crossings
+        leave a one-parameter family of linear depth maps ``z' = alpha x + beta y + gamma z`` (an
+        extrusion seen orthographically: every member has the same accuracy, variation and cues,
+        and foreshortening picks the flattest), the member whose two largest extents along its
+        principal axes are equal (isotropy of the 3D extent: as deep as wide) is solved once more
+        and replaces the lift, before the depth sign (:mod:`auszug.lifting.family`; not with
+        applied symmetry or plane cues, which such maps do not keep). Measured (docs/lifting.md,
+        "Depth family prior"): the wrinkle 8.95 -> 1.82 % (grid median 10.5 -> 1.9 %, its 5 wrong
+        signs -> 0), the saddle 7.47 -> 4.94 %, the ogee roof 3.50 -> 2.13 %, the arches 9.56 ->
+        6.96 %; worse: the revolve from turn 0 (5.4 -> 9.0 %) and the vase at tilt 35, turn +-50
+        (5.0 -> 13.0 %). False: the paper's lift.
+    family_tol : float
+        A singular value of the smooth crossings' Jacobian (their cosines by ``(alpha, beta, gamma)``
+        at the identity) below this share of the largest counts as a free direction (1e-3; measured
+        shares: the wrinkle 5e-7 noise-free and 1.1-1.6e-4 at 1 % noise, the turret 4e-6 to 1e-4,
+        the saddle 5e-5 to 2e-4, the revolve 1.5e-4 to 7e-4, whose near-family the energy test of
+        ``family_energy_tol`` then rejects).
+    family_max_deg : float
+        A member is admissible only if every smooth crossing stays within this of 90 deg under the
+        map (0.1 deg; before the solve that follows it, which holds them again).
+    family_parallel_deg : float
+        ... and only on an extrusion: one 3D direction along one of the two tangents of every smooth
+        crossing, within this angle (1 deg; :func:`auszug.lifting.family.extruded`). A lift that
+        applied false parallels can be one (the revolve seen from turn 0, its meridians' tangents
+        lifted parallel at the crossings), so this does not keep the prior off every false family.
+    family_energy_tol : float
+        The member is solved once more (every hard cue held, its depths held by ``w_final_anchor``)
+        and kept only if that solve converges, every applied cue holds within ``applied_tol_deg``,
+        and the energy a depth family leaves unchanged (fidelity without foreshortening, plus the
+        kept soft cues) rose by at most this share (0.01: the revolve's and the bundled vase's
+        near-families cost 9 and 19 %; on the wrinkle, turret, saddle, ogee roof and arches it fell
+        or stayed).
     nd_ordering : bool
         Factorise the KKT matrices of the solves that take more than two Newton steps in a
         nested-dissection ordering (METIS, by ``pymetis``) with our compiled LDL^T
@@ -293,6 +326,12 @@ class LiftParams:
     w_depth_anchor: float = 0.0
     parallel_confirm: bool = False
     w_confirm_anchor: float = 10.0
+    family_prior: bool = True
+    family_tol: float = 1e-3
+    family_span: float = 2.0
+    family_max_deg: float = 0.1
+    family_parallel_deg: float = 1.0
+    family_energy_tol: float = 0.01
 
     def __post_init__(self) -> None:
         for f in fields(self):

@@ -21,6 +21,7 @@ from auszug.geometry import CubicBezier, SymmetryGroup
 from auszug.geometry.heights import SideCoordinate
 from auszug.geometry.network import CurveNetwork, Piece
 from auszug.lifting import cues as cu
+from auszug.lifting.family import extent_member
 from auszug.lifting.params import DEFAULT, LiftParams
 from auszug.lifting.sketch import Sketch, SketchGraph, Stroke, sketch_graph
 from auszug.lifting.solver import Orderings, Poly2, SolveResult, solve
@@ -591,8 +592,8 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
 
     offset_slot = 3 * (pr.N + len(g.chains)) + pla.stroke   # one plane offset unknown per candidate
 
-    def pla_apply(sel: NDArray[np.intp]) -> None:
-        new = np.setdiff1d(sel, pla_state["sel"])
+    def pla_apply(sel: NDArray[np.intp], refresh: bool = False) -> None:
+        new = sel if refresh else np.setdiff1d(sel, pla_state["sel"])
         if len(new):   # the normal and offset variables start at the best fit
             X = pr.X()
             nrm = pla.normals(X)
@@ -721,19 +722,68 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
     # the cross's from-above score under the robust baseline and the depth anchor went -0.016 -> +0.011, the
     # wrong sign; docs/lifting.md "Applied cues within 0.5 deg")
     X_sign = pr.X().copy()
-    if pending is not None and params.final_hold and not params.final_solve:
-        def worst_applied() -> float:
-            X = pr.X()
-            fams = ((par, par_applied), (orth, orth_applied), (sym, sym_applied), (lin, lin_applied),
-                    (pla, pla_applied), (pp, pp_applied), (sym_glob, np.ones(len(sym_glob), bool)),
-                    (pr.smooth, np.ones(len(pr.smooth), bool)))
-            return max((float(fam.angles(X)[app].max()) for fam, app in fams if app.any()), default=0.0)
 
+    def worst_applied() -> float:
+        X = pr.X()
+        fams = ((par, par_applied), (orth, orth_applied), (sym, sym_applied), (lin, lin_applied),
+                (pla, pla_applied), (pp, pp_applied), (sym_glob, np.ones(len(sym_glob), bool)),
+                (pr.smooth, np.ones(len(pr.smooth), bool)))
+        return max((float(fam.angles(X)[app].max()) for fam, app in fams if app.any()), default=0.0)
+
+    def ref_energy() -> float:
+        """The energy a depth family leaves unchanged: fidelity without foreshortening, plus the kept soft cues."""
+        E = fidelity(g, pr.n, replace(params, w_f=0.0), params.w_a)
+        for f in soft_kept:
+            f(E)
+        return float((E.weights * E.value(pr.v) ** 2).sum())
+
+    if pending is not None and params.final_hold and not params.final_solve:
         hold_last(pending, worst_applied)
     elif pending is not None and params.final_solve:
         # the last class's cues applied in its final round have not been held by a solve yet: one
         # more solve, every applied cue hard (parallelism and linearity soft with w_c, as before)
         ok &= held_solve("final").converged
+
+    if params.family_prior and not (sym_applied.any() or len(sym_glob) or pp_applied.any()):
+        # beyond the paper (off by default): the lift moved along the depth family its hard orthogonal
+        # pairs leave free (an extrusion), to the member whose two largest extents are equal
+        m = _family_map(g, pr.X(), pr.smooth, params, layer, progress)
+        if m is not None:
+            keep_v, keep_lam = pr.v.copy(), pr.lam
+            e_before = ref_energy()
+            Z = pr.X() @ m
+            pr.v[2: 3 * pr.N: 3] = Z - Z[pr.pin]
+            pla_apply(pla_state["sel"], refresh=True)
+            pr.lam = None
+            z_member, v_member = pr.X()[:, 2].copy(), pr.v.copy()
+            # a solve that does not converge is tried once more from the member with a third of the weight
+            for k, w_anchor in enumerate((params.w_final_anchor, params.w_final_anchor / 3.0)):
+                if k:
+                    pr.stages[-1] = replace(pr.stages[-1], discarded=True)
+                    pr.v, pr.lam = v_member.copy(), None
+                E = pr.energy(params.w_a, z_member, w_anchor)
+                for f in soft_kept:
+                    f(E)
+                C = pr.constraints()
+                for f in hard:
+                    f(C)
+                r = pr.run("family prior" + (f" (anchor {w_anchor:.3g})" if k else ""), E, C)
+                if r.converged or w_anchor == 0:
+                    break
+            e_after = ref_energy()
+            worst = worst_applied() if r.converged else np.inf
+            good = worst <= params.applied_tol_deg and e_after <= e_before * (1 + params.family_energy_tol) + 1e-12
+            if progress is not None:
+                progress(f"layer {layer} family prior: converged {r.converged}, largest applied angle {worst:.3g} deg, "
+                         f"energy without foreshortening {e_before:.4g} -> {e_after:.4g}: "
+                         + ("kept" if good else "the lift kept"))
+            if good:
+                Zs = X_sign @ m
+                X_sign = X_sign.copy()
+                X_sign[:, 2] = Zs - Zs[pr.pin]
+            else:
+                pr.v, pr.lam = keep_v, keep_lam
+                pr.stages[-1] = replace(pr.stages[-1], discarded=True)
 
     X = pr.X().copy()
     for kind, fam, app in (("parallel", par, par_applied), ("orthogonal", orth, orth_applied),
@@ -753,6 +803,26 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         X[:, 2] -= X[pr.pin, 2]
     return X, results, pr.stages, bool(ok), bool(flip)
 
+
+def _family_map(g: SketchGraph, X: Array, smooth: cu.Orthogonal, params: LiftParams, layer: int,
+                progress: Progress | None) -> Array | None:
+    """``params.family_prior``: the depth map ``(alpha, beta, gamma)`` to the family member the prior picks.
+
+    The family is that of the smooth crossings' orthogonality (:mod:`auszug.lifting.family`); None where they
+    leave no one-parameter family of linear depth maps, or the lift is its member of most isotropic extent.
+    """
+    max_cos = float(np.sin(np.radians(params.family_max_deg)))
+    found = extent_member(X, g, smooth.p, smooth.h1, smooth.h2, params.family_tol, params.family_span,
+                          max_cos, params.family_parallel_deg)
+    if found is None:
+        if progress is not None:
+            progress(f"layer {layer} family prior: no extrusion's depth family, or the lift is its best member")
+        return None
+    m, before, after = found
+    if progress is not None:
+        progress(f"layer {layer} family prior: depth map ({m[0]:.4g}, {m[1]:.4g}, {m[2]:.4g}), "
+                 f"extent score {before:.4g} -> {after:.4g}")
+    return m
 
 #: A reweighted baseline whose depths moved by less than this share of the baseline's depth spread
 #: changed nothing (round-off; measured 1e-11 to 1e-9 where no candidate's weight changed): with

@@ -129,7 +129,8 @@ def _build_only(mesh, params, spacing, n_families, reps):
           f"({0.566 / w:.1f}x the paper's 0.566 s by wall clock; goal 20x: 0.0283 s); "
           f"the mesh's tree {tw:.4f} s wall, {tc:.4f} s CPU once per mesh: with it shared out over the {n} sweeps "
           f"{w + tw / n:.4f} s wall, {c + tc / n:.4f} s CPU ({0.566 / (w + tw / n):.1f}x by wall clock); "
-          f"fit errors {', '.join(f'{p.fit_error:.3e}' for p in pats)}")
+          f"fit errors {', '.join(f'{p.fit_error:.3e}' for p in pats)}; "
+          f"coverage {', '.join(f'{p.coverage:.4f}' for p in pats)}")
 
 
 def main(argv=None):

@@ -73,6 +73,16 @@ def test_cut_near_with_boxes_holding_the_mesh_is_the_whole_cut():
         assert np.array_equal(getattr(near, name), getattr(whole, name)), name
 
 
+def test_edge_grid_stores_each_edges_end_points_in_the_grids_order():
+    # cut_near's scan reads the end points from the grid instead of the vertices: the same values, bit for bit
+    mesh = _mesh(hole=True)
+    for cell in (0.013, 0.05):
+        g = EdgeGrid.of(mesh, cell)
+        assert np.array_equal(np.sort(g.edges), np.arange(len(mesh.edges)))
+        assert np.array_equal(g.ends[:3].T, mesh.vertices[mesh.edges[g.edges, 0]])
+        assert np.array_equal(g.ends[3:].T, mesh.vertices[mesh.edges[g.edges, 1]])
+
+
 @pytest.mark.parametrize("closed", [False, True])
 def test_ring_tree_is_libigls_closest_points_on_the_ring_faces(closed):
     rng = np.random.default_rng(12)

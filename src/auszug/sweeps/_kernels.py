@@ -1306,7 +1306,9 @@ def edge_grid(v, edges, h):  # pragma: no cover - compiled
     """The edges binned by their midpoints in a uniform grid of cell size ``h``.
 
     Returns the grid's origin ``(3,)``, its cell counts ``(3,)``, the first entry of each cell
-    ``(c + 1,)`` and the edges cell after cell ``(e,)``, and the longest edge.
+    ``(c + 1,)`` and the edges cell after cell ``(e,)``, the longest edge, and the edges' end
+    points in the grid's order ``(6, e)`` (rows: the first end's x, y, z, the second's; the scan of
+    :func:`cut_near` reads them in a row instead of two vertices a scattered edge).
     """
     n_e = len(edges)
     lo = np.full(3, np.inf)
@@ -1335,10 +1337,16 @@ def edge_grid(v, edges, h):  # pragma: no cover - compiled
         count[c] += count[c - 1]
     fill = count[:-1].copy()
     out = np.empty(n_e, np.int64)
+    ends = np.empty((6, n_e))
     for e in range(n_e):
-        out[fill[cell[e]]] = e
+        q = fill[cell[e]]
+        out[q] = e
+        a, b = edges[e, 0], edges[e, 1]
+        for ax in range(3):
+            ends[ax, q] = v[a, ax]
+            ends[3 + ax, q] = v[b, ax]
         fill[cell[e]] += 1
-    return lo, dims, count, out, longest
+    return lo, dims, count, out, longest, ends
 
 
 @njit(cache=True, inline="always")
@@ -1448,7 +1456,7 @@ def _room(pts, nrm, eid, used, need):  # pragma: no cover - compiled
 
 @njit(cache=True)
 def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_start, grid_edges, h, longest, pn, pd,
-             boxes):  # pragma: no cover - compiled
+             boxes, grid_ends):  # pragma: no cover - compiled
     """The cut curves of each plane that cross its box ``boxes[p] (6,)`` (min, max), as :func:`cut_fill` gives them.
 
     Every crossed edge whose cut point may lie in the box (its midpoint's cell within the box
@@ -1460,9 +1468,12 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
     may be missing. Work: the cells of the box near the plane and the curves found, not the mesh.
 
     Returns points, normals, edge ids, curve starts ``(c + 1,)``, curve planes ``(c,)`` and
-    closed flags ``(c,)``.
+    closed flags ``(c,)``. ``grid_ends (6, e)``: the grid's edges' end points (:func:`edge_grid`),
+    whose signed distances are the cutter's bit for bit (the same products and sums).
     """
     n_planes = len(pd)
+    x0, y0, z0 = grid_ends[0], grid_ends[1], grid_ends[2]
+    x1, y1, z1 = grid_ends[3], grid_ends[4], grid_ends[5]
     cap = 1024
     pts = np.zeros((cap, 3))
     nrm = np.zeros((cap, 3))
@@ -1511,8 +1522,12 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
                         continue           # no edge of this cell reaches the plane
                     c = (ci * grid_dims[1] + cj) * grid_dims[2] + ck
                     for q in range(grid_start[c], grid_start[c + 1]):
+                        # _crossed of the edge from its end points stored in the grid's order
+                        if (x0[q] * nx + y0[q] * ny + z0[q] * nz - d >= 0.0) == \
+                                (x1[q] * nx + y1[q] * ny + z1[q] * nz - d >= 0.0):
+                            continue
                         e0 = grid_edges[q]
-                        if stamp[e0] == mark or not _crossed(v, edges, e0, nx, ny, nz, d):
+                        if stamp[e0] == mark:
                             continue
                         # walk both ways from e0 to collect its curve's crossed edges
                         stamp[e0] = mark

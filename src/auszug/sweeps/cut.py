@@ -144,6 +144,9 @@ class EdgeGrid:
         Cell size.
     longest : float
         The longest edge of the mesh.
+    ends : (6, e) float array
+        The edges' end points in the order of ``edges`` (rows: the first end's x, y, z, then the
+        second's), read by :func:`cut_near`'s scan in a row.
     """
 
     origin: Array
@@ -152,12 +155,13 @@ class EdgeGrid:
     edges: IntArray
     cell: float
     longest: float
+    ends: Array
 
     @classmethod
     def of(cls, mesh: SweepMesh, cell: float = GRID_CELL) -> "EdgeGrid":
         """The grid of ``mesh``'s edges (one compiled pass)."""
-        lo, dims, start, order, longest = _kernels.edge_grid(mesh.vertices, mesh.edges, float(cell))
-        return cls(lo, dims, start, order, float(cell), float(longest))
+        lo, dims, start, order, longest, ends = _kernels.edge_grid(mesh.vertices, mesh.edges, float(cell))
+        return cls(lo, dims, start, order, float(cell), float(longest), ends)
 
 
 def cut_near(mesh: SweepMesh, normals: ArrayLike, offsets: ArrayLike, boxes: ArrayLike,
@@ -190,5 +194,5 @@ def cut_near(mesh: SweepMesh, normals: ArrayLike, offsets: ArrayLike, boxes: Arr
     g = EdgeGrid.of(mesh) if grid is None else grid
     pts, nrm, eid, start, plane, closed = _kernels.cut_near(
         mesh.vertices, mesh.normals, mesh.edges, mesh.edge_faces, mesh.face_edges, g.origin, g.dims, g.cell_start,
-        g.edges, g.cell, g.longest, n, d, b)
+        g.edges, g.cell, g.longest, n, d, b, g.ends)
     return Cuts(n, d, pts, nrm, eid, start, plane, closed)

@@ -258,6 +258,10 @@ class LiftParams:
         shares: the wrinkle 5e-7 noise-free and 1.1-1.6e-4 at 1 % noise, the turret 4e-6 to 1e-4,
         the saddle 5e-5 to 2e-4, the revolve 1.5e-4 to 7e-4, whose near-family the energy test of
         ``family_energy_tol`` then rejects).
+    family_span : float
+        The family is searched over depth maps ``(alpha, beta, gamma)`` within this distance of the
+        identity (2: 81 grid points, then golden-section refinement; :func:`auszug.lifting.family.extent_member`),
+        with ``gamma > 0`` (no mirror).
     family_max_deg : float
         A member is admissible only if every smooth crossing stays within this of 90 deg under the
         map (0.1 deg; before the solve that follows it, which holds them again).

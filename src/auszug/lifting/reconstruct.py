@@ -745,7 +745,7 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         ok &= held_solve("final").converged
 
     if params.family_prior and not (sym_applied.any() or len(sym_glob) or pp_applied.any()):
-        # beyond the paper (off by default): the lift moved along the depth family its hard orthogonal
+        # beyond the paper (on by default since lift-wrinkle): the lift moved along the depth family its hard orthogonal
         # pairs leave free (an extrusion), to the member whose two largest extents are equal
         m = _family_map(g, pr.X(), pr.smooth, params, layer, progress)
         if m is not None:
@@ -823,6 +823,7 @@ def _family_map(g: SketchGraph, X: Array, smooth: cu.Orthogonal, params: LiftPar
         progress(f"layer {layer} family prior: depth map ({m[0]:.4g}, {m[1]:.4g}, {m[2]:.4g}), "
                  f"extent score {before:.4g} -> {after:.4g}")
     return m
+
 
 #: A reweighted baseline whose depths moved by less than this share of the baseline's depth spread
 #: changed nothing (round-off; measured 1e-11 to 1e-9 where no candidate's weight changed): with

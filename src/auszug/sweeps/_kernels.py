@@ -393,7 +393,7 @@ def _runs_of_curve(x, nrm, w, f, c, closed, thresh, l_min, gap, max_slide, min_s
             # without sliding? (a loop slides along itself only by turning in its plane)
             idx = np.empty(j - i, np.int64)
             for q in range(i, j):
-                idx[q - i] = (s0 + q) % n if closed else q
+                idx[q - i] = (s0 + q) % n
             q = _least_sliding(x, nrm, w, idx, closed, glide_f)
             if q <= loop_slide:
                 slide = q

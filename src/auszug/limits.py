@@ -135,6 +135,13 @@ class Limits:
         benchmark sketch (a vase of 96 x 4 curves, 384 crossings) lifts in
         69-76 s, a grid of 20 x 20 straight strokes (400 crossings, whose
         solves do not converge) in 445 s on a loaded 2-core machine. The bundled examples have 8-15.
+    lift_steps : int
+        Largest iteration count of lifting's parameters
+        (``LiftParams.rounds``, ``robust_rounds``, ``newton_iterations``;
+        defaults 8, 3 and 60), refused when the parameters are made
+        (``auszug lift --set``): a lift's time grows with rounds times Newton
+        steps per solve, so the limit keeps it within about 20 times the
+        default's worst case.
     file_bytes : int
         Largest input file, checked before it is read. A 200 MB file cost
         7.7 GB of memory and 68 s; the largest corpus file is 3 KB, and 64 MB
@@ -181,6 +188,7 @@ class Limits:
     sketch_strokes: int = 256
     sketch_segments: int = 4096
     sketch_crossings: int = 400
+    lift_steps: int = 100
     file_bytes: int = 64 * 1024 * 1024
     quoted: int = 80
     message: int = 2000

@@ -17,6 +17,7 @@ examples:
   auszug lift vase.svg -o vase.obj --report --render vase.png
   auszug lift vase.svg -o vase.glb --style tube --size 2
   auszug lift vase.svg --cues none        # the baseline: hard orthogonality at smooth crossings only
+  auszug lift vase.svg --set family_prior=off --set w_f=0.01   # LiftParams fields (docs/lifting.md)
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ from typing import TYPE_CHECKING
 from auszug.cli import _common
 
 if TYPE_CHECKING:
-    from auszug.lifting import LiftResult
+    from auszug.lifting import LiftParams, LiftResult
 
 HELP = "lift a 2D design sketch (.svg, .sketch.json) to a 3D curve network"
 #: Output endings written as a mesh of the lifted curves (the rest are network formats).
@@ -70,6 +71,10 @@ def add_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--cues", default=None, metavar="LIST",
                         help=f"cue classes to resolve, comma-separated from {', '.join(CUE_CLASSES)}, or 'none' "
                              f"(default {','.join(DEFAULT_CUES)})")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", dest="params",
+                        help="set a field of auszug.lifting.LiftParams (repeatable), e.g. family_prior=off, "
+                             "w_f=0.01, rounds=4; switches take on/off, true/false, yes/no, 1/0; the fields and "
+                             "their limits are listed in docs/lifting.md")
     parser.add_argument("--quiet", action="store_true", help="no progress lines")
 
 
@@ -90,6 +95,49 @@ def _classes(text: str | None) -> tuple[str, ...]:
     return tuple(c for c in CLASSES if c in got)
 
 
+_TRUE = ("1", "on", "true", "yes")
+_FALSE = ("0", "off", "false", "no")
+
+
+def _params(items: list[str]) -> "LiftParams":
+    """``--set NAME=VALUE`` items as :class:`~auszug.lifting.LiftParams` (the defaults elsewhere).
+
+    A field's type is its default's (bool, int or float); an unknown name, a value of the wrong
+    kind or one outside the field's limits (``LiftParams.__post_init__``) is a ``GeometryError``
+    naming the item (as ``auszug sweeps`` reports its parameters).
+    """
+    import dataclasses
+
+    from auszug.errors import GeometryError
+    from auszug.lifting import LiftParams
+
+    default = LiftParams()
+    names = [f.name for f in dataclasses.fields(LiftParams)]
+    kw: dict[str, bool | int | float] = {}
+    for item in items:
+        name, sep, text = item.partition("=")
+        name, text = name.strip(), text.strip()
+        if not sep or not name or not text:
+            raise GeometryError(f"--set {item!r}: expected NAME=VALUE, e.g. family_prior=off")
+        if name not in names:
+            raise GeometryError(f"--set {item!r}: LiftParams has no field {name!r}; fields: {', '.join(names)}")
+        kind = type(getattr(default, name))
+        try:
+            if kind is bool:
+                if text.lower() not in _TRUE + _FALSE:
+                    raise ValueError
+                kw[name] = text.lower() in _TRUE
+            else:
+                kw[name] = kind(text)
+        except ValueError:
+            want = "on or off" if kind is bool else "an integer" if kind is int else "a number"
+            raise GeometryError(f"--set {item!r}: {name} must be {want}") from None
+    try:
+        return LiftParams(**kw)  # type: ignore[arg-type]
+    except GeometryError as e:
+        raise GeometryError(f"--set: {e}") from None
+
+
 def run(args: argparse.Namespace) -> int:
     """Read, lift, write; return 0."""
     import time
@@ -100,6 +148,7 @@ def run(args: argparse.Namespace) -> int:
 
     src = Path(args.sketch)
     classes = _classes(args.cues)
+    params = _params(args.params)
     format_for(src, "sketch")
     out = Path(args.output) if args.output else Path(stem(src, "sketch") + ".network.json")
     as_mesh = out.name.lower().endswith(MESH_SUFFIXES)
@@ -118,7 +167,7 @@ def run(args: argparse.Namespace) -> int:
     say(f"read {len(sketch.strokes)} strokes, {len(sketch.markers)} markers, "
         f"{max(s.layer for s in sketch.strokes) + 1} layer(s) in {time.perf_counter() - t0:.2f} s")
     with _common.about(src):
-        result = lift(sketch, progress=say, classes=classes)
+        result = lift(sketch, params=params, progress=say, classes=classes)
     if not result.converged:
         say("warning: not every solve converged; the hard cues may be violated (see --report)")
     with _common.about(out):

@@ -12,6 +12,7 @@ import math
 from dataclasses import dataclass, fields
 
 from auszug.errors import GeometryError
+from auszug.limits import LIMITS
 
 __all__ = ["LiftParams", "DEFAULT"]
 
@@ -348,6 +349,11 @@ class LiftParams:
             raise GeometryError(f"soc_tol must lie in [0, 1), got {self.soc_tol}")
         if not 0 < self.outer_value < 1:
             raise GeometryError(f"outer_value must lie in (0, 1), got {self.outer_value}")
+        for name in ("rounds", "robust_rounds", "newton_iterations"):
+            v = getattr(self, name)
+            if v != int(v) or v > LIMITS.lift_steps:
+                raise GeometryError(f"lifting parameter {name} must be a whole number in 0..{LIMITS.lift_steps} "
+                                    f"(auszug.limits.LIMITS.lift_steps), got {v!r}")
 
     @property
     def exponent(self) -> float:

@@ -24,7 +24,8 @@ Usage (from the repository root)::
 ``--params k=v,...`` lifts with those :class:`~auszug.lifting.LiftParams` fields (noise, views and signs modes),
 e.g. ``--params parallel_robust_deg=5,w_depth_anchor=10`` (branch lift-energy, docs/lifting.md; with
 ``robust_max_move=0.12`` the trust bound on its reweighting, branch lift-robust3),
-``--params parallel_confirm=1`` (the consistency check of the parallel cues, branch lift-cues2) or
+``--params parallel_confirm=1`` (the consistency check of the parallel cues, branch lift-cues2),
+``--params parallel_foreshorten=1`` (the foreshortening bound on the parallel candidates, branch lift-parallel) or
 ``--params sign_plane_weight=0`` (the depth sign by the control-polygon edges alone, the rule before lift-sign2).
 
 ``signs``: the depth-sign grid of docs/lifting.md (the bundled examples' objects, the box and the revolve; 3 tilts

@@ -241,6 +241,20 @@ class LiftParams:
         (10, the measured setting; 0: none). Without it the check solve is
         free along the fidelity's near-null space in depth, and true cues
         leave I_b too (the revolve loses 12 of its 23 true cues).
+    parallel_foreshorten : bool
+        *Beyond the paper* (off: the paper's candidates; branch lift-parallel). Under orthographic projection
+        parallel 3D tangents are drawn parallel, and two within ``inner_deg`` of each other at most
+        ``arcsin(sin(inner_deg) / f)`` apart, f the foreshortening of the less foreshortened one
+        (:func:`auszug.lifting.reconstruct.foreshortening_bound`). With this on, a parallel candidate whose drawn
+        2D angle exceeds that bound (plus ``parallel_2d_slack_deg``) at the baseline's foreshortening is not
+        resolved (never applied). Measured (docs/lifting.md, "Foreshortening bound of the parallel candidates"):
+        noise-free it rejects no true candidate on the six truths and most false ones (revolve 3.08 -> 1.05 %,
+        saddle 4.94 -> 3.45 %, cross 16.38 -> 7.68 %, turret 10.03 -> 8.64 %, but spiral 34.31 -> 41.80 %), but
+        1 % noise turns drawn tangents by up to 25 deg, true candidates are rejected, and "1 % noise at most twice
+        the noise-free error" is missed (revolve 6.24, saddle 4.61), so it is not the default.
+    parallel_2d_slack_deg : float
+        The sketch's angular inaccuracy allowed on top of that bound, degrees (0; 2 measured: the revolve
+        1.05 -> 6.45 %, a part of its false candidates applied).
     family_prior : bool
         *Beyond the paper* (on by default since lift-wrinkle). Where the lift's smooth crossings
         leave a one-parameter family of linear depth maps ``z' = alpha x + beta y + gamma z`` (an
@@ -331,6 +345,8 @@ class LiftParams:
     w_depth_anchor: float = 0.0
     parallel_confirm: bool = False
     w_confirm_anchor: float = 10.0
+    parallel_foreshorten: bool = False
+    parallel_2d_slack_deg: float = 0.0
     family_prior: bool = True
     family_tol: float = 1e-3
     family_span: float = 2.0

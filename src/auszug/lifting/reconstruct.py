@@ -349,6 +349,62 @@ def _symmetry_forced(g: SketchGraph, s: int | None, smooth: cu.Orthogonal, par: 
     return _Forced(f_par, f_orth, f_pla, _take(sym, _about(g, sym, s)))
 
 
+def foreshortening_bound(f: Array, delta_deg: float) -> Array:
+    """The largest 2D angle between the projections of two 3D directions at most ``delta_deg`` apart.
+
+    Orthographic projection along z: the directions within ``delta`` of a unit vector whose projection has length
+    ``f`` (its foreshortening, ``sin`` of its angle to the view direction) project within
+    ``arcsin(sin(delta) / f)`` of its own projection's direction (the azimuthal half-width of a spherical cap of
+    radius ``delta`` about a point ``arcsin f`` from the pole), and anywhere when ``f <= sin(delta)``.
+
+    Parameters
+    ----------
+    f : ndarray, shape (m,)
+        Foreshortening of the reference direction, in [0, 1].
+    delta_deg : float
+        Largest 3D angle, degrees.
+
+    Returns
+    -------
+    ndarray, shape (m,)
+        The bound, degrees, in (0, 90].
+    """
+    s = np.sin(np.radians(delta_deg))
+    return np.asarray(np.degrees(np.arcsin(np.minimum(1.0, s / np.maximum(f, 1e-300)))), dtype=float)
+
+
+def parallel_beyond_foreshortening(par: cu.Parallel, X: Array, params: LiftParams = DEFAULT) -> NDArray[np.bool_]:
+    """Parallel candidates whose drawn 2D angle no pair of 3D tangents within I_b can project to.
+
+    Under orthographic projection, parallel 3D tangents are drawn parallel, and two tangents within
+    ``params.inner_deg`` of each other are drawn at most :func:`foreshortening_bound` apart, their
+    foreshortening taken from ``X`` (the less foreshortened of the two: the looser bound). A candidate whose 2D
+    angle exceeds that bound by more than ``params.parallel_2d_slack_deg`` cannot be within I_b in 3D at these
+    foreshortenings unless the sketch is that inaccurate.
+
+    Parameters
+    ----------
+    par : Parallel
+        The candidates (their ``angle2d``, degrees, on the drawn sketch).
+    X : ndarray, shape (n, 3)
+        Control points (the baseline lift), giving each tangent's foreshortening.
+    params : LiftParams
+        ``inner_deg`` and ``parallel_2d_slack_deg``.
+
+    Returns
+    -------
+    ndarray of bool, shape (len(par),)
+        True for the candidates beyond the bound.
+    """
+    if not len(par):
+        return np.zeros(0, dtype=bool)
+    t1, t2 = X[par.h1] - X[par.p1], X[par.h2] - X[par.p2]
+    f1 = np.linalg.norm(t1[:, :2], axis=1) / np.maximum(np.linalg.norm(t1, axis=1), 1e-300)
+    f2 = np.linalg.norm(t2[:, :2], axis=1) / np.maximum(np.linalg.norm(t2, axis=1), 1e-300)
+    bound = foreshortening_bound(np.minimum(f1, f2), params.inner_deg)
+    return np.asarray(par.angle2d > bound + params.parallel_2d_slack_deg, dtype=bool)
+
+
 def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
                progress: Progress | None = None,
                classes: tuple[str, ...] = CLASSES,
@@ -680,8 +736,15 @@ def lift_graph(g: SketchGraph, params: LiftParams = DEFAULT, layer: int = 0,
         n_forced = int(forced.parallel.sum() + forced.orthogonal.sum() + forced.planar.sum()) + len(sym_glob)
         ok &= held_solve("global symmetry", n_forced).converged
 
+    # beyond the paper (off by default): a candidate whose drawn tangents' 2D angle no pair of 3D tangents within I_b of
+    # each other can project to, at the baseline's foreshortening, is not resolved (docs/lifting.md, "Foreshortening
+    # bound of the parallel candidates")
+    par_skip = parallel_beyond_foreshortening(par, pr.X(), params) if params.parallel_foreshorten else None
+    if par_skip is not None and progress is not None:
+        progress(f"layer {layer} parallel: {int(par_skip.sum())} of {len(par)} candidates' 2D angles beyond the "
+                 f"foreshortening bound")
     par_applied = resolve("parallel", par, par_apply, lambda E, i, w: par.add(E, i, w), forced.parallel,
-                          confirm=params.parallel_confirm)
+                          skip=par_skip, confirm=params.parallel_confirm)
 
     orth_applied = resolve("orthogonal", orth, lambda s: orth_state.update(sel=s),
                            lambda E, i, w: orth.add(E, i, w), forced.orthogonal)

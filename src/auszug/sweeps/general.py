@@ -58,6 +58,7 @@ from auszug.sweeps._kernels import (
     closest_on_plane_curves,
     curves_near_profiles,
     eq7_blocks,
+    grown_states,
     inverse_maps_at,
     kabsch_sums,
     polyline_closest_chunked,
@@ -1012,7 +1013,7 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
                  if len(q) >= 3]
     for parts, closed in stretches:
         # a family whose ribs lie on what an earlier grown patch covers adds nothing
-        if grown.any() and float(np.mean(grown[tree.query(parts)[1]])) >= params.patch_overlap:
+        if grown.any() and _held(tree, parts, grown, params.patch_overlap, params.twist_steps > 0):
             skipped += 1
             continue
         # the sweep between the first and the last rib stays near them: fit it to that part of the
@@ -1057,6 +1058,34 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
         numbers["recall"] = plane_recall(true_planes, n, d)
     stages.append(Stage("motion", time.perf_counter() - t, summary, numbers))
     return out, stages
+
+
+#: :func:`_held` takes the faces within this distance of a point's nearest (normalised coordinates) for the
+#: faces a closest-point search may answer at ties: far above the searches' round-off (1e-16), far below an edge.
+TIE_MARGIN = 1e-9
+
+
+def _held(tree: MeshTree, parts: Array, grown: NDArray[np.bool_], overlap: float, grid: bool) -> bool:
+    """Whether at least ``overlap`` of the points ``parts (..., 3)`` have a grown closest face (``grown (m,)``).
+
+    The share of the faces of ``tree.query(parts)``, as before. With ``grid`` (the tree's face grid
+    is built: the motion's refinement uses it) the points' nearest faces are found on the grid
+    first (:func:`~auszug.sweeps._kernels.grown_states`): a point whose faces within
+    :data:`TIE_MARGIN` of its nearest are all grown, or none, has that answer whichever of them the
+    tree returns at a tie; the tree is asked only where the points of unknown answer could decide
+    (the same answer, fewer queries: most families held by a grown patch are held wholly).
+    """
+    if grid:
+        lo, dims, h, start, entries, fbox = tree.face_grid()
+        st = grown_states(np.ascontiguousarray(parts.reshape(-1, 3), dtype=float), grown, tree.vertices,
+                          tree.faces, lo, dims, h, start, entries, fbox, TIE_MARGIN)
+        n, on, unknown = len(st), int(np.sum(st == 1)), int(np.sum(st < 0))
+        # the share as np.mean gives it: an integer count over n, rounded once
+        if on / n >= overlap:
+            return True
+        if (on + unknown) / n < overlap:
+            return False
+    return float(np.mean(grown[tree.query(parts)[1]])) >= overlap
 
 
 def _refined(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTree,

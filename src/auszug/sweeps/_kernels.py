@@ -2410,3 +2410,47 @@ def grown_states(points, flag, v, faces, lo, dims, h, start, entries, fbox, marg
         elif seen_off and not seen_on:
             out[p] = 0
     return out
+
+
+@njit(cache=True)
+def knot_maps(knots, rotation, translation, t):  # pragma: no cover - compiled
+    """:meth:`~auszug.sweeps.motion.Motion.at`'s maps at the knots and its intervals, without the screws between.
+
+    Each parameter of ``t (q,)`` clamped to the knots' range, its interval ``i`` (the last knot at or
+    before it, at most the last but one) and its fraction ``f = (t - t_i) / (t_{i+1} - t_i)``, as numpy
+    computes them (``searchsorted(side="right") - 1``, clipped). Returns the maps ``R (q, 3, 3)``,
+    ``T (q, 3)`` of the knot ``i`` (``i + 1`` where ``f >= 1``), and the parameters strictly inside an
+    interval ``(p,)`` with their intervals ``(p,)`` and fractions ``(p,)``: those still need the screw.
+    """
+    q = len(t)
+    k = len(knots)
+    r = np.empty((q, 3, 3))
+    tr = np.empty((q, 3))
+    inner = np.empty(q, np.int64)
+    ii = np.empty(q, np.int64)
+    ff = np.empty(q)
+    n_in = 0
+    lo, hi = knots[0], knots[k - 1]
+    for p in range(q):
+        x = t[p]
+        a, b = 0, k
+        if x != x:          # nan: clip keeps it, searchsorted puts it last
+            a = b = k
+        else:
+            x = min(max(x, lo), hi)
+        # searchsorted(side="right"): the first knot greater than x
+        while a < b:
+            mid = (a + b) // 2
+            if knots[mid] <= x:
+                a = mid + 1
+            else:
+                b = mid
+        i = min(max(a - 1, 0), k - 2)
+        f = (x - knots[i]) / (knots[i + 1] - knots[i])
+        j = i + 1 if f >= 1.0 else i
+        r[p] = rotation[j]
+        tr[p] = translation[j]
+        if f > 0.0 and not f >= 1.0:
+            inner[n_in], ii[n_in], ff[n_in] = p, i, f
+            n_in += 1
+    return r, tr, inner[:n_in], ii[:n_in], ff[:n_in]

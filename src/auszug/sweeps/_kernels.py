@@ -2353,61 +2353,81 @@ def twist_steps(profile, r, t, n0, c0, rho, steps, bound, tol, warm_in, v, faces
     return r, t, upper, last
 
 
+@njit(cache=True, inline="always")
+def _flags_within(px, py, pz, r, v, faces, lo, dims, h, start, entries, fbox, flag):  # pragma: no cover - compiled
+    """The least squared distance of the faces near p, and whether a flagged and an unflagged face lie within ``r``.
+
+    Every face of the cells the box ``p +- r`` meets (a margin wider) is tested; the least squared
+    distance is over those whose box is within that (inf if none).
+    """
+    rc = r * (1 + 1e-9) + 1e-12         # the cells: a margin more (a face's cells are found by the same floors)
+    i0 = min(max(int(np.floor((px - rc - lo[0]) / h)), 0), dims[0] - 1)
+    i1 = min(max(int(np.floor((px + rc - lo[0]) / h)), 0), dims[0] - 1)
+    j0 = min(max(int(np.floor((py - rc - lo[1]) / h)), 0), dims[1] - 1)
+    j1 = min(max(int(np.floor((py + rc - lo[1]) / h)), 0), dims[1] - 1)
+    k0 = min(max(int(np.floor((pz - rc - lo[2]) / h)), 0), dims[2] - 1)
+    k1 = min(max(int(np.floor((pz + rc - lo[2]) / h)), 0), dims[2] - 1)
+    r2 = rc * rc
+    best = np.inf
+    seen_on, seen_off = False, False
+    for i in range(i0, i1 + 1):
+        for j in range(j0, j1 + 1):
+            for k in range(k0, k1 + 1):
+                c = (i * dims[1] + j) * dims[2] + k
+                for e in range(start[c], start[c + 1]):
+                    if _box_sq(px, py, pz, fbox, e) > r2:
+                        continue
+                    f = entries[e]
+                    a, b, cc = faces[f, 0], faces[f, 1], faces[f, 2]
+                    df = _triangle_closest(px, py, pz, v[a, 0], v[a, 1], v[a, 2], v[b, 0], v[b, 1], v[b, 2],
+                                           v[cc, 0], v[cc, 1], v[cc, 2])[0]
+                    best = min(best, df)
+                    if np.sqrt(df) <= r:
+                        if flag[f]:
+                            seen_on = True
+                        else:
+                            seen_off = True
+    return best, seen_on, seen_off
+
+
 @njit(cache=True)
 def grown_states(points, flag, v, faces, lo, dims, h, start, entries, fbox, margin):  # pragma: no cover - compiled
     """Whether every face nearest each point is flagged, none is, or both kinds are: ``(q,)`` of 1, 0, -1.
 
     The faces nearest a point are those within ``margin`` of its least distance to the mesh of
-    :func:`face_grid` (exact, :func:`_grid_nearest`): any closest-point search that breaks ties
-    its own way (libigl's tree) answers one of them, so where they agree (1 or 0) its face's flag
-    is known without it. Where the nearest face is nearer than every other by more than the
-    margin (the search's bound of the rest) it alone decides; else the faces of the cells within
-    the distance plus the margin are tested. Each point first tries the previous point's face.
+    :func:`face_grid` (exact): any closest-point search that breaks ties its own way (libigl's tree)
+    answers one of them, so where they agree (1 or 0) its face's flag is known without it. A point
+    on the mesh (a face within ``margin``: the ribs' points lie on cut curves) needs only the faces
+    within ``2 margin`` (the nearest among them, and every face within the margin of it); else the
+    exact search (:func:`_grid_nearest`, from the previous point's face) gives the least distance,
+    and where the nearest face is nearer than every other by more than the margin (the search's
+    bound of the rest) it alone decides; else the faces within the distance plus the margin are tested.
     """
     q = len(points)
     out = np.full(q, -1, np.int64)
     last = -1
     for p in range(q):
         px, py, pz = points[p, 0], points[p, 1], points[p, 2]
-        d2, bf, _, _, _, sec = _grid_nearest(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, np.inf,
-                                             last, -1)
-        if bf < 0:
-            continue
-        last = bf
-        r = np.sqrt(d2) + margin
-        r2 = r * r
-        if sec > r2:
-            out[p] = 1 if flag[bf] else 0
-            continue
-        seen_on, seen_off = False, False
-        rc = r + margin         # the cells: a margin more (a face's cells are found by the same floors)
-        i0 = min(max(int(np.floor((px - rc - lo[0]) / h)), 0), dims[0] - 1)
-        i1 = min(max(int(np.floor((px + rc - lo[0]) / h)), 0), dims[0] - 1)
-        j0 = min(max(int(np.floor((py - rc - lo[1]) / h)), 0), dims[1] - 1)
-        j1 = min(max(int(np.floor((py + rc - lo[1]) / h)), 0), dims[1] - 1)
-        k0 = min(max(int(np.floor((pz - rc - lo[2]) / h)), 0), dims[2] - 1)
-        k1 = min(max(int(np.floor((pz + rc - lo[2]) / h)), 0), dims[2] - 1)
-        for i in range(i0, i1 + 1):
-            for j in range(j0, j1 + 1):
-                for k in range(k0, k1 + 1):
-                    c = (i * dims[1] + j) * dims[2] + k
-                    for e in range(start[c], start[c + 1]):
-                        if _box_sq(px, py, pz, fbox, e) > r2:
-                            continue
-                        f = entries[e]
-                        a, b, cc = faces[f, 0], faces[f, 1], faces[f, 2]
-                        df = _triangle_closest(px, py, pz, v[a, 0], v[a, 1], v[a, 2], v[b, 0], v[b, 1], v[b, 2],
-                                               v[cc, 0], v[cc, 1], v[cc, 2])[0]
-                        if np.sqrt(df) <= r:
-                            if flag[f]:
-                                seen_on = True
-                            else:
-                                seen_off = True
-        # the nearest face itself is among those tested (its distance is d2); clamping to the grid keeps every
-        # cell a face within r can lie in (the faces' boxes lie inside the grid)
-        if seen_on and not seen_off:
+        # on the mesh: a face within the margin is among those within 2 margins, and then every face within the
+        # margin of the nearest is too
+        d0, on, off = _flags_within(px, py, pz, 2 * margin, v, faces, lo, dims, h, start, entries, fbox, flag)
+        if np.sqrt(d0) > margin:
+            d2, bf, _, _, _, sec = _grid_nearest(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, np.inf,
+                                                 last, -1)
+            if bf < 0:
+                continue
+            last = bf
+            r = np.sqrt(d2) + margin
+            if sec > r * r:
+                out[p] = 1 if flag[bf] else 0
+                continue
+            _, on, off = _flags_within(px, py, pz, r, v, faces, lo, dims, h, start, entries, fbox, flag)
+        else:
+            _, on, off = _flags_within(px, py, pz, np.sqrt(d0) + margin, v, faces, lo, dims, h, start, entries,
+                                       fbox, flag)
+        if on and not off:
             out[p] = 1
-        elif seen_off and not seen_on:
+        elif off and not on:
             out[p] = 0
     return out
 

@@ -364,9 +364,20 @@ def _face_normals(tree: MeshTree, face: IntArray) -> Array:
     return n
 
 
+#: :func:`_plane_of`'s last points and answer: one profile's plane is asked for by the recut, both refinement
+#: steps, the turn into the normal planes and the twists (one SVD instead of five).
+_LAST_PLANE: list[tuple[Array, Array, float]] = []
+
+
 def _plane_of(points: Array) -> tuple[Array, float]:
+    """The least-squares plane of ``points (n, 3)``: unit normal ``(3,)`` and offset (the last answer kept)."""
+    if _LAST_PLANE:
+        p0, n0, d0 = _LAST_PLANE[0]
+        if p0.shape == points.shape and np.array_equal(p0, points):
+            return n0.copy(), d0
     o = points.mean(axis=0)
     n = np.linalg.svd(points - o)[2][2]
+    _LAST_PLANE[:] = [(np.array(points, dtype=float, copy=True), n.copy(), float(n @ o))]
     return n, float(n @ o)
 
 

@@ -2474,3 +2474,37 @@ def knot_maps(knots, rotation, translation, t):  # pragma: no cover - compiled
             inner[n_in], ii[n_in], ff[n_in] = p, i, f
             n_in += 1
     return r, tr, inner[:n_in], ii[:n_in], ff[:n_in]
+
+
+@njit(cache=True)
+def unit_face_normals(v, faces, face):  # pragma: no cover - compiled
+    """Unit normals ``(k, 3)`` of the faces ``face (k,)``: numpy's ``cross(v1 - v0, v2 - v0)`` over its norm.
+
+    The cross product as ``np.cross`` forms it (each component a product less a product, rounded in
+    turn), the norm as ``np.linalg.norm(axis=1)`` (the squares summed in order), divided by it (at
+    least 1e-300).
+    """
+    k = len(face)
+    out = np.empty((k, 3))
+    for i in range(k):
+        f = face[i]
+        a, b, c = faces[f, 0], faces[f, 1], faces[f, 2]
+        a0, a1, a2 = v[b, 0] - v[a, 0], v[b, 1] - v[a, 1], v[b, 2] - v[a, 2]
+        b0, b1, b2 = v[c, 0] - v[a, 0], v[c, 1] - v[a, 1], v[c, 2] - v[a, 2]
+        p = a1 * b2
+        q = a2 * b1
+        n0 = p - q
+        p = a2 * b0
+        q = a0 * b2
+        n1 = p - q
+        p = a0 * b1
+        q = a1 * b0
+        n2 = p - q
+        s = n0 * n0
+        s = s + n1 * n1
+        s = s + n2 * n2
+        nn = np.sqrt(s)
+        if nn < 1e-300:         # as np.maximum: nan stays nan
+            nn = 1e-300
+        out[i, 0], out[i, 1], out[i, 2] = n0 / nn, n1 / nn, n2 / nn
+    return out

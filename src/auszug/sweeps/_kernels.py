@@ -1239,13 +1239,15 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
     The same as ``ring_grid_nearest(..., bound)[0] <= bound``: a point is within when a triangle's
     squared distance (:func:`_triangle_closest`, as there) is at most ``bound ** 2`` and its square
     root at most ``bound`` (the nearest triangle's is the smallest). The search stops at the first
-    such triangle: the previous point's first (points in order along a surface), then the box of
-    8 x 8 quads around it (level 3), then the whole grid from the top, each depth first, nearer
-    children first, pruning boxes farther than ``bound``. Any triangle within decides, so the
-    order of the search changes no answer.
+    such triangle: the previous point's first (points in order along a surface), then the other
+    triangles of the 3 x 3 quads around it, then the box of 8 x 8 quads around it (level 3), then
+    the whole grid from the top without that box, each depth first, nearer children first, pruning
+    boxes farther than ``bound``. Any triangle within decides, so the order of the search changes
+    no answer.
     """
     n = rings.shape[1]
     m = n if closed else n - 1
+    n_quads = rings.shape[0] - 1
     n_lev = len(shape)
     q = len(points)
     out = np.zeros(q, np.bool_)
@@ -1259,13 +1261,40 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
         if _box_sq(px, py, pz, box, off[top]) > b2:
             continue
         hit = -1
+        skip_i, skip_j = -1, -1         # the level-``near`` box searched already (none)
         if last >= 0:
             qd = last // 2
-            d2 = _ring_triangle_closest(rings, n, qd // m, qd % m, last % 2, px, py, pz)[0]
+            li, lj = qd // m, qd % m
+            d2 = _ring_triangle_closest(rings, n, li, lj, last % 2, px, py, pz)[0]
             if d2 <= b2 and np.sqrt(d2) <= bound:
                 hit = last
+            # the triangles of the quads around the previous point's
+            for di in range(-1, 2):
+                if hit >= 0:
+                    break
+                i = li + di
+                if i < 0 or i >= n_quads:
+                    continue
+                for dj in range(-1, 2):
+                    if hit >= 0:
+                        break
+                    j = lj + dj
+                    if closed:
+                        j = j % m
+                    elif j < 0 or j >= m:
+                        continue
+                    if _box_sq(px, py, pz, box, off[0] + i * m + j) > b2:
+                        continue
+                    for t in range(2):
+                        fi = 2 * (i * m + j) + t
+                        if fi == last:
+                            continue
+                        d2 = _ring_triangle_closest(rings, n, i, j, t, px, py, pz)[0]
+                        if d2 <= b2 and np.sqrt(d2) <= bound:
+                            hit = fi
+                            break
         # any triangle within decides: first the box of ``near`` levels around the previous
-        # point's triangle, then (if none there) the whole grid from the top
+        # point's triangle, then (if none there) the whole grid from the top but that box
         for start in range(2):
             if hit >= 0:
                 break
@@ -1274,13 +1303,16 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
                 if last < 0 or near == 0:
                     continue
                 qd = last // 2
-                stack_l[0], stack_i[0], stack_j[0] = near, (qd // m) >> near, (qd % m) >> near
+                skip_i, skip_j = (qd // m) >> near, (qd % m) >> near
+                stack_l[0], stack_i[0], stack_j[0] = near, skip_i, skip_j
             else:
                 stack_l[0], stack_i[0], stack_j[0] = top, 0, 0
             sp = 1
             while sp > 0 and hit < 0:
                 sp -= 1
                 lv, i, j = stack_l[sp], stack_i[sp], stack_j[sp]
+                if start == 1 and lv == near and i == skip_i and j == skip_j:
+                    continue
                 if _box_sq(px, py, pz, box, off[lv] + i * shape[lv, 1] + j) > b2:
                     continue
                 if lv == 0:
@@ -1296,9 +1328,6 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
             out[p] = True
             last = hit
     return out
-
-
-# ------------------------------------------------------------------------- local cuts (near given boxes)
 
 
 @njit(cache=True)

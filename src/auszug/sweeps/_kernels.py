@@ -718,13 +718,18 @@ def key_distance_medians(points, polyline, piece_start, piece_key, n_keys):  # p
                 best = np.inf
                 bg = -1
                 if g0 >= 0:
-                    best, _, _, _ = _segment_closest(px, py, pz, polyline, g0)
-                    bg = g0
+                    # the previous point's segment and its neighbours first: their least bounds the search
+                    for g in range(max(g0 - 1, 0), min(g0 + 2, n_seg)):
+                        d2, _, _, _ = _segment_closest(px, py, pz, polyline, g)
+                        if d2 < best:
+                            best, bg = d2, g
                 limit = _prune_limit(px, py, pz, best)
                 for h in range(n_chunk):
                     if _box_sq(px, py, pz, raw, h) > limit:
                         continue
                     for g in range(h * chunk, min((h + 1) * chunk, n_seg)):
+                        if g0 >= 0 and g0 - 1 <= g <= g0 + 1:
+                            continue
                         if _box_sq(px, py, pz, seg_box, g) > limit:
                             continue
                         d2, _, _, _ = _segment_closest(px, py, pz, polyline, g)

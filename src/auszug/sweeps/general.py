@@ -250,14 +250,20 @@ def rib_velocities(parts: Array, normals: Array | None, mu: tuple[float, float] 
     # A^T A and A^T d of A (pairs, 3 n, 6), per point the rows [-[mid]x | I], without building A (compiled,
     # numpy's einsum over A bit for bit)
     ata, atd = eq7_blocks(mid, d)
-    np.add.at(lhs, i, mu[1] * ata)
-    np.add.at(rhs, i, mu[1] * atd)
+    # np.add.at over i in its order: the pairs i -> i + 1 first (ribs 0 .. k - 2), then i + 1 -> i (ribs 1 .. k - 1)
+    b = k - 1
+    lhs[:b] += mu[1] * ata[:b]
+    lhs[1:] += mu[1] * ata[b:]
+    rhs[:b] += mu[1] * atd[:b]
+    rhs[1:] += mu[1] * atd[b:]
     # the prior C_0: the twist of the best rigid map to each neighbour over dt, mean over the neighbours
     rot, tr = kabsch_batch(x[i], x[j])
     w, v = se3_log(rot, tr)
     n_nb = np.bincount(i, minlength=k).astype(float)
     prior = np.zeros((k, 6))
-    np.add.at(prior, i, np.concatenate([w, v], axis=1) / dt[:, 0] / n_nb[i, None])
+    c0 = np.concatenate([w, v], axis=1) / dt[:, 0] / n_nb[i, None]
+    prior[:b] += c0[:b]
+    prior[1:] += c0[b:]
     rhs += mu[0] * prior
     out: Array = np.asarray(np.linalg.solve(lhs, rhs[..., None])[..., 0], dtype=np.float64)
     return out

@@ -2542,3 +2542,26 @@ def unit_face_normals(v, faces, face):  # pragma: no cover - compiled
             nn = 1e-300
         out[i, 0], out[i, 1], out[i, 2] = n0 / nn, n1 / nn, n2 / nn
     return out
+
+
+@njit(cache=True)
+def rotation_defects(r):  # pragma: no cover - compiled
+    """Per matrix of ``r (k, 3, 3)`` the largest entry of ``|R^T R - I|`` and the determinant ``(k,)`` each.
+
+    The products summed in order, the determinant by cofactors along the first row (both within
+    round-off of numpy's einsum and LU determinant: they are compared with tolerances of 1e-9).
+    """
+    k = len(r)
+    err = np.empty(k)
+    det = np.empty(k)
+    for m in range(k):
+        e = 0.0
+        for i in range(3):
+            for j in range(3):
+                s = r[m, 0, i] * r[m, 0, j] + r[m, 1, i] * r[m, 1, j] + r[m, 2, i] * r[m, 2, j]
+                e = max(e, abs(s - (1.0 if i == j else 0.0)))
+        err[m] = e
+        det[m] = (r[m, 0, 0] * (r[m, 1, 1] * r[m, 2, 2] - r[m, 1, 2] * r[m, 2, 1])
+                  - r[m, 0, 1] * (r[m, 1, 0] * r[m, 2, 2] - r[m, 1, 2] * r[m, 2, 0])
+                  + r[m, 0, 2] * (r[m, 1, 0] * r[m, 2, 1] - r[m, 1, 1] * r[m, 2, 0]))
+    return err, det

@@ -250,6 +250,15 @@ def test_closest_on_plane_curves_is_the_curve_by_curve_search():
         want = _closest_on_cut_reference(c, plane, target)
         for g, w in zip(got, want, strict=True):
             assert np.array_equal(g, w)
+    # every plane at once (reslice): each plane's own targets, as one plane at a time; plane 4 has no curve (inf)
+    targets = rng.uniform(-0.5, 0.5, size=(5, 80, 3))
+    many = _kernels.closest_on_planes(targets, c.points, c.curve_start, c.curve_plane, c.curve_closed)
+    for plane in range(5):
+        one = _kernels.closest_on_plane_curves(targets[plane], c.points, c.curve_start, c.curve_plane,
+                                               c.curve_closed, plane)
+        for g, w in zip(many, one, strict=True):
+            assert np.array_equal(g[plane], w)
+    assert np.isinf(many[0][4]).all() and np.isfinite(many[0][:2]).all()
 
 
 def test_cut_near_where_the_cutter_starts_a_chain_inside_it_is_the_whole_cut():

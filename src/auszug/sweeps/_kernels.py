@@ -2565,3 +2565,22 @@ def rotation_defects(r):  # pragma: no cover - compiled
                   - r[m, 0, 1] * (r[m, 1, 0] * r[m, 2, 2] - r[m, 1, 2] * r[m, 2, 0])
                   + r[m, 0, 2] * (r[m, 1, 0] * r[m, 2, 1] - r[m, 1, 1] * r[m, 2, 0]))
     return err, det
+
+
+@njit(cache=True)
+def closest_on_planes(targets, pts, curve_start, curve_plane, curve_closed):  # pragma: no cover - compiled
+    """:func:`closest_on_plane_curves` of each plane ``i`` with its own targets ``targets[i] (n, 3)``, all at once.
+
+    Returns the distances ``(k, n)``, closest points ``(k, n, 3)`` and ends ``(k, n)`` of the ``k``
+    planes, each as that function gives it.
+    """
+    k, n = targets.shape[0], targets.shape[1]
+    dist = np.empty((k, n))
+    cp = np.empty((k, n, 3))
+    at_end = np.empty((k, n), np.bool_)
+    for i in range(k):
+        d, c, e = closest_on_plane_curves(targets[i], pts, curve_start, curve_plane, curve_closed, i)
+        dist[i] = d
+        cp[i] = c
+        at_end[i] = e
+    return dist, cp, at_end

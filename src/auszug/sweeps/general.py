@@ -56,6 +56,7 @@ from auszug.sweeps._kernels import (
     batched_gram,
     box_part,
     closest_on_plane_curves,
+    closest_on_planes,
     curves_near_profiles,
     eq7_blocks,
     grown_states,
@@ -528,21 +529,21 @@ def reslice(mesh: SweepMesh, profile: Array, motion: Motion, tol: float = np.inf
     x = motion.apply(profile, ts)
     r = RESLICE_REACH
     c = cut_near(mesh, n, d, np.hstack([x.min(axis=1) - r, x.max(axis=1) + r]), grid)
-    out = []
-    for i in range(k):
-        got = _closest_on_cut(c, i, x[i])
-        if got is None or float(got[0].max()) > r:
-            got = _closest_on_cut(cut(mesh, n[i:i + 1], d[i:i + 1]), 0, x[i])
+    # every plane's closest points at once (compiled, each plane as _closest_on_cut gives it); a plane without a
+    # curve there, or with a point farther than the reach, is cut whole
+    x = np.ascontiguousarray(x)
+    dist, cp, at_end = closest_on_planes(x, c.points, c.curve_start, c.curve_plane, c.curve_closed)
+    for i in np.flatnonzero(~np.isfinite(dist).any(axis=1) | (dist.max(axis=1) > r)):
+        got = _closest_on_cut(cut(mesh, n[i:i + 1], d[i:i + 1]), 0, x[i])
         if got is None:
             return None
-        dist, cp, at_end = got
-        # beyond the mesh (closest cut point an end of a cut curve, and far): the moved profile's point
-        beyond = at_end & (dist > tol)
-        rib = np.where(beyond[:, None], x[i], cp)
-        if far < np.inf and 2 <= i < k - 2:
-            rib = np.where((beyond | (dist > far))[:, None], x[i], cp)
-        out.append(rib)
-    return np.stack(out)
+        dist[i], cp[i], at_end[i] = got
+    # beyond the mesh (closest cut point an end of a cut curve, and far): the moved profile's point
+    beyond = at_end & (dist > tol)
+    if far < np.inf and k > 4:
+        beyond[2:k - 2] |= dist[2:k - 2] > far
+    out: Array = np.where(beyond[:, :, None], x, cp)
+    return out
 
 
 def _far(params: SweepParams) -> float:

@@ -335,3 +335,22 @@ def test_se3_log_and_exp_are_their_scipy_definitions_bit_for_bit():
     ang = rng.uniform(-4, 4, 7)
     assert np.array_equal(rotation_about([0, 3.0, 4.0], ang),
                           Rotation.from_rotvec(ang[:, None] * np.array([0, 0.6, 0.8])).as_matrix())
+
+
+def test_unit_face_normals_are_numpys_cross_over_its_norm_bit_for_bit():
+    """The rib normals' faces (general._face_normals): numpy's cross product over its norm, bit for bit, also for
+    degenerate faces (a repeated vertex: the normal 0 / 1e-300 = 0) and coordinates over 4 orders of magnitude."""
+    from auszug.sweeps._kernels import unit_face_normals
+
+    rng = np.random.default_rng(3)
+    v = rng.normal(size=(3000, 3)) * rng.uniform(1e-3, 10, (3000, 1))
+    f = rng.integers(0, 3000, (9000, 3))
+    f[:5, 1] = f[:5, 0]
+    face = np.r_[np.arange(5), rng.integers(0, 9000, 20000)].astype(np.int64)
+    ff = f[face]
+    want = np.cross(v[ff[:, 1]] - v[ff[:, 0]], v[ff[:, 2]] - v[ff[:, 0]])
+    want /= np.maximum(np.linalg.norm(want, axis=1, keepdims=True), 1e-300)
+    got = unit_face_normals(v, f, face)
+    assert np.array_equal(got, want)
+    distinct = (ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 0] != ff[:, 2])
+    assert np.all(got[:5] == 0.0) and np.allclose(np.linalg.norm(got[distinct], axis=1), 1.0) and distinct.sum() > 19000

@@ -250,6 +250,15 @@ def test_closest_on_plane_curves_is_the_curve_by_curve_search():
         want = _closest_on_cut_reference(c, plane, target)
         for g, w in zip(got, want, strict=True):
             assert np.array_equal(g, w)
+    # every plane at once (reslice): each plane's own targets, as one plane at a time; plane 4 has no curve (inf)
+    targets = rng.uniform(-0.5, 0.5, size=(5, 80, 3))
+    many = _kernels.closest_on_planes(targets, c.points, c.curve_start, c.curve_plane, c.curve_closed)
+    for plane in range(5):
+        one = _kernels.closest_on_plane_curves(targets[plane], c.points, c.curve_start, c.curve_plane,
+                                               c.curve_closed, plane)
+        for g, w in zip(many, one, strict=True):
+            assert np.array_equal(g[plane], w)
+    assert np.isinf(many[0][4]).all() and np.isfinite(many[0][:2]).all()
 
 
 def test_cut_near_where_the_cutter_starts_a_chain_inside_it_is_the_whole_cut():
@@ -556,3 +565,39 @@ def test_refined_motions_bounds_bound_the_distances_and_the_early_stop_changes_l
     # at 1e-7 by 2.8e-5 (a knot whose step fell below it takes a larger one later), at 1e-9 by 4.8e-9
     assert 0 < apart(got, every) <= apart(more, every) <= 2e-4
     assert apart(fine, every) <= 1e-7
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_grown_states_agree_with_libigls_face_wherever_known(hole):
+    """The grid's answer whether a point's nearest faces are flagged (the grown check of the general stages):
+    where it is known (1 or 0) it is the flag of libigl's closest face, at ties too (points on edges and at
+    vertices, where the tree picks one of the faces); at the ties between flagged and unflagged faces it is
+    unknown; and `_held` decides as the share of libigl's faces does, for shares around the threshold."""
+    from auszug.sweeps.general import TIE_MARGIN, _held
+
+    mesh = _mesh(hole)
+    tree = MeshTree.of(mesh)
+    v, f = tree.vertices, tree.faces
+    rng = np.random.default_rng(11)
+    e = mesh.edges[rng.integers(0, len(mesh.edges), 300)]
+    on_edges = v[e[:, 0]] + rng.uniform(0, 1, (300, 1)) * (v[e[:, 1]] - v[e[:, 0]])
+    at_vertices = v[rng.integers(0, len(v), 200)]
+    fc = f[rng.integers(0, len(f), 300)]
+    w = rng.dirichlet([1.0, 1.0, 1.0], 300)
+    in_faces = np.einsum("nk,nki->ni", w, v[fc])
+    off = in_faces + rng.normal(0, 0.01, (300, 3))
+    pts = np.ascontiguousarray(np.vstack([on_edges, at_vertices, in_faces, off]))
+    # a flagged region: the faces with a vertex in a half space, so flagged and unflagged faces meet along a border
+    flag = (v[f][:, :, 0] > np.median(v[:, 0])).any(axis=1)
+    st = _kernels.grown_states(pts, flag, v, f, *tree.face_grid(), TIE_MARGIN)
+    face = tree.query(pts)[1]
+    known = st >= 0
+    assert np.array_equal(st[known] == 1, flag[face[known]])
+    # ties between flagged and unflagged faces exist (the border's edges and vertices) and are left unknown
+    assert 0 < (~known).sum() < 0.2 * len(pts)
+    assert known[600:].mean() > 0.95           # inside faces and off the mesh nearly always known
+    for part in (pts[:300].reshape(10, 30, 3), pts[:500].reshape(20, 25, 3), pts[600:1100].reshape(5, 100, 3)):
+        share = float(np.mean(flag[tree.query(part)[1]]))
+        for overlap in (0.05, max(share - 1e-3, 1e-3), share, min(share + 1e-3, 1.0), 0.8, 1.0):
+            assert _held(tree, part, flag, overlap, True) == (share >= overlap)
+            assert _held(tree, part, flag, overlap, False) == (share >= overlap)

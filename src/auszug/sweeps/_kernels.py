@@ -718,13 +718,18 @@ def key_distance_medians(points, polyline, piece_start, piece_key, n_keys):  # p
                 best = np.inf
                 bg = -1
                 if g0 >= 0:
-                    best, _, _, _ = _segment_closest(px, py, pz, polyline, g0)
-                    bg = g0
+                    # the previous point's segment and its neighbours first: their least bounds the search
+                    for g in range(max(g0 - 1, 0), min(g0 + 2, n_seg)):
+                        d2, _, _, _ = _segment_closest(px, py, pz, polyline, g)
+                        if d2 < best:
+                            best, bg = d2, g
                 limit = _prune_limit(px, py, pz, best)
                 for h in range(n_chunk):
                     if _box_sq(px, py, pz, raw, h) > limit:
                         continue
                     for g in range(h * chunk, min((h + 1) * chunk, n_seg)):
+                        if g0 >= 0 and g0 - 1 <= g <= g0 + 1:
+                            continue
                         if _box_sq(px, py, pz, seg_box, g) > limit:
                             continue
                         d2, _, _, _ = _segment_closest(px, py, pz, polyline, g)
@@ -1239,13 +1244,15 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
     The same as ``ring_grid_nearest(..., bound)[0] <= bound``: a point is within when a triangle's
     squared distance (:func:`_triangle_closest`, as there) is at most ``bound ** 2`` and its square
     root at most ``bound`` (the nearest triangle's is the smallest). The search stops at the first
-    such triangle: the previous point's first (points in order along a surface), then the box of
-    8 x 8 quads around it (level 3), then the whole grid from the top, each depth first, nearer
-    children first, pruning boxes farther than ``bound``. Any triangle within decides, so the
-    order of the search changes no answer.
+    such triangle: the previous point's first (points in order along a surface), then the other
+    triangles of the 3 x 3 quads around it, then the box of 8 x 8 quads around it (level 3), then
+    the whole grid from the top without that box, each depth first, nearer children first, pruning
+    boxes farther than ``bound``. Any triangle within decides, so the order of the search changes
+    no answer.
     """
     n = rings.shape[1]
     m = n if closed else n - 1
+    n_quads = rings.shape[0] - 1
     n_lev = len(shape)
     q = len(points)
     out = np.zeros(q, np.bool_)
@@ -1259,13 +1266,40 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
         if _box_sq(px, py, pz, box, off[top]) > b2:
             continue
         hit = -1
+        skip_i, skip_j = -1, -1         # the level-``near`` box searched already (none)
         if last >= 0:
             qd = last // 2
-            d2 = _ring_triangle_closest(rings, n, qd // m, qd % m, last % 2, px, py, pz)[0]
+            li, lj = qd // m, qd % m
+            d2 = _ring_triangle_closest(rings, n, li, lj, last % 2, px, py, pz)[0]
             if d2 <= b2 and np.sqrt(d2) <= bound:
                 hit = last
+            # the triangles of the quads around the previous point's
+            for di in range(-1, 2):
+                if hit >= 0:
+                    break
+                i = li + di
+                if i < 0 or i >= n_quads:
+                    continue
+                for dj in range(-1, 2):
+                    if hit >= 0:
+                        break
+                    j = lj + dj
+                    if closed:
+                        j = j % m
+                    elif j < 0 or j >= m:
+                        continue
+                    if _box_sq(px, py, pz, box, off[0] + i * m + j) > b2:
+                        continue
+                    for t in range(2):
+                        fi = 2 * (i * m + j) + t
+                        if fi == last:
+                            continue
+                        d2 = _ring_triangle_closest(rings, n, i, j, t, px, py, pz)[0]
+                        if d2 <= b2 and np.sqrt(d2) <= bound:
+                            hit = fi
+                            break
         # any triangle within decides: first the box of ``near`` levels around the previous
-        # point's triangle, then (if none there) the whole grid from the top
+        # point's triangle, then (if none there) the whole grid from the top but that box
         for start in range(2):
             if hit >= 0:
                 break
@@ -1274,13 +1308,16 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
                 if last < 0 or near == 0:
                     continue
                 qd = last // 2
-                stack_l[0], stack_i[0], stack_j[0] = near, (qd // m) >> near, (qd % m) >> near
+                skip_i, skip_j = (qd // m) >> near, (qd % m) >> near
+                stack_l[0], stack_i[0], stack_j[0] = near, skip_i, skip_j
             else:
                 stack_l[0], stack_i[0], stack_j[0] = top, 0, 0
             sp = 1
             while sp > 0 and hit < 0:
                 sp -= 1
                 lv, i, j = stack_l[sp], stack_i[sp], stack_j[sp]
+                if start == 1 and lv == near and i == skip_i and j == skip_j:
+                    continue
                 if _box_sq(px, py, pz, box, off[lv] + i * shape[lv, 1] + j) > b2:
                     continue
                 if lv == 0:
@@ -1296,9 +1333,6 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
             out[p] = True
             last = hit
     return out
-
-
-# ------------------------------------------------------------------------- local cuts (near given boxes)
 
 
 @njit(cache=True)
@@ -2351,3 +2385,202 @@ def twist_steps(profile, r, t, n0, c0, rho, steps, bound, tol, warm_in, v, faces
             if done:
                 break
     return r, t, upper, last
+
+
+@njit(cache=True, inline="always")
+def _flags_within(px, py, pz, r, v, faces, lo, dims, h, start, entries, fbox, flag):  # pragma: no cover - compiled
+    """The least squared distance of the faces near p, and whether a flagged and an unflagged face lie within ``r``.
+
+    Every face of the cells the box ``p +- r`` meets (a margin wider) is tested; the least squared
+    distance is over those whose box is within that (inf if none).
+    """
+    rc = r * (1 + 1e-9) + 1e-12         # the cells: a margin more (a face's cells are found by the same floors)
+    i0 = min(max(int(np.floor((px - rc - lo[0]) / h)), 0), dims[0] - 1)
+    i1 = min(max(int(np.floor((px + rc - lo[0]) / h)), 0), dims[0] - 1)
+    j0 = min(max(int(np.floor((py - rc - lo[1]) / h)), 0), dims[1] - 1)
+    j1 = min(max(int(np.floor((py + rc - lo[1]) / h)), 0), dims[1] - 1)
+    k0 = min(max(int(np.floor((pz - rc - lo[2]) / h)), 0), dims[2] - 1)
+    k1 = min(max(int(np.floor((pz + rc - lo[2]) / h)), 0), dims[2] - 1)
+    r2 = rc * rc
+    best = np.inf
+    seen_on, seen_off = False, False
+    for i in range(i0, i1 + 1):
+        for j in range(j0, j1 + 1):
+            for k in range(k0, k1 + 1):
+                c = (i * dims[1] + j) * dims[2] + k
+                for e in range(start[c], start[c + 1]):
+                    if _box_sq(px, py, pz, fbox, e) > r2:
+                        continue
+                    f = entries[e]
+                    a, b, cc = faces[f, 0], faces[f, 1], faces[f, 2]
+                    df = _triangle_closest(px, py, pz, v[a, 0], v[a, 1], v[a, 2], v[b, 0], v[b, 1], v[b, 2],
+                                           v[cc, 0], v[cc, 1], v[cc, 2])[0]
+                    best = min(best, df)
+                    if np.sqrt(df) <= r:
+                        if flag[f]:
+                            seen_on = True
+                        else:
+                            seen_off = True
+    return best, seen_on, seen_off
+
+
+@njit(cache=True)
+def grown_states(points, flag, v, faces, lo, dims, h, start, entries, fbox, margin):  # pragma: no cover - compiled
+    """Whether every face nearest each point is flagged, none is, or both kinds are: ``(q,)`` of 1, 0, -1.
+
+    The faces nearest a point are those within ``margin`` of its least distance to the mesh of
+    :func:`face_grid` (exact): any closest-point search that breaks ties its own way (libigl's tree)
+    answers one of them, so where they agree (1 or 0) its face's flag is known without it. A point
+    on the mesh (a face within ``margin``: the ribs' points lie on cut curves) needs only the faces
+    within ``2 margin`` (the nearest among them, and every face within the margin of it); else the
+    exact search (:func:`_grid_nearest`, from the previous point's face) gives the least distance,
+    and where the nearest face is nearer than every other by more than the margin (the search's
+    bound of the rest) it alone decides; else the faces within the distance plus the margin are tested.
+    """
+    q = len(points)
+    out = np.full(q, -1, np.int64)
+    last = -1
+    for p in range(q):
+        px, py, pz = points[p, 0], points[p, 1], points[p, 2]
+        # on the mesh: a face within the margin is among those within 2 margins, and then every face within the
+        # margin of the nearest is too
+        d0, on, off = _flags_within(px, py, pz, 2 * margin, v, faces, lo, dims, h, start, entries, fbox, flag)
+        if np.sqrt(d0) > margin:
+            d2, bf, _, _, _, sec = _grid_nearest(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, np.inf,
+                                                 last, -1)
+            if bf < 0:
+                continue
+            last = bf
+            r = np.sqrt(d2) + margin
+            if sec > r * r:
+                out[p] = 1 if flag[bf] else 0
+                continue
+            _, on, off = _flags_within(px, py, pz, r, v, faces, lo, dims, h, start, entries, fbox, flag)
+        else:
+            _, on, off = _flags_within(px, py, pz, np.sqrt(d0) + margin, v, faces, lo, dims, h, start, entries,
+                                       fbox, flag)
+        if on and not off:
+            out[p] = 1
+        elif off and not on:
+            out[p] = 0
+    return out
+
+
+@njit(cache=True)
+def knot_maps(knots, rotation, translation, t):  # pragma: no cover - compiled
+    """:meth:`~auszug.sweeps.motion.Motion.at`'s maps at the knots and its intervals, without the screws between.
+
+    Each parameter of ``t (q,)`` clamped to the knots' range, its interval ``i`` (the last knot at or
+    before it, at most the last but one) and its fraction ``f = (t - t_i) / (t_{i+1} - t_i)``, as numpy
+    computes them (``searchsorted(side="right") - 1``, clipped). Returns the maps ``R (q, 3, 3)``,
+    ``T (q, 3)`` of the knot ``i`` (``i + 1`` where ``f >= 1``), and the parameters strictly inside an
+    interval ``(p,)`` with their intervals ``(p,)`` and fractions ``(p,)``: those still need the screw.
+    """
+    q = len(t)
+    k = len(knots)
+    r = np.empty((q, 3, 3))
+    tr = np.empty((q, 3))
+    inner = np.empty(q, np.int64)
+    ii = np.empty(q, np.int64)
+    ff = np.empty(q)
+    n_in = 0
+    lo, hi = knots[0], knots[k - 1]
+    for p in range(q):
+        x = t[p]
+        a, b = 0, k
+        if x != x:          # nan: clip keeps it, searchsorted puts it last
+            a = b = k
+        else:
+            x = min(max(x, lo), hi)
+        # searchsorted(side="right"): the first knot greater than x
+        while a < b:
+            mid = (a + b) // 2
+            if knots[mid] <= x:
+                a = mid + 1
+            else:
+                b = mid
+        i = min(max(a - 1, 0), k - 2)
+        f = (x - knots[i]) / (knots[i + 1] - knots[i])
+        j = i + 1 if f >= 1.0 else i
+        r[p] = rotation[j]
+        tr[p] = translation[j]
+        if f > 0.0 and not f >= 1.0:
+            inner[n_in], ii[n_in], ff[n_in] = p, i, f
+            n_in += 1
+    return r, tr, inner[:n_in], ii[:n_in], ff[:n_in]
+
+
+@njit(cache=True)
+def unit_face_normals(v, faces, face):  # pragma: no cover - compiled
+    """Unit normals ``(k, 3)`` of the faces ``face (k,)``: numpy's ``cross(v1 - v0, v2 - v0)`` over its norm.
+
+    The cross product as ``np.cross`` forms it (each component a product less a product, rounded in
+    turn), the norm as ``np.linalg.norm(axis=1)`` (the squares summed in order), divided by it (at
+    least 1e-300).
+    """
+    k = len(face)
+    out = np.empty((k, 3))
+    for i in range(k):
+        f = face[i]
+        a, b, c = faces[f, 0], faces[f, 1], faces[f, 2]
+        a0, a1, a2 = v[b, 0] - v[a, 0], v[b, 1] - v[a, 1], v[b, 2] - v[a, 2]
+        b0, b1, b2 = v[c, 0] - v[a, 0], v[c, 1] - v[a, 1], v[c, 2] - v[a, 2]
+        p = a1 * b2
+        q = a2 * b1
+        n0 = p - q
+        p = a2 * b0
+        q = a0 * b2
+        n1 = p - q
+        p = a0 * b1
+        q = a1 * b0
+        n2 = p - q
+        s = n0 * n0
+        s = s + n1 * n1
+        s = s + n2 * n2
+        nn = np.sqrt(s)
+        if nn < 1e-300:         # as np.maximum: nan stays nan
+            nn = 1e-300
+        out[i, 0], out[i, 1], out[i, 2] = n0 / nn, n1 / nn, n2 / nn
+    return out
+
+
+@njit(cache=True)
+def rotation_defects(r):  # pragma: no cover - compiled
+    """Per matrix of ``r (k, 3, 3)`` the largest entry of ``|R^T R - I|`` and the determinant ``(k,)`` each.
+
+    The products summed in order, the determinant by cofactors along the first row (both within
+    round-off of numpy's einsum and LU determinant: they are compared with tolerances of 1e-9).
+    """
+    k = len(r)
+    err = np.empty(k)
+    det = np.empty(k)
+    for m in range(k):
+        e = 0.0
+        for i in range(3):
+            for j in range(3):
+                s = r[m, 0, i] * r[m, 0, j] + r[m, 1, i] * r[m, 1, j] + r[m, 2, i] * r[m, 2, j]
+                e = max(e, abs(s - (1.0 if i == j else 0.0)))
+        err[m] = e
+        det[m] = (r[m, 0, 0] * (r[m, 1, 1] * r[m, 2, 2] - r[m, 1, 2] * r[m, 2, 1])
+                  - r[m, 0, 1] * (r[m, 1, 0] * r[m, 2, 2] - r[m, 1, 2] * r[m, 2, 0])
+                  + r[m, 0, 2] * (r[m, 1, 0] * r[m, 2, 1] - r[m, 1, 1] * r[m, 2, 0]))
+    return err, det
+
+
+@njit(cache=True)
+def closest_on_planes(targets, pts, curve_start, curve_plane, curve_closed):  # pragma: no cover - compiled
+    """:func:`closest_on_plane_curves` of each plane ``i`` with its own targets ``targets[i] (n, 3)``, all at once.
+
+    Returns the distances ``(k, n)``, closest points ``(k, n, 3)`` and ends ``(k, n)`` of the ``k``
+    planes, each as that function gives it.
+    """
+    k, n = targets.shape[0], targets.shape[1]
+    dist = np.empty((k, n))
+    cp = np.empty((k, n, 3))
+    at_end = np.empty((k, n), np.bool_)
+    for i in range(k):
+        d, c, e = closest_on_plane_curves(targets[i], pts, curve_start, curve_plane, curve_closed, i)
+        dist[i] = d
+        cp[i] = c
+        at_end[i] = e
+    return dist, cp, at_end

@@ -56,13 +56,16 @@ from auszug.sweeps._kernels import (
     batched_gram,
     box_part,
     closest_on_plane_curves,
+    closest_on_planes,
     curves_near_profiles,
     eq7_blocks,
+    grown_states,
     inverse_maps_at,
     kabsch_sums,
     polyline_closest_chunked,
     rotations_of,
     twist_steps,
+    unit_face_normals,
 )
 from auszug.sweeps.cut import Cuts, EdgeGrid, cut, cut_near
 from auszug.sweeps.matching import (
@@ -248,14 +251,20 @@ def rib_velocities(parts: Array, normals: Array | None, mu: tuple[float, float] 
     # A^T A and A^T d of A (pairs, 3 n, 6), per point the rows [-[mid]x | I], without building A (compiled,
     # numpy's einsum over A bit for bit)
     ata, atd = eq7_blocks(mid, d)
-    np.add.at(lhs, i, mu[1] * ata)
-    np.add.at(rhs, i, mu[1] * atd)
+    # np.add.at over i in its order: the pairs i -> i + 1 first (ribs 0 .. k - 2), then i + 1 -> i (ribs 1 .. k - 1)
+    b = k - 1
+    lhs[:b] += mu[1] * ata[:b]
+    lhs[1:] += mu[1] * ata[b:]
+    rhs[:b] += mu[1] * atd[:b]
+    rhs[1:] += mu[1] * atd[b:]
     # the prior C_0: the twist of the best rigid map to each neighbour over dt, mean over the neighbours
     rot, tr = kabsch_batch(x[i], x[j])
     w, v = se3_log(rot, tr)
     n_nb = np.bincount(i, minlength=k).astype(float)
     prior = np.zeros((k, 6))
-    np.add.at(prior, i, np.concatenate([w, v], axis=1) / dt[:, 0] / n_nb[i, None])
+    c0 = np.concatenate([w, v], axis=1) / dt[:, 0] / n_nb[i, None]
+    prior[:b] += c0[:b]
+    prior[1:] += c0[b:]
     rhs += mu[0] * prior
     out: Array = np.asarray(np.linalg.solve(lhs, rhs[..., None])[..., 0], dtype=np.float64)
     return out
@@ -356,16 +365,25 @@ def _face_normals(tree: MeshTree, face: IntArray) -> Array:
 
     The tree's own faces: it may be of the whole mesh where the caller's mesh is a part.
     """
-    v = tree.vertices
-    f = tree.faces[face]
-    n = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
-    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
-    return n
+    # compiled: np.cross(v1 - v0, v2 - v0) over np.maximum(its norm, 1e-300), bit for bit
+    out: Array = unit_face_normals(tree.vertices, tree.faces, np.ascontiguousarray(face, dtype=np.int64))
+    return out
+
+
+#: :func:`_plane_of`'s last points and answer: one profile's plane is asked for by the recut, both refinement
+#: steps, the turn into the normal planes and the twists (one SVD instead of five).
+_LAST_PLANE: list[tuple[Array, Array, float]] = []
 
 
 def _plane_of(points: Array) -> tuple[Array, float]:
+    """The least-squares plane of ``points (n, 3)``: unit normal ``(3,)`` and offset (the last answer kept)."""
+    if _LAST_PLANE:
+        p0, n0, d0 = _LAST_PLANE[0]
+        if p0.shape == points.shape and np.array_equal(p0, points):
+            return n0.copy(), d0
     o = points.mean(axis=0)
     n = np.linalg.svd(points - o)[2][2]
+    _LAST_PLANE[:] = [(np.array(points, dtype=float, copy=True), n.copy(), float(n @ o))]
     return n, float(n @ o)
 
 
@@ -511,21 +529,21 @@ def reslice(mesh: SweepMesh, profile: Array, motion: Motion, tol: float = np.inf
     x = motion.apply(profile, ts)
     r = RESLICE_REACH
     c = cut_near(mesh, n, d, np.hstack([x.min(axis=1) - r, x.max(axis=1) + r]), grid)
-    out = []
-    for i in range(k):
-        got = _closest_on_cut(c, i, x[i])
-        if got is None or float(got[0].max()) > r:
-            got = _closest_on_cut(cut(mesh, n[i:i + 1], d[i:i + 1]), 0, x[i])
+    # every plane's closest points at once (compiled, each plane as _closest_on_cut gives it); a plane without a
+    # curve there, or with a point farther than the reach, is cut whole
+    x = np.ascontiguousarray(x)
+    dist, cp, at_end = closest_on_planes(x, c.points, c.curve_start, c.curve_plane, c.curve_closed)
+    for i in np.flatnonzero(~np.isfinite(dist).any(axis=1) | (dist.max(axis=1) > r)):
+        got = _closest_on_cut(cut(mesh, n[i:i + 1], d[i:i + 1]), 0, x[i])
         if got is None:
             return None
-        dist, cp, at_end = got
-        # beyond the mesh (closest cut point an end of a cut curve, and far): the moved profile's point
-        beyond = at_end & (dist > tol)
-        rib = np.where(beyond[:, None], x[i], cp)
-        if far < np.inf and 2 <= i < k - 2:
-            rib = np.where((beyond | (dist > far))[:, None], x[i], cp)
-        out.append(rib)
-    return np.stack(out)
+        dist[i], cp[i], at_end[i] = got
+    # beyond the mesh (closest cut point an end of a cut curve, and far): the moved profile's point
+    beyond = at_end & (dist > tol)
+    if far < np.inf and k > 4:
+        beyond[2:k - 2] |= dist[2:k - 2] > far
+    out: Array = np.where(beyond[:, :, None], x, cp)
+    return out
 
 
 def _far(params: SweepParams) -> float:
@@ -1012,7 +1030,7 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
                  if len(q) >= 3]
     for parts, closed in stretches:
         # a family whose ribs lie on what an earlier grown patch covers adds nothing
-        if grown.any() and float(np.mean(grown[tree.query(parts)[1]])) >= params.patch_overlap:
+        if grown.any() and _held(tree, parts, grown, params.patch_overlap, params.twist_steps > 0):
             skipped += 1
             continue
         # the sweep between the first and the last rib stays near them: fit it to that part of the
@@ -1057,6 +1075,34 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
         numbers["recall"] = plane_recall(true_planes, n, d)
     stages.append(Stage("motion", time.perf_counter() - t, summary, numbers))
     return out, stages
+
+
+#: :func:`_held` takes the faces within this distance of a point's nearest (normalised coordinates) for the
+#: faces a closest-point search may answer at ties: far above the searches' round-off (1e-16), far below an edge.
+TIE_MARGIN = 1e-9
+
+
+def _held(tree: MeshTree, parts: Array, grown: NDArray[np.bool_], overlap: float, grid: bool) -> bool:
+    """Whether at least ``overlap`` of the points ``parts (..., 3)`` have a grown closest face (``grown (m,)``).
+
+    The share of the faces of ``tree.query(parts)``, as before. With ``grid`` (the tree's face grid
+    is built: the motion's refinement uses it) the points' nearest faces are found on the grid
+    first (:func:`~auszug.sweeps._kernels.grown_states`): a point whose faces within
+    :data:`TIE_MARGIN` of its nearest are all grown, or none, has that answer whichever of them the
+    tree returns at a tie; the tree is asked only where the points of unknown answer could decide
+    (the same answer, fewer queries: most families held by a grown patch are held wholly).
+    """
+    if grid:
+        lo, dims, h, start, entries, fbox = tree.face_grid()
+        st = grown_states(np.ascontiguousarray(parts.reshape(-1, 3), dtype=float), grown, tree.vertices,
+                          tree.faces, lo, dims, h, start, entries, fbox, TIE_MARGIN)
+        n, on, unknown = len(st), int(np.sum(st == 1)), int(np.sum(st < 0))
+        # the share as np.mean gives it: an integer count over n, rounded once
+        if on / n >= overlap:
+            return True
+        if (on + unknown) / n < overlap:
+            return False
+    return float(np.mean(grown[tree.query(parts)[1]])) >= overlap
 
 
 def _refined(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTree,

@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
-from auszug.sweeps._kernels import apply_maps, rotations_of, rotvecs_of
+from auszug.sweeps._kernels import apply_maps, knot_maps, rotation_defects, rotations_of, rotvecs_of
 
 __all__ = ["Motion", "se3_exp", "se3_log", "screw_motion", "rotation_about"]
 
@@ -171,8 +171,8 @@ class Motion:
             raise GeometryError("a motion must be finite")
         if not np.all(np.diff(t) > 0):
             raise GeometryError("motion parameters must increase strictly")
-        err = np.abs(np.einsum("kji,kjl->kil", r, r) - np.eye(3)).max(axis=(1, 2))
-        det = np.linalg.det(r)
+        # compiled: |R^T R - I| and det R per map (within round-off of numpy's einsum and det)
+        err, det = rotation_defects(np.ascontiguousarray(r))
         bad = np.flatnonzero((err > ROTATION_TOL) | (np.abs(det - 1.0) > ROTATION_TOL))
         if len(bad):
             i = int(bad[0])
@@ -191,16 +191,12 @@ class Motion:
 
     def at(self, t: ArrayLike) -> tuple[Array, Array]:
         """The maps at parameters ``t (q,)`` (clamped to the domain): ``R (q, 3, 3)``, ``T (q, 3)``."""
-        tt = np.clip(np.atleast_1d(np.asarray(t, float)), self.t[0], self.t[-1])
-        i = np.clip(np.searchsorted(self.t, tt, side="right") - 1, 0, len(self.t) - 2)
-        f = (tt - self.t[i]) / (self.t[i + 1] - self.t[i])
-        r, tr = self.rotation[i], self.translation[i]       # copies (fancy indexing): exact at knots
-        at1 = f >= 1.0
-        r[at1], tr[at1] = self.rotation[i[at1] + 1], self.translation[i[at1] + 1]
+        tt = np.ascontiguousarray(np.atleast_1d(np.asarray(t, float)))
+        # compiled: the clamped parameters' intervals and fractions as numpy's searchsorted and clip give them, the
+        # knots' maps (copies: exact at knots), and the parameters inside an interval
+        r, tr, inner, ii, ff = knot_maps(self.t, self.rotation, self.translation, tt)
         # between knots the screw motion between them (log and exp only where needed)
-        inner = np.flatnonzero((f > 0.0) & ~at1)
         if len(inner):
-            ii, ff = i[inner], f[inner]
             r0, t0 = self.rotation[ii], self.translation[ii]
             wi, vi = self._interval_twists()
             w, v = wi[ii], vi[ii]

@@ -822,11 +822,22 @@ def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: 
     # a margin for the round-off of the bound (the pieces mapped back by the knots' maps)
     ub[at] = np.asarray(upper, float)[k[at]] * (1 + 1e-9) + 1e-12
     ub = ub.reshape(-1)
-    order = np.argsort(-ub, kind="stable")
-    first = order[:max(FIRST_QUERIED, int(np.sum(~np.isfinite(ub))))]
-    err = float(tree.interior_distance(sv[first], swept, eps).max())
-    rest = order[len(first):]
-    rest = rest[ub[rest] > err]
+    unknown = ub == np.inf
+    n_unknown = int(np.sum(unknown))
+    if n_unknown >= FIRST_QUERIED and not np.isnan(ub).any():
+        # the order below without sorting every point: the points of no bound first, in index order (a stable
+        # sort of -ub puts them first), then the others of a bound above the error found, by decreasing bound
+        # (ties in index order); filtering before the stable sort keeps the same order
+        first = np.flatnonzero(unknown)
+        err = float(tree.interior_distance(sv[first], swept, eps).max())
+        rest = np.flatnonzero(~unknown & (ub > err))
+        rest = rest[np.argsort(-ub[rest], kind="stable")]
+    else:
+        order = np.argsort(-ub, kind="stable")
+        first = order[:max(FIRST_QUERIED, int(np.sum(~np.isfinite(ub))))]
+        err = float(tree.interior_distance(sv[first], swept, eps).max())
+        rest = order[len(first):]
+        rest = rest[ub[rest] > err]
     if len(rest):
         err = max(err, float(tree.interior_distance(sv[rest], swept, eps).max()))
     return SweptError(sv, swept, err)

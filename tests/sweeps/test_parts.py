@@ -111,13 +111,12 @@ def test_parts_off_gives_no_patch_on_the_border():
     their arcs since sweeps-window7: the border's arcs run tangentially into its jambs) only rotations
     about the window's normal through the border arcs' centres.
 
-    The coarse pass fits one sweep whose swept surface overlaps itself (on main before sweeps-tree3 a
-    profile doubling back on itself; with the rib normals smooth at ties a path doubling back, length
-    0.75 with its ends 0.09 apart), so the fit check's reciprocal test counts every swept point farther
-    than eps_prox as beyond the mesh (fit errors 4.997e-3 and 5.00e-3; 0.021 and 0.016 without that
-    test); its profile planes lie far off its path's normal planes and the refinement keeps 0 of 105 and
-    3 of 761 knots: the motion stage drops it (before, the first was left out only by its sweep length,
-    0.126 against 0.2, and the second was kept with its mirror image)."""
+    The coarse pass fits one sweep whose profile doubles back on itself (its swept surface overlaps
+    itself, so the fit check's reciprocal test counts every swept point farther than eps_prox as beyond
+    the mesh: fit error 4.997e-3, 0.021 without that test) and whose profile planes lie 11-90 deg off its
+    path's normal planes: the refinement keeps none of its knots and the motion stage drops it (before
+    sweeps-tree3 it was left out only by its sweep length, 0.126 against 0.2, and changes of the rib
+    normals at ties grew it into 2 patches)."""
     v, f, *_ = _border()
     r = detect((v, f), DEFAULT.with_(max_parts=0, arc_axes=0))
     assert r.patches == () and r.stage("parts") is None

@@ -1013,7 +1013,7 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
         g0, err0 = fitted
         bound = params.fit_factor * params.eps_prox
         refined = tried = False
-        no_sweep = False            # the refinement kept under half the knots (_refined): no sweep of this mesh
+        no_sweep = False            # the refinement kept no knot (_refined): not a sweep of this mesh
         if not params.grow and params.twist_steps > 0 and g0.fit_error <= bound:
             # the refined motion's fit replaces the fitted one's: the latter's covered faces are found only if
             # the refinement fails (the same sweeps, one search of the covered faces less)
@@ -1047,8 +1047,8 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
         out.append(SweepPatch(len(out), "general", g.profile, g.closed, g.motion, g.faces, g.fit_error, g.coverage))
     numbers: dict[str, float | int] = {"candidates": len(out), "refined": n_refined, "dropped": dropped}
     summary = (f"{len(out)} general sweep(s) fitted ({skipped} families on grown patches skipped, {n_refined} "
-               f"motion(s) refined against the mesh, {dropped} dropped: most knots' profile planes off their path's "
-               f"normal planes by more than {MAX_REFINE_TURN:g} deg)") + (
+               f"motion(s) refined against the mesh, {dropped} dropped: every knot's profile plane off its path's "
+               f"normal plane by more than {MAX_REFINE_TURN:g} deg)") + (
         ": fit errors " + ", ".join(f"{p.fit_error:.2e}" for p in out) if out else "")
     if true_planes is not None and len(np.asarray(true_planes)):
         found = [motion_planes(p.profile, p.motion) for p in out]
@@ -1063,23 +1063,19 @@ def _refined(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTr
              areas: Array) -> tuple[GeneralSweep | None, bool]:
     """``g`` with its motion refined (:func:`refine_motion`) and checked again, if it still fits; else ``g``.
 
-    None when the refinement keeps fewer than half of the knots: the mesh turns most knots'
-    profile planes farther than :data:`MAX_REFINE_TURN` (into the normal plane of their path and
-    about it), so they lie far off the path's normal planes. Such a "sweep" moves its profile
-    largely within its own plane, or back and forth along its path, and its swept surface
-    overlaps itself: the fit check's reciprocal test
+    None when the refinement kept no knot: the mesh turns every knot's profile plane farther than
+    :data:`MAX_REFINE_TURN` (into the normal plane of its path and about it), so its profile
+    planes lie nowhere near the path's normal planes. Such a "sweep" moves its profile mostly
+    within its own plane, and its swept surface overlaps itself: the fit check's reciprocal test
     (:meth:`~auszug.sweeps.patches.MeshTree.interior_distance`) then counts every swept point
     farther than ``eps_prox`` from the mesh as beyond it (the closest mesh point lies on another
-    part of the swept surface), so its fit error is ``eps_prox`` or less whatever the sweep. On
-    the tracery border's coarse pass: a profile doubling back on itself, 4.997e-3 against 0.021
-    without the reciprocal test, its planes 11-90 deg off its path's normal planes, 105 of 105
-    knots not kept; with the rib normals smooth at ties a path doubling back on itself (length
-    0.75, its ends 0.09 apart), 5.00e-3 against 0.016, 758 of 761 knots not kept. A member's
-    refined sweep keeps most (U.XI.30 with noise: 149 of 161).
+    part of the swept surface), so its fit error is ``eps_prox`` or less whatever the sweep
+    (the tracery border's coarse pass: a profile doubling back on itself, 4.997e-3 against 0.021
+    without the reciprocal test, its planes 11-90 deg off its path's normal planes).
     """
     if len(g.profile) >= 3:
         motion, upper, far = _refine_bounded(g.profile, g.motion, tree, params)
-        if 2 * int(far.sum()) > len(far):
+        if far.all():
             return None, False
     else:
         motion, upper = g.motion, None

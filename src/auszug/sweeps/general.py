@@ -346,8 +346,21 @@ def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
 
 
 def _normals_at(mesh: SweepMesh, points: Array, tree: MeshTree) -> Array:
-    """Unit normals of the mesh at the closest points of ``points (..., 3)`` (:meth:`MeshTree.normals`: ties aside)."""
-    return tree.normals(points)
+    """Unit face normals of the mesh at the closest points of ``points (..., 3)``."""
+    _, face, _ = tree.query(points)
+    return _face_normals(tree, face).reshape(points.shape)
+
+
+def _face_normals(tree: MeshTree, face: IntArray) -> Array:
+    """Unit normals ``(k, 3)`` of the tree's faces ``face (k,)``.
+
+    The tree's own faces: it may be of the whole mesh where the caller's mesh is a part.
+    """
+    v = tree.vertices
+    f = tree.faces[face]
+    n = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+    return n
 
 
 def _plane_of(points: Array) -> tuple[Array, float]:
@@ -1002,7 +1015,7 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
                  if len(q) >= 3]
     for parts, closed in stretches:
         # a family whose ribs lie on what an earlier grown patch covers adds nothing
-        if grown.any() and float(np.mean(tree.on_faces(parts.reshape(-1, 3), grown))) >= params.patch_overlap:
+        if grown.any() and float(np.mean(grown[tree.query(parts)[1]])) >= params.patch_overlap:
             skipped += 1
             continue
         # the sweep between the first and the last rib stays near them: fit it to that part of the

@@ -549,13 +549,14 @@ def test_refined_motions_bounds_bound_the_distances_and_the_early_stop_changes_l
     t = np.arange(k, dtype=float)
     rot = Rotation.from_rotvec(np.column_stack([np.radians(rng.uniform(-1, 1, (k, 2))), 0 * t])).as_matrix()
     wrong = Motion(t, rot, np.column_stack([-0.4 + 0.02 * t, rng.uniform(-5e-4, 5e-4, (k, 2))]))
-    got, upper = _refine_bounded(prof, wrong, tree, DEFAULT)
+    got, upper, far = _refine_bounded(prof, wrong, tree, DEFAULT)
+    assert not far.any()                                           # every map refined (turns of about 1 deg)
     d = tree.query(got.apply(prof, got.t).reshape(-1, 3))[0].reshape(k, n)
     assert np.isfinite(upper).mean() > 0.95
     assert np.all(d[np.isfinite(upper)] <= upper[np.isfinite(upper)] + 1e-15)
-    every, _ = _refine_bounded(prof, wrong, tree, DEFAULT.with_(twist_tolerance=0.0))
-    more, _ = _refine_bounded(prof, wrong, tree, DEFAULT.with_(twist_tolerance=0.0, twist_steps=5))
-    fine, _ = _refine_bounded(prof, wrong, tree, DEFAULT.with_(twist_tolerance=1e-9))
+    every, _, _ = _refine_bounded(prof, wrong, tree, DEFAULT.with_(twist_tolerance=0.0))
+    more, _, _ = _refine_bounded(prof, wrong, tree, DEFAULT.with_(twist_tolerance=0.0, twist_steps=5))
+    fine, _, _ = _refine_bounded(prof, wrong, tree, DEFAULT.with_(twist_tolerance=1e-9))
     assert DEFAULT.twist_tolerance == 1e-7
 
     def apart(a, b):

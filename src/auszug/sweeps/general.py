@@ -905,11 +905,14 @@ def refine_motion(profile: Array, motion: Motion, tree: MeshTree, params: SweepP
     return _refine_bounded(profile, motion, tree, params)[0]
 
 
-def _refine_bounded(profile: Array, motion: Motion, tree: MeshTree, params: SweepParams) -> tuple[Motion, Array]:
-    """:func:`refine_motion` (``twist_steps`` > 0) and bounds of the refined sweep's distances to the mesh.
+def _refine_bounded(profile: Array, motion: Motion, tree: MeshTree,
+                    params: SweepParams) -> tuple[Motion, Array, NDArray[np.bool_]]:
+    """:func:`refine_motion` (``twist_steps`` > 0), bounds of the refined sweep's distances to the mesh, kept knots.
 
     The bounds ``(k, n)`` are upper bounds of the moved profile's distances to the mesh at the
-    refined knots (inf where unknown), for :func:`~auszug.sweeps.patches.swept_error`.
+    refined knots (inf where unknown), for :func:`~auszug.sweeps.patches.swept_error`. The mask
+    ``(k,)`` marks the knots that kept their maps (the refined one turned farther than
+    :data:`MAX_REFINE_TURN`).
     """
     bound = params.fit_factor * params.eps_prox
     tol = params.twist_tolerance
@@ -927,7 +930,7 @@ def _refine_bounded(profile: Array, motion: Motion, tree: MeshTree, params: Swee
     far = cos < np.cos(np.radians(MAX_REFINE_TURN))
     r[far], t[far] = motion.rotation[far], motion.translation[far]
     upper[far] = np.inf
-    return Motion(motion.t.copy(), r, t), upper
+    return Motion(motion.t.copy(), r, t), upper, far
 
 
 def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Array, Array]:
@@ -1023,7 +1026,7 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     out: list[SweepPatch] = []
     tree = MeshTree.of(mesh)
     grown = np.zeros(len(mesh.faces), bool)
-    skipped = n_refined = 0
+    skipped = n_refined = dropped = 0
     # a family's ordered ribs may jump across a gap (parallel cuts of two parallel stretches of a
     # border): each stretch between such jumps is fitted on its own
     stretches = [(q, r.family.closed) for r in ribs for q in split_ribs(rib_parts(r, plots), params.rib_jump)
@@ -1041,10 +1044,13 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
         g0, err0 = fitted
         bound = params.fit_factor * params.eps_prox
         refined = tried = False
+        no_sweep = False            # the refinement kept no knot (_refined): not a sweep of this mesh
         if not params.grow and params.twist_steps > 0 and g0.fit_error <= bound:
             # the refined motion's fit replaces the fitted one's: the latter's covered faces are found only if
             # the refinement fails (the same sweeps, one search of the covered faces less)
-            g, refined = _refined(mesh, g0, params, tree, areas)
+            got, refined = _refined(mesh, g0, params, tree, areas)
+            no_sweep = got is None
+            g = g0 if got is None else got
             tried = True
         if not refined:
             g = _covered(sub, g0.profile, g0.motion, g0.velocities, err0, params, areas[faces], closed)
@@ -1053,20 +1059,27 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
         if params.grow and g.fit_error <= bound:
             g = grown_patch(mesh, g, params, tree, areas)
         if params.twist_steps > 0 and g.fit_error <= bound and not tried:
-            g, refined = _refined(mesh, g, params, tree, areas)
+            got, refined = _refined(mesh, g, params, tree, areas)
+            no_sweep = got is None
+            g = g if got is None else got
         if translations and not closed:
             tp = translational_patch(mesh, g.profile, g.motion, params, tree, areas)
-            if tp is not None and tp.fit_error <= params.fit_factor * params.eps_prox and tp.coverage > g.coverage:
-                g, refined = tp, False
+            if tp is not None and tp.fit_error <= params.fit_factor * params.eps_prox and (
+                    no_sweep or tp.coverage > g.coverage):
+                g, refined, no_sweep = tp, False, False
+        if no_sweep:
+            dropped += 1
+            continue
         n_refined += refined
         if g.fit_error <= params.fit_factor * params.eps_prox:
             grown[g.faces] = True
             if params.corner_tolerance > 0 and g.closed:     # after: the families skipped stay the same
                 g = _filled(mesh, g, params, tree, areas)
         out.append(SweepPatch(len(out), "general", g.profile, g.closed, g.motion, g.faces, g.fit_error, g.coverage))
-    numbers: dict[str, float | int] = {"candidates": len(out), "refined": n_refined}
+    numbers: dict[str, float | int] = {"candidates": len(out), "refined": n_refined, "dropped": dropped}
     summary = (f"{len(out)} general sweep(s) fitted ({skipped} families on grown patches skipped, {n_refined} "
-               "motion(s) refined against the mesh)") + (
+               f"motion(s) refined against the mesh, {dropped} dropped: every knot's profile plane off its path's "
+               f"normal plane by more than {MAX_REFINE_TURN:g} deg)") + (
         ": fit errors " + ", ".join(f"{p.fit_error:.2e}" for p in out) if out else "")
     if true_planes is not None and len(np.asarray(true_planes)):
         found = [motion_planes(p.profile, p.motion) for p in out]
@@ -1106,10 +1119,25 @@ def _held(tree: MeshTree, parts: Array, grown: NDArray[np.bool_], overlap: float
 
 
 def _refined(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTree,
-             areas: Array) -> tuple[GeneralSweep, bool]:
-    """``g`` with its motion refined (:func:`refine_motion`) and checked again, if it still fits; else ``g``."""
-    motion, upper = (_refine_bounded(g.profile, g.motion, tree, params) if len(g.profile) >= 3
-                     else (g.motion, None))
+             areas: Array) -> tuple[GeneralSweep | None, bool]:
+    """``g`` with its motion refined (:func:`refine_motion`) and checked again, if it still fits; else ``g``.
+
+    None when the refinement kept no knot: the mesh turns every knot's profile plane farther than
+    :data:`MAX_REFINE_TURN` (into the normal plane of its path and about it), so its profile
+    planes lie nowhere near the path's normal planes. Such a "sweep" moves its profile mostly
+    within its own plane, and its swept surface overlaps itself: the fit check's reciprocal test
+    (:meth:`~auszug.sweeps.patches.MeshTree.interior_distance`) then counts every swept point
+    farther than ``eps_prox`` from the mesh as beyond it (the closest mesh point lies on another
+    part of the swept surface), so its fit error is ``eps_prox`` or less whatever the sweep
+    (the tracery border's coarse pass: a profile doubling back on itself, 4.997e-3 against 0.021
+    without the reciprocal test, its planes 11-90 deg off its path's normal planes).
+    """
+    if len(g.profile) >= 3:
+        motion, upper, far = _refine_bounded(g.profile, g.motion, tree, params)
+        if far.all():
+            return None, False
+    else:
+        motion, upper = g.motion, None
     # the same fit error as without the bounds, fewer closest points (swept_error)
     err = swept_error(g.profile, g.closed, motion, params.eps_prox, tree, upper)
     if err.fit_error > params.fit_factor * params.eps_prox:

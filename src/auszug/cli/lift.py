@@ -17,7 +17,7 @@ examples:
   auszug lift vase.svg -o vase.obj --report --render vase.png
   auszug lift vase.svg -o vase.glb --style tube --size 2
   auszug lift vase.svg --cues none        # the baseline: hard orthogonality at smooth crossings only
-  auszug lift vase.svg --set family_prior=off --set w_f=0.01   # LiftParams fields (docs/lifting.md)
+  auszug lift vase.svg --set family_prior=off --set w_f=0.01   # LiftParams fields (its docstring)
 """
 
 from __future__ import annotations
@@ -73,8 +73,8 @@ def add_args(parser: argparse.ArgumentParser) -> None:
                              f"(default {','.join(DEFAULT_CUES)})")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", dest="params",
                         help="set a field of auszug.lifting.LiftParams (repeatable), e.g. family_prior=off, "
-                             "w_f=0.01, rounds=4; switches take on/off, true/false, yes/no, 1/0; the fields and "
-                             "their limits are listed in docs/lifting.md")
+                             "w_f=0.01, rounds=4; switches take on/off, true/false, yes/no, 1/0; an unknown name lists "
+                             "the fields, described in the LiftParams docstring")
     parser.add_argument("--quiet", action="store_true", help="no progress lines")
 
 

@@ -907,12 +907,12 @@ def refine_motion(profile: Array, motion: Motion, tree: MeshTree, params: SweepP
 
 def _refine_bounded(profile: Array, motion: Motion, tree: MeshTree,
                     params: SweepParams) -> tuple[Motion, Array, NDArray[np.bool_]]:
-    """:func:`refine_motion` (``twist_steps`` > 0), bounds of the refined sweep's distances to the mesh, kept knots.
+    """:func:`refine_motion` (``twist_steps`` > 0), its distance bounds, its unrefined knots.
 
     The bounds ``(k, n)`` are upper bounds of the moved profile's distances to the mesh at the
     refined knots (inf where unknown), for :func:`~auszug.sweeps.patches.swept_error`. The mask
-    ``(k,)`` marks the knots that kept their maps (the refined one turned farther than
-    :data:`MAX_REFINE_TURN`).
+    ``(k,)`` marks the knots the refinement left alone: each keeps its unrefined map, because the
+    refined one turned farther than :data:`MAX_REFINE_TURN`.
     """
     bound = params.fit_factor * params.eps_prox
     tol = params.twist_tolerance
@@ -1098,7 +1098,7 @@ TIE_MARGIN = 1e-9
 def _held(tree: MeshTree, parts: Array, grown: NDArray[np.bool_], overlap: float, grid: bool) -> bool:
     """Whether at least ``overlap`` of the points ``parts (..., 3)`` have a grown closest face (``grown (m,)``).
 
-    The share of the faces of ``tree.query(parts)``, as before. With ``grid`` (the tree's face grid
+    The share over the faces ``tree.query(parts)`` returns. With ``grid`` (the tree's face grid
     is built: the motion's refinement uses it) the points' nearest faces are found on the grid
     first (:func:`~auszug.sweeps._kernels.grown_states`): a point whose faces within
     :data:`TIE_MARGIN` of its nearest are all grown, or none, has that answer whichever of them the

@@ -47,6 +47,7 @@ import time
 
 import numpy as np
 
+from auszug.cli.lift import parse_params
 from auszug.errors import GeometryError
 from auszug.lifting import DEFAULT, DEFAULT_CLASSES, LiftParams, lift
 from tests.lifting import truth as T
@@ -237,8 +238,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--params", default="", help="LiftParams fields, e.g. parallel_robust_deg=5,w_depth_anchor=10")
     a = ap.parse_args(argv)
     classes = DEFAULT_CLASSES if a.cues == "default" else ()
-    kw = dict(x.split("=") for x in a.params.split(",") if x)
-    params = LiftParams(**{k: type(getattr(DEFAULT, k))(float(v)) for k, v in kw.items()})
+    params = parse_params([x for x in a.params.split(",") if x])     # auszug lift --set's items
     names = a.truths.split(",")
     print(f"cues: {a.cues}; params: {a.params or 'default'}; load {os.getloadavg()[0]:.1f} at start", file=sys.stdout)
     if a.mode == "energy":

@@ -99,12 +99,13 @@ _TRUE = ("1", "on", "true", "yes")
 _FALSE = ("0", "off", "false", "no")
 
 
-def _params(items: list[str]) -> "LiftParams":
+def parse_params(items: list[str]) -> "LiftParams":
     """``--set NAME=VALUE`` items as :class:`~auszug.lifting.LiftParams` (the defaults elsewhere).
 
     A field's type is its default's (bool, int or float); an unknown name, a value of the wrong
     kind or one outside the field's limits (``LiftParams.__post_init__``) is a ``GeometryError``
-    naming the item (as ``auszug sweeps`` reports its parameters).
+    naming the item (as ``auszug sweeps`` reports its parameters). ``benchmarks/eval_lifting.py
+    --params`` reads its items with it too.
     """
     import dataclasses
 
@@ -148,7 +149,7 @@ def run(args: argparse.Namespace) -> int:
 
     src = Path(args.sketch)
     classes = _classes(args.cues)
-    params = _params(args.params)
+    params = parse_params(args.params)
     format_for(src, "sketch")
     out = Path(args.output) if args.output else Path(stem(src, "sketch") + ".network.json")
     as_mesh = out.name.lower().endswith(MESH_SUFFIXES)

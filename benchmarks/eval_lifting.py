@@ -17,7 +17,7 @@ docs/lifting.md), parallelism (soft by design) and any applied cue of any class.
 Usage (from the repository root)::
 
     python -m benchmarks.eval_lifting noise [--truths a,b] [--cues default|none] [--markdown]
-    python -m benchmarks.eval_lifting views [--truths a,b] [--cues none|default]
+    python -m benchmarks.eval_lifting views [--truths a,b] [--cues none|default] [--tilts 45,55,65]
     python -m benchmarks.eval_lifting signs [--cues none|default]
     python -m benchmarks.eval_lifting energy [--truths a,b]
 
@@ -138,8 +138,9 @@ def noise_table(names: list[str], classes: tuple[str, ...], out, params: LiftPar
               file=out, flush=True)
 
 
-def views_table(names: list[str], classes: tuple[str, ...], out, params: LiftParams = DEFAULT) -> None:
-    """Wrong-sign rate and depth RMSE over the grid TILTS x TURNS (noise-free), accidental views rejected."""
+def views_table(names: list[str], classes: tuple[str, ...], out, params: LiftParams = DEFAULT,
+                tilts: tuple[float, ...] = TILTS) -> None:
+    """Wrong-sign rate and depth RMSE over the grid ``tilts`` x TURNS (noise-free), accidental views rejected."""
     print("| truth | views lifted (rejected) | wrong sign | depth RMSE median / max | F1 parallel | "
           "F1 corner orthogonal | F1 planar | largest applied angle (deg): smooth, corner, planar, parallel, any | "
           "not converged |", file=out)
@@ -147,7 +148,7 @@ def views_table(names: list[str], classes: tuple[str, ...], out, params: LiftPar
     total = wrong_total = 0
     for name in names:
         rows, rejected, refused, wrong = [], 0, 0, []
-        for tilt in TILTS:
+        for tilt in tilts:
             for turn in TURNS:
                 tr = T.make(name, tilt, turn)
                 why = T.accidental(tr)
@@ -236,7 +237,15 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--truths", default=",".join(T.TRUTHS))
     ap.add_argument("--cues", default="default", choices=("default", "none"))
     ap.add_argument("--params", default="", help="LiftParams fields, e.g. parallel_robust_deg=5,w_depth_anchor=10")
+    ap.add_argument("--tilts", default=",".join(f"{t:g}" for t in TILTS),
+                    help="views mode: the tilts from above (deg, 0-89), e.g. 45,55,65")
     a = ap.parse_args(argv)
+    try:
+        tilts = tuple(float(t) for t in a.tilts.split(","))
+    except ValueError:
+        ap.error(f"--tilts: not a list of numbers: {a.tilts!r}")
+    if not all(0.0 <= t < 90.0 for t in tilts):
+        ap.error(f"--tilts: each tilt must lie in [0, 90) deg: {a.tilts!r}")
     classes = DEFAULT_CLASSES if a.cues == "default" else ()
     params = parse_params([x for x in a.params.split(",") if x])     # auszug lift --set's items
     names = a.truths.split(",")
@@ -245,8 +254,10 @@ def main(argv: list[str] | None = None) -> int:
         energy_table(names, sys.stdout)
     elif a.mode == "signs":
         signs_table(classes, sys.stdout, params)
+    elif a.mode == "views":
+        views_table(names, classes, sys.stdout, params, tilts)
     else:
-        (noise_table if a.mode == "noise" else views_table)(names, classes, sys.stdout, params)
+        noise_table(names, classes, sys.stdout, params)
     print(f"load {os.getloadavg()[0]:.1f} at the end", file=sys.stdout)
     return 0
 

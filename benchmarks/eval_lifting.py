@@ -18,7 +18,7 @@ Usage (from the repository root)::
 
     python -m benchmarks.eval_lifting noise [--truths a,b] [--cues default|none] [--markdown]
     python -m benchmarks.eval_lifting views [--truths a,b] [--cues none|default] [--tilts 45,55,65]
-    python -m benchmarks.eval_lifting signs [--cues none|default]
+    python -m benchmarks.eval_lifting signs [--cues none|default] [--tilts 45,55,65]
     python -m benchmarks.eval_lifting energy [--truths a,b]
 
 ``--params k=v,...`` lifts with those :class:`~auszug.lifting.LiftParams` fields (noise, views and signs modes),
@@ -181,9 +181,11 @@ SIGN_TURNS = (-50.0, -25.0, 25.0, 50.0)
 SIGN_OBJECTS = ("vase", "ogee-roof", "arches", "box", "revolve")
 
 
-def signs_table(classes: tuple[str, ...], out, params: LiftParams = DEFAULT) -> None:
+def signs_table(classes: tuple[str, ...], out, params: LiftParams = DEFAULT,
+                tilts: tuple[float, ...] = SIGN_TILTS) -> None:
     """The depth-sign grid of docs/lifting.md ("Depth sign"): the three bundled examples' objects, the box and the
-    revolve at tilts 15, 25, 35 deg and turns -50, -25, 25, 50 deg (60 lifts, noise-free, no view rejected)."""
+    revolve at ``tilts`` (default 15, 25, 35 deg) and turns -50, -25, 25, 50 deg (60 lifts by default, noise-free,
+    no view rejected)."""
     from tests.lifting.test_lifting import _example_truth
 
     print("| object | wrong sign | depth RMSE mean / max | not converged |", file=out)
@@ -191,7 +193,7 @@ def signs_table(classes: tuple[str, ...], out, params: LiftParams = DEFAULT) -> 
     total = 0
     for name in SIGN_OBJECTS:
         errs, wrong, unconv = [], [], 0
-        for tilt in SIGN_TILTS:
+        for tilt in tilts:
             for turn in SIGN_TURNS:
                 if name == "box":
                     tr = T.box(tilt=tilt, turn=turn)
@@ -210,7 +212,7 @@ def signs_table(classes: tuple[str, ...], out, params: LiftParams = DEFAULT) -> 
         total += len(wrong)
         print(f"| {name} | {len(wrong)}{': ' + ', '.join(wrong) if wrong else ''} | {100 * np.mean(errs):.2f} / "
               f"{100 * np.max(errs):.2f} % | {unconv} |", file=out, flush=True)
-    n = len(SIGN_OBJECTS) * len(SIGN_TILTS) * len(SIGN_TURNS)
+    n = len(SIGN_OBJECTS) * len(tilts) * len(SIGN_TURNS)
     print(f"\nwrong sign: {total} of {n} lifts ({100 * total / n:.1f} %)", file=out)
 
 
@@ -237,11 +239,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--truths", default=",".join(T.TRUTHS))
     ap.add_argument("--cues", default="default", choices=("default", "none"))
     ap.add_argument("--params", default="", help="LiftParams fields, e.g. parallel_robust_deg=5,w_depth_anchor=10")
-    ap.add_argument("--tilts", default=",".join(f"{t:g}" for t in TILTS),
-                    help="views mode: the tilts from above (deg, 0-89), e.g. 45,55,65")
+    ap.add_argument("--tilts", default="",
+                    help="views and signs modes: the tilts from above (deg, in [0, 90)), e.g. 45,55,65 "
+                         "(default: 15,20,25,30,35 for views, 15,25,35 for signs)")
     a = ap.parse_args(argv)
     try:
-        tilts = tuple(float(t) for t in a.tilts.split(","))
+        tilts = tuple(float(t) for t in a.tilts.split(",")) if a.tilts else ()
     except ValueError:
         ap.error(f"--tilts: not a list of numbers: {a.tilts!r}")
     if not all(0.0 <= t < 90.0 for t in tilts):
@@ -253,9 +256,9 @@ def main(argv: list[str] | None = None) -> int:
     if a.mode == "energy":
         energy_table(names, sys.stdout)
     elif a.mode == "signs":
-        signs_table(classes, sys.stdout, params)
+        signs_table(classes, sys.stdout, params, tilts or SIGN_TILTS)
     elif a.mode == "views":
-        views_table(names, classes, sys.stdout, params, tilts)
+        views_table(names, classes, sys.stdout, params, tilts or TILTS)
     else:
         noise_table(names, classes, sys.stdout, params)
     print(f"load {os.getloadavg()[0]:.1f} at the end", file=sys.stdout)

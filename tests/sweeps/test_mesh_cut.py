@@ -39,6 +39,32 @@ def test_normalise_centres_and_scales():
         assert np.array_equal(e, np.sort(np.stack([a, b], 1), axis=1))
 
 
+def test_normalise_topology_and_normals_match_a_plain_numpy_reference():
+    # the edge topology by np.unique on (low, high) rows and the normals by np.add.at, written out here, against
+    # normalise's stable-argsort keys and compiled accumulation: the same arrays bit for bit, on a mesh with its
+    # faces shuffled and rotated (no runs of sorted keys) and on a third of it (both open: edges with one face)
+    rng = np.random.default_rng(3)
+    fx = revolved(n_profile=24, n_path=30)
+    shuffled = fx.faces[rng.permutation(len(fx.faces))][:, [1, 2, 0]]
+    for v, f in ((fx.vertices, shuffled), (fx.vertices, fx.faces[: len(fx.faces) // 3])):
+        m = normalise(v, f)
+        rows = np.sort(np.stack([f, f[:, [1, 2, 0]]], axis=2).reshape(-1, 2), axis=1)
+        edges, inv, counts = np.unique(rows, axis=0, return_inverse=True, return_counts=True)
+        assert np.array_equal(m.edges, edges)
+        assert np.array_equal(m.face_edges, inv.reshape(-1, 3))
+        faces_of = [np.flatnonzero(inv.reshape(-1) == e) // 3 for e in range(len(edges))]
+        want = np.array([[fs[0], fs[1] if len(fs) == 2 else -1] for fs in faces_of])
+        assert np.array_equal(m.edge_faces, want)
+        assert (counts == 1).any() and np.array_equal(m.edge_faces[:, 1] == -1, counts == 1)     # open: boundaries
+        x = m.vertices
+        fn = np.cross(x[f[:, 1]] - x[f[:, 0]], x[f[:, 2]] - x[f[:, 0]])
+        acc = np.zeros_like(x)
+        for k in range(3):
+            np.add.at(acc, f[:, k], fn)
+        nrm = np.linalg.norm(acc, axis=1, keepdims=True)
+        assert np.array_equal(m.normals, np.divide(acc, nrm, out=np.zeros_like(acc), where=nrm > 0))
+
+
 @pytest.mark.parametrize(
     "v, f, what",
     [

@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from auszug.errors import GeometryError
+from auszug.sweeps import _kernels
 
 __all__ = ["SweepMesh", "normalise", "vertex_normals", "face_components"]
 
@@ -82,9 +83,7 @@ def vertex_normals(vertices: ArrayLike, faces: ArrayLike) -> Array:
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int64)
     fn = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
-    vn = np.zeros_like(v)
-    for k in range(3):
-        np.add.at(vn, f[:, k], fn)
+    vn = _kernels.add_at_faces(len(v), np.ascontiguousarray(f), np.ascontiguousarray(fn))
     norm = np.linalg.norm(vn, axis=1, keepdims=True)
     return np.divide(vn, norm, out=np.zeros_like(vn), where=norm > 0)
 
@@ -131,19 +130,25 @@ def normalise(vertices: ArrayLike, faces: ArrayLike) -> SweepMesh:
         raise GeometryError("mesh has a zero-size bounding box: expected faces that span some space")
     centre = (lo + hi) / 2
     vn = (v - centre) / scale
-    und = np.sort(np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1).reshape(-1, 2), axis=1)
-    # one integer key per edge: np.unique on it is much faster than on rows, same order
-    keys, inv, counts = np.unique(und[:, 0] * np.int64(len(v)) + und[:, 1], return_inverse=True, return_counts=True)
+    a, b = f.ravel(), f[:, [1, 2, 0]].ravel()              # face i's edges (0 1), (1 2), (2 0) at 3i .. 3i + 2
+    # one integer key per undirected edge (low * n + high), its edges in key order by one stable argsort: the
+    # faces' edges come in runs of nearly sorted keys, which the stable sort takes in one pass (np.unique's
+    # quicksort does not); the same keys, inverse and counts as np.unique's
+    key = np.minimum(a, b) * np.int64(len(v)) + np.maximum(a, b)
+    order = np.argsort(key, kind="stable")
+    ks = key[order]
+    first = np.flatnonzero(np.concatenate([[True], ks[1:] != ks[:-1]]))
+    keys = ks[first]
+    counts = np.diff(np.append(first, len(ks)))
+    inv = np.empty(len(ks), np.int64)
+    inv[order] = np.repeat(np.arange(len(keys), dtype=np.int64), counts)
     edges = np.stack([keys // len(v), keys % len(v)], axis=1)
-    inv = inv.reshape(-1)
     if counts.max() > 2:
         e = int(np.argmax(counts))
         raise GeometryError(
             f"mesh edge {edges[e].tolist()} is shared by {counts[e]} faces: expected a 2-manifold "
             "(at most two faces per edge)")
     face_of = np.repeat(np.arange(len(f)), 3)
-    order = np.argsort(inv, kind="stable")
-    first = np.searchsorted(inv[order], np.arange(len(edges)))
     ef = np.full((len(edges), 2), -1, np.int64)
     ef[:, 0] = face_of[order[first]]
     two = counts == 2

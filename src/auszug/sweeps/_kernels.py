@@ -19,19 +19,30 @@ from numba import njit, prange
 
 
 @njit(cache=True)
-def add_at_faces(n, faces, values):  # pragma: no cover - compiled
-    """``out (n, 3)``: ``values[i]`` added to each of face ``i``'s three vertices, in ``np.add.at``'s order.
+def vertex_normal_sums(v, faces):  # pragma: no cover - compiled
+    """``(n, 3)``: the sum of the (unnormalised) cross products of the faces around each vertex.
 
-    The sums of ``for k in 0..2: np.add.at(out, faces[:, k], values)`` bit for bit: the same
-    additions in the same order (corner k of every face in face order, then corner k + 1).
+    Bit for bit ``fn = np.cross(v[f1] - v[f0], v[f2] - v[f0])`` and then ``for k in 0..2:
+    np.add.at(out, faces[:, k], fn)``: the same products and differences (no fused multiply-add:
+    numba compiles without fastmath), the same additions in the same order (corner k of every
+    face in face order, then corner k + 1).
     """
-    out = np.zeros((n, 3))
+    m = len(faces)
+    fn = np.empty((m, 3))
+    for i in range(m):
+        a, b, c = faces[i, 0], faces[i, 1], faces[i, 2]
+        ux, uy, uz = v[b, 0] - v[a, 0], v[b, 1] - v[a, 1], v[b, 2] - v[a, 2]
+        wx, wy, wz = v[c, 0] - v[a, 0], v[c, 1] - v[a, 1], v[c, 2] - v[a, 2]
+        fn[i, 0] = uy * wz - uz * wy
+        fn[i, 1] = uz * wx - ux * wz
+        fn[i, 2] = ux * wy - uy * wx
+    out = np.zeros((len(v), 3))
     for k in range(3):
-        for i in range(len(faces)):
+        for i in range(m):
             j = faces[i, k]
-            out[j, 0] += values[i, 0]
-            out[j, 1] += values[i, 1]
-            out[j, 2] += values[i, 2]
+            out[j, 0] += fn[i, 0]
+            out[j, 1] += fn[i, 1]
+            out[j, 2] += fn[i, 2]
     return out
 
 

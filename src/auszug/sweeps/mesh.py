@@ -82,8 +82,7 @@ def vertex_normals(vertices: ArrayLike, faces: ArrayLike) -> Array:
     """
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int64)
-    fn = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
-    vn = _kernels.add_at_faces(len(v), np.ascontiguousarray(f), np.ascontiguousarray(fn))
+    vn = _kernels.vertex_normal_sums(np.ascontiguousarray(v), np.ascontiguousarray(f))
     norm = np.linalg.norm(vn, axis=1, keepdims=True)
     return np.divide(vn, norm, out=np.zeros_like(vn), where=norm > 0)
 

@@ -576,15 +576,16 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
 def _general_fit(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
                  areas: Array | None = None, tree: MeshTree | None = None,
                  times: Array | None = None, closed: bool = False,
-                 faces: bool = True) -> GeneralSweep | tuple[GeneralSweep, SweptError]:
+                 faces: bool = True, grid: EdgeGrid | None = None) -> GeneralSweep | tuple[GeneralSweep, SweptError]:
     """:func:`general_patch`, or without the covered faces and with the fit error.
 
     With ``faces`` False the covered faces are not found (coverage nan, no faces) and the fit
-    error is returned with the sweep (:func:`_covered` finds them later).
+    error is returned with the sweep (:func:`_covered` finds them later). ``grid``: the edge grid
+    of the local cuts (:func:`~auszug.sweeps.cut.cut_near`), built from ``mesh`` if not given.
     """
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     tr_ = MeshTree(mesh.vertices, mesh.faces) if tree is None else tree
-    grid = EdgeGrid.of(mesh)       # the local cuts of every round
+    grid = EdgeGrid.of(mesh) if grid is None else grid      # the local cuts of every round
     best: tuple[Array, Motion, Array, SweptError] | None = None
     ribs: Array | None = parts
     n_rounds = params.general_iterations
@@ -939,21 +940,23 @@ def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Ar
     return profile_planes(profile, motion, t)
 
 
-def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, IntArray]:
-    """The part of the mesh whose faces lie in the box of ``points`` grown by ``margin``, and its faces' indices.
+def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, IntArray, IntArray]:
+    """The part of the mesh whose faces lie in the box of ``points`` grown by ``margin``, its faces' indices.
 
     The part keeps the mesh's vertex array (its faces index it as before); only its faces and
     the edges of those faces are selected, so cutting it walks just the part, and nothing is
-    recomputed but the index maps (no new topology, no new vertex normals).
+    recomputed but the index maps (no new topology, no new vertex normals). Also returns each of
+    the mesh's edges' index among the part's ``(E,)`` (-1 for one not kept; for
+    :meth:`~auszug.sweeps.cut.EdgeGrid.part`).
     """
     from dataclasses import replace
 
     lo, hi = points.reshape(-1, 3).min(axis=0) - margin, points.reshape(-1, 3).max(axis=0) + margin
     # one compiled pass: the kept faces and edges, their index maps and rows (numpy's fancy indexing took 0.5 ms
     # of a part of 20k faces)
-    keep, _, edge_faces, face_edges, faces, edges = box_part(mesh.vertices, mesh.faces, mesh.edges, mesh.edge_faces,
-                                                            mesh.face_edges, lo, hi)
-    return replace(mesh, faces=faces, edges=edges, edge_faces=edge_faces, face_edges=face_edges), keep
+    keep, _, edge_faces, face_edges, faces, edges, edge_index = box_part(mesh.vertices, mesh.faces, mesh.edges,
+                                                                        mesh.edge_faces, mesh.face_edges, lo, hi)
+    return replace(mesh, faces=faces, edges=edges, edge_faces=edge_faces, face_edges=face_edges), keep, edge_index
 
 
 def _per_component(fams: tuple[Family, ...], mesh: SweepMesh, cuts: Cuts, mov: Movability,
@@ -1027,6 +1030,7 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     tree = MeshTree.of(mesh)
     grown = np.zeros(len(mesh.faces), bool)
     skipped = n_refined = dropped = 0
+    whole_grid: EdgeGrid | None = None
     # a family's ordered ribs may jump across a gap (parallel cuts of two parallel stretches of a
     # border): each stretch between such jumps is fitted on its own
     stretches = [(q, r.family.closed) for r in ribs for q in split_ribs(rib_parts(r, plots), params.rib_jump)
@@ -1038,8 +1042,12 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
             continue
         # the sweep between the first and the last rib stays near them: fit it to that part of the
         # mesh (distances to a part are never smaller than to the whole: the fit error is safe)
-        sub, faces = _around(mesh, parts, params.l_min / 4 + 4 * params.eps_prox)
-        fitted = _general_fit(sub, parts, params, areas[faces], tree, closed=closed, faces=False)
+        sub, faces, edge_index = _around(mesh, parts, params.l_min / 4 + 4 * params.eps_prox)
+        # the part's local cuts on the mesh's edge grid (binned once per stage): the same curves as on its own grid
+        if whole_grid is None:
+            whole_grid = EdgeGrid.of(mesh)
+        fitted = _general_fit(sub, parts, params, areas[faces], tree, closed=closed, faces=False,
+                              grid=whole_grid.part(edge_index))
         assert isinstance(fitted, tuple)
         g0, err0 = fitted
         bound = params.fit_factor * params.eps_prox

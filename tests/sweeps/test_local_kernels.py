@@ -629,3 +629,37 @@ def test_grown_states_agree_with_libigls_face_wherever_known(hole):
         for overlap in (0.05, max(share - 1e-3, 1e-3), share, min(share + 1e-3, 1.0), 0.8, 1.0):
             assert _held(tree, part, flag, overlap, True) == (share >= overlap)
             assert _held(tree, part, flag, overlap, False) == (share >= overlap)
+
+
+def _near_runs_numpy(near, curve_start, curve_plane):
+    # the recut's pieces as numpy found them before near_runs (sweeps-build12's _recut_knots)
+    n_curves = len(curve_start) - 1
+    curve_of = np.repeat(np.arange(n_curves), np.diff(curve_start))
+    first = np.zeros(len(near), bool)
+    first[curve_start[:-1][curve_start[:-1] < len(near)]] = True
+    begins = near & (first | ~np.r_[False, near[:-1]])
+    ends = near & (np.r_[first[1:], True] | ~np.r_[near[1:], False])
+    a = np.flatnonzero(begins)
+    b = np.flatnonzero(ends) + 1
+    keep = b - a >= 2
+    a, b = a[keep], b[keep]
+    starts = np.concatenate([[0], np.cumsum(b - a)]).astype(np.int64)
+    idx = np.arange(starts[-1]) + np.repeat(a - starts[:-1], b - a)
+    return starts, idx, curve_plane[curve_of[idx]], curve_plane[curve_of[a]].astype(np.int64)
+
+
+def test_near_runs_are_the_numpy_pieces():
+    rng = np.random.default_rng(13)
+    for trial in range(300):
+        sizes = rng.integers(0, 12, size=rng.integers(1, 9))         # curves of 0 to 11 points
+        sizes[0] = max(sizes[0], 1)
+        curve_start = np.r_[0, np.cumsum(sizes)].astype(np.int64)
+        curve_plane = np.sort(rng.integers(0, 5, size=len(sizes))).astype(np.int64)
+        near = rng.random(int(curve_start[-1])) < rng.uniform(0.2, 0.9)
+        got = _kernels.near_runs(near, curve_start, curve_plane)
+        want = _near_runs_numpy(near, curve_start, curve_plane)
+        for g, w in zip(got, want, strict=True):
+            assert g.dtype == np.int64 and np.array_equal(g, w), trial
+    # every point near: one piece per curve of 2 points or more
+    got = _kernels.near_runs(np.ones(5, bool), np.array([0, 1, 3, 5]), np.array([0, 0, 2]))
+    assert got[0].tolist() == [0, 2, 4] and got[1].tolist() == [1, 2, 3, 4] and got[3].tolist() == [0, 2]

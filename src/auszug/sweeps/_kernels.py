@@ -1863,6 +1863,44 @@ def apply_maps(r, tr, x):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
+def near_runs(near, curve_start, curve_plane):  # pragma: no cover - compiled
+    """The runs of near points ``near (m,)`` of each curve, of 2 points or more, as pieces.
+
+    Curve ``j`` is points ``curve_start[j]:curve_start[j + 1]``, of plane ``curve_plane[j]``; a run
+    is a maximal stretch of consecutive near points of one curve. Returns the pieces' starts
+    ``(q + 1,)`` into the runs' points, the runs' point indices ``(r,)`` (curve after curve, in
+    order), each such point's plane ``(r,)`` and each piece's plane ``(q,)``.
+    """
+    m = len(near)
+    idx = np.empty(m, np.int64)
+    plane_of = np.empty(m, np.int64)
+    starts = np.zeros(m + 1, np.int64)
+    piece_plane = np.empty(m, np.int64)
+    n_p = 0
+    pos = 0
+    for j in range(len(curve_start) - 1):
+        pl = curve_plane[j]
+        i = curve_start[j]
+        end = curve_start[j + 1]
+        while i < end:
+            if not near[i]:
+                i += 1
+                continue
+            a = i
+            while i < end and near[i]:
+                i += 1
+            if i - a >= 2:
+                for t in range(a, i):
+                    idx[pos] = t
+                    plane_of[pos] = pl
+                    pos += 1
+                piece_plane[n_p] = pl
+                n_p += 1
+                starts[n_p] = pos
+    return starts[:n_p + 1].copy(), idx[:pos].copy(), plane_of[:pos].copy(), piece_plane[:n_p].copy()
+
+
+@njit(cache=True)
 def inverse_maps_at(r, tr, knot, pts, idx):  # pragma: no cover - compiled
     """Each point ``pts[idx[p]]`` mapped back by the inverse of the map ``knot[p]`` of ``(r (q, 3, 3), tr (q, 3))``.
 

@@ -62,6 +62,7 @@ from auszug.sweeps._kernels import (
     grown_states,
     inverse_maps_at,
     kabsch_sums,
+    near_runs,
     polyline_closest_chunked,
     rotations_of,
     twist_steps,
@@ -426,25 +427,14 @@ def _recut_knots(mesh: SweepMesh, profile: Array, motion: Motion, reach: float,
     if c.n_curves == 0:
         return np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64)
     near = curves_near_profiles(c.points, c.curve_start, c.curve_plane, np.ascontiguousarray(moved), reach)
-    # each stretch of a curve near the moved profile is a piece of its own: joined, a curve
-    # broken by a hole in the mesh would bridge the hole by a chord
-    curve_of = np.repeat(np.arange(c.n_curves), np.diff(c.curve_start))
-    first = np.zeros(len(near), bool)
-    first[c.curve_start[:-1]] = True
-    begins = near & (first | ~np.r_[False, near[:-1]])
-    ends = near & (np.r_[first[1:], True] | ~np.r_[near[1:], False])
-    a = np.flatnonzero(begins)
-    b = np.flatnonzero(ends) + 1
-    keep = b - a >= 2
-    a, b = a[keep], b[keep]
-    if not len(a):
+    # each stretch of a curve near the moved profile (of 2 points or more) is a piece of its own: joined, a curve
+    # broken by a hole in the mesh would bridge the hole by a chord (one compiled pass)
+    starts, idx, k, knot = near_runs(near, c.curve_start, np.ascontiguousarray(c.curve_plane, dtype=np.int64))
+    if not len(knot):
         return np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64)
-    starts = np.concatenate([[0], np.cumsum(b - a)]).astype(np.int64)
-    idx = np.arange(starts[-1]) + np.repeat(a - starts[:-1], b - a)
-    k = c.curve_plane[curve_of[idx]]
     # compiled, as np.einsum("nji,nj->ni", R[k], points[idx] - T[k]) bit for bit
     back = inverse_maps_at(motion.rotation, motion.translation, k, c.points, idx)
-    return back, starts, c.curve_plane[curve_of[a]].astype(np.int64)
+    return back, starts, knot
 
 
 @dataclass(frozen=True)

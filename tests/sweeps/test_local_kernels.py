@@ -35,8 +35,14 @@ def test_cut_near_gives_the_whole_cuts_curves_in_its_boxes_point_for_point(hole,
     from auszug.sweeps.general import _around
 
     mesh = _mesh(hole)
+    grids = []
     if part:          # a part of the mesh: its edges may have their only face in the second slot
-        mesh = _around(mesh, mesh.vertices[: len(mesh.vertices) // 2], 0.05)[0]
+        whole = mesh
+        mesh, _, edge_index = _around(mesh, mesh.vertices[: len(mesh.vertices) // 2], 0.05)
+        # and the whole mesh's grids taken for the part (EdgeGrid.part): the same curves in the boxes
+        grids = [EdgeGrid.of(whole).part(edge_index), EdgeGrid.of(whole, 0.013).part(edge_index)]
+        assert len(mesh.edges) < len(whole.edges)
+    grids += [None, EdgeGrid.of(mesh, 0.013)]
     rng = np.random.default_rng(11)
     n = rng.normal(size=(30, 3))
     n /= np.linalg.norm(n, axis=1, keepdims=True)
@@ -45,7 +51,7 @@ def test_cut_near_gives_the_whole_cuts_curves_in_its_boxes_point_for_point(hole,
     half = rng.uniform(0.01, 0.3, size=(30, 1))
     boxes = np.hstack([centre - half, centre + half])
     whole = cut(mesh, n, d)
-    for grid in (None, EdgeGrid.of(mesh, 0.013)):
+    for grid in grids:
         near = cut_near(mesh, n, d, boxes, grid)
         got = [(int(near.curve_plane[j]), near.curve(j), bool(near.curve_closed[j]),
                 near.edges[near.curve_start[j]:near.curve_start[j + 1]]) for j in range(near.n_curves)]
@@ -81,6 +87,25 @@ def test_edge_grid_stores_each_edges_end_points_in_the_grids_order():
         assert np.array_equal(np.sort(g.edges), np.arange(len(mesh.edges)))
         assert np.array_equal(g.ends[:3].T, mesh.vertices[mesh.edges[g.edges, 0]])
         assert np.array_equal(g.ends[3:].T, mesh.vertices[mesh.edges[g.edges, 1]])
+        # each cell's box: its edges' end points' least and greatest coordinates (inf, -inf where empty)
+        for c in range(len(g.cell_start) - 1):
+            e = g.edges[g.cell_start[c]:g.cell_start[c + 1]]
+            x = mesh.vertices[mesh.edges[e].reshape(-1)]
+            want = np.r_[x.min(axis=0), x.max(axis=0)] if len(e) else np.r_[[np.inf] * 3, [-np.inf] * 3]
+            assert np.array_equal(g.cell_box[c], want)
+        assert len(g.local) == 0
+
+
+def test_a_parts_grid_is_the_whole_grid_with_the_parts_edge_indices():
+    from auszug.sweeps.general import _around
+
+    mesh = _mesh(hole=True)
+    part, _, edge_index = _around(mesh, mesh.vertices[:700], 0.05)
+    g = EdgeGrid.of(mesh).part(edge_index)
+    assert np.array_equal(part.edges, mesh.edges[edge_index >= 0])
+    assert np.array_equal(edge_index[edge_index >= 0], np.arange(len(part.edges)))
+    with pytest.raises(ValueError):
+        g.part(edge_index)
 
 
 @pytest.mark.parametrize("closed", [False, True])
@@ -115,8 +140,8 @@ def test_ring_tree_is_libigls_closest_points_on_the_ring_faces(closed):
 def test_box_part_is_its_numpy_definition():
     mesh = _mesh(hole=True)
     lo, hi = np.array([-0.3, -0.2, -0.5]), np.array([0.2, 0.3, 0.1])
-    keep, used, ef, fe, faces, edges = _kernels.box_part(mesh.vertices, mesh.faces, mesh.edges, mesh.edge_faces,
-                                                         mesh.face_edges, lo, hi)
+    keep, used, ef, fe, faces, edges, index = _kernels.box_part(mesh.vertices, mesh.faces, mesh.edges,
+                                                                mesh.edge_faces, mesh.face_edges, lo, hi)
     inside = np.all((mesh.vertices >= lo) & (mesh.vertices <= hi), axis=1)
     want_keep = np.flatnonzero(inside[mesh.faces].all(axis=1))
     flag = np.zeros(len(mesh.edges), bool)
@@ -129,13 +154,15 @@ def test_box_part_is_its_numpy_definition():
     assert np.array_equal(keep, want_keep) and np.array_equal(used, want_used)
     assert np.array_equal(ef, face_index[mesh.edge_faces[want_used]])
     assert np.array_equal(fe, edge_index[mesh.face_edges[want_keep]])
+    assert np.array_equal(index, edge_index)
     # the part's faces and edges: the kept rows, as numpy's fancy indexing gives them
     for g, w in ((faces, mesh.faces[want_keep]), (edges, mesh.edges[want_used])):
         assert g.dtype == w.dtype and np.array_equal(g, w)
     assert 0 < len(keep) < len(mesh.faces)
     # an empty box: no faces, no edges
     got = _kernels.box_part(mesh.vertices, mesh.faces, mesh.edges, mesh.edge_faces, mesh.face_edges, hi + 1, hi + 2)
-    assert [len(g) for g in got] == [0] * 6 and got[4].shape == (0, 3) and got[5].shape == (0, 2)
+    assert [len(g) for g in got[:6]] == [0] * 6 and got[4].shape == (0, 3) and got[5].shape == (0, 2)
+    assert np.all(got[6] == -1) and len(got[6]) == len(mesh.edges)
 
 
 def test_curves_near_profiles_is_the_distance_within_reach():
@@ -602,3 +629,37 @@ def test_grown_states_agree_with_libigls_face_wherever_known(hole):
         for overlap in (0.05, max(share - 1e-3, 1e-3), share, min(share + 1e-3, 1.0), 0.8, 1.0):
             assert _held(tree, part, flag, overlap, True) == (share >= overlap)
             assert _held(tree, part, flag, overlap, False) == (share >= overlap)
+
+
+def _near_runs_numpy(near, curve_start, curve_plane):
+    # the recut's pieces as numpy found them before near_runs (sweeps-build12's _recut_knots)
+    n_curves = len(curve_start) - 1
+    curve_of = np.repeat(np.arange(n_curves), np.diff(curve_start))
+    first = np.zeros(len(near), bool)
+    first[curve_start[:-1][curve_start[:-1] < len(near)]] = True
+    begins = near & (first | ~np.r_[False, near[:-1]])
+    ends = near & (np.r_[first[1:], True] | ~np.r_[near[1:], False])
+    a = np.flatnonzero(begins)
+    b = np.flatnonzero(ends) + 1
+    keep = b - a >= 2
+    a, b = a[keep], b[keep]
+    starts = np.concatenate([[0], np.cumsum(b - a)]).astype(np.int64)
+    idx = np.arange(starts[-1]) + np.repeat(a - starts[:-1], b - a)
+    return starts, idx, curve_plane[curve_of[idx]], curve_plane[curve_of[a]].astype(np.int64)
+
+
+def test_near_runs_are_the_numpy_pieces():
+    rng = np.random.default_rng(13)
+    for trial in range(300):
+        sizes = rng.integers(0, 12, size=rng.integers(1, 9))         # curves of 0 to 11 points
+        sizes[0] = max(sizes[0], 1)
+        curve_start = np.r_[0, np.cumsum(sizes)].astype(np.int64)
+        curve_plane = np.sort(rng.integers(0, 5, size=len(sizes))).astype(np.int64)
+        near = rng.random(int(curve_start[-1])) < rng.uniform(0.2, 0.9)
+        got = _kernels.near_runs(near, curve_start, curve_plane)
+        want = _near_runs_numpy(near, curve_start, curve_plane)
+        for g, w in zip(got, want, strict=True):
+            assert g.dtype == np.int64 and np.array_equal(g, w), trial
+    # every point near: one piece per curve of 2 points or more
+    got = _kernels.near_runs(np.ones(5, bool), np.array([0, 1, 3, 5]), np.array([0, 0, 2]))
+    assert got[0].tolist() == [0, 2, 4] and got[1].tolist() == [1, 2, 3, 4] and got[3].tolist() == [0, 2]

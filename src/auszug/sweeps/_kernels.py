@@ -1366,14 +1366,20 @@ def ring_grid_within(rings, closed, box, off, shape, points, bound):  # pragma: 
     return out
 
 
+#: :func:`cut_near` passes over a cell whose end points' box lies farther than this from the plane: far above the
+#: round-off of a signed distance (1e-16 at the unit scale of the normalised mesh), far below an edge.
+CELL_SIDE_MARGIN = 1e-9
+
+
 @njit(cache=True)
 def edge_grid(v, edges, h):  # pragma: no cover - compiled
     """The edges binned by their midpoints in a uniform grid of cell size ``h``.
 
     Returns the grid's origin ``(3,)``, its cell counts ``(3,)``, the first entry of each cell
-    ``(c + 1,)`` and the edges cell after cell ``(e,)``, the longest edge, and the edges' end
-    points in the grid's order ``(6, e)`` (rows: the first end's x, y, z, the second's; the scan of
-    :func:`cut_near` reads them in a row instead of two vertices a scattered edge).
+    ``(c + 1,)`` and the edges cell after cell ``(e,)``, the longest edge, the edges' end points
+    in the grid's order ``(6, e)`` (rows: the first end's x, y, z, the second's; the scan of
+    :func:`cut_near` reads them in a row instead of two vertices a scattered edge), and per cell
+    the box of its edges' end points ``(c, 6)`` (min, max; inf, -inf for an empty cell).
     """
     n_e = len(edges)
     lo = np.full(3, np.inf)
@@ -1402,16 +1408,26 @@ def edge_grid(v, edges, h):  # pragma: no cover - compiled
         count[c] += count[c - 1]
     fill = count[:-1].copy()
     out = np.empty(n_e, np.int64)
-    ends = np.empty((6, n_e))
     for e in range(n_e):
-        q = fill[cell[e]]
-        out[q] = e
-        a, b = edges[e, 0], edges[e, 1]
-        for ax in range(3):
-            ends[ax, q] = v[a, ax]
-            ends[3 + ax, q] = v[b, ax]
+        out[fill[cell[e]]] = e
         fill[cell[e]] += 1
-    return lo, dims, count, out, longest, ends
+    # the end points and the cells' boxes in the grid's order: written in a row, cell after cell
+    ends = np.empty((6, n_e))
+    n_c = len(count) - 1
+    cell_box = np.empty((n_c, 6))
+    cell_box[:, :3] = np.inf
+    cell_box[:, 3:] = -np.inf
+    for c in range(n_c):
+        for q in range(count[c], count[c + 1]):
+            e = out[q]
+            a, b = edges[e, 0], edges[e, 1]
+            for ax in range(3):
+                xa, xb = v[a, ax], v[b, ax]
+                ends[ax, q] = xa
+                ends[3 + ax, q] = xb
+                cell_box[c, ax] = min(cell_box[c, ax], min(xa, xb))
+                cell_box[c, 3 + ax] = max(cell_box[c, 3 + ax], max(xa, xb))
+    return lo, dims, count, out, longest, ends, cell_box
 
 
 @njit(cache=True, inline="always")
@@ -1521,7 +1537,7 @@ def _room(pts, nrm, eid, used, need):  # pragma: no cover - compiled
 
 @njit(cache=True)
 def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_start, grid_edges, h, longest, pn, pd,
-             boxes, grid_ends):  # pragma: no cover - compiled
+             boxes, grid_ends, cell_box, grid_local):  # pragma: no cover - compiled
     """The cut curves of each plane that cross its box ``boxes[p] (6,)`` (min, max), as :func:`cut_fill` gives them.
 
     Every crossed edge whose cut point may lie in the box (its midpoint's cell within the box
@@ -1534,9 +1550,16 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
 
     Returns points, normals, edge ids, curve starts ``(c + 1,)``, curve planes ``(c,)`` and
     closed flags ``(c,)``. ``grid_ends (6, e)``: the grid's edges' end points (:func:`edge_grid`),
-    whose signed distances are the cutter's bit for bit (the same products and sums).
+    whose signed distances are the cutter's bit for bit (the same products and sums). With
+    ``grid_local (E,)`` not empty the grid is of a larger mesh sharing this mesh's vertices, this
+    mesh a part of it: the grid's edge ``e`` is this mesh's edge ``grid_local[e]``, passed over
+    where -1 (not of the part). ``cell_box (c, 6)``: per cell the box of its
+    edges' end points (:func:`edge_grid`); a cell whose box lies farther than :data:`CELL_SIDE_MARGIN`
+    on one side of the plane is passed over (every end point's signed distance has that sign
+    whatever the round-off, so no edge of it is crossed).
     """
     n_planes = len(pd)
+    local = len(grid_local) > 0
     x0, y0, z0 = grid_ends[0], grid_ends[1], grid_ends[2]
     x1, y1, z1 = grid_ends[3], grid_ends[4], grid_ends[5]
     cap = 1024
@@ -1575,23 +1598,31 @@ def cut_near(v, vn, edges, edge_faces, face_edges, grid_lo, grid_dims, grid_star
         comp_na.pop()
         comp_loop.pop()
         n_comp_edges = 0
-        half = 0.5 * h + g
-        reach = half * (abs(nx) + abs(ny) + abs(nz))
+        ax_, ay_, az_ = abs(nx), abs(ny), abs(nz)
         for ci in range(i0[0], i1[0] + 1):
             for cj in range(i0[1], i1[1] + 1):
                 for ck in range(i0[2], i1[2] + 1):
-                    cx = grid_lo[0] + (ci + 0.5) * h
-                    cy = grid_lo[1] + (cj + 0.5) * h
-                    cz = grid_lo[2] + (ck + 0.5) * h
-                    if abs(cx * nx + cy * ny + cz * nz - d) > reach:
-                        continue           # no edge of this cell reaches the plane
                     c = (ci * grid_dims[1] + cj) * grid_dims[2] + ck
+                    if grid_start[c] == grid_start[c + 1]:
+                        continue
+                    # the signed distances of the cell's end points lie within centre +- half-extent
+                    cx = 0.5 * (cell_box[c, 0] + cell_box[c, 3])
+                    cy = 0.5 * (cell_box[c, 1] + cell_box[c, 4])
+                    cz = 0.5 * (cell_box[c, 2] + cell_box[c, 5])
+                    ext = (0.5 * (cell_box[c, 3] - cell_box[c, 0]) * ax_ + 0.5 * (cell_box[c, 4] - cell_box[c, 1]) * ay_
+                           + 0.5 * (cell_box[c, 5] - cell_box[c, 2]) * az_)
+                    if abs(cx * nx + cy * ny + cz * nz - d) > ext + CELL_SIDE_MARGIN:
+                        continue           # every end point of this cell on one side of the plane
                     for q in range(grid_start[c], grid_start[c + 1]):
                         # _crossed of the edge from its end points stored in the grid's order
                         if (x0[q] * nx + y0[q] * ny + z0[q] * nz - d >= 0.0) == \
                                 (x1[q] * nx + y1[q] * ny + z1[q] * nz - d >= 0.0):
                             continue
                         e0 = grid_edges[q]
+                        if local:
+                            e0 = grid_local[e0]
+                            if e0 < 0:
+                                continue       # not an edge of this mesh (the grid of the mesh it is a part of)
                         if stamp[e0] == mark:
                             continue
                         # walk both ways from e0 to collect its curve's crossed edges
@@ -1727,9 +1758,10 @@ def box_part(v, faces, edges, edge_faces, face_edges, lo, hi):  # pragma: no cov
     """The faces whose three vertices lie in the box ``[lo, hi]``, their edges, the part's index maps and rows.
 
     Returns the kept faces ``(f,)`` and edges ``(e,)`` (increasing), the part's ``edge_faces (e, 2)``
-    (-1 for a face not kept) and ``face_edges (f, 3)`` (indices into the kept edges), and the kept
-    rows of ``faces`` and ``edges`` (as numpy's ``faces[keep]``, ``edges[used]``): one pass over
-    the vertices, the faces and the edges each.
+    (-1 for a face not kept) and ``face_edges (f, 3)`` (indices into the kept edges), the kept
+    rows of ``faces`` and ``edges`` (as numpy's ``faces[keep]``, ``edges[used]``), and each edge's
+    index among the kept edges ``(E,)`` (-1 for an edge not kept): one pass over the vertices, the
+    faces and the edges each.
     """
     n_v = len(v)
     inside = np.empty(n_v, np.bool_)
@@ -1777,7 +1809,7 @@ def box_part(v, faces, edges, edge_faces, face_edges, lo, hi):  # pragma: no cov
         f = keep[r]
         for k in range(3):
             fe[r, k] = edge_index[face_edges[f, k]]
-    return keep, used, ef, fe, sub_faces, sub_edges
+    return keep, used, ef, fe, sub_faces, sub_edges, edge_index
 
 
 # ------------------------------------------------------------------------------ per-face passes of the fit
@@ -1859,6 +1891,44 @@ def apply_maps(r, tr, x):  # pragma: no cover - compiled
                 s = 0.0 + ((r[k, i, 0] * x0 + r[k, i, 2] * x2) + r[k, i, 1] * x1)
                 out[k, p, i] = s + tr[k, i]
     return out
+
+
+@njit(cache=True)
+def near_runs(near, curve_start, curve_plane):  # pragma: no cover - compiled
+    """The runs of near points ``near (m,)`` of each curve, of 2 points or more, as pieces.
+
+    Curve ``j`` is points ``curve_start[j]:curve_start[j + 1]``, of plane ``curve_plane[j]``; a run
+    is a maximal stretch of consecutive near points of one curve. Returns the pieces' starts
+    ``(q + 1,)`` into the runs' points, the runs' point indices ``(r,)`` (curve after curve, in
+    order), each such point's plane ``(r,)`` and each piece's plane ``(q,)``.
+    """
+    m = len(near)
+    idx = np.empty(m, np.int64)
+    plane_of = np.empty(m, np.int64)
+    starts = np.zeros(m + 1, np.int64)
+    piece_plane = np.empty(m, np.int64)
+    n_p = 0
+    pos = 0
+    for j in range(len(curve_start) - 1):
+        pl = curve_plane[j]
+        i = curve_start[j]
+        end = curve_start[j + 1]
+        while i < end:
+            if not near[i]:
+                i += 1
+                continue
+            a = i
+            while i < end and near[i]:
+                i += 1
+            if i - a >= 2:
+                for t in range(a, i):
+                    idx[pos] = t
+                    plane_of[pos] = pl
+                    pos += 1
+                piece_plane[n_p] = pl
+                n_p += 1
+                starts[n_p] = pos
+    return starts[:n_p + 1].copy(), idx[:pos].copy(), plane_of[:pos].copy(), piece_plane[:n_p].copy()
 
 
 @njit(cache=True)

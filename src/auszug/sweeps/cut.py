@@ -10,7 +10,7 @@ is dropped).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numba
 import numpy as np
@@ -139,14 +139,20 @@ class EdgeGrid:
     cell_start : (c + 1,) int array
         Cell ``i``'s edges are ``edges[cell_start[i]:cell_start[i + 1]]`` (cells x-major).
     edges : (e,) int array
-        Edge indices, cell after cell.
+        Edge indices, cell after cell (of the larger mesh for a part's grid, :meth:`part`).
     cell : float
         Cell size.
     longest : float
-        The longest edge of the mesh.
+        The longest edge of the mesh (of the larger mesh for a part's grid).
     ends : (6, e) float array
         The edges' end points in the order of ``edges`` (rows: the first end's x, y, z, then the
         second's), read by :func:`cut_near`'s scan in a row.
+    cell_box : (c, 6) float array
+        Per cell the box of its edges' end points (min, max corners; inf, -inf for an empty
+        cell): :func:`cut_near` passes over the cells whose box lies on one side of a plane.
+    local : (E,) int array
+        Empty for a mesh's own grid; for a part's grid (:meth:`part`) each of the larger mesh's
+        edges' index among the part's (-1 for an edge not in the part).
     """
 
     origin: Array
@@ -156,12 +162,29 @@ class EdgeGrid:
     cell: float
     longest: float
     ends: Array
+    cell_box: Array
+    local: IntArray = field(default_factory=lambda: np.zeros(0, np.int64))
 
     @classmethod
     def of(cls, mesh: SweepMesh, cell: float = GRID_CELL) -> "EdgeGrid":
         """The grid of ``mesh``'s edges (one compiled pass)."""
-        lo, dims, start, order, longest, ends = _kernels.edge_grid(mesh.vertices, mesh.edges, float(cell))
-        return cls(lo, dims, start, order, float(cell), float(longest), ends)
+        lo, dims, start, order, longest, ends, cell_box = _kernels.edge_grid(mesh.vertices, mesh.edges, float(cell))
+        return cls(lo, dims, start, order, float(cell), float(longest), ends, cell_box)
+
+    def part(self, edge_index: IntArray) -> "EdgeGrid":
+        """The grid for a part of its mesh: the part's edges in the same cells, no new binning.
+
+        The part shares the mesh's vertices and keeps some of its edges; ``edge_index (E,)`` is
+        each of the mesh's edges' index among the part's (-1 for an edge not in the part, as
+        :func:`~auszug.sweeps._kernels.box_part` gives it). :func:`cut_near` on the part with
+        this grid gives the same curves in a box as with the part's own grid (:meth:`of`): it
+        seeds from the same crossed edges of the part in the cells near the box (the longest
+        edge, hence the cells' margin, is the whole mesh's, no shorter) and passes over the
+        others; it may find other curves without a point in the box.
+        """
+        if len(self.local):
+            raise ValueError("a part's grid: take the part of its whole mesh's grid")
+        return replace(self, local=np.ascontiguousarray(edge_index, dtype=np.int64))
 
 
 def cut_near(mesh: SweepMesh, normals: ArrayLike, offsets: ArrayLike, boxes: ArrayLike,
@@ -194,5 +217,5 @@ def cut_near(mesh: SweepMesh, normals: ArrayLike, offsets: ArrayLike, boxes: Arr
     g = EdgeGrid.of(mesh) if grid is None else grid
     pts, nrm, eid, start, plane, closed = _kernels.cut_near(
         mesh.vertices, mesh.normals, mesh.edges, mesh.edge_faces, mesh.face_edges, g.origin, g.dims, g.cell_start,
-        g.edges, g.cell, g.longest, n, d, b, g.ends)
+        g.edges, g.cell, g.longest, n, d, b, g.ends, g.cell_box, g.local)
     return Cuts(n, d, pts, nrm, eid, start, plane, closed)

@@ -62,6 +62,7 @@ from auszug.sweeps._kernels import (
     grown_states,
     inverse_maps_at,
     kabsch_sums,
+    near_runs,
     polyline_closest_chunked,
     rotations_of,
     twist_steps,
@@ -426,25 +427,14 @@ def _recut_knots(mesh: SweepMesh, profile: Array, motion: Motion, reach: float,
     if c.n_curves == 0:
         return np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64)
     near = curves_near_profiles(c.points, c.curve_start, c.curve_plane, np.ascontiguousarray(moved), reach)
-    # each stretch of a curve near the moved profile is a piece of its own: joined, a curve
-    # broken by a hole in the mesh would bridge the hole by a chord
-    curve_of = np.repeat(np.arange(c.n_curves), np.diff(c.curve_start))
-    first = np.zeros(len(near), bool)
-    first[c.curve_start[:-1]] = True
-    begins = near & (first | ~np.r_[False, near[:-1]])
-    ends = near & (np.r_[first[1:], True] | ~np.r_[near[1:], False])
-    a = np.flatnonzero(begins)
-    b = np.flatnonzero(ends) + 1
-    keep = b - a >= 2
-    a, b = a[keep], b[keep]
-    if not len(a):
+    # each stretch of a curve near the moved profile (of 2 points or more) is a piece of its own: joined, a curve
+    # broken by a hole in the mesh would bridge the hole by a chord (one compiled pass)
+    starts, idx, k, knot = near_runs(near, c.curve_start, np.ascontiguousarray(c.curve_plane, dtype=np.int64))
+    if not len(knot):
         return np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64)
-    starts = np.concatenate([[0], np.cumsum(b - a)]).astype(np.int64)
-    idx = np.arange(starts[-1]) + np.repeat(a - starts[:-1], b - a)
-    k = c.curve_plane[curve_of[idx]]
     # compiled, as np.einsum("nji,nj->ni", R[k], points[idx] - T[k]) bit for bit
     back = inverse_maps_at(motion.rotation, motion.translation, k, c.points, idx)
-    return back, starts, c.curve_plane[curve_of[a]].astype(np.int64)
+    return back, starts, knot
 
 
 @dataclass(frozen=True)
@@ -576,15 +566,16 @@ def general_patch(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
 def _general_fit(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
                  areas: Array | None = None, tree: MeshTree | None = None,
                  times: Array | None = None, closed: bool = False,
-                 faces: bool = True) -> GeneralSweep | tuple[GeneralSweep, SweptError]:
+                 faces: bool = True, grid: EdgeGrid | None = None) -> GeneralSweep | tuple[GeneralSweep, SweptError]:
     """:func:`general_patch`, or without the covered faces and with the fit error.
 
     With ``faces`` False the covered faces are not found (coverage nan, no faces) and the fit
-    error is returned with the sweep (:func:`_covered` finds them later).
+    error is returned with the sweep (:func:`_covered` finds them later). ``grid``: the edge grid
+    of the local cuts (:func:`~auszug.sweeps.cut.cut_near`), built from ``mesh`` if not given.
     """
     a = face_areas(mesh.vertices, mesh.faces) if areas is None else areas
     tr_ = MeshTree(mesh.vertices, mesh.faces) if tree is None else tree
-    grid = EdgeGrid.of(mesh)       # the local cuts of every round
+    grid = EdgeGrid.of(mesh) if grid is None else grid      # the local cuts of every round
     best: tuple[Array, Motion, Array, SweptError] | None = None
     ribs: Array | None = parts
     n_rounds = params.general_iterations
@@ -939,21 +930,23 @@ def motion_planes(profile: Array, motion: Motion, per_knot: int = 1) -> tuple[Ar
     return profile_planes(profile, motion, t)
 
 
-def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, IntArray]:
-    """The part of the mesh whose faces lie in the box of ``points`` grown by ``margin``, and its faces' indices.
+def _around(mesh: SweepMesh, points: Array, margin: float) -> tuple[SweepMesh, IntArray, IntArray]:
+    """The part of the mesh whose faces lie in the box of ``points`` grown by ``margin``, its faces' indices.
 
     The part keeps the mesh's vertex array (its faces index it as before); only its faces and
     the edges of those faces are selected, so cutting it walks just the part, and nothing is
-    recomputed but the index maps (no new topology, no new vertex normals).
+    recomputed but the index maps (no new topology, no new vertex normals). Also returns each of
+    the mesh's edges' index among the part's ``(E,)`` (-1 for one not kept; for
+    :meth:`~auszug.sweeps.cut.EdgeGrid.part`).
     """
     from dataclasses import replace
 
     lo, hi = points.reshape(-1, 3).min(axis=0) - margin, points.reshape(-1, 3).max(axis=0) + margin
     # one compiled pass: the kept faces and edges, their index maps and rows (numpy's fancy indexing took 0.5 ms
     # of a part of 20k faces)
-    keep, _, edge_faces, face_edges, faces, edges = box_part(mesh.vertices, mesh.faces, mesh.edges, mesh.edge_faces,
-                                                            mesh.face_edges, lo, hi)
-    return replace(mesh, faces=faces, edges=edges, edge_faces=edge_faces, face_edges=face_edges), keep
+    keep, _, edge_faces, face_edges, faces, edges, edge_index = box_part(mesh.vertices, mesh.faces, mesh.edges,
+                                                                        mesh.edge_faces, mesh.face_edges, lo, hi)
+    return replace(mesh, faces=faces, edges=edges, edge_faces=edge_faces, face_edges=face_edges), keep, edge_index
 
 
 def _per_component(fams: tuple[Family, ...], mesh: SweepMesh, cuts: Cuts, mov: Movability,
@@ -1027,6 +1020,7 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
     tree = MeshTree.of(mesh)
     grown = np.zeros(len(mesh.faces), bool)
     skipped = n_refined = dropped = 0
+    whole_grid: EdgeGrid | None = None
     # a family's ordered ribs may jump across a gap (parallel cuts of two parallel stretches of a
     # border): each stretch between such jumps is fitted on its own
     stretches = [(q, r.family.closed) for r in ribs for q in split_ribs(rib_parts(r, plots), params.rib_jump)
@@ -1038,8 +1032,12 @@ def general_stages(mesh: SweepMesh, cuts: Cuts, mov: Movability, params: SweepPa
             continue
         # the sweep between the first and the last rib stays near them: fit it to that part of the
         # mesh (distances to a part are never smaller than to the whole: the fit error is safe)
-        sub, faces = _around(mesh, parts, params.l_min / 4 + 4 * params.eps_prox)
-        fitted = _general_fit(sub, parts, params, areas[faces], tree, closed=closed, faces=False)
+        sub, faces, edge_index = _around(mesh, parts, params.l_min / 4 + 4 * params.eps_prox)
+        # the part's local cuts on the mesh's edge grid (binned once per stage): the same curves as on its own grid
+        if whole_grid is None:
+            whole_grid = EdgeGrid.of(mesh)
+        fitted = _general_fit(sub, parts, params, areas[faces], tree, closed=closed, faces=False,
+                              grid=whole_grid.part(edge_index))
         assert isinstance(fitted, tuple)
         g0, err0 = fitted
         bound = params.fit_factor * params.eps_prox

@@ -111,17 +111,23 @@ def test_parts_off_gives_no_patch_on_the_border():
     their arcs since sweeps-window7: the border's arcs run tangentially into its jambs) only rotations
     about the window's normal through the border arcs' centres.
 
-    The coarse pass fits one sweep whose profile doubles back on itself (its swept surface overlaps
-    itself, so the fit check's reciprocal test counts every swept point farther than eps_prox as beyond
-    the mesh: fit error 4.997e-3, 0.021 without that test) and whose profile planes lie 11-90 deg off its
-    path's normal planes: the refinement keeps none of its knots and the motion stage drops it (before
-    sweeps-tree3 it was left out only by its sweep length, 0.126 against 0.2, and changes of the rib
-    normals at ties grew it into 2 patches)."""
+    Before sweeps-tree4 the coarse pass fitted a sweep whose profile doubles back on itself (22 points,
+    0.071 long over an extent of 0.042): its swept surface overlaps itself, and the reciprocal test counted
+    every swept point farther than eps_prox as beyond the mesh (fit error 4.997e-3, 0.021 without that
+    test; the trim kept all 22 points, their paths' far points discounted too). The sheets there cross the
+    mesh instead of lying along it, so with ``reciprocal_angle`` (30 deg) the trim keeps 5 of 51 points (22
+    without the normal test), the fitted sweep is trimmed again to 2 points (0.0045 long, fit error
+    2.9e-3) covering 0.0087 of the area, and the fit stage leaves it out (below ``min_patch_area``, 0.01).
+    (sweeps-tree3's rule, a sweep whose refinement keeps no knot is dropped, stopped the doubling-back
+    sweep before; changes of the rib normals at ties grew it into 2 patches, by its fit error capped at
+    eps_prox.)"""
     v, f, *_ = _border()
     r = detect((v, f), DEFAULT.with_(max_parts=0, arc_axes=0))
     assert r.patches == () and r.stage("parts") is None
     motion = [s for s in r.stages if s.name == "motion"]
-    assert len(motion) == 2 and motion[1].numbers["dropped"] == 1 and motion[1].numbers["candidates"] == 0
+    assert len(motion) == 2 and motion[1].numbers["dropped"] == 0 and motion[1].numbers["candidates"] == 1
+    fit = r.stage("fit")
+    assert fit is not None and fit.numbers["candidates"] == 1 and fit.numbers["patches"] == 0
     r = detect((v, f), DEFAULT.with_(max_parts=0))
     assert r.stage("parts") is None
     centres = _arc_centres()

@@ -612,7 +612,7 @@ def _general_fit(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
         # pieces lie on the mesh): the fit error queries only the swept points that may be the farthest
         profile, upper = improve_bounded(profile, back, starts, knot, len(motion), params.eps_prox)
         # the fit error in every round, the covered faces only of the round kept
-        err = swept_error(profile, closed, motion, params.eps_prox, tr_, upper)
+        err = swept_error(profile, closed, motion, params.eps_prox, tr_, upper, params.reciprocal_angle)
         if best is None or err.fit_error < best[3].fit_error:
             best = (profile, motion, vel, err)
         if i + 1 < n_rounds:
@@ -1139,7 +1139,7 @@ def _refined(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTr
     else:
         motion, upper = g.motion, None
     # the same fit error as without the bounds, fewer closest points (swept_error)
-    err = swept_error(g.profile, g.closed, motion, params.eps_prox, tree, upper)
+    err = swept_error(g.profile, g.closed, motion, params.eps_prox, tree, upper, params.reciprocal_angle)
     if err.fit_error > params.fit_factor * params.eps_prox:
         return g, False
     fit = swept_coverage(mesh, err, params.eps_prox, areas, distances=False)
@@ -1164,7 +1164,7 @@ def _filled(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTre
     profile, added = fill_corners(g.profile, g.closed, back, starts, params.corner_tolerance, params.eps_prox / 2)
     if not len(added):
         return g
-    err = swept_error(profile, g.closed, g.motion, params.eps_prox, tree)
+    err = swept_error(profile, g.closed, g.motion, params.eps_prox, tree, angle=params.reciprocal_angle)
     if err.fit_error > params.fit_factor * params.eps_prox:
         return g
     fit = swept_coverage(mesh, err, params.eps_prox, areas, distances=False)
@@ -1226,16 +1226,17 @@ def _closest_on_cut(c: Cuts, plane: int, target: Array) -> tuple[Array, Array, N
     return None if not np.isfinite(dist).any() else (dist, cp, at_end)
 
 
-def trajectory_error(profile: Array, motion: Motion, tree: MeshTree, tol: float = 0.0) -> Array:
+def trajectory_error(profile: Array, motion: Motion, tree: MeshTree, tol: float = 0.0,
+                     angle: float = DEFAULT.reciprocal_angle) -> Array:
     """Largest distance ``(n,)`` to the mesh of each profile point's path (at the knots and between them).
 
     Positions beyond the mesh do not count: closest point on its boundary (past its end, over a
-    hole), or, when farther than ``tol``, on another part of the swept surface
-    (:meth:`~auszug.sweeps.patches.MeshTree.interior_distance`).
+    hole), or, when farther than ``tol``, on another part of the swept surface that lies along the
+    mesh there (within ``angle`` degrees, :meth:`~auszug.sweeps.patches.MeshTree.interior_distance`).
     """
     t = np.sort(np.concatenate([motion.t, (motion.t[:-1] + motion.t[1:]) / 2]))
     x = motion.apply(profile, t)
-    d = tree.interior_distance(x.reshape(-1, 3), RingTree(x), tol).reshape(len(t), len(profile))
+    d = tree.interior_distance(x.reshape(-1, 3), RingTree(x), tol, angle).reshape(len(t), len(profile))
     out: Array = d.max(axis=0)
     return out
 
@@ -1284,7 +1285,8 @@ def extend_profile(mesh: SweepMesh, profile: Array, motion: Motion, tree: MeshTr
         if np.linalg.norm(back[0] - profile[0]) + np.linalg.norm(back[-1] - profile[-1]) > \
                 np.linalg.norm(back[-1] - profile[0]) + np.linalg.norm(back[0] - profile[-1]):
             back = back[::-1]
-        a, b = _longest_run(trajectory_error(back, motion, tree, params.eps_prox) <= params.eps_prox)
+        traj = trajectory_error(back, motion, tree, params.eps_prox, params.reciprocal_angle)
+        a, b = _longest_run(traj <= params.eps_prox)
         if b - a >= 2 and length(back[a:b]) > length(best):
             best = back[a:b]
     return best
@@ -1459,7 +1461,8 @@ def grown_patch(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: Mes
     if len(grown) < 2:
         return g
     h = general_patch(mesh, grown.ribs, params.with_(general_iterations=2), areas, tree, grown.t, g.closed)
-    a, b = _longest_run(trajectory_error(h.profile, h.motion, tree, params.eps_prox) <= params.eps_prox)
+    traj = trajectory_error(h.profile, h.motion, tree, params.eps_prox, params.reciprocal_angle)
+    a, b = _longest_run(traj <= params.eps_prox)
     if b - a >= 2 and b - a < len(h.profile) and not h.closed:    # a closed profile is kept whole
         fit = fit_patch(mesh, h.profile[a:b], False, h.motion, params, areas, tree)
         h = GeneralSweep(h.profile[a:b], h.motion, h.velocities, fit.fit_error, fit.coverage, fit.faces)
@@ -1514,7 +1517,7 @@ def _translate(mesh: SweepMesh, p0: Array, m: Array, d0: float, params: SweepPar
     rot = np.repeat(np.eye(3)[None], len(keys), axis=0)
     mot = Motion(np.arange(len(keys), dtype=float), rot, shifts - shifts[0])
     start = improve_flat(start, *_recut(mesh, start, mot, 4 * params.eps_prox), params.eps_prox)
-    a, b = _longest_run(trajectory_error(start, mot, tree, params.eps_prox) <= params.eps_prox)
+    a, b = _longest_run(trajectory_error(start, mot, tree, params.eps_prox, params.reciprocal_angle) <= params.eps_prox)
     if b - a < 2:
         return None
     start = start[a:b]

@@ -45,6 +45,7 @@ from auszug.sweeps._kernels import (
     ring_grid_nearest,
     ring_grid_within,
     triangle_areas,
+    unit_face_normals,
 )
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import KinematicAxis
@@ -308,7 +309,7 @@ class MeshTree:
 
     def interior_distance(self, points: ArrayLike,
                           surface: MeshTree | RingTree | tuple[Array, IntArray] | None = None,
-                          tol: float = 0.0) -> Array:
+                          tol: float = 0.0, angle: float = DEFAULT.reciprocal_angle) -> Array:
         """Distances ``(n,)`` to the mesh, 0 where a point lies beyond the mesh.
 
         A point whose closest point is on the mesh's boundary lies beyond the mesh (past its end or
@@ -322,6 +323,13 @@ class MeshTree:
         with partial overlap). Over a hole in a mesh whose profile folds (a torus) the closest mesh
         point is often on the fold's other side, not on the hole's rim; where the sweep misses
         the mesh, the closest mesh point lies off the sweep and the distance counts.
+
+        That other part must lie *along* the mesh there: the swept surface's normal at the point
+        nearest the closest mesh point (its triangle's) within ``angle`` degrees of the mesh's normal
+        at the closest point (the normal of the face found; either orientation;
+        :attr:`~auszug.sweeps.params.SweepParams.reciprocal_angle`). A swept surface that folds
+        over itself crosses the mesh where its other sheet meets it and discounts nothing there
+        (180: no normal test).
         """
         p = np.asarray(points, float).reshape(-1, 3)
         d, face, c = self.query(p)
@@ -340,13 +348,20 @@ class MeshTree:
         if surface is not None and (not isinstance(surface, tuple) or len(surface[1])):
             far = np.flatnonzero(out > tol)
             if len(far):
+                if isinstance(surface, tuple):
+                    surface = MeshTree(surface[0], surface[1])
                 if isinstance(surface, RingTree):
-                    ds, _, back = surface.query(c[far], tol)      # only the distances within tol count
-                elif isinstance(surface, MeshTree):
-                    ds, _, back = surface.query(c[far])
+                    ds, sf, back = surface.query(c[far], tol)     # only the distances within tol count
                 else:
-                    ds, back = closest_distance(c[far], surface[0], surface[1])
+                    ds, sf, back = surface.query(c[far])
                 other = (ds <= tol) & (np.linalg.norm(back - p[far], axis=1) >= 0.5 * d[far])
+                if angle < 180.0 and other.any():
+                    at = np.flatnonzero(other)
+                    sv = np.ascontiguousarray(surface.vertices)
+                    ns = unit_face_normals(sv, surface.faces, np.ascontiguousarray(sf[at]))
+                    nm = unit_face_normals(self.vertices, self.faces, np.ascontiguousarray(face[far[at]]))
+                    along = np.abs(np.einsum("ki,ki->k", ns, nm)) >= np.cos(np.radians(angle))
+                    other[at[~along]] = False
                 out = out.copy()
                 out[far[other]] = 0.0
         return out
@@ -769,7 +784,7 @@ def fit_patch(mesh: SweepMesh, profile: Array, closed: bool, motion: Motion,
     :func:`swept_error` followed by :func:`swept_coverage`.
     """
     err = swept_error(profile, closed, motion, params.eps_prox,
-                      tree if tree is not None else MeshTree(mesh.vertices, mesh.faces))
+                      tree if tree is not None else MeshTree(mesh.vertices, mesh.faces), angle=params.reciprocal_angle)
     return swept_coverage(mesh, err, params.eps_prox, areas)
 
 
@@ -797,11 +812,12 @@ FIRST_QUERIED = 64
 
 
 def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: MeshTree,
-                upper: Array | None = None) -> SweptError:
+                upper: Array | None = None, angle: float = DEFAULT.reciprocal_angle) -> SweptError:
     """The swept surface (chords within ``eps / 10``) and its largest distance to the mesh of ``tree``.
 
     Swept points beyond the mesh do not count (:meth:`MeshTree.interior_distance` with the
-    swept surface's own tree for the reciprocal test).
+    swept surface's own tree for the reciprocal test and ``angle``, its
+    :attr:`~auszug.sweeps.params.SweepParams.reciprocal_angle`).
 
     ``upper (len(motion), n)``, optional, bounds each profile point's distance to the mesh at each
     of the motion's knots from above (inf where unknown). Only the largest distance is kept, so
@@ -815,7 +831,7 @@ def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: 
     if len(sv) == 0:
         return SweptError(sv, swept, float("inf"))
     if upper is None:
-        return SweptError(sv, swept, float(tree.interior_distance(sv, swept, eps).max()))
+        return SweptError(sv, swept, float(tree.interior_distance(sv, swept, eps, angle).max()))
     ub = np.full(rings.shape[:2], np.inf)
     k = np.searchsorted(motion.t, t)
     at = (k < len(motion.t)) & (motion.t[np.minimum(k, len(motion.t) - 1)] == t)
@@ -829,17 +845,17 @@ def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: 
         # sort of -ub puts them first), then the others of a bound above the error found, by decreasing bound
         # (ties in index order); filtering before the stable sort keeps the same order
         first = np.flatnonzero(unknown)
-        err = float(tree.interior_distance(sv[first], swept, eps).max())
+        err = float(tree.interior_distance(sv[first], swept, eps, angle).max())
         rest = np.flatnonzero(~unknown & (ub > err))
         rest = rest[np.argsort(-ub[rest], kind="stable")]
     else:
         order = np.argsort(-ub, kind="stable")
         first = order[:max(FIRST_QUERIED, int(np.sum(~np.isfinite(ub))))]
-        err = float(tree.interior_distance(sv[first], swept, eps).max())
+        err = float(tree.interior_distance(sv[first], swept, eps, angle).max())
         rest = order[len(first):]
         rest = rest[ub[rest] > err]
     if len(rest):
-        err = max(err, float(tree.interior_distance(sv[rest], swept, eps).max()))
+        err = max(err, float(tree.interior_distance(sv[rest], swept, eps, angle).max()))
     return SweptError(sv, swept, err)
 
 

@@ -573,7 +573,9 @@ def test_grown_states_agree_with_libigls_face_wherever_known(hole):
     """The grid's answer whether a point's nearest faces are flagged (the grown check of the general stages):
     where it is known (1 or 0) it is the flag of libigl's closest face, at ties too (points on edges and at
     vertices, where the tree picks one of the faces); at the ties between flagged and unflagged faces it is
-    unknown; and `_held` decides as the share of libigl's faces does, for shares around the threshold."""
+    unknown, and there the closest point lies on a flagged face (`MeshTree.on_faces`: an edge or a vertex
+    lies on every face around it); `_held` decides as the share of `on_faces` does, for shares around the
+    threshold (sweeps-tree4: not the share of the faces the search returned, which depends on ties)."""
     from auszug.sweeps.general import TIE_MARGIN, _held
 
     mesh = _mesh(hole)
@@ -597,8 +599,85 @@ def test_grown_states_agree_with_libigls_face_wherever_known(hole):
     # ties between flagged and unflagged faces exist (the border's edges and vertices) and are left unknown
     assert 0 < (~known).sum() < 0.2 * len(pts)
     assert known[600:].mean() > 0.95           # inside faces and off the mesh nearly always known
+    on = tree.on_faces(pts, flag)
+    assert np.array_equal(on[known], st[known] == 1) and on[~known].all()
     for part in (pts[:300].reshape(10, 30, 3), pts[:500].reshape(20, 25, 3), pts[600:1100].reshape(5, 100, 3)):
-        share = float(np.mean(flag[tree.query(part)[1]]))
+        share = float(np.mean(tree.on_faces(part.reshape(-1, 3), flag)))
         for overlap in (0.05, max(share - 1e-3, 1e-3), share, min(share + 1e-3, 1.0), 0.8, 1.0):
             assert _held(tree, part, flag, overlap, True) == (share >= overlap)
             assert _held(tree, part, flag, overlap, False) == (share >= overlap)
+
+
+def _tie_cases(mesh, n: int = 40, seed: int = 5):
+    """Points whose closest points lie on mesh edges and vertices (ties), with every face equally near.
+
+    Points on (and just off, along the surface's normal) random edges' midpoints and random
+    vertices, boundary ones among them; for each, the faces within 1e-12 of the least distance
+    by a brute-force search of every face (libigl's distance to one face at a time) and their
+    closest points."""
+    rng = np.random.default_rng(seed)
+    v, f = mesh.vertices, mesh.faces
+    e = mesh.edges[rng.choice(len(mesh.edges), n, replace=False)]
+    bnd = mesh.edges[(mesh.edge_faces < 0).any(axis=1)]
+    e = np.vstack([e, bnd[rng.choice(len(bnd), 8, replace=False)]])
+    at = np.vstack([0.5 * (v[e[:, 0]] + v[e[:, 1]]), v[rng.choice(len(v), n, replace=False)], v[bnd[:8, 0]]])
+    nrm = mesh.normals[np.r_[e[:, 0], rng.choice(len(v), n, replace=False), bnd[:8, 0]]]
+    pts = np.vstack([at, at + 0.01 * nrm, at - 0.01 * nrm])
+    dist = np.column_stack([closest_distance(pts, v, f[[j]])[0] for j in range(len(f))])     # (q, m)
+    cps = [closest_distance(pts, v, f[[j]])[1] for j in range(len(f))]
+    cases = []
+    for i in range(len(pts)):
+        tied = np.flatnonzero(dist[i] <= dist[i].min() + 1e-12)
+        cases.append((pts[i], dist[i].min(), tied, [cps[j][i] for j in tied]))
+    return cases
+
+
+class _Forced(MeshTree):
+    """A MeshTree whose query returns given faces and closest points (one tie's answer)."""
+
+    def answer(self, d, face, c):
+        self._forced = (np.asarray(d, float), np.asarray(face, np.int64), np.asarray(c, float))
+
+    def query(self, points):
+        d, face, c = self._forced
+        return d.copy(), face.copy(), c.copy()
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_mesh_tree_answers_do_not_depend_on_which_tied_face_the_search_returns(hole):
+    """The rib normals, the fit error's beyond-the-mesh test and the grown-patch test take the closest
+    point's feature (face, edge or vertex), not the face the search returned: at a tie every face
+    equally near gives the same answer (sweeps-build9: a different search's choices moved fit errors
+    and added patches on the tracery border)."""
+    from auszug.sweeps.general import _around
+
+    mesh = _mesh(hole)      # a part of it near one end: the brute-force search is of every face
+    near = np.linalg.norm(mesh.vertices[mesh.faces].mean(axis=1) - mesh.vertices[0], axis=1) < 0.25
+    mesh = _around(mesh, mesh.vertices[mesh.faces[near]].reshape(-1, 3), 0.0)[0]
+    cases = _tie_cases(mesh)
+    assert sum(len(t) >= 2 for _, _, t, _ in cases) >= 40         # real ties, on edges and at vertices
+    assert sum(len(t) >= 3 for _, _, t, _ in cases) >= 10
+    tree = _Forced(mesh.vertices, mesh.faces)
+    mask = np.random.default_rng(3).random(len(mesh.faces)) < 0.5
+    bv = np.zeros(len(mesh.vertices), bool)
+    bv[mesh.edges[(mesh.edge_faces < 0).any(axis=1)].ravel()] = True
+    n_beyond = 0
+    for p, d, tied, cps in cases:
+        got = []
+        for j, c in zip(tied, cps):
+            tree.answer([d], [j], [c])
+            got.append((tree.normals(p[None])[0], tree.interior_distance(p[None])[0],
+                        bool(tree.on_faces(p[None], mask)[0])))
+        for g in got[1:]:
+            assert np.array_equal(g[0], got[0][0]) and g[1] == got[0][1] and g[2] == got[0][2]
+        # the normal is one of the tied faces', the grown test true iff one of them is in the mask
+        fn = np.cross(*(mesh.vertices[mesh.faces[tied][:, k]] - mesh.vertices[mesh.faces[tied][:, 0]] for k in (1, 2)))
+        fn /= np.linalg.norm(fn, axis=1, keepdims=True)
+        assert np.abs(fn - got[0][0]).max(axis=1).min() <= 1e-12
+        assert got[0][2] == bool(mask[tied].any())
+        # beyond the mesh (0) exactly where the closest point is at a boundary vertex or on a boundary edge
+        on_bv = any(np.linalg.norm(cps[0] - mesh.vertices[k]) <= 1e-9 and bv[k] for k in mesh.faces[tied].ravel())
+        if on_bv:
+            n_beyond += 1
+            assert got[0][1] == 0.0
+    assert n_beyond >= 8

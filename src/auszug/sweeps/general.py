@@ -65,7 +65,6 @@ from auszug.sweeps._kernels import (
     polyline_closest_chunked,
     rotations_of,
     twist_steps,
-    unit_face_normals,
 )
 from auszug.sweeps.cut import Cuts, EdgeGrid, cut, cut_near
 from auszug.sweeps.matching import (
@@ -355,19 +354,8 @@ def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
 
 
 def _normals_at(mesh: SweepMesh, points: Array, tree: MeshTree) -> Array:
-    """Unit face normals of the mesh at the closest points of ``points (..., 3)``."""
-    _, face, _ = tree.query(points)
-    return _face_normals(tree, face).reshape(points.shape)
-
-
-def _face_normals(tree: MeshTree, face: IntArray) -> Array:
-    """Unit normals ``(k, 3)`` of the tree's faces ``face (k,)``.
-
-    The tree's own faces: it may be of the whole mesh where the caller's mesh is a part.
-    """
-    # compiled: np.cross(v1 - v0, v2 - v0) over np.maximum(its norm, 1e-300), bit for bit
-    out: Array = unit_face_normals(tree.vertices, tree.faces, np.ascontiguousarray(face, dtype=np.int64))
-    return out
+    """Unit normals of the mesh at the closest points of ``points (..., 3)`` (:meth:`MeshTree.normals`: ties aside)."""
+    return tree.normals(points)
 
 
 #: :func:`_plane_of`'s last points and answer: one profile's plane is asked for by the recut, both refinement
@@ -1096,14 +1084,15 @@ TIE_MARGIN = 1e-9
 
 
 def _held(tree: MeshTree, parts: Array, grown: NDArray[np.bool_], overlap: float, grid: bool) -> bool:
-    """Whether at least ``overlap`` of the points ``parts (..., 3)`` have a grown closest face (``grown (m,)``).
+    """Whether the closest points of at least ``overlap`` of the points ``parts (..., 3)`` lie on grown faces (``grown (m,)``).
 
-    The share over the faces ``tree.query(parts)`` returns. With ``grid`` (the tree's face grid
-    is built: the motion's refinement uses it) the points' nearest faces are found on the grid
-    first (:func:`~auszug.sweeps._kernels.grown_states`): a point whose faces within
-    :data:`TIE_MARGIN` of its nearest are all grown, or none, has that answer whichever of them the
-    tree returns at a tie; the tree is asked only where the points of unknown answer could decide
-    (the same answer, fewer queries: most families held by a grown patch are held wholly).
+    A closest point on an edge or at a vertex lies on every face around it
+    (:meth:`~auszug.sweeps.patches.MeshTree.on_faces`): the answer does not depend on which of them
+    a search returns at a tie. With ``grid`` (the tree's face grid is built) the points' nearest
+    faces are found on the grid first (:func:`~auszug.sweeps._kernels.grown_states`): a point whose
+    faces within :data:`TIE_MARGIN` of its nearest are all grown (none) is on (off) the grown faces;
+    the tree is asked only where the points of a mixed answer could decide (fewer queries: most
+    families held by a grown patch are held wholly).
     """
     if grid:
         lo, dims, h, start, entries, fbox = tree.face_grid()
@@ -1115,7 +1104,7 @@ def _held(tree: MeshTree, parts: Array, grown: NDArray[np.bool_], overlap: float
             return True
         if (on + unknown) / n < overlap:
             return False
-    return float(np.mean(grown[tree.query(parts)[1]])) >= overlap
+    return float(np.mean(tree.on_faces(parts.reshape(-1, 3), grown))) >= overlap
 
 
 def _refined(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTree,

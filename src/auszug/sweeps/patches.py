@@ -201,6 +201,10 @@ FACE_GRID_CELL = 1.5
 #: :meth:`MeshTree.face_grid` has at most this many cells per face (the cell grows on a sparse mesh).
 FACE_GRID_CELLS = 8
 
+#: A closest point this near a face's corner (side) lies on that vertex (edge): :meth:`MeshTree.normals`,
+#: :meth:`MeshTree.interior_distance` (normalised coordinates).
+FEATURE_GAP = 1e-9
+
 #: Where :meth:`MeshTree.of` keeps a mesh's tree (an attribute of the mesh object, not a dataclass field).
 _TREE_KEY = "_mesh_tree"
 
@@ -256,6 +260,7 @@ class MeshTree:
         """
         tree = cls(mesh.vertices, mesh.faces)
         tree._bnd = boundary_edges_of(tree.faces, mesh.edge_faces, mesh.face_edges)     # one compiled pass
+        tree._topo = (mesh.face_edges, mesh.edge_faces)
         return tree
 
     def query(self, points: ArrayLike) -> tuple[Array, IntArray, Array]:
@@ -307,6 +312,122 @@ class MeshTree:
         out: IntArray = self._bnd
         return out
 
+    def _topology(self) -> tuple[IntArray, IntArray]:
+        """Each face's edges ``(m, 3)`` (in face order ``(0, 1), (1, 2), (2, 0)``) and each edge's faces ``(k, 2)``.
+
+        As :attr:`SweepMesh.face_edges` and :attr:`SweepMesh.edge_faces` (-1 where a boundary
+        edge has one face; an edge of more than two faces keeps its first and last).
+        """
+        got: tuple[IntArray, IntArray] | None = self.__dict__.get("_topo")
+        if got is None:
+            f = self.faces
+            und = np.sort(np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1).reshape(-1, 2), axis=1)
+            _, inv = np.unique(und[:, 0] * np.int64(len(self.vertices)) + und[:, 1], return_inverse=True)
+            inv = inv.reshape(-1)
+            owner = np.repeat(np.arange(len(f), dtype=np.int64), 3)
+            order = np.argsort(inv, kind="stable")
+            si = inv[order]
+            first = np.r_[True, si[1:] != si[:-1]] if len(si) else np.zeros(0, bool)
+            ef = np.full((int(si[-1]) + 1 if len(si) else 0, 2), -1, np.int64)
+            ef[si[first], 0] = owner[order[first]]
+            ef[si[~first], 1] = owner[order[~first]]
+            got = (inv.reshape(-1, 3).astype(np.int64), ef)
+            self._topo = got
+        return got
+
+    def _boundary_vertices(self) -> NDArray[np.bool_]:
+        """Whether each vertex ``(n,)`` is an end of a boundary edge (an edge with one face)."""
+        got: NDArray[np.bool_] | None = self.__dict__.get("_bvert")
+        if got is None:
+            bnd = self._boundary_edges()
+            got = np.zeros(len(self.vertices), bool)
+            got[bnd[bnd >= 0]] = True
+            self._bvert = got
+        return got
+
+    def _features(self, face: IntArray, c: Array) -> tuple[IntArray, IntArray]:
+        """The vertex ``(n,)`` or else the edge ``(n,)`` (ids of :meth:`_topology`; -1 for none) closest points lie on.
+
+        A closest point ``c (n, 3)`` on face ``face (n,)`` within ``FEATURE_GAP`` of a corner of the
+        face lies on that vertex; else within it of a side, on that edge; else inside the face.
+        The faces equally near a point whose closest point lies on an edge or a vertex (a tie, the
+        face returned depending on the search) all give the same vertex or edge.
+        """
+        corners = self.vertices[self.faces[face]]                          # (n, 3, 3)
+        dv = np.linalg.norm(c[:, None, :] - corners, axis=2)               # (n, 3)
+        kv = np.argmin(dv, axis=1) if len(face) else np.zeros(0, np.int64)
+        rows = np.arange(len(face))
+        at_v = dv[rows, kv] <= FEATURE_GAP
+        a, b = corners, np.roll(corners, -1, axis=1)                       # sides (0, 1), (1, 2), (2, 0)
+        ab = b - a
+        w = np.einsum("nki,nki->nk", ab, ab)
+        t = np.clip(np.einsum("nki,nki->nk", c[:, None, :] - a, ab) / np.where(w > 0, w, 1.0), 0.0, 1.0)
+        gap = np.linalg.norm(c[:, None, :] - (a + t[..., None] * ab), axis=2)
+        ke = np.argmin(gap, axis=1) if len(face) else np.zeros(0, np.int64)
+        at_e = ~at_v & (gap[rows, ke] <= FEATURE_GAP)
+        vid = np.where(at_v, self.faces[face, kv], -1)
+        eid = np.where(at_e, self._topology()[0][face, ke], -1)
+        return vid, eid
+
+    def first_faces(self, face: IntArray, c: Array) -> IntArray:
+        """The lowest-numbered face ``(n,)`` each closest point ``c (n, 3)`` (found on ``face (n,)``) lies on.
+
+        Inside a face, that face; on an edge (:meth:`_features`), the first of its one or two
+        faces; at a vertex, the first face around it: the same whichever of the faces equally near
+        the search returned (a tie).
+        """
+        vid, eid = self._features(face, c)
+        out = np.asarray(face, np.int64).copy()
+        if (eid >= 0).any():
+            ef = self._topology()[1][eid[eid >= 0]]
+            out[eid >= 0] = np.where(ef[:, 1] >= 0, ef.min(axis=1), ef[:, 0])
+        if (vid >= 0).any():
+            first = self.__dict__.get("_vfirst")
+            if first is None:
+                first = np.full(len(self.vertices), len(self.faces), np.int64)
+                np.minimum.at(first, self.faces.ravel(), np.repeat(np.arange(len(self.faces), dtype=np.int64), 3))
+                self._vfirst = first
+            out[vid >= 0] = first[vid[vid >= 0]]
+        return out
+
+    def normals(self, points: ArrayLike) -> Array:
+        """Unit face normals ``(..., 3)`` of the mesh at the closest points of ``points (..., 3)``, ties aside.
+
+        The normal of the lowest-numbered face the closest point lies on (:meth:`first_faces`):
+        on an edge or a vertex, the same whichever face of it the search returns. (The mean of an
+        edge's faces' normals, tried in sweeps-build9, turned the re-sliced ribs' velocities on
+        the tracery border, whose cut points mostly lie on edges, into a spurious sweep.)
+
+        Examples
+        --------
+        >>> t = MeshTree(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 1.0]]), np.array([[1, 3, 2], [0, 1, 2]]))
+        >>> n = t.normals([[0.1, 0.1, 1.0], [0.5, 0.5, -0.5]])    # inside face 1; on the edge of faces 0 and 1
+        >>> np.round(n, 4).tolist()
+        [[0.0, 0.0, 1.0], [-0.5774, -0.5774, 0.5774]]
+        """
+        p = np.asarray(points, float)
+        _, face, c = self.query(p)
+        # compiled: np.cross(v1 - v0, v2 - v0) over np.maximum(its norm, 1e-300), bit for bit
+        n: Array = unit_face_normals(self.vertices, self.faces, np.ascontiguousarray(self.first_faces(face, c)))
+        return n.reshape(p.shape)
+
+    def on_faces(self, points: ArrayLike, mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
+        """Whether the closest point of each of ``points (n, 3)`` lies on a face of ``mask (m,)`` (its edges too).
+
+        A closest point on an edge or a vertex (:meth:`_features`) lies on all the faces around
+        it: the answer does not depend on which of them the search returns.
+        """
+        _, face, c = self.query(points)
+        out = np.asarray(mask, bool)[face]
+        vid, eid = self._features(face, c)
+        if (eid >= 0).any():
+            ef = self._topology()[1][eid[eid >= 0]]
+            out[eid >= 0] = (mask[np.maximum(ef, 0)] & (ef >= 0)).any(axis=1)
+        if (vid >= 0).any():
+            around = np.bincount(self.faces.ravel(), np.repeat(np.asarray(mask, float), 3), len(self.vertices)) > 0
+            out[vid >= 0] = around[vid[vid >= 0]]
+        return out
+
     def interior_distance(self, points: ArrayLike,
                           surface: MeshTree | RingTree | tuple[Array, IntArray] | None = None,
                           tol: float = 0.0, angle: float = DEFAULT.reciprocal_angle) -> Array:
@@ -333,17 +454,16 @@ class MeshTree:
         """
         p = np.asarray(points, float).reshape(-1, 3)
         d, face, c = self.query(p)
-        e = self._boundary_edges()[face]                            # (n, 3, 2)
-        has = e[:, :, 0] >= 0
         out: Array = d
-        if has.any():
-            a = self.vertices[np.maximum(e[:, :, 0], 0)]
-            b = self.vertices[np.maximum(e[:, :, 1], 0)]
-            ab = b - a
-            w = np.einsum("nki,nki->nk", ab, ab)
-            f = np.clip(np.einsum("nki,nki->nk", c[:, None, :] - a, ab) / np.where(w > 0, w, 1.0), 0.0, 1.0)
-            gap = np.linalg.norm(c[:, None, :] - (a + f[..., None] * ab), axis=2)
-            on = (has & (gap <= 1e-9)).any(axis=1)
+        bv = self._boundary_vertices()
+        if bv[self.faces[face]].any():
+            # on a boundary edge or at a boundary vertex (the mesh's topology: whichever face of the
+            # vertex the search returned)
+            vid, eid = self._features(face, c)
+            _, ef = self._topology()
+            on = np.zeros(len(p), bool)
+            on[vid >= 0] = bv[vid[vid >= 0]]
+            on[eid >= 0] = (ef[eid[eid >= 0]] < 0).any(axis=1)
             out = np.where(on, 0.0, d)
         if surface is not None and (not isinstance(surface, tuple) or len(surface[1])):
             far = np.flatnonzero(out > tol)

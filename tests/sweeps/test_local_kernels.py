@@ -500,17 +500,25 @@ def test_ring_tree_within_of_points_in_surface_order_is_its_distance_within_the_
 
 
 
-@pytest.mark.parametrize("hole", [False, True])
-def test_face_grid_nearest_is_libigls_closest_points_within_the_bound(hole):
-    """The face grid's exact search (the motion's refinement): libigl's distances, a closest point on
-    the face returned, and nothing farther than the bound; the same from points far off the grid."""
-    mesh = _mesh(hole)
-    tree = MeshTree.of(mesh)
-    rng = np.random.default_rng(5)
+def _query_points(mesh, seed):
+    """Points near the mesh, far inside its box and far outside it (the coarse grid's case)."""
+    rng = np.random.default_rng(seed)
     near = mesh.vertices[rng.integers(0, len(mesh.vertices), 400)] + rng.normal(0, 0.004, (400, 3))
     far = rng.uniform(-0.9, 0.9, (200, 3))
-    pts = np.ascontiguousarray(np.vstack([near, far]))
-    d0, _, _ = tree.query(pts)
+    off = rng.normal(size=(60, 3))
+    off *= rng.uniform(0.8, 3.0, (60, 1)) / np.linalg.norm(off, axis=1, keepdims=True)
+    return np.ascontiguousarray(np.vstack([near, far, off, mesh.vertices[:50]]))
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_face_grid_nearest_is_libigls_closest_points_within_the_bound(hole):
+    """The face grid's exact search (the motion's refinement): libigl's distances (its brute
+    ``point_mesh_squared_distance``, not the code under test), a closest point on the face returned,
+    and nothing farther than the bound; the same from points far off the grid."""
+    mesh = _mesh(hole)
+    tree = MeshTree.of(mesh)
+    pts = _query_points(mesh, 5)
+    d0 = closest_distance(pts, mesh.vertices, mesh.faces)[0]
     bound = 0.02
     d, face, cp = _kernels.grid_nearest(tree.vertices, tree.faces, *tree.face_grid(), pts, bound)
     inside = d0 <= bound
@@ -521,6 +529,54 @@ def test_face_grid_nearest_is_libigls_closest_points_within_the_bound(hole):
     for i in np.flatnonzero(inside)[::10]:
         assert closest_distance(cp[i][None], mesh.vertices, mesh.faces[face[i]][None])[0][0] <= 1e-14
     assert np.abs(np.linalg.norm(cp[inside] - pts[inside], axis=1) - d[inside]).max() <= 1e-14
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_mesh_tree_query_is_exact_near_and_far(hole):
+    """``MeshTree.query`` (the fine grid near, the coarse grid where no face is near): libigl's
+    distances and closest points everywhere, up to points three diameters away, and each closest
+    point on the face returned; a tree of a few faces the same, and a tree of none gives inf."""
+    mesh = _mesh(hole)
+    pts = _query_points(mesh, 6)
+    for faces in (mesh.faces, mesh.faces[::97]):
+        tree = MeshTree(mesh.vertices, faces)
+        d0, c0 = closest_distance(pts, mesh.vertices, faces)
+        d, face, cp = tree.query(pts)
+        far = d0 > 3 * tree.face_grid()[2]
+        assert far.sum() > 100 and (~far).sum() > 100                     # both searches tested
+        assert np.abs(d - d0).max() <= 1e-14
+        assert np.abs(cp - c0).max() <= 1e-9                                # unique closest points here
+        for i in range(0, len(pts), 7):         # the closest point on the face returned
+            assert closest_distance(cp[i][None], mesh.vertices, faces[face[i]][None])[0][0] <= 1e-14
+    d, face, _ = MeshTree(mesh.vertices, np.zeros((0, 3), np.int64)).query(pts[:5])
+    assert np.all(np.isinf(d)) and np.all(face == -1)
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_interior_max_is_the_largest_interior_distance(hole):
+    """``MeshTree.interior_max`` (points certified by a face within the largest distance so far are
+    not searched) is ``interior_distance(...).max()`` exactly, on rings of points around the mesh
+    reaching past its ends and over its hole (the boundary rule), for tolerances that leave some,
+    many and no points to the reciprocal test with the rings' own surface."""
+    mesh = _mesh(hole)
+    tree = MeshTree.of(mesh)
+    rng = np.random.default_rng(8)
+    checked = 0
+    for _ in range(12):
+        start = mesh.vertices[rng.integers(0, len(mesh.vertices))]
+        step = rng.normal(size=3) * rng.uniform(0.005, 0.05)
+        ring = start + np.cumsum(rng.normal(0, 0.01, (40, 3)), axis=0)
+        rings = np.ascontiguousarray(ring[None, :, :] + np.arange(12)[:, None, None] * step
+                                     + rng.normal(0, rng.uniform(1e-4, 0.02), (12, 40, 3)))
+        surface = RingTree(rings, False)
+        pts = rings.reshape(-1, 3)
+        for tol in (0.0, 0.002, 0.01, 1.0):
+            want = float(tree.interior_distance(pts, surface, tol).max())
+            got = tree.interior_max(pts, surface, tol)
+            assert got == want
+            checked += want > 0
+    assert checked > 20
+    assert tree.interior_max(np.zeros((0, 3)), RingTree(np.zeros((2, 2, 3)), False), 0.01) == 0.0
 
 
 def test_refined_motions_bounds_bound_the_distances_and_the_early_stop_changes_little():
@@ -664,7 +720,7 @@ def test_mesh_tree_answers_do_not_depend_on_which_tied_face_the_search_returns(h
     n_beyond = 0
     for p, d, tied, cps in cases:
         got = []
-        for j, c in zip(tied, cps):
+        for j, c in zip(tied, cps, strict=True):
             tree.answer([d], [j], [c])
             got.append((tree.normals(p[None])[0], tree.interior_distance(p[None])[0],
                         bool(tree.on_faces(p[None], mask)[0])))

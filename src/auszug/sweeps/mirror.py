@@ -8,7 +8,7 @@ the window fig20a's left arc has a rotation part, its right arc none, since no c
 1. :func:`mirror_planes`: candidate planes through the mesh's area centroid, normal to the
    principal axes of its area-weighted second moment and to the geodesic sphere's normals
    (``sphere_frequency``); a plane is accepted when the mirror images of the faces' centroids
-   lie within ``eps_prox`` of the mesh for at least ``mirror_share`` of the area (libigl's tree),
+   lie within ``eps_prox`` of the mesh for at least ``mirror_share`` of the area (``MeshTree``),
    the best ``mirror_planes`` of them, no two within 5 degrees;
 2. :func:`mirrored`: a patch's mirror image in a plane: the profile reflected, the motion
    conjugated by the reflection (``R' = S R S``, ``T' = S R s + S T + s`` for the reflection

@@ -15,7 +15,7 @@ directly from :func:`~auszug.sweeps.kinematic_axis`:
 
 The fit check (:func:`fit_patch`) meshes the swept surface (rings of the profile at parameters
 dense enough that chords stay within ``eps_prox / 10``), takes closest points both ways (the
-swept points on the mesh with libigl's tree, :class:`MeshTree`; the mesh's vertices on the swept
+swept points on the mesh with the compiled face grids of :class:`MeshTree`; the mesh's vertices on the swept
 surface with the compiled :class:`RingTree` of its rings, within ``eps_prox``): the faces covered
 are the mesh faces whose three vertices lie within ``eps_prox`` of the swept surface, the fit
 error the largest distance of the swept surface's points to the mesh, and coverage the covered
@@ -41,6 +41,8 @@ from auszug.sweeps._kernels import (
     face_vertices_in_box,
     faces_within,
     improve_sums,
+    interior_max,
+    mesh_closest,
     ring_grid_boxes,
     ring_grid_nearest,
     ring_grid_within,
@@ -205,12 +207,26 @@ FACE_GRID_CELLS = 8
 #: :meth:`MeshTree.interior_distance` (normalised coordinates).
 FEATURE_GAP = 1e-9
 
+#: :meth:`MeshTree.query` searches the fine face grid within this many of its cells; a point with no face that near
+#: is searched on the coarse grid, whose cells are :data:`COARSE_GRID_CELL` fine cells wide.
+FINE_REACH = 1.0
+
+#: The coarse grid's cell size in the fine grid's cells (:data:`FINE_REACH`).
+COARSE_GRID_CELL = 4.0
+
 #: Where :meth:`MeshTree.of` keeps a mesh's tree (an attribute of the mesh object, not a dataclass field).
 _TREE_KEY = "_mesh_tree"
 
 
 class MeshTree:
-    """Closest points on one triangle mesh, its bounding-volume tree built once (libigl ``AABB``).
+    """Exact closest points on one triangle mesh, its faces binned once in two uniform grids (compiled).
+
+    The fine grid (:meth:`face_grid`) is searched near each point, a coarse one where no face is
+    near (:func:`~auszug.sweeps._kernels.mesh_closest`): true point-triangle distances, every face
+    within the distance found tested. Of faces at the same distance (a closest point on an edge
+    or a vertex) the first found is kept; the answers built on the face (:meth:`normals`,
+    :meth:`on_faces`, :meth:`interior_distance`, :meth:`interior_max`) take the edge or the
+    vertex instead (:meth:`first_faces`), so they do not depend on that choice.
 
     Examples
     --------
@@ -221,12 +237,8 @@ class MeshTree:
     """
 
     def __init__(self, vertices: ArrayLike, faces: ArrayLike) -> None:
-        import igl
-
         self.vertices = np.ascontiguousarray(np.asarray(vertices, float))
-        self.faces = np.ascontiguousarray(np.asarray(faces, np.int64))
-        self._tree = igl.AABB()
-        self._tree.init(self.vertices, self.faces)
+        self.faces = np.ascontiguousarray(np.asarray(faces, np.int64).reshape(-1, 3))
 
     @classmethod
     def of(cls, mesh: SweepMesh) -> "MeshTree":
@@ -253,21 +265,24 @@ class MeshTree:
 
     @classmethod
     def built(cls, mesh: SweepMesh) -> "MeshTree":
-        """A new tree of a whole :class:`~auszug.sweeps.mesh.SweepMesh`, its boundary edges from the mesh's topology.
+        """A new tree of a whole :class:`~auszug.sweeps.mesh.SweepMesh`, its grids built, boundary edges from topology.
 
-        The same as ``MeshTree(mesh.vertices, mesh.faces)``, without counting the edges' faces
-        again (an edge with one face is a boundary edge). :meth:`of` keeps it with the mesh.
+        The same as ``MeshTree(mesh.vertices, mesh.faces)`` with its grids built (:meth:`grids`),
+        without counting the edges' faces again (an edge with one face is a boundary edge).
+        :meth:`of` keeps it with the mesh.
         """
         tree = cls(mesh.vertices, mesh.faces)
         tree._bnd = boundary_edges_of(tree.faces, mesh.edge_faces, mesh.face_edges)     # one compiled pass
         tree._topo = (mesh.face_edges, mesh.edge_faces)
+        tree.grids()
         return tree
 
     def query(self, points: ArrayLike) -> tuple[Array, IntArray, Array]:
-        """Distances ``(n,)``, closest faces ``(n,)`` and closest points ``(n, 3)``.
+        """Distances ``(n,)``, closest faces ``(n,)`` and closest points ``(n, 3)`` (exact).
 
         The last query is kept: the same points again (a family's ribs, asked first whether a grown
-        patch holds them, then for their normals) get copies of its answer.
+        patch holds them, then for their normals) get copies of its answer. A tree of no faces
+        gives inf, -1 and zeros.
         """
         p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
         if len(p) == 0:
@@ -275,16 +290,17 @@ class MeshTree:
         last = self.__dict__.get("_last")
         if last is not None and last[0].shape == p.shape and np.array_equal(last[0], p):
             return last[1].copy(), last[2].copy(), last[3].copy()
-        sq, face, c = self._tree.squared_distance(self.vertices, self.faces, p)
-        out = np.sqrt(np.maximum(sq, 0.0)), np.asarray(face, np.int64), np.asarray(c)
+        (lo, dims, h, start, entries, fbox), coarse = self.grids()
+        out = mesh_closest(self.vertices, self.faces, lo, dims, h, start, entries, fbox, *coarse, p,
+                           float(FINE_REACH * h))
         self._last = (p.copy(), out[0].copy(), out[1].copy(), out[2].copy())
         return out
 
     def face_grid(self) -> tuple[Array, IntArray, float, IntArray, IntArray, Array]:
         """The tree's faces binned in a uniform grid (compiled :func:`~auszug.sweeps._kernels.face_grid`), built once.
 
-        For compiled exact closest-point searches that start near the answer (the motion's
-        refinement, :func:`~auszug.sweeps.general.refine_motion`). The cell is
+        For compiled exact closest-point searches that start near the answer (:meth:`query`, the
+        motion's refinement, :func:`~auszug.sweeps.general.refine_motion`). The cell is
         :data:`FACE_GRID_CELL` mean edge lengths, larger where the grid would have more than
         :data:`FACE_GRID_CELLS` cells per face. Returns the origin, the cell counts, the cell
         size, each cell's first entry, the faces cell after cell and the faces' bounding boxes.
@@ -297,6 +313,18 @@ class MeshTree:
             got = (lo, dims, h, start, entries, fbox)
             self._grid = got
         return got
+
+    def grids(self) -> tuple[tuple[Array, IntArray, float, IntArray, IntArray, Array],
+                             tuple[Array, IntArray, float, IntArray, IntArray, Array]]:
+        """The fine grid (:meth:`face_grid`) and the coarse one (:data:`COARSE_GRID_CELL` times its cell), once."""
+        fine = self.face_grid()
+        got = self.__dict__.get("_coarse")
+        if got is None:
+            h = fine[2] * COARSE_GRID_CELL
+            lo, dims, start, entries, fbox = face_grid(self.vertices, self.faces, h)
+            got = (lo, dims, h, start, entries, fbox)
+            self._coarse = got
+        return fine, got
 
     def _boundary_edges(self) -> IntArray:
         """Per face its boundary edges as vertex pairs ``(m, 3, 2)`` (-1 where the edge is inner)."""
@@ -428,6 +456,57 @@ class MeshTree:
             out[vid >= 0] = around[vid[vid >= 0]]
         return out
 
+    def interior_max(self, points: ArrayLike, surface: RingTree, tol: float,
+                     angle: float = DEFAULT.reciprocal_angle) -> float:
+        """``interior_distance(points, surface, tol, angle).max()`` (0 for no points), with fewer searches.
+
+        One compiled pass (:func:`~auszug.sweeps._kernels.interior_max`): a point with a face
+        within the largest distance counted so far is not searched further, as it cannot raise
+        it; the points farther than ``tol`` get the reciprocal test as in
+        :meth:`interior_distance`. The same number.
+        """
+        p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
+        if len(p) == 0:
+            return 0.0
+        (lo, dims, h, start, entries, fbox), coarse = self.grids()
+        err, idx, d, c, face = interior_max(self.vertices, self.faces, self._boundary_edges(),
+                                            self._boundary_vertices(), lo, dims, h, start, entries, fbox, *coarse, p,
+                                            float(tol), float(FINE_REACH * h))
+        if len(idx):
+            ds, sf, back = surface.query(c, tol)      # only the distances within tol count
+            other = (ds <= tol) & (np.linalg.norm(back - p[idx], axis=1) >= 0.5 * d)
+            if angle < 180.0 and other.any():
+                at = np.flatnonzero(other)
+                ns = unit_face_normals(np.ascontiguousarray(surface.vertices), surface.faces,
+                                       np.ascontiguousarray(sf[at]))
+                other[at[~self._along(face[at], c[at], ns, angle)]] = False
+            err = max(float(err), float(np.where(other, 0.0, d).max()))
+        return float(err)
+
+    def _along(self, face: IntArray, c: Array, normals: Array, angle: float) -> NDArray[np.bool_]:
+        """Whether the unit ``normals (k, 3)`` lie within ``angle`` degrees (either orientation) of the mesh at ``c``.
+
+        ``c (k, 3)`` are closest points found on the faces ``face (k,)``: the normal of the face it lies
+        on; on an edge or at a vertex (:meth:`_features`, a tie) of any face around it, so the answer does not
+        depend on which of them the search returned (:meth:`interior_distance`'s reciprocal test).
+        """
+        v, f = self.vertices, self.faces
+        cos = np.cos(np.radians(angle))
+        face = np.ascontiguousarray(face, dtype=np.int64)
+        ok: NDArray[np.bool_] = np.abs(np.einsum("ki,ki->k", unit_face_normals(v, f, face), normals)) >= cos
+        vid, eid = self._features(face, c)
+        on_e = np.flatnonzero((eid >= 0) & ~ok)
+        if len(on_e):
+            ef = self._topology()[1][eid[on_e]]                                # (e, 2), -1 past a boundary edge
+            for j in range(2):
+                has = ef[:, j] >= 0
+                nj = unit_face_normals(v, f, np.ascontiguousarray(np.maximum(ef[:, j], 0)))
+                ok[on_e] |= has & (np.abs(np.einsum("ki,ki->k", nj, normals[on_e])) >= cos)
+        for i in np.flatnonzero((vid >= 0) & ~ok):                          # at a vertex: rare
+            around = np.flatnonzero((f == vid[i]).any(axis=1))
+            ok[i] = bool((np.abs(unit_face_normals(v, f, around) @ normals[i]) >= cos).any())
+        return ok
+
     def interior_distance(self, points: ArrayLike,
                           surface: MeshTree | RingTree | tuple[Array, IntArray] | None = None,
                           tol: float = 0.0, angle: float = DEFAULT.reciprocal_angle) -> Array:
@@ -479,9 +558,7 @@ class MeshTree:
                     at = np.flatnonzero(other)
                     sv = np.ascontiguousarray(surface.vertices)
                     ns = unit_face_normals(sv, surface.faces, np.ascontiguousarray(sf[at]))
-                    nm = unit_face_normals(self.vertices, self.faces, np.ascontiguousarray(face[far[at]]))
-                    along = np.abs(np.einsum("ki,ki->k", ns, nm)) >= np.cos(np.radians(angle))
-                    other[at[~along]] = False
+                    other[at[~self._along(face[far[at]], c[far[at]], ns, angle)]] = False
                 out = out.copy()
                 out[far[other]] = 0.0
         return out
@@ -951,7 +1028,7 @@ def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: 
     if len(sv) == 0:
         return SweptError(sv, swept, float("inf"))
     if upper is None:
-        return SweptError(sv, swept, float(tree.interior_distance(sv, swept, eps, angle).max()))
+        return SweptError(sv, swept, tree.interior_max(sv, swept, eps, angle))
     ub = np.full(rings.shape[:2], np.inf)
     k = np.searchsorted(motion.t, t)
     at = (k < len(motion.t)) & (motion.t[np.minimum(k, len(motion.t) - 1)] == t)
@@ -965,17 +1042,17 @@ def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: 
         # sort of -ub puts them first), then the others of a bound above the error found, by decreasing bound
         # (ties in index order); filtering before the stable sort keeps the same order
         first = np.flatnonzero(unknown)
-        err = float(tree.interior_distance(sv[first], swept, eps, angle).max())
+        err = tree.interior_max(sv[first], swept, eps, angle)
         rest = np.flatnonzero(~unknown & (ub > err))
         rest = rest[np.argsort(-ub[rest], kind="stable")]
     else:
         order = np.argsort(-ub, kind="stable")
         first = order[:max(FIRST_QUERIED, int(np.sum(~np.isfinite(ub))))]
-        err = float(tree.interior_distance(sv[first], swept, eps, angle).max())
+        err = tree.interior_max(sv[first], swept, eps, angle)
         rest = order[len(first):]
         rest = rest[ub[rest] > err]
     if len(rest):
-        err = max(err, float(tree.interior_distance(sv[rest], swept, eps, angle).max()))
+        err = max(err, tree.interior_max(sv[rest], swept, eps, angle))
     return SweptError(sv, swept, err)
 
 

@@ -1753,6 +1753,44 @@ def box_part(v, faces, edges, edge_faces, face_edges, lo, hi):  # pragma: no cov
 
 
 @njit(cache=True)
+def closest_features(v, faces, face_edges, face, c, gap):  # pragma: no cover - compiled
+    """The vertex, or else the edge, closest points ``c (n, 3)`` on faces ``face (n,)`` lie on (-1 for none).
+
+    As ``MeshTree._features``: within ``gap`` of a corner of the face, that vertex (the nearest
+    corner); else within ``gap`` of a side, that edge (``face_edges``' id; the nearest side);
+    else inside the face. Returns vertex ids ``(n,)`` and edge ids ``(n,)``.
+    """
+    n = len(face)
+    vid = np.full(n, -1, np.int64)
+    eid = np.full(n, -1, np.int64)
+    for p in range(n):
+        f = face[p]
+        cx, cy, cz = c[p, 0], c[p, 1], c[p, 2]
+        best, kb = np.inf, -1
+        for k in range(3):
+            i = faces[f, k]
+            d = np.sqrt((cx - v[i, 0]) ** 2 + (cy - v[i, 1]) ** 2 + (cz - v[i, 2]) ** 2)
+            if d < best:
+                best, kb = d, k
+        if best <= gap:
+            vid[p] = faces[f, kb]
+            continue
+        best, kb = np.inf, -1
+        for k in range(3):
+            a, b = faces[f, k], faces[f, (k + 1) % 3]
+            abx, aby, abz = v[b, 0] - v[a, 0], v[b, 1] - v[a, 1], v[b, 2] - v[a, 2]
+            w = abx * abx + aby * aby + abz * abz
+            t = ((cx - v[a, 0]) * abx + (cy - v[a, 1]) * aby + (cz - v[a, 2]) * abz) / (w if w > 0 else 1.0)
+            t = min(max(t, 0.0), 1.0)
+            d = np.sqrt((cx - v[a, 0] - t * abx) ** 2 + (cy - v[a, 1] - t * aby) ** 2 + (cz - v[a, 2] - t * abz) ** 2)
+            if d < best:
+                best, kb = d, k
+        if best <= gap:
+            eid[p] = face_edges[f, kb]
+    return vid, eid
+
+
+@njit(cache=True)
 def triangle_areas(v, faces):  # pragma: no cover - compiled
     """Areas ``(m,)`` of triangles: ``|(b - a) x (c - a)| / 2`` in numpy's order of operations (the same bits)."""
     out = np.empty(len(faces))

@@ -36,6 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 from auszug.errors import GeometryError
 from auszug.sweeps._kernels import (
     boundary_edges_of,
+    closest_features,
     face_grid,
     face_grid_cell,
     face_vertices_in_box,
@@ -379,23 +380,13 @@ class MeshTree:
         A closest point ``c (n, 3)`` on face ``face (n,)`` within ``FEATURE_GAP`` of a corner of the
         face lies on that vertex; else within it of a side, on that edge; else inside the face.
         The faces equally near a point whose closest point lies on an edge or a vertex (a tie, the
-        face returned depending on the search) all give the same vertex or edge.
+        face returned depending on the search) all give the same vertex or edge. One compiled
+        pass (:func:`~auszug.sweeps._kernels.closest_features`).
         """
-        corners = self.vertices[self.faces[face]]                          # (n, 3, 3)
-        dv = np.linalg.norm(c[:, None, :] - corners, axis=2)               # (n, 3)
-        kv = np.argmin(dv, axis=1) if len(face) else np.zeros(0, np.int64)
-        rows = np.arange(len(face))
-        at_v = dv[rows, kv] <= FEATURE_GAP
-        a, b = corners, np.roll(corners, -1, axis=1)                       # sides (0, 1), (1, 2), (2, 0)
-        ab = b - a
-        w = np.einsum("nki,nki->nk", ab, ab)
-        t = np.clip(np.einsum("nki,nki->nk", c[:, None, :] - a, ab) / np.where(w > 0, w, 1.0), 0.0, 1.0)
-        gap = np.linalg.norm(c[:, None, :] - (a + t[..., None] * ab), axis=2)
-        ke = np.argmin(gap, axis=1) if len(face) else np.zeros(0, np.int64)
-        at_e = ~at_v & (gap[rows, ke] <= FEATURE_GAP)
-        vid = np.where(at_v, self.faces[face, kv], -1)
-        eid = np.where(at_e, self._topology()[0][face, ke], -1)
-        return vid, eid
+        out: tuple[IntArray, IntArray] = closest_features(
+            self.vertices, self.faces, self._topology()[0], np.ascontiguousarray(face, dtype=np.int64),
+            np.ascontiguousarray(np.asarray(c, float).reshape(-1, 3)), float(FEATURE_GAP))
+        return out
 
     def first_faces(self, face: IntArray, c: Array) -> IntArray:
         """The lowest-numbered face ``(n,)`` each closest point ``c (n, 3)`` (found on ``face (n,)``) lies on.

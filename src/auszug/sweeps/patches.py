@@ -52,7 +52,7 @@ from auszug.sweeps._kernels import (
 )
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import KinematicAxis
-from auszug.sweeps.mesh import SweepMesh
+from auszug.sweeps.mesh import SweepMesh, vertex_normals
 from auszug.sweeps.motion import Motion, screw_motion
 from auszug.sweeps.params import DEFAULT, SweepParams
 
@@ -227,7 +227,7 @@ class MeshTree:
     within the distance found tested. Of faces at the same distance (a closest point on an edge
     or a vertex) the first found is kept; the answers built on the face (:meth:`normals`,
     :meth:`on_faces`, :meth:`interior_distance`, :meth:`interior_max`) take the edge or the
-    vertex instead (:meth:`first_faces`), so they do not depend on that choice.
+    vertex instead (:meth:`_features`), so they do not depend on that choice.
 
     Examples
     --------
@@ -275,6 +275,8 @@ class MeshTree:
         tree = cls(mesh.vertices, mesh.faces)
         tree._bnd = boundary_edges_of(tree.faces, mesh.edge_faces, mesh.face_edges)     # one compiled pass
         tree._topo = (mesh.face_edges, mesh.edge_faces)
+        tree._ends = mesh.edges
+        tree._vn = mesh.normals
         tree.grids()
         return tree
 
@@ -388,46 +390,69 @@ class MeshTree:
             np.ascontiguousarray(np.asarray(c, float).reshape(-1, 3)), float(FEATURE_GAP))
         return out
 
-    def first_faces(self, face: IntArray, c: Array) -> IntArray:
-        """The lowest-numbered face ``(n,)`` each closest point ``c (n, 3)`` (found on ``face (n,)``) lies on.
+    def _edge_ends(self) -> IntArray:
+        """Each edge's end vertices ``(k, 2)`` (ids of :meth:`_topology`), the lower first (:attr:`SweepMesh.edges`)."""
+        got: IntArray | None = self.__dict__.get("_ends")
+        if got is None:
+            fe = self._topology()[0]
+            f = self.faces
+            sides = np.sort(np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1), axis=2)     # (m, 3, 2)
+            got = np.zeros((int(fe.max()) + 1 if fe.size else 0, 2), np.int64)
+            got[fe.reshape(-1)] = sides.reshape(-1, 2)
+            self._ends = got
+        return got
 
-        Inside a face, that face; on an edge (:meth:`_features`), the first of its one or two
-        faces; at a vertex, the first face around it: the same whichever of the faces equally near
-        the search returned (a tie).
-        """
-        vid, eid = self._features(face, c)
-        out = np.asarray(face, np.int64).copy()
-        if (eid >= 0).any():
-            ef = self._topology()[1][eid[eid >= 0]]
-            out[eid >= 0] = np.where(ef[:, 1] >= 0, ef.min(axis=1), ef[:, 0])
-        if (vid >= 0).any():
-            first = self.__dict__.get("_vfirst")
-            if first is None:
-                first = np.full(len(self.vertices), len(self.faces), np.int64)
-                np.minimum.at(first, self.faces.ravel(), np.repeat(np.arange(len(self.faces), dtype=np.int64), 3))
-                self._vfirst = first
-            out[vid >= 0] = first[vid[vid >= 0]]
-        return out
+    def _vertex_normals(self) -> Array:
+        """Unit area-weighted vertex normals ``(n, 3)`` (:attr:`SweepMesh.normals` for a tree of a whole mesh)."""
+        got: Array | None = self.__dict__.get("_vn")
+        if got is None:
+            got = vertex_normals(self.vertices, self.faces)
+            self._vn = got
+        return got
 
     def normals(self, points: ArrayLike) -> Array:
-        """Unit face normals ``(..., 3)`` of the mesh at the closest points of ``points (..., 3)``, ties aside.
+        """Unit normals ``(..., 3)`` of the mesh at the closest points of ``points (..., 3)``, independent of ties.
 
-        The normal of the lowest-numbered face the closest point lies on (:meth:`first_faces`):
-        on an edge or a vertex, the same whichever face of it the search returns. (The mean of an
-        edge's faces' normals, tried in sweeps-build9, turned the re-sliced ribs' velocities on
-        the tracery border, whose cut points mostly lie on edges, into a spurious sweep.)
+        Inside a face, its normal; on an edge (:meth:`_features`), the vertex normals of its two
+        ends (area-weighted, :meth:`_vertex_normals`) interpolated linearly at the closest point and
+        normalised, the lower-numbered end first (the normals :func:`~auszug.sweeps.cut.cut` gives
+        its cut points, which lie on edges; the place along the edge is the point's projection on
+        it, the same bits whichever face the search returned); at a vertex, its vertex normal. So on an edge or a
+        vertex the same whichever face of it the search returns (a tie). (The normal of the
+        lowest-numbered face, and the mean of an edge's faces' normals, were tried in
+        sweeps-build9: the latter turned the re-sliced ribs' velocities on the tracery border into
+        a spurious sweep.)
 
         Examples
         --------
         >>> t = MeshTree(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 1.0]]), np.array([[1, 3, 2], [0, 1, 2]]))
         >>> n = t.normals([[0.1, 0.1, 1.0], [0.5, 0.5, -0.5]])    # inside face 1; on the edge of faces 0 and 1
         >>> np.round(n, 4).tolist()
-        [[0.0, 0.0, 1.0], [-0.5774, -0.5774, 0.5774]]
+        [[0.0, 0.0, 1.0], [-0.4082, -0.4082, 0.8165]]
         """
         p = np.asarray(points, float)
         _, face, c = self.query(p)
+        v = self.vertices
         # compiled: np.cross(v1 - v0, v2 - v0) over np.maximum(its norm, 1e-300), bit for bit
-        n: Array = unit_face_normals(self.vertices, self.faces, np.ascontiguousarray(self.first_faces(face, c)))
+        n: Array = unit_face_normals(v, self.faces, np.ascontiguousarray(face, dtype=np.int64))
+        vid, eid = self._features(face, c)
+        vn = self._vertex_normals()
+        on_e = np.flatnonzero(eid >= 0)
+        if len(on_e):
+            ab = self._edge_ends()[eid[on_e]]
+            a, b = v[ab[:, 0]], v[ab[:, 1]]
+            d = b - a
+            w = np.einsum("ki,ki->k", d, d)
+            # from the point, not its closest point: the same bits whichever tied face the search returned
+            q = p.reshape(-1, 3)[on_e]
+            t = np.clip(np.einsum("ki,ki->k", q - a, d) / np.where(w > 0, w, 1.0), 0.0, 1.0)
+            m = vn[ab[:, 0]] + t[:, None] * (vn[ab[:, 1]] - vn[ab[:, 0]])
+            s = np.linalg.norm(m, axis=1, keepdims=True)
+            n[on_e] = np.where(s > 0, m / np.where(s > 0, s, 1.0), n[on_e])
+        at_v = np.flatnonzero(vid >= 0)
+        if len(at_v):
+            m = vn[vid[at_v]]
+            n[at_v] = np.where(np.linalg.norm(m, axis=1, keepdims=True) > 0, m, n[at_v])
         return n.reshape(p.shape)
 
     def on_faces(self, points: ArrayLike, mask: NDArray[np.bool_]) -> NDArray[np.bool_]:

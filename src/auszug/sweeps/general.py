@@ -1084,7 +1084,7 @@ TIE_MARGIN = 1e-9
 
 
 def _held(tree: MeshTree, parts: Array, grown: NDArray[np.bool_], overlap: float, grid: bool) -> bool:
-    """Whether the closest points of at least ``overlap`` of the points ``parts (..., 3)`` lie on grown faces (``grown (m,)``).
+    """Whether the closest points of at least ``overlap`` of ``parts (..., 3)`` lie on grown faces (``grown (m,)``).
 
     A closest point on an edge or at a vertex lies on every face around it
     (:meth:`~auszug.sweeps.patches.MeshTree.on_faces`): the answer does not depend on which of them

@@ -750,6 +750,14 @@ def test_mesh_tree_answers_do_not_depend_on_which_tied_face_the_search_returns(h
         # face's; the grown test true iff one of the tied faces is in the mask
         assert np.abs(_smooth_normal(mesh, tied[0], cps[0]) - got[0][0]).max() <= 1e-12
         assert got[0][2] == bool(mask[tied].any())
+        # the reciprocal test's "along the mesh" (sweeps-tree4): a normal within the angle of any tied face's, the
+        # same for every tied face; probes: the tied faces' own normals and two fixed directions
+        tn = _kernels.unit_face_normals(mesh.vertices, mesh.faces, np.asarray(tied, np.int64))
+        probes = np.vstack([tn, [[0.0, 0.0, 1.0], [0.6, 0.8, 0.0]]])
+        want = (np.abs(probes @ tn.T) >= np.cos(np.radians(30.0))).any(axis=1)
+        for j, c in zip(tied, cps, strict=True):
+            k = len(probes)
+            assert np.array_equal(tree._along(np.full(k, j), np.repeat(c[None], k, axis=0), probes, 30.0), want)
         # beyond the mesh (0) exactly where the closest point is at a boundary vertex or on a boundary edge
         on_bv = any(np.linalg.norm(cps[0] - mesh.vertices[k]) <= 1e-9 and bv[k] for k in mesh.faces[tied].ravel())
         if on_bv:

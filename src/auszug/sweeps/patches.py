@@ -518,10 +518,28 @@ class MeshTree:
                 has = ef[:, j] >= 0
                 nj = unit_face_normals(v, f, np.ascontiguousarray(np.maximum(ef[:, j], 0)))
                 ok[on_e] |= has & (np.abs(np.einsum("ki,ki->k", nj, normals[on_e])) >= cos)
-        for i in np.flatnonzero((vid >= 0) & ~ok):                          # at a vertex: rare
-            around = np.flatnonzero((f == vid[i]).any(axis=1))
-            ok[i] = bool((np.abs(unit_face_normals(v, f, around) @ normals[i]) >= cos).any())
+        at_v = np.flatnonzero((vid >= 0) & ~ok)
+        if len(at_v):
+            start, around = self._vertex_faces()
+            lo, hi = start[vid[at_v]], start[vid[at_v] + 1]
+            row = np.repeat(np.arange(len(at_v)), hi - lo)                  # each point's faces around its vertex
+            pos = np.arange(len(row)) - np.repeat(np.cumsum(hi - lo) - (hi - lo), hi - lo) + np.repeat(lo, hi - lo)
+            nf = unit_face_normals(v, f, np.ascontiguousarray(around[pos]))
+            hit = np.abs(np.einsum("ki,ki->k", nf, normals[at_v][row])) >= cos
+            ok[at_v] = np.bincount(row, hit, len(at_v)) > 0
         return ok
+
+    def _vertex_faces(self) -> tuple[IntArray, IntArray]:
+        """Each vertex's faces ``faces[start[i]:start[i + 1]]``: ``start (n + 1,)`` and ``faces (3 m,)``."""
+        got: tuple[IntArray, IntArray] | None = self.__dict__.get("_vfaces")
+        if got is None:
+            flat = self.faces.ravel()
+            order = np.argsort(flat, kind="stable")
+            start = np.zeros(len(self.vertices) + 1, np.int64)
+            np.cumsum(np.bincount(flat, minlength=len(self.vertices)), out=start[1:])
+            got = (start, (order // 3).astype(np.int64))
+            self._vfaces = got
+        return got
 
     def interior_distance(self, points: ArrayLike,
                           surface: MeshTree | RingTree | tuple[Array, IntArray] | None = None,

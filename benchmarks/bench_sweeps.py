@@ -12,7 +12,7 @@ faster on this machine: 14.3 s and 11.7 s.
 3. Build the sweeps (sec. 2.3): from the initial planes' cuts, match every movable run, order the
    ribs of the ``--families`` families of most support and fit each a general sweep (Eq. 7
    velocities, Hermite interpolation, projection to rigid motions, profile improvement, 3 rounds
-   of re-slicing, the fit check with libigl closest points), not grown. The paper optimised
+   of re-slicing, the fit check with exact closest points on the mesh), not grown. The paper optimised
    N_opt = 152 sweeps in T_opt = 86 s (0.57 s each); we compare per sweep. Then the same with
    growing (the default: the first family grows over the mesh, the others are skipped), and the
    whole ``detect``.
@@ -90,8 +90,8 @@ def _build_only(mesh, params, spacing, n_families, reps):
     The mesh's closest-point tree (``MeshTree.of``) is built once per mesh, by the first stage that
     queries the mesh (here the warm-up's motion stage), and shared by every later stage on that mesh:
     the timed runs do not build it. Its build is timed on its own in each run (``MeshTree.built``,
-    a new tree, and with the refinement on its face grid, ``MeshTree.face_grid``, also built once
-    per tree) and reported beside the stage, and added to it shared out over the run's sweeps.
+    a new tree: its fine and coarse face grids, which every closest-point query and the motion's
+    refinement search) and reported beside the stage, and added to it shared out over the run's sweeps.
     """
     from auszug.sweeps.general import general_stages
     from auszug.sweeps.patches import MeshTree
@@ -112,9 +112,7 @@ def _build_only(mesh, params, spacing, n_families, reps):
         pats, stages = general_stages(mesh, c0, mv0, pb, step)
         cpu = time.process_time() - cpu0["t"]
         t0, c0_ = time.perf_counter(), time.process_time()
-        tree = MeshTree.built(mesh)
-        if params.twist_steps > 0:
-            tree.face_grid()            # the refinement's face grid: built once per tree, timed with it
+        MeshTree.built(mesh)            # its face grids (the refinement's too), built once per mesh
         tree_walls.append(time.perf_counter() - t0)
         tree_cpus.append(time.process_time() - c0_)
         n = max(len(pats), 1)
@@ -137,9 +135,9 @@ def preprocessing(fx, reps):
     """The paper's "pre-proc" column (Fig. 15: Fig. 12's row, 32k vertices, 0.6 s), our work once per mesh.
 
     :func:`normalise` (validation, centring and scaling, edge topology, vertex normals), the closest-point
-    tree (``MeshTree.built``, libigl's AABB tree and the face normals) and the motion refinement's face
-    grid (``MeshTree.face_grid``): each timed in ``reps`` runs (after a warm-up run), medians of wall and
-    CPU time. Returns the median total wall time and the row's text.
+    tree (``MeshTree.built``: its fine and coarse face grids, the fine one the motion refinement's too, since
+    sweeps-tree4) and ``MeshTree.face_grid`` (then already built: ~0 s): each timed in ``reps`` runs (after a
+    warm-up run), medians of wall and CPU time. Returns the median total wall time and the row's text.
     """
     from auszug.sweeps.patches import MeshTree
 

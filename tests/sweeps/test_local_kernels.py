@@ -527,17 +527,25 @@ def test_ring_tree_within_of_points_in_surface_order_is_its_distance_within_the_
 
 
 
-@pytest.mark.parametrize("hole", [False, True])
-def test_face_grid_nearest_is_libigls_closest_points_within_the_bound(hole):
-    """The face grid's exact search (the motion's refinement): libigl's distances, a closest point on
-    the face returned, and nothing farther than the bound; the same from points far off the grid."""
-    mesh = _mesh(hole)
-    tree = MeshTree.of(mesh)
-    rng = np.random.default_rng(5)
+def _query_points(mesh, seed):
+    """Points near the mesh, far inside its box and far outside it (the coarse grid's case)."""
+    rng = np.random.default_rng(seed)
     near = mesh.vertices[rng.integers(0, len(mesh.vertices), 400)] + rng.normal(0, 0.004, (400, 3))
     far = rng.uniform(-0.9, 0.9, (200, 3))
-    pts = np.ascontiguousarray(np.vstack([near, far]))
-    d0, _, _ = tree.query(pts)
+    off = rng.normal(size=(60, 3))
+    off *= rng.uniform(0.8, 3.0, (60, 1)) / np.linalg.norm(off, axis=1, keepdims=True)
+    return np.ascontiguousarray(np.vstack([near, far, off, mesh.vertices[:50]]))
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_face_grid_nearest_is_libigls_closest_points_within_the_bound(hole):
+    """The face grid's exact search (the motion's refinement): libigl's distances (its brute
+    ``point_mesh_squared_distance``, not the code under test), a closest point on the face returned,
+    and nothing farther than the bound; the same from points far off the grid."""
+    mesh = _mesh(hole)
+    tree = MeshTree.of(mesh)
+    pts = _query_points(mesh, 5)
+    d0 = closest_distance(pts, mesh.vertices, mesh.faces)[0]
     bound = 0.02
     d, face, cp = _kernels.grid_nearest(tree.vertices, tree.faces, *tree.face_grid(), pts, bound)
     inside = d0 <= bound
@@ -548,6 +556,54 @@ def test_face_grid_nearest_is_libigls_closest_points_within_the_bound(hole):
     for i in np.flatnonzero(inside)[::10]:
         assert closest_distance(cp[i][None], mesh.vertices, mesh.faces[face[i]][None])[0][0] <= 1e-14
     assert np.abs(np.linalg.norm(cp[inside] - pts[inside], axis=1) - d[inside]).max() <= 1e-14
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_mesh_tree_query_is_exact_near_and_far(hole):
+    """``MeshTree.query`` (the fine grid near, the coarse grid where no face is near): libigl's
+    distances and closest points everywhere, up to points three diameters away, and each closest
+    point on the face returned; a tree of a few faces the same, and a tree of none gives inf."""
+    mesh = _mesh(hole)
+    pts = _query_points(mesh, 6)
+    for faces in (mesh.faces, mesh.faces[::97]):
+        tree = MeshTree(mesh.vertices, faces)
+        d0, c0 = closest_distance(pts, mesh.vertices, faces)
+        d, face, cp = tree.query(pts)
+        far = d0 > 3 * tree.face_grid()[2]
+        assert far.sum() > 100 and (~far).sum() > 100                     # both searches tested
+        assert np.abs(d - d0).max() <= 1e-14
+        assert np.abs(cp - c0).max() <= 1e-9                                # unique closest points here
+        for i in range(0, len(pts), 7):         # the closest point on the face returned
+            assert closest_distance(cp[i][None], mesh.vertices, faces[face[i]][None])[0][0] <= 1e-14
+    d, face, _ = MeshTree(mesh.vertices, np.zeros((0, 3), np.int64)).query(pts[:5])
+    assert np.all(np.isinf(d)) and np.all(face == -1)
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_interior_max_is_the_largest_interior_distance(hole):
+    """``MeshTree.interior_max`` (points certified by a face within the largest distance so far are
+    not searched) is ``interior_distance(...).max()`` exactly, on rings of points around the mesh
+    reaching past its ends and over its hole (the boundary rule), for tolerances that leave some,
+    many and no points to the reciprocal test with the rings' own surface."""
+    mesh = _mesh(hole)
+    tree = MeshTree.of(mesh)
+    rng = np.random.default_rng(8)
+    checked = 0
+    for _ in range(12):
+        start = mesh.vertices[rng.integers(0, len(mesh.vertices))]
+        step = rng.normal(size=3) * rng.uniform(0.005, 0.05)
+        ring = start + np.cumsum(rng.normal(0, 0.01, (40, 3)), axis=0)
+        rings = np.ascontiguousarray(ring[None, :, :] + np.arange(12)[:, None, None] * step
+                                     + rng.normal(0, rng.uniform(1e-4, 0.02), (12, 40, 3)))
+        surface = RingTree(rings, False)
+        pts = rings.reshape(-1, 3)
+        for tol in (0.0, 0.002, 0.01, 1.0):
+            want = float(tree.interior_distance(pts, surface, tol).max())
+            got = tree.interior_max(pts, surface, tol)
+            assert got == want
+            checked += want > 0
+    assert checked > 20
+    assert tree.interior_max(np.zeros((0, 3)), RingTree(np.zeros((2, 2, 3)), False), 0.01) == 0.0
 
 
 def test_refined_motions_bounds_bound_the_distances_and_the_early_stop_changes_little():
@@ -600,7 +656,9 @@ def test_grown_states_agree_with_libigls_face_wherever_known(hole):
     """The grid's answer whether a point's nearest faces are flagged (the grown check of the general stages):
     where it is known (1 or 0) it is the flag of libigl's closest face, at ties too (points on edges and at
     vertices, where the tree picks one of the faces); at the ties between flagged and unflagged faces it is
-    unknown; and `_held` decides as the share of libigl's faces does, for shares around the threshold."""
+    unknown, and there the closest point lies on a flagged face (`MeshTree.on_faces`: an edge or a vertex
+    lies on every face around it); `_held` decides as the share of `on_faces` does, for shares around the
+    threshold (sweeps-tree4: not the share of the faces the search returned, which depends on ties)."""
     from auszug.sweeps.general import TIE_MARGIN, _held
 
     mesh = _mesh(hole)
@@ -624,8 +682,10 @@ def test_grown_states_agree_with_libigls_face_wherever_known(hole):
     # ties between flagged and unflagged faces exist (the border's edges and vertices) and are left unknown
     assert 0 < (~known).sum() < 0.2 * len(pts)
     assert known[600:].mean() > 0.95           # inside faces and off the mesh nearly always known
+    on = tree.on_faces(pts, flag)
+    assert np.array_equal(on[known], st[known] == 1) and on[~known].all()
     for part in (pts[:300].reshape(10, 30, 3), pts[:500].reshape(20, 25, 3), pts[600:1100].reshape(5, 100, 3)):
-        share = float(np.mean(flag[tree.query(part)[1]]))
+        share = float(np.mean(tree.on_faces(part.reshape(-1, 3), flag)))
         for overlap in (0.05, max(share - 1e-3, 1e-3), share, min(share + 1e-3, 1.0), 0.8, 1.0):
             assert _held(tree, part, flag, overlap, True) == (share >= overlap)
             assert _held(tree, part, flag, overlap, False) == (share >= overlap)
@@ -663,3 +723,105 @@ def test_near_runs_are_the_numpy_pieces():
     # every point near: one piece per curve of 2 points or more
     got = _kernels.near_runs(np.ones(5, bool), np.array([0, 1, 3, 5]), np.array([0, 0, 2]))
     assert got[0].tolist() == [0, 2, 4] and got[1].tolist() == [1, 2, 3, 4] and got[3].tolist() == [0, 2]
+
+
+def _tie_cases(mesh, n: int = 40, seed: int = 5):
+    """Points whose closest points lie on mesh edges and vertices (ties), with every face equally near.
+
+    Points on (and just off, along the surface's normal) random edges' midpoints and random
+    vertices, boundary ones among them; for each, the faces within 1e-12 of the least distance
+    by a brute-force search of every face (libigl's distance to one face at a time) and their
+    closest points."""
+    rng = np.random.default_rng(seed)
+    v, f = mesh.vertices, mesh.faces
+    e = mesh.edges[rng.choice(len(mesh.edges), n, replace=False)]
+    bnd = mesh.edges[(mesh.edge_faces < 0).any(axis=1)]
+    e = np.vstack([e, bnd[rng.choice(len(bnd), 8, replace=False)]])
+    at = np.vstack([0.5 * (v[e[:, 0]] + v[e[:, 1]]), v[rng.choice(len(v), n, replace=False)], v[bnd[:8, 0]]])
+    nrm = mesh.normals[np.r_[e[:, 0], rng.choice(len(v), n, replace=False), bnd[:8, 0]]]
+    pts = np.vstack([at, at + 0.01 * nrm, at - 0.01 * nrm])
+    dist = np.column_stack([closest_distance(pts, v, f[[j]])[0] for j in range(len(f))])     # (q, m)
+    cps = [closest_distance(pts, v, f[[j]])[1] for j in range(len(f))]
+    cases = []
+    for i in range(len(pts)):
+        tied = np.flatnonzero(dist[i] <= dist[i].min() + 1e-12)
+        cases.append((pts[i], dist[i].min(), tied, [cps[j][i] for j in tied]))
+    return cases
+
+
+def _smooth_normal(mesh, face, c):
+    """The mesh's normal at ``c`` on ``face``, found afresh: a corner within 1e-9 gives its vertex normal, a side
+    within 1e-9 its ends' vertex normals interpolated at ``c`` (the lower end first) and normalised, else the face's."""
+    from auszug.sweeps.mesh import vertex_normals
+
+    v, vn = mesh.vertices, vertex_normals(mesh.vertices, mesh.faces)
+    tri = mesh.faces[face]
+    for k in tri:
+        if np.linalg.norm(c - v[k]) <= 1e-9:
+            return vn[k]
+    for i in range(3):
+        a, b = sorted((int(tri[i]), int(tri[(i + 1) % 3])))
+        t = float(np.clip((c - v[a]) @ (v[b] - v[a]) / ((v[b] - v[a]) @ (v[b] - v[a])), 0.0, 1.0))
+        if np.linalg.norm(c - (v[a] + t * (v[b] - v[a]))) <= 1e-9:
+            m = vn[a] + t * (vn[b] - vn[a])
+            return m / np.linalg.norm(m)
+    n = np.cross(v[tri[1]] - v[tri[0]], v[tri[2]] - v[tri[0]])
+    return n / np.linalg.norm(n)
+
+
+class _Forced(MeshTree):
+    """A MeshTree whose query returns given faces and closest points (one tie's answer)."""
+
+    def answer(self, d, face, c):
+        self._forced = (np.asarray(d, float), np.asarray(face, np.int64), np.asarray(c, float))
+
+    def query(self, points):
+        d, face, c = self._forced
+        return d.copy(), face.copy(), c.copy()
+
+
+@pytest.mark.parametrize("hole", [False, True])
+def test_mesh_tree_answers_do_not_depend_on_which_tied_face_the_search_returns(hole):
+    """The rib normals, the fit error's beyond-the-mesh test and the grown-patch test take the closest
+    point's feature (face, edge or vertex), not the face the search returned: at a tie every face
+    equally near gives the same answer (sweeps-build9: a different search's choices moved fit errors
+    and added patches on the tracery border)."""
+    from auszug.sweeps.general import _around
+
+    mesh = _mesh(hole)      # a part of it near one end: the brute-force search is of every face
+    near = np.linalg.norm(mesh.vertices[mesh.faces].mean(axis=1) - mesh.vertices[0], axis=1) < 0.25
+    mesh = _around(mesh, mesh.vertices[mesh.faces[near]].reshape(-1, 3), 0.0)[0]
+    cases = _tie_cases(mesh)
+    assert sum(len(t) >= 2 for _, _, t, _ in cases) >= 40         # real ties, on edges and at vertices
+    assert sum(len(t) >= 3 for _, _, t, _ in cases) >= 10
+    tree = _Forced(mesh.vertices, mesh.faces)
+    mask = np.random.default_rng(3).random(len(mesh.faces)) < 0.5
+    bv = np.zeros(len(mesh.vertices), bool)
+    bv[mesh.edges[(mesh.edge_faces < 0).any(axis=1)].ravel()] = True
+    n_beyond = 0
+    for p, d, tied, cps in cases:
+        got = []
+        for j, c in zip(tied, cps, strict=True):
+            tree.answer([d], [j], [c])
+            got.append((tree.normals(p[None])[0], tree.interior_distance(p[None])[0],
+                        bool(tree.on_faces(p[None], mask)[0])))
+        for g in got[1:]:
+            assert np.array_equal(g[0], got[0][0]) and g[1] == got[0][1] and g[2] == got[0][2]
+        # the normal: at a vertex its vertex normal, on an edge its ends' interpolated (as the cutter's), else the
+        # face's; the grown test true iff one of the tied faces is in the mask
+        assert np.abs(_smooth_normal(mesh, tied[0], cps[0]) - got[0][0]).max() <= 1e-12
+        assert got[0][2] == bool(mask[tied].any())
+        # the reciprocal test's "along the mesh" (sweeps-tree4): a normal within the angle of any tied face's, the
+        # same for every tied face; probes: the tied faces' own normals and two fixed directions
+        tn = _kernels.unit_face_normals(mesh.vertices, mesh.faces, np.asarray(tied, np.int64))
+        probes = np.vstack([tn, [[0.0, 0.0, 1.0], [0.6, 0.8, 0.0]]])
+        want = (np.abs(probes @ tn.T) >= np.cos(np.radians(30.0))).any(axis=1)
+        for j, c in zip(tied, cps, strict=True):
+            k = len(probes)
+            assert np.array_equal(tree._along(np.full(k, j), np.repeat(c[None], k, axis=0), probes, 30.0), want)
+        # beyond the mesh (0) exactly where the closest point is at a boundary vertex or on a boundary edge
+        on_bv = any(np.linalg.norm(cps[0] - mesh.vertices[k]) <= 1e-9 and bv[k] for k in mesh.faces[tied].ravel())
+        if on_bv:
+            n_beyond += 1
+            assert got[0][1] == 0.0
+    assert n_beyond >= 8

@@ -111,12 +111,16 @@ def test_parts_off_gives_no_patch_on_the_border():
     their arcs since sweeps-window7: the border's arcs run tangentially into its jambs) only rotations
     about the window's normal through the border arcs' centres.
 
-    The coarse pass fits one sweep whose profile doubles back on itself (its swept surface overlaps
-    itself, so the fit check's reciprocal test counts every swept point farther than eps_prox as beyond
-    the mesh: fit error 4.997e-3, 0.021 without that test) and whose profile planes lie 11-90 deg off its
-    path's normal planes: the refinement keeps none of its knots and the motion stage drops it (before
-    sweeps-tree3 it was left out only by its sweep length, 0.126 against 0.2, and changes of the rib
-    normals at ties grew it into 2 patches)."""
+    Before sweeps-tree4 the coarse pass fitted a sweep whose profile doubles back on itself (22 points,
+    0.071 long over an extent of 0.042): its swept surface overlaps itself, and the reciprocal test counted
+    every swept point farther than eps_prox as beyond the mesh (fit error 4.997e-3, 0.021 without that
+    test; the trim kept all 22 points, their paths' far points discounted too), so changes of the rib
+    normals at ties grew it into 2 patches (sweeps-build8, sweeps-build9, sweeps-tree3). Its sheets cross
+    the mesh instead of lying along it, so with ``reciprocal_angle`` (30 deg) the trims keep 2-4 points of
+    the cuts (9, 18 and 8 without the normal test): the coarse pass sweeps a profile of 4 points, 0.0034
+    long, along a path 3.7 long (coverage 0.006), and the refinement keeps none of its knots, so the motion
+    stage drops it. (With libigl's tree and the rib normals of the face it returned, sweeps-tree4's first
+    step: a 2-point profile 0.0045 long, coverage 0.0087, left out by the fit stage.)"""
     v, f, *_ = _border()
     r = detect((v, f), DEFAULT.with_(max_parts=0, arc_axes=0))
     assert r.patches == () and r.stage("parts") is None

@@ -250,6 +250,52 @@ def test_interior_distance_over_a_hole_beside_a_fold_is_not_counted():
     assert np.allclose(tree.interior_distance(off, low, 0.005), 0.008)
 
 
+def _pleated_sweep(amplitude: float = 0.015):
+    """A flat mesh (the unit square at z = 0, 41 x 41 vertices) and a profile that zigzags across it and
+    doubles back on itself (x: 0, 0.018, 0.012, 0.030, 0.024, ...; z: +-``amplitude`` in turn, 0 at the two
+    ends; 12 points),
+    translated 0.4 along y over the square's middle: ``(V, F, profile (12, 3), motion)``.
+
+    Every inner profile point lies ``amplitude`` off the mesh; each of the swept surface's sheets crosses
+    the mesh at 40-79 deg, halfway between two profile points, 0.003 along x from each inner point (so within
+    0.003 of the closest mesh point of a far profile point: the swept surface overlaps itself over the mesh,
+    as the tracery border's coarse-pass sweeps did)."""
+    from auszug.sweeps.fixtures import grid_faces
+    from auszug.sweeps.motion import Motion
+
+    n = 41
+    x, y = np.meshgrid(np.linspace(0, 1, n), np.linspace(0, 1, n), indexing="ij")
+    v = np.column_stack([x.ravel(), y.ravel(), np.zeros(n * n)])
+    k = np.arange(12)
+    z = amplitude * (-1.0) ** k
+    z[[0, -1]] = 0.0                    # the ends on the mesh: every far point has a sheet on each side
+    profile = np.column_stack([0.4 + 0.006 * k + 0.012 * (k % 2), np.full(12, 0.3), z])
+    t = np.linspace(0.0, 1.0, 9)
+    motion = Motion(t, np.repeat(np.eye(3)[None], len(t), axis=0), np.outer(t, [0.0, 0.4, 0.0]))
+    return v, grid_faces(n, n), profile, motion
+
+
+def test_a_pleated_sweep_is_not_accepted_by_the_reciprocal_test():
+    """A swept surface that doubles back across the mesh may not discount its own far points by its other
+    sheets: the reciprocal test counts only a sheet lying along the mesh (``reciprocal_angle``, 30 deg; these
+    sheets cross it at 40-79 deg), so the fit error is the profile's true distance to the mesh, 0.015 (above
+    the fit bound 0.01). Without the normal test (180, the rule before sweeps-tree4) every far swept point is
+    discounted and the pleat's fit error is 0 (sweeps-tree3: the tracery border's 4.997e-3 against 0.021)."""
+    from auszug.sweeps.patches import MeshTree, swept_error
+
+    v, f, profile, motion = _pleated_sweep()
+    tree = MeshTree(v, f)
+    eps = DEFAULT.eps_prox
+    old = swept_error(profile, False, motion, eps, tree, angle=180.0).fit_error
+    assert old == 0.0
+    err = swept_error(profile, False, motion, eps, tree, angle=DEFAULT.reciprocal_angle).fit_error
+    assert err == pytest.approx(0.015, abs=1e-9)
+    assert err > DEFAULT.fit_factor * eps
+    # the parallel fold of the hole test still discounts with the default angle (its sheets lie along the mesh)
+    hv, hf = _sheets(hole=True)
+    assert np.allclose(MeshTree(hv, hf).interior_distance([[0.5, 0.5, 0.0]], _sheets(hole=False), eps), 0.0)
+
+
 def _half_swept_square(lift: float = 0.0):
     """A square of two triangles (normalised: half-side ``a``) and a translation sweeping a segment over
     its left half, ``lift`` above it: no triangle has its three corners on the swept strip."""

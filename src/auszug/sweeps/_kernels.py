@@ -1816,6 +1816,44 @@ def box_part(v, faces, edges, edge_faces, face_edges, lo, hi):  # pragma: no cov
 
 
 @njit(cache=True)
+def closest_features(v, faces, face_edges, face, c, gap):  # pragma: no cover - compiled
+    """The vertex, or else the edge, closest points ``c (n, 3)`` on faces ``face (n,)`` lie on (-1 for none).
+
+    As ``MeshTree._features``: within ``gap`` of a corner of the face, that vertex (the nearest
+    corner); else within ``gap`` of a side, that edge (``face_edges``' id; the nearest side);
+    else inside the face. Returns vertex ids ``(n,)`` and edge ids ``(n,)``.
+    """
+    n = len(face)
+    vid = np.full(n, -1, np.int64)
+    eid = np.full(n, -1, np.int64)
+    for p in range(n):
+        f = face[p]
+        cx, cy, cz = c[p, 0], c[p, 1], c[p, 2]
+        best, kb = np.inf, -1
+        for k in range(3):
+            i = faces[f, k]
+            d = np.sqrt((cx - v[i, 0]) ** 2 + (cy - v[i, 1]) ** 2 + (cz - v[i, 2]) ** 2)
+            if d < best:
+                best, kb = d, k
+        if best <= gap:
+            vid[p] = faces[f, kb]
+            continue
+        best, kb = np.inf, -1
+        for k in range(3):
+            a, b = faces[f, k], faces[f, (k + 1) % 3]
+            abx, aby, abz = v[b, 0] - v[a, 0], v[b, 1] - v[a, 1], v[b, 2] - v[a, 2]
+            w = abx * abx + aby * aby + abz * abz
+            t = ((cx - v[a, 0]) * abx + (cy - v[a, 1]) * aby + (cz - v[a, 2]) * abz) / (w if w > 0 else 1.0)
+            t = min(max(t, 0.0), 1.0)
+            d = np.sqrt((cx - v[a, 0] - t * abx) ** 2 + (cy - v[a, 1] - t * aby) ** 2 + (cz - v[a, 2] - t * abz) ** 2)
+            if d < best:
+                best, kb = d, k
+        if best <= gap:
+            eid[p] = face_edges[f, kb]
+    return vid, eid
+
+
+@njit(cache=True)
 def triangle_areas(v, faces):  # pragma: no cover - compiled
     """Areas ``(m,)`` of triangles: ``|(b - a) x (c - a)| / 2`` in numpy's order of operations (the same bits)."""
     out = np.empty(len(faces))
@@ -2315,6 +2353,36 @@ def grid_nearest(v, faces, lo, dims, h, start, entries, fbox, points, bound):  #
     return dist, face, cp
 
 
+@njit(cache=True)
+def mesh_closest(v, faces, lo, dims, h, start, entries, fbox, clo, cdims, ch, cstart, centries, cfbox, points,
+                 reach):  # pragma: no cover - compiled
+    """Closest points on the mesh (exact): distances, faces and points, ``MeshTree.query``'s search.
+
+    Each point is searched first on the fine grid of :func:`face_grid` within ``reach`` (from the
+    previous point's face), and only where no face lies that near on the coarse grid (the same
+    faces binned in larger cells), so a point far from the mesh visits few cells. Every face
+    within the distance found is tested (its box first), so the distance is exact; of faces at
+    the same distance the first found is kept. With no face at all: inf, -1 and zeros.
+    """
+    q = len(points)
+    dist = np.full(q, np.inf)
+    face = np.full(q, -1, np.int64)
+    cp = np.zeros((q, 3))
+    last = -1
+    r2 = reach * reach
+    for p in range(q):
+        px, py, pz = points[p, 0], points[p, 1], points[p, 2]
+        d2, f, x, y, z, _ = _grid_nearest(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, r2, last, -1)
+        if f < 0:
+            d2, f, x, y, z, _ = _grid_nearest(px, py, pz, v, faces, clo, cdims, ch, cstart, centries, cfbox, np.inf,
+                                              last, -1)
+        if f >= 0:
+            dist[p], face[p] = np.sqrt(d2), f
+            cp[p, 0], cp[p, 1], cp[p, 2] = x, y, z
+            last = f
+    return dist, face, cp
+
+
 @njit(cache=True, inline="always")
 def _on_boundary(v, bnd, f, cx, cy, cz):  # pragma: no cover - compiled
     """Whether the closest point ``c`` on face ``f`` lies on one of its boundary edges (``bnd (m, 3, 2)``, -1 inner).
@@ -2333,6 +2401,105 @@ def _on_boundary(v, bnd, f, cx, cy, cz):  # pragma: no cover - compiled
         if np.sqrt(gx * gx + gy * gy + gz * gz) <= 1e-9:
             return True
     return False
+
+
+@njit(cache=True, inline="always")
+def _at_boundary_vertex(v, faces, bvert, f, cx, cy, cz):  # pragma: no cover - compiled
+    """Whether the closest point ``c`` on face ``f`` lies within 1e-9 of a corner that is a boundary vertex."""
+    for k in range(3):
+        i = faces[f, k]
+        if bvert[i]:
+            gx, gy, gz = cx - v[i, 0], cy - v[i, 1], cz - v[i, 2]
+            if np.sqrt(gx * gx + gy * gy + gz * gz) <= 1e-9:
+                return True
+    return False
+
+
+@njit(cache=True, inline="always")
+def _grid_within(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, r2, warm):  # pragma: no cover - compiled
+    """Whether some face of the grid of :func:`face_grid` lies within squared distance ``r2`` of p (``warm`` first).
+
+    Returns the face found (-1 for none): the first within, not the closest.
+    """
+    if warm >= 0:
+        a, b, c = faces[warm, 0], faces[warm, 1], faces[warm, 2]
+        d2, _, _, _ = _triangle_closest(px, py, pz, v[a, 0], v[a, 1], v[a, 2], v[b, 0], v[b, 1], v[b, 2],
+                                        v[c, 0], v[c, 1], v[c, 2])
+        if d2 <= r2:
+            return warm
+    r = np.sqrt(r2)
+    i0 = min(max(int(np.floor(max(min((px - r - lo[0]) / h, 1e9), -1e9))), 0), dims[0] - 1)
+    i1 = min(max(int(np.floor(max(min((px + r - lo[0]) / h, 1e9), -1e9))), 0), dims[0] - 1)
+    j0 = min(max(int(np.floor(max(min((py - r - lo[1]) / h, 1e9), -1e9))), 0), dims[1] - 1)
+    j1 = min(max(int(np.floor(max(min((py + r - lo[1]) / h, 1e9), -1e9))), 0), dims[1] - 1)
+    k0 = min(max(int(np.floor(max(min((pz - r - lo[2]) / h, 1e9), -1e9))), 0), dims[2] - 1)
+    k1 = min(max(int(np.floor(max(min((pz + r - lo[2]) / h, 1e9), -1e9))), 0), dims[2] - 1)
+    for i in range(i0, i1 + 1):
+        for j in range(j0, j1 + 1):
+            for k in range(k0, k1 + 1):
+                cell = (i * dims[1] + j) * dims[2] + k
+                for e in range(start[cell], start[cell + 1]):
+                    if _box_sq(px, py, pz, fbox, e) > r2:
+                        continue
+                    f = entries[e]
+                    a, b, c = faces[f, 0], faces[f, 1], faces[f, 2]
+                    d2, _, _, _ = _triangle_closest(px, py, pz, v[a, 0], v[a, 1], v[a, 2], v[b, 0], v[b, 1],
+                                                    v[b, 2], v[c, 0], v[c, 1], v[c, 2])
+                    if d2 <= r2:
+                        return f
+    return -1
+
+
+@njit(cache=True)
+def interior_max(v, faces, bnd, bvert, lo, dims, h, start, entries, fbox, clo, cdims, ch, cstart, centries, cfbox,
+                 points, tol, reach):  # pragma: no cover - compiled
+    """The largest distance of ``points`` to the mesh as ``MeshTree.interior_distance`` counts it, with fewer searches.
+
+    A point whose closest point lies on a boundary edge of the mesh (``bnd``) or within 1e-9 of a
+    boundary vertex (``bvert (n,)``: whichever face of the vertex the search found) counts 0; one within ``tol``
+    its distance; one farther is left to the caller (its reciprocal test needs the swept
+    surface): returned with its distance and closest point. Once the largest distance counted so
+    far is ``e``, a point with some face within ``e`` (the previous point's face tried first)
+    cannot raise it and is not searched further; every other point is searched exactly
+    (:func:`mesh_closest`'s search). So the largest distance is the one of searching every point.
+
+    Returns the largest distance counted, and the indices ``(k,)``, distances ``(k,)``, closest
+    points ``(k, 3)`` and the faces found ``(k,)`` of the points left to the caller.
+    """
+    q = len(points)
+    err = 0.0
+    idx = np.empty(q, np.int64)
+    dd = np.empty(q)
+    cp = np.empty((q, 3))
+    ff = np.empty(q, np.int64)
+    nd = 0
+    last = -1
+    r2 = reach * reach
+    for p in range(q):
+        px, py, pz = points[p, 0], points[p, 1], points[p, 2]
+        if err > 0.0:
+            f = _grid_within(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, err * err, last)
+            if f >= 0:
+                last = f
+                continue
+        d2, f, x, y, z, _ = _grid_nearest(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, r2, last, -1)
+        if f < 0:
+            d2, f, x, y, z, _ = _grid_nearest(px, py, pz, v, faces, clo, cdims, ch, cstart, centries, cfbox, np.inf,
+                                              last, -1)
+        if f < 0:
+            continue
+        last = f
+        d = np.sqrt(d2)
+        if _on_boundary(v, bnd, f, x, y, z) or _at_boundary_vertex(v, faces, bvert, f, x, y, z):
+            continue
+        if d <= tol:
+            err = max(err, d)
+        else:
+            idx[nd], dd[nd] = p, d
+            cp[nd, 0], cp[nd, 1], cp[nd, 2] = x, y, z
+            ff[nd] = f
+            nd += 1
+    return err, idx[:nd], dd[:nd], cp[:nd], ff[:nd]
 
 
 @njit(cache=True)

@@ -66,7 +66,6 @@ from auszug.sweeps._kernels import (
     polyline_closest_chunked,
     rotations_of,
     twist_steps,
-    unit_face_normals,
 )
 from auszug.sweeps.cut import Cuts, EdgeGrid, cut, cut_near
 from auszug.sweeps.matching import (
@@ -356,19 +355,8 @@ def rib_parts(ribs: Ribs, plots: CurvaturePlots) -> Array:
 
 
 def _normals_at(mesh: SweepMesh, points: Array, tree: MeshTree) -> Array:
-    """Unit face normals of the mesh at the closest points of ``points (..., 3)``."""
-    _, face, _ = tree.query(points)
-    return _face_normals(tree, face).reshape(points.shape)
-
-
-def _face_normals(tree: MeshTree, face: IntArray) -> Array:
-    """Unit normals ``(k, 3)`` of the tree's faces ``face (k,)``.
-
-    The tree's own faces: it may be of the whole mesh where the caller's mesh is a part.
-    """
-    # compiled: np.cross(v1 - v0, v2 - v0) over np.maximum(its norm, 1e-300), bit for bit
-    out: Array = unit_face_normals(tree.vertices, tree.faces, np.ascontiguousarray(face, dtype=np.int64))
-    return out
+    """Unit normals of the mesh at the closest points of ``points (..., 3)`` (:meth:`MeshTree.normals`: ties aside)."""
+    return tree.normals(points)
 
 
 #: :func:`_plane_of`'s last points and answer: one profile's plane is asked for by the recut, both refinement
@@ -603,7 +591,7 @@ def _general_fit(mesh: SweepMesh, parts: Array, params: SweepParams = DEFAULT,
         # pieces lie on the mesh): the fit error queries only the swept points that may be the farthest
         profile, upper = improve_bounded(profile, back, starts, knot, len(motion), params.eps_prox)
         # the fit error in every round, the covered faces only of the round kept
-        err = swept_error(profile, closed, motion, params.eps_prox, tr_, upper)
+        err = swept_error(profile, closed, motion, params.eps_prox, tr_, upper, params.reciprocal_angle)
         if best is None or err.fit_error < best[3].fit_error:
             best = (profile, motion, vel, err)
         if i + 1 < n_rounds:
@@ -1094,14 +1082,15 @@ TIE_MARGIN = 1e-9
 
 
 def _held(tree: MeshTree, parts: Array, grown: NDArray[np.bool_], overlap: float, grid: bool) -> bool:
-    """Whether at least ``overlap`` of the points ``parts (..., 3)`` have a grown closest face (``grown (m,)``).
+    """Whether the closest points of at least ``overlap`` of ``parts (..., 3)`` lie on grown faces (``grown (m,)``).
 
-    The share over the faces ``tree.query(parts)`` returns. With ``grid`` (the tree's face grid
-    is built: the motion's refinement uses it) the points' nearest faces are found on the grid
-    first (:func:`~auszug.sweeps._kernels.grown_states`): a point whose faces within
-    :data:`TIE_MARGIN` of its nearest are all grown, or none, has that answer whichever of them the
-    tree returns at a tie; the tree is asked only where the points of unknown answer could decide
-    (the same answer, fewer queries: most families held by a grown patch are held wholly).
+    A closest point on an edge or at a vertex lies on every face around it
+    (:meth:`~auszug.sweeps.patches.MeshTree.on_faces`): the answer does not depend on which of them
+    a search returns at a tie. With ``grid`` (the tree's face grid is built) the points' nearest
+    faces are found on the grid first (:func:`~auszug.sweeps._kernels.grown_states`): a point whose
+    faces within :data:`TIE_MARGIN` of its nearest are all grown (none) is on (off) the grown faces;
+    the tree is asked only where the points of a mixed answer could decide (fewer queries: most
+    families held by a grown patch are held wholly).
     """
     if grid:
         lo, dims, h, start, entries, fbox = tree.face_grid()
@@ -1113,7 +1102,7 @@ def _held(tree: MeshTree, parts: Array, grown: NDArray[np.bool_], overlap: float
             return True
         if (on + unknown) / n < overlap:
             return False
-    return float(np.mean(grown[tree.query(parts)[1]])) >= overlap
+    return float(np.mean(tree.on_faces(parts.reshape(-1, 3), grown))) >= overlap
 
 
 def _refined(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTree,
@@ -1137,7 +1126,7 @@ def _refined(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTr
     else:
         motion, upper = g.motion, None
     # the same fit error as without the bounds, fewer closest points (swept_error)
-    err = swept_error(g.profile, g.closed, motion, params.eps_prox, tree, upper)
+    err = swept_error(g.profile, g.closed, motion, params.eps_prox, tree, upper, params.reciprocal_angle)
     if err.fit_error > params.fit_factor * params.eps_prox:
         return g, False
     fit = swept_coverage(mesh, err, params.eps_prox, areas, distances=False)
@@ -1162,7 +1151,7 @@ def _filled(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: MeshTre
     profile, added = fill_corners(g.profile, g.closed, back, starts, params.corner_tolerance, params.eps_prox / 2)
     if not len(added):
         return g
-    err = swept_error(profile, g.closed, g.motion, params.eps_prox, tree)
+    err = swept_error(profile, g.closed, g.motion, params.eps_prox, tree, angle=params.reciprocal_angle)
     if err.fit_error > params.fit_factor * params.eps_prox:
         return g
     fit = swept_coverage(mesh, err, params.eps_prox, areas, distances=False)
@@ -1224,16 +1213,17 @@ def _closest_on_cut(c: Cuts, plane: int, target: Array) -> tuple[Array, Array, N
     return None if not np.isfinite(dist).any() else (dist, cp, at_end)
 
 
-def trajectory_error(profile: Array, motion: Motion, tree: MeshTree, tol: float = 0.0) -> Array:
+def trajectory_error(profile: Array, motion: Motion, tree: MeshTree, tol: float = 0.0,
+                     angle: float = DEFAULT.reciprocal_angle) -> Array:
     """Largest distance ``(n,)`` to the mesh of each profile point's path (at the knots and between them).
 
     Positions beyond the mesh do not count: closest point on its boundary (past its end, over a
-    hole), or, when farther than ``tol``, on another part of the swept surface
-    (:meth:`~auszug.sweeps.patches.MeshTree.interior_distance`).
+    hole), or, when farther than ``tol``, on another part of the swept surface that lies along the
+    mesh there (within ``angle`` degrees, :meth:`~auszug.sweeps.patches.MeshTree.interior_distance`).
     """
     t = np.sort(np.concatenate([motion.t, (motion.t[:-1] + motion.t[1:]) / 2]))
     x = motion.apply(profile, t)
-    d = tree.interior_distance(x.reshape(-1, 3), RingTree(x), tol).reshape(len(t), len(profile))
+    d = tree.interior_distance(x.reshape(-1, 3), RingTree(x), tol, angle).reshape(len(t), len(profile))
     out: Array = d.max(axis=0)
     return out
 
@@ -1282,7 +1272,8 @@ def extend_profile(mesh: SweepMesh, profile: Array, motion: Motion, tree: MeshTr
         if np.linalg.norm(back[0] - profile[0]) + np.linalg.norm(back[-1] - profile[-1]) > \
                 np.linalg.norm(back[-1] - profile[0]) + np.linalg.norm(back[0] - profile[-1]):
             back = back[::-1]
-        a, b = _longest_run(trajectory_error(back, motion, tree, params.eps_prox) <= params.eps_prox)
+        traj = trajectory_error(back, motion, tree, params.eps_prox, params.reciprocal_angle)
+        a, b = _longest_run(traj <= params.eps_prox)
         if b - a >= 2 and length(back[a:b]) > length(best):
             best = back[a:b]
     return best
@@ -1457,7 +1448,8 @@ def grown_patch(mesh: SweepMesh, g: GeneralSweep, params: SweepParams, tree: Mes
     if len(grown) < 2:
         return g
     h = general_patch(mesh, grown.ribs, params.with_(general_iterations=2), areas, tree, grown.t, g.closed)
-    a, b = _longest_run(trajectory_error(h.profile, h.motion, tree, params.eps_prox) <= params.eps_prox)
+    traj = trajectory_error(h.profile, h.motion, tree, params.eps_prox, params.reciprocal_angle)
+    a, b = _longest_run(traj <= params.eps_prox)
     if b - a >= 2 and b - a < len(h.profile) and not h.closed:    # a closed profile is kept whole
         fit = fit_patch(mesh, h.profile[a:b], False, h.motion, params, areas, tree)
         h = GeneralSweep(h.profile[a:b], h.motion, h.velocities, fit.fit_error, fit.coverage, fit.faces)
@@ -1512,7 +1504,7 @@ def _translate(mesh: SweepMesh, p0: Array, m: Array, d0: float, params: SweepPar
     rot = np.repeat(np.eye(3)[None], len(keys), axis=0)
     mot = Motion(np.arange(len(keys), dtype=float), rot, shifts - shifts[0])
     start = improve_flat(start, *_recut(mesh, start, mot, 4 * params.eps_prox), params.eps_prox)
-    a, b = _longest_run(trajectory_error(start, mot, tree, params.eps_prox) <= params.eps_prox)
+    a, b = _longest_run(trajectory_error(start, mot, tree, params.eps_prox, params.reciprocal_angle) <= params.eps_prox)
     if b - a < 2:
         return None
     start = start[a:b]

@@ -8,7 +8,7 @@ the window fig20a's left arc has a rotation part, its right arc none, since no c
 1. :func:`mirror_planes`: candidate planes through the mesh's area centroid, normal to the
    principal axes of its area-weighted second moment and to the geodesic sphere's normals
    (``sphere_frequency``); a plane is accepted when the mirror images of the faces' centroids
-   lie within ``eps_prox`` of the mesh for at least ``mirror_share`` of the area (libigl's tree),
+   lie within ``eps_prox`` of the mesh for at least ``mirror_share`` of the area (``MeshTree``),
    the best ``mirror_planes`` of them, no two within 5 degrees;
 2. :func:`mirrored`: a patch's mirror image in a plane: the profile reflected, the motion
    conjugated by the reflection (``R' = S R S``, ``T' = S R s + S T + s`` for the reflection
@@ -162,12 +162,14 @@ def mirror_candidates(mesh: SweepMesh, patches: list[SweepPatch], planes: list[t
     for n, h, _ in planes:
         # the mirror image of a face set: the faces whose mirrored centroids lie nearest
         c = mesh.vertices[mesh.faces].mean(axis=1)
-        image_face = tree.query(c - 2.0 * ((c @ n) - h)[:, None] * n)[1]
+        image = c - 2.0 * ((c @ n) - h)[:, None] * n
         new: list[SweepPatch] = []
         for p in pool:
             if len(p.faces):
                 a = areas[p.faces]
-                same = np.isin(image_face[p.faces], p.faces)
+                mask = np.zeros(len(mesh.faces), bool)
+                mask[p.faces] = True
+                same = tree.on_faces(image[p.faces], mask)     # on an edge or a vertex of one of them too
                 if a.sum() > 0 and float(a[same].sum() / a.sum()) >= params.patch_overlap:
                     continue            # the patch is its own mirror image (near enough)
             profile, motion = mirrored(p, n, h)

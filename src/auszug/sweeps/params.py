@@ -153,6 +153,13 @@ class SweepParams:
     fit_factor : float
         A patch is kept when its fit error (largest distance of the swept profile to the mesh)
         is at most ``fit_factor * eps_prox`` (the issue's bound: 2).
+    reciprocal_angle : float
+        The fit check's reciprocal test (:meth:`~auszug.sweeps.patches.MeshTree.interior_distance`)
+        discounts a swept point farther than ``eps_prox`` from the mesh whose closest mesh point lies
+        on another part of the swept surface only where that part lies along the mesh: its normal
+        within this angle (degrees, either orientation) of the mesh's normal at the closest point.
+        A swept surface folding over itself (a profile or path doubling back) crosses the mesh
+        there and discounts nothing. 180: no normal test. Default 30 (our choice).
     min_patch_area : float
         A patch is kept when it covers at least this share of the mesh's area.
     motion_samples : int
@@ -397,6 +404,7 @@ class SweepParams:
     kinematic_min_agreement: float = 0.5
     eps_prox: float = 0.005
     fit_factor: float = 2.0
+    reciprocal_angle: float = 30.0
     min_patch_area: float = 0.01
     motion_samples: int = 17
     profile_cuts: int = 8
@@ -483,6 +491,7 @@ class SweepParams:
             ("kinematic_min_agreement", 0 <= self.kinematic_min_agreement <= 1, "in [0, 1]"),
             ("eps_prox", 1e-5 <= self.eps_prox <= 0.1, "in [1e-5, 0.1] (bounding-box diameters)"),
             ("fit_factor", self.fit_factor >= 1, ">= 1"),
+            ("reciprocal_angle", 0 < self.reciprocal_angle <= 180, "in (0, 180]"),
             ("min_patch_area", 0 <= self.min_patch_area <= 1, "in [0, 1]"),
             ("motion_samples", 8 <= self.motion_samples <= 4096, "in 8..4096"),
             ("profile_cuts", 0 <= self.profile_cuts <= 256, "in 0..256"),

@@ -15,7 +15,7 @@ directly from :func:`~auszug.sweeps.kinematic_axis`:
 
 The fit check (:func:`fit_patch`) meshes the swept surface (rings of the profile at parameters
 dense enough that chords stay within ``eps_prox / 10``), takes closest points both ways (the
-swept points on the mesh with libigl's tree, :class:`MeshTree`; the mesh's vertices on the swept
+swept points on the mesh with the compiled face grids of :class:`MeshTree`; the mesh's vertices on the swept
 surface with the compiled :class:`RingTree` of its rings, within ``eps_prox``): the faces covered
 are the mesh faces whose three vertices lie within ``eps_prox`` of the swept surface, the fit
 error the largest distance of the swept surface's points to the mesh, and coverage the covered
@@ -36,19 +36,23 @@ from numpy.typing import ArrayLike, NDArray
 from auszug.errors import GeometryError
 from auszug.sweeps._kernels import (
     boundary_edges_of,
+    closest_features,
     face_grid,
     face_grid_cell,
     face_vertices_in_box,
     faces_within,
     improve_sums,
+    interior_max,
+    mesh_closest,
     ring_grid_boxes,
     ring_grid_nearest,
     ring_grid_within,
     triangle_areas,
+    unit_face_normals,
 )
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import KinematicAxis
-from auszug.sweeps.mesh import SweepMesh
+from auszug.sweeps.mesh import SweepMesh, vertex_normals
 from auszug.sweeps.motion import Motion, screw_motion
 from auszug.sweeps.params import DEFAULT, SweepParams
 
@@ -200,12 +204,30 @@ FACE_GRID_CELL = 1.5
 #: :meth:`MeshTree.face_grid` has at most this many cells per face (the cell grows on a sparse mesh).
 FACE_GRID_CELLS = 8
 
+#: A closest point this near a face's corner (side) lies on that vertex (edge): :meth:`MeshTree.normals`,
+#: :meth:`MeshTree.interior_distance` (normalised coordinates).
+FEATURE_GAP = 1e-9
+
+#: :meth:`MeshTree.query` searches the fine face grid within this many of its cells; a point with no face that near
+#: is searched on the coarse grid, whose cells are :data:`COARSE_GRID_CELL` fine cells wide.
+FINE_REACH = 1.0
+
+#: The coarse grid's cell size in the fine grid's cells (:data:`FINE_REACH`).
+COARSE_GRID_CELL = 4.0
+
 #: Where :meth:`MeshTree.of` keeps a mesh's tree (an attribute of the mesh object, not a dataclass field).
 _TREE_KEY = "_mesh_tree"
 
 
 class MeshTree:
-    """Closest points on one triangle mesh, its bounding-volume tree built once (libigl ``AABB``).
+    """Exact closest points on one triangle mesh, its faces binned once in two uniform grids (compiled).
+
+    The fine grid (:meth:`face_grid`) is searched near each point, a coarse one where no face is
+    near (:func:`~auszug.sweeps._kernels.mesh_closest`): true point-triangle distances, every face
+    within the distance found tested. Of faces at the same distance (a closest point on an edge
+    or a vertex) the first found is kept; the answers built on the face (:meth:`normals`,
+    :meth:`on_faces`, :meth:`interior_distance`, :meth:`interior_max`) take the edge or the
+    vertex instead (:meth:`_features`), so they do not depend on that choice.
 
     Examples
     --------
@@ -216,12 +238,8 @@ class MeshTree:
     """
 
     def __init__(self, vertices: ArrayLike, faces: ArrayLike) -> None:
-        import igl
-
         self.vertices = np.ascontiguousarray(np.asarray(vertices, float))
-        self.faces = np.ascontiguousarray(np.asarray(faces, np.int64))
-        self._tree = igl.AABB()
-        self._tree.init(self.vertices, self.faces)
+        self.faces = np.ascontiguousarray(np.asarray(faces, np.int64).reshape(-1, 3))
 
     @classmethod
     def of(cls, mesh: SweepMesh) -> "MeshTree":
@@ -248,20 +266,26 @@ class MeshTree:
 
     @classmethod
     def built(cls, mesh: SweepMesh) -> "MeshTree":
-        """A new tree of a whole :class:`~auszug.sweeps.mesh.SweepMesh`, its boundary edges from the mesh's topology.
+        """A new tree of a whole :class:`~auszug.sweeps.mesh.SweepMesh`, its grids built, boundary edges from topology.
 
-        The same as ``MeshTree(mesh.vertices, mesh.faces)``, without counting the edges' faces
-        again (an edge with one face is a boundary edge). :meth:`of` keeps it with the mesh.
+        The same as ``MeshTree(mesh.vertices, mesh.faces)`` with its grids built (:meth:`grids`),
+        without counting the edges' faces again (an edge with one face is a boundary edge).
+        :meth:`of` keeps it with the mesh.
         """
         tree = cls(mesh.vertices, mesh.faces)
         tree._bnd = boundary_edges_of(tree.faces, mesh.edge_faces, mesh.face_edges)     # one compiled pass
+        tree._topo = (mesh.face_edges, mesh.edge_faces)
+        tree._ends = mesh.edges
+        tree._vn = mesh.normals
+        tree.grids()
         return tree
 
     def query(self, points: ArrayLike) -> tuple[Array, IntArray, Array]:
-        """Distances ``(n,)``, closest faces ``(n,)`` and closest points ``(n, 3)``.
+        """Distances ``(n,)``, closest faces ``(n,)`` and closest points ``(n, 3)`` (exact).
 
         The last query is kept: the same points again (a family's ribs, asked first whether a grown
-        patch holds them, then for their normals) get copies of its answer.
+        patch holds them, then for their normals) get copies of its answer. A tree of no faces
+        gives inf, -1 and zeros.
         """
         p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
         if len(p) == 0:
@@ -269,16 +293,17 @@ class MeshTree:
         last = self.__dict__.get("_last")
         if last is not None and last[0].shape == p.shape and np.array_equal(last[0], p):
             return last[1].copy(), last[2].copy(), last[3].copy()
-        sq, face, c = self._tree.squared_distance(self.vertices, self.faces, p)
-        out = np.sqrt(np.maximum(sq, 0.0)), np.asarray(face, np.int64), np.asarray(c)
+        (lo, dims, h, start, entries, fbox), coarse = self.grids()
+        out = mesh_closest(self.vertices, self.faces, lo, dims, h, start, entries, fbox, *coarse, p,
+                           float(FINE_REACH * h))
         self._last = (p.copy(), out[0].copy(), out[1].copy(), out[2].copy())
         return out
 
     def face_grid(self) -> tuple[Array, IntArray, float, IntArray, IntArray, Array]:
         """The tree's faces binned in a uniform grid (compiled :func:`~auszug.sweeps._kernels.face_grid`), built once.
 
-        For compiled exact closest-point searches that start near the answer (the motion's
-        refinement, :func:`~auszug.sweeps.general.refine_motion`). The cell is
+        For compiled exact closest-point searches that start near the answer (:meth:`query`, the
+        motion's refinement, :func:`~auszug.sweeps.general.refine_motion`). The cell is
         :data:`FACE_GRID_CELL` mean edge lengths, larger where the grid would have more than
         :data:`FACE_GRID_CELLS` cells per face. Returns the origin, the cell counts, the cell
         size, each cell's first entry, the faces cell after cell and the faces' bounding boxes.
@@ -291,6 +316,18 @@ class MeshTree:
             got = (lo, dims, h, start, entries, fbox)
             self._grid = got
         return got
+
+    def grids(self) -> tuple[tuple[Array, IntArray, float, IntArray, IntArray, Array],
+                             tuple[Array, IntArray, float, IntArray, IntArray, Array]]:
+        """The fine grid (:meth:`face_grid`) and the coarse one (:data:`COARSE_GRID_CELL` times its cell), once."""
+        fine = self.face_grid()
+        got = self.__dict__.get("_coarse")
+        if got is None:
+            h = fine[2] * COARSE_GRID_CELL
+            lo, dims, start, entries, fbox = face_grid(self.vertices, self.faces, h)
+            got = (lo, dims, h, start, entries, fbox)
+            self._coarse = got
+        return fine, got
 
     def _boundary_edges(self) -> IntArray:
         """Per face its boundary edges as vertex pairs ``(m, 3, 2)`` (-1 where the edge is inner)."""
@@ -306,9 +343,207 @@ class MeshTree:
         out: IntArray = self._bnd
         return out
 
+    def _topology(self) -> tuple[IntArray, IntArray]:
+        """Each face's edges ``(m, 3)`` (in face order ``(0, 1), (1, 2), (2, 0)``) and each edge's faces ``(k, 2)``.
+
+        As :attr:`SweepMesh.face_edges` and :attr:`SweepMesh.edge_faces` (-1 where a boundary
+        edge has one face; an edge of more than two faces keeps its first and last).
+        """
+        got: tuple[IntArray, IntArray] | None = self.__dict__.get("_topo")
+        if got is None:
+            f = self.faces
+            und = np.sort(np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1).reshape(-1, 2), axis=1)
+            _, inv = np.unique(und[:, 0] * np.int64(len(self.vertices)) + und[:, 1], return_inverse=True)
+            inv = inv.reshape(-1)
+            owner = np.repeat(np.arange(len(f), dtype=np.int64), 3)
+            order = np.argsort(inv, kind="stable")
+            si = inv[order]
+            first = np.r_[True, si[1:] != si[:-1]] if len(si) else np.zeros(0, bool)
+            ef = np.full((int(si[-1]) + 1 if len(si) else 0, 2), -1, np.int64)
+            ef[si[first], 0] = owner[order[first]]
+            ef[si[~first], 1] = owner[order[~first]]
+            got = (inv.reshape(-1, 3).astype(np.int64), ef)
+            self._topo = got
+        return got
+
+    def _boundary_vertices(self) -> NDArray[np.bool_]:
+        """Whether each vertex ``(n,)`` is an end of a boundary edge (an edge with one face)."""
+        got: NDArray[np.bool_] | None = self.__dict__.get("_bvert")
+        if got is None:
+            bnd = self._boundary_edges()
+            got = np.zeros(len(self.vertices), bool)
+            got[bnd[bnd >= 0]] = True
+            self._bvert = got
+        return got
+
+    def _features(self, face: IntArray, c: Array) -> tuple[IntArray, IntArray]:
+        """The vertex ``(n,)`` or else the edge ``(n,)`` (ids of :meth:`_topology`; -1 for none) closest points lie on.
+
+        A closest point ``c (n, 3)`` on face ``face (n,)`` within ``FEATURE_GAP`` of a corner of the
+        face lies on that vertex; else within it of a side, on that edge; else inside the face.
+        The faces equally near a point whose closest point lies on an edge or a vertex (a tie, the
+        face returned depending on the search) all give the same vertex or edge. One compiled
+        pass (:func:`~auszug.sweeps._kernels.closest_features`).
+        """
+        out: tuple[IntArray, IntArray] = closest_features(
+            self.vertices, self.faces, self._topology()[0], np.ascontiguousarray(face, dtype=np.int64),
+            np.ascontiguousarray(np.asarray(c, float).reshape(-1, 3)), float(FEATURE_GAP))
+        return out
+
+    def _edge_ends(self) -> IntArray:
+        """Each edge's end vertices ``(k, 2)`` (ids of :meth:`_topology`), the lower first (:attr:`SweepMesh.edges`)."""
+        got: IntArray | None = self.__dict__.get("_ends")
+        if got is None:
+            fe = self._topology()[0]
+            f = self.faces
+            sides = np.sort(np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1), axis=2)     # (m, 3, 2)
+            got = np.zeros((int(fe.max()) + 1 if fe.size else 0, 2), np.int64)
+            got[fe.reshape(-1)] = sides.reshape(-1, 2)
+            self._ends = got
+        return got
+
+    def _vertex_normals(self) -> Array:
+        """Unit area-weighted vertex normals ``(n, 3)`` (:attr:`SweepMesh.normals` for a tree of a whole mesh)."""
+        got: Array | None = self.__dict__.get("_vn")
+        if got is None:
+            got = vertex_normals(self.vertices, self.faces)
+            self._vn = got
+        return got
+
+    def normals(self, points: ArrayLike) -> Array:
+        """Unit normals ``(..., 3)`` of the mesh at the closest points of ``points (..., 3)``, independent of ties.
+
+        Inside a face, its normal; on an edge (:meth:`_features`), the vertex normals of its two
+        ends (area-weighted, :meth:`_vertex_normals`) interpolated linearly at the closest point and
+        normalised, the lower-numbered end first (the normals :func:`~auszug.sweeps.cut.cut` gives
+        its cut points, which lie on edges; the place along the edge is the point's projection on
+        it, the same bits whichever face the search returned); at a vertex, its vertex normal. So on an edge or a
+        vertex the same whichever face of it the search returns (a tie). (The normal of the
+        lowest-numbered face, and the mean of an edge's faces' normals, were tried in
+        sweeps-build9: the latter turned the re-sliced ribs' velocities on the tracery border into
+        a spurious sweep.)
+
+        Examples
+        --------
+        >>> t = MeshTree(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 1.0]]), np.array([[1, 3, 2], [0, 1, 2]]))
+        >>> n = t.normals([[0.1, 0.1, 1.0], [0.5, 0.5, -0.5]])    # inside face 1; on the edge of faces 0 and 1
+        >>> np.round(n, 4).tolist()
+        [[0.0, 0.0, 1.0], [-0.4082, -0.4082, 0.8165]]
+        """
+        p = np.asarray(points, float)
+        _, face, c = self.query(p)
+        v = self.vertices
+        # compiled: np.cross(v1 - v0, v2 - v0) over np.maximum(its norm, 1e-300), bit for bit
+        n: Array = unit_face_normals(v, self.faces, np.ascontiguousarray(face, dtype=np.int64))
+        vid, eid = self._features(face, c)
+        vn = self._vertex_normals()
+        on_e = np.flatnonzero(eid >= 0)
+        if len(on_e):
+            ab = self._edge_ends()[eid[on_e]]
+            a, b = v[ab[:, 0]], v[ab[:, 1]]
+            d = b - a
+            w = np.einsum("ki,ki->k", d, d)
+            # from the point, not its closest point: the same bits whichever tied face the search returned
+            q = p.reshape(-1, 3)[on_e]
+            t = np.clip(np.einsum("ki,ki->k", q - a, d) / np.where(w > 0, w, 1.0), 0.0, 1.0)
+            m = vn[ab[:, 0]] + t[:, None] * (vn[ab[:, 1]] - vn[ab[:, 0]])
+            s = np.linalg.norm(m, axis=1, keepdims=True)
+            n[on_e] = np.where(s > 0, m / np.where(s > 0, s, 1.0), n[on_e])
+        at_v = np.flatnonzero(vid >= 0)
+        if len(at_v):
+            m = vn[vid[at_v]]
+            n[at_v] = np.where(np.linalg.norm(m, axis=1, keepdims=True) > 0, m, n[at_v])
+        return n.reshape(p.shape)
+
+    def on_faces(self, points: ArrayLike, mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
+        """Whether the closest point of each of ``points (n, 3)`` lies on a face of ``mask (m,)`` (its edges too).
+
+        A closest point on an edge or a vertex (:meth:`_features`) lies on all the faces around
+        it: the answer does not depend on which of them the search returns.
+        """
+        _, face, c = self.query(points)
+        out = np.asarray(mask, bool)[face]
+        vid, eid = self._features(face, c)
+        if (eid >= 0).any():
+            ef = self._topology()[1][eid[eid >= 0]]
+            out[eid >= 0] = (mask[np.maximum(ef, 0)] & (ef >= 0)).any(axis=1)
+        if (vid >= 0).any():
+            around = np.bincount(self.faces.ravel(), np.repeat(np.asarray(mask, float), 3), len(self.vertices)) > 0
+            out[vid >= 0] = around[vid[vid >= 0]]
+        return out
+
+    def interior_max(self, points: ArrayLike, surface: RingTree, tol: float,
+                     angle: float = DEFAULT.reciprocal_angle) -> float:
+        """``interior_distance(points, surface, tol, angle).max()`` (0 for no points), with fewer searches.
+
+        One compiled pass (:func:`~auszug.sweeps._kernels.interior_max`): a point with a face
+        within the largest distance counted so far is not searched further, as it cannot raise
+        it; the points farther than ``tol`` get the reciprocal test as in
+        :meth:`interior_distance`. The same number.
+        """
+        p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
+        if len(p) == 0:
+            return 0.0
+        (lo, dims, h, start, entries, fbox), coarse = self.grids()
+        err, idx, d, c, face = interior_max(self.vertices, self.faces, self._boundary_edges(),
+                                            self._boundary_vertices(), lo, dims, h, start, entries, fbox, *coarse, p,
+                                            float(tol), float(FINE_REACH * h))
+        if len(idx):
+            ds, sf, back = surface.query(c, tol)      # only the distances within tol count
+            other = (ds <= tol) & (np.linalg.norm(back - p[idx], axis=1) >= 0.5 * d)
+            if angle < 180.0 and other.any():
+                at = np.flatnonzero(other)
+                ns = unit_face_normals(np.ascontiguousarray(surface.vertices), surface.faces,
+                                       np.ascontiguousarray(sf[at]))
+                other[at[~self._along(face[at], c[at], ns, angle)]] = False
+            err = max(float(err), float(np.where(other, 0.0, d).max()))
+        return float(err)
+
+    def _along(self, face: IntArray, c: Array, normals: Array, angle: float) -> NDArray[np.bool_]:
+        """Whether the unit ``normals (k, 3)`` lie within ``angle`` degrees (either orientation) of the mesh at ``c``.
+
+        ``c (k, 3)`` are closest points found on the faces ``face (k,)``: the normal of the face it lies
+        on; on an edge or at a vertex (:meth:`_features`, a tie) of any face around it, so the answer does not
+        depend on which of them the search returned (:meth:`interior_distance`'s reciprocal test).
+        """
+        v, f = self.vertices, self.faces
+        cos = np.cos(np.radians(angle))
+        face = np.ascontiguousarray(face, dtype=np.int64)
+        ok: NDArray[np.bool_] = np.abs(np.einsum("ki,ki->k", unit_face_normals(v, f, face), normals)) >= cos
+        vid, eid = self._features(face, c)
+        on_e = np.flatnonzero((eid >= 0) & ~ok)
+        if len(on_e):
+            ef = self._topology()[1][eid[on_e]]                                # (e, 2), -1 past a boundary edge
+            for j in range(2):
+                has = ef[:, j] >= 0
+                nj = unit_face_normals(v, f, np.ascontiguousarray(np.maximum(ef[:, j], 0)))
+                ok[on_e] |= has & (np.abs(np.einsum("ki,ki->k", nj, normals[on_e])) >= cos)
+        at_v = np.flatnonzero((vid >= 0) & ~ok)
+        if len(at_v):
+            start, around = self._vertex_faces()
+            lo, hi = start[vid[at_v]], start[vid[at_v] + 1]
+            row = np.repeat(np.arange(len(at_v)), hi - lo)                  # each point's faces around its vertex
+            pos = np.arange(len(row)) - np.repeat(np.cumsum(hi - lo) - (hi - lo), hi - lo) + np.repeat(lo, hi - lo)
+            nf = unit_face_normals(v, f, np.ascontiguousarray(around[pos]))
+            hit = np.abs(np.einsum("ki,ki->k", nf, normals[at_v][row])) >= cos
+            ok[at_v] = np.bincount(row, hit, len(at_v)) > 0
+        return ok
+
+    def _vertex_faces(self) -> tuple[IntArray, IntArray]:
+        """Each vertex's faces ``faces[start[i]:start[i + 1]]``: ``start (n + 1,)`` and ``faces (3 m,)``."""
+        got: tuple[IntArray, IntArray] | None = self.__dict__.get("_vfaces")
+        if got is None:
+            flat = self.faces.ravel()
+            order = np.argsort(flat, kind="stable")
+            start = np.zeros(len(self.vertices) + 1, np.int64)
+            np.cumsum(np.bincount(flat, minlength=len(self.vertices)), out=start[1:])
+            got = (start, (order // 3).astype(np.int64))
+            self._vfaces = got
+        return got
+
     def interior_distance(self, points: ArrayLike,
                           surface: MeshTree | RingTree | tuple[Array, IntArray] | None = None,
-                          tol: float = 0.0) -> Array:
+                          tol: float = 0.0, angle: float = DEFAULT.reciprocal_angle) -> Array:
         """Distances ``(n,)`` to the mesh, 0 where a point lies beyond the mesh.
 
         A point whose closest point is on the mesh's boundary lies beyond the mesh (past its end or
@@ -322,31 +557,42 @@ class MeshTree:
         with partial overlap). Over a hole in a mesh whose profile folds (a torus) the closest mesh
         point is often on the fold's other side, not on the hole's rim; where the sweep misses
         the mesh, the closest mesh point lies off the sweep and the distance counts.
+
+        That other part must lie *along* the mesh there: the swept surface's normal at the point
+        nearest the closest mesh point (its triangle's) within ``angle`` degrees of the mesh's normal
+        at the closest point (the normal of the face found; either orientation;
+        :attr:`~auszug.sweeps.params.SweepParams.reciprocal_angle`). A swept surface that folds
+        over itself crosses the mesh where its other sheet meets it and discounts nothing there
+        (180: no normal test).
         """
         p = np.asarray(points, float).reshape(-1, 3)
         d, face, c = self.query(p)
-        e = self._boundary_edges()[face]                            # (n, 3, 2)
-        has = e[:, :, 0] >= 0
         out: Array = d
-        if has.any():
-            a = self.vertices[np.maximum(e[:, :, 0], 0)]
-            b = self.vertices[np.maximum(e[:, :, 1], 0)]
-            ab = b - a
-            w = np.einsum("nki,nki->nk", ab, ab)
-            f = np.clip(np.einsum("nki,nki->nk", c[:, None, :] - a, ab) / np.where(w > 0, w, 1.0), 0.0, 1.0)
-            gap = np.linalg.norm(c[:, None, :] - (a + f[..., None] * ab), axis=2)
-            on = (has & (gap <= 1e-9)).any(axis=1)
+        bv = self._boundary_vertices()
+        if bv[self.faces[face]].any():
+            # on a boundary edge or at a boundary vertex (the mesh's topology: whichever face of the
+            # vertex the search returned)
+            vid, eid = self._features(face, c)
+            _, ef = self._topology()
+            on = np.zeros(len(p), bool)
+            on[vid >= 0] = bv[vid[vid >= 0]]
+            on[eid >= 0] = (ef[eid[eid >= 0]] < 0).any(axis=1)
             out = np.where(on, 0.0, d)
         if surface is not None and (not isinstance(surface, tuple) or len(surface[1])):
             far = np.flatnonzero(out > tol)
             if len(far):
+                if isinstance(surface, tuple):
+                    surface = MeshTree(surface[0], surface[1])
                 if isinstance(surface, RingTree):
-                    ds, _, back = surface.query(c[far], tol)      # only the distances within tol count
-                elif isinstance(surface, MeshTree):
-                    ds, _, back = surface.query(c[far])
+                    ds, sf, back = surface.query(c[far], tol)     # only the distances within tol count
                 else:
-                    ds, back = closest_distance(c[far], surface[0], surface[1])
+                    ds, sf, back = surface.query(c[far])
                 other = (ds <= tol) & (np.linalg.norm(back - p[far], axis=1) >= 0.5 * d[far])
+                if angle < 180.0 and other.any():
+                    at = np.flatnonzero(other)
+                    sv = np.ascontiguousarray(surface.vertices)
+                    ns = unit_face_normals(sv, surface.faces, np.ascontiguousarray(sf[at]))
+                    other[at[~self._along(face[far[at]], c[far[at]], ns, angle)]] = False
                 out = out.copy()
                 out[far[other]] = 0.0
         return out
@@ -769,7 +1015,7 @@ def fit_patch(mesh: SweepMesh, profile: Array, closed: bool, motion: Motion,
     :func:`swept_error` followed by :func:`swept_coverage`.
     """
     err = swept_error(profile, closed, motion, params.eps_prox,
-                      tree if tree is not None else MeshTree(mesh.vertices, mesh.faces))
+                      tree if tree is not None else MeshTree(mesh.vertices, mesh.faces), angle=params.reciprocal_angle)
     return swept_coverage(mesh, err, params.eps_prox, areas)
 
 
@@ -797,11 +1043,12 @@ FIRST_QUERIED = 64
 
 
 def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: MeshTree,
-                upper: Array | None = None) -> SweptError:
+                upper: Array | None = None, angle: float = DEFAULT.reciprocal_angle) -> SweptError:
     """The swept surface (chords within ``eps / 10``) and its largest distance to the mesh of ``tree``.
 
     Swept points beyond the mesh do not count (:meth:`MeshTree.interior_distance` with the
-    swept surface's own tree for the reciprocal test).
+    swept surface's own tree for the reciprocal test and ``angle``, its
+    :attr:`~auszug.sweeps.params.SweepParams.reciprocal_angle`).
 
     ``upper (len(motion), n)``, optional, bounds each profile point's distance to the mesh at each
     of the motion's knots from above (inf where unknown). Only the largest distance is kept, so
@@ -815,7 +1062,7 @@ def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: 
     if len(sv) == 0:
         return SweptError(sv, swept, float("inf"))
     if upper is None:
-        return SweptError(sv, swept, float(tree.interior_distance(sv, swept, eps).max()))
+        return SweptError(sv, swept, tree.interior_max(sv, swept, eps, angle))
     ub = np.full(rings.shape[:2], np.inf)
     k = np.searchsorted(motion.t, t)
     at = (k < len(motion.t)) & (motion.t[np.minimum(k, len(motion.t) - 1)] == t)
@@ -829,17 +1076,17 @@ def swept_error(profile: Array, closed: bool, motion: Motion, eps: float, tree: 
         # sort of -ub puts them first), then the others of a bound above the error found, by decreasing bound
         # (ties in index order); filtering before the stable sort keeps the same order
         first = np.flatnonzero(unknown)
-        err = float(tree.interior_distance(sv[first], swept, eps).max())
+        err = tree.interior_max(sv[first], swept, eps, angle)
         rest = np.flatnonzero(~unknown & (ub > err))
         rest = rest[np.argsort(-ub[rest], kind="stable")]
     else:
         order = np.argsort(-ub, kind="stable")
         first = order[:max(FIRST_QUERIED, int(np.sum(~np.isfinite(ub))))]
-        err = float(tree.interior_distance(sv[first], swept, eps).max())
+        err = tree.interior_max(sv[first], swept, eps, angle)
         rest = order[len(first):]
         rest = rest[ub[rest] > err]
     if len(rest):
-        err = max(err, float(tree.interior_distance(sv[rest], swept, eps).max()))
+        err = max(err, tree.interior_max(sv[rest], swept, eps, angle))
     return SweptError(sv, swept, err)
 
 

@@ -9,7 +9,7 @@ preprocessing once per mesh; the whole plane search; matching the 144 lowest-ene
 build of the families of most support (not grown), per sweep, and with the mesh's closest-point tree shared out over
 them. Times are the minimum of ``--reps`` runs after a warm-up run (the build: the median of its runs' CPU time).
 
-Usage: python benchmarks/bench_sweeps_large.py [--reps N]
+Usage (from the repository root): python -m benchmarks.bench_sweeps_large [--reps N] [--families N]
 """
 
 from __future__ import annotations

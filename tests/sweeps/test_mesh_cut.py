@@ -81,6 +81,41 @@ def test_normalise_rejects_bad_meshes(v, f, what):
         normalise(v, f)
 
 
+def test_edge_topology_is_a_dictionary_of_the_faces_edges_and_the_mesh_trees_is_the_meshs():
+    """``edge_topology`` against a plain dictionary of every face's sides (edges in key order, each
+    edge's first and last face, each face's edges in face order, counts), on a mesh with boundaries,
+    on one with an edge of three faces (the first and the last kept) and on no faces; and a
+    ``MeshTree`` of a mesh's faces, built without the mesh, has its topology and boundary edges."""
+    from auszug.sweeps.fixtures import bumps, with_hole
+    from auszug.sweeps.mesh import edge_topology
+    from auszug.sweeps.patches import MeshTree
+
+    fx = with_hole(extruded(n_profile=20, n_path=15))
+    fan = np.array([[0, 1, 2], [1, 0, 3], [0, 1, 4], [2, 1, 5]])        # edge (0, 1) has three faces
+    for f, n in ((fx.faces, len(fx.vertices)), (fan, 6), (bumps(n=12).faces, 144), (np.zeros((0, 3), np.int64), 3)):
+        seen: dict[tuple[int, int], list[int]] = {}
+        for i, tri in enumerate(np.asarray(f).tolist()):
+            for a, b in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+                seen.setdefault((min(a, b), max(a, b)), []).append(i)
+        keys = sorted(seen)
+        edges, ef, fe, counts = edge_topology(f, n)
+        assert edges.tolist() == [list(k) for k in keys]
+        assert ef.tolist() == [[seen[k][0], seen[k][-1] if len(seen[k]) > 1 else -1] for k in keys]
+        assert counts.tolist() == [len(seen[k]) for k in keys]
+        ids = {k: i for i, k in enumerate(keys)}
+        assert fe.tolist() == [[ids[(min(a, b), max(a, b))] for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0]))]
+                               for t in np.asarray(f).tolist()]
+        assert edges.dtype == ef.dtype == fe.dtype == counts.dtype == np.int64
+    assert edge_topology(fan, 6)[3].max() == 3
+    m = normalise(fx.vertices, fx.faces)
+    tree = MeshTree(m.vertices, m.faces)
+    fe, ef = tree._topology()
+    assert np.array_equal(fe, m.face_edges) and np.array_equal(ef, m.edge_faces)
+    assert np.array_equal(tree._edge_ends(), m.edges)
+    assert np.array_equal(tree._boundary_edges(), MeshTree.of(m)._boundary_edges())
+    assert (tree._boundary_edges() >= 0).any()
+
+
 def test_geodesic_sphere_counts_and_spacing():
     for freq in (1, 2, 3, 4, 6):
         s = geodesic_sphere(freq)

@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike, NDArray
 from auszug.errors import GeometryError
 from auszug.sweeps import _kernels
 
-__all__ = ["SweepMesh", "normalise", "vertex_normals", "face_components"]
+__all__ = ["SweepMesh", "normalise", "edge_topology", "vertex_normals", "face_components"]
 
 Array = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -87,6 +87,60 @@ def vertex_normals(vertices: ArrayLike, faces: ArrayLike) -> Array:
     return np.divide(vn, norm, out=np.zeros_like(vn), where=norm > 0)
 
 
+def edge_topology(faces: IntArray, n_vertices: int) -> tuple[IntArray, IntArray, IntArray, IntArray]:
+    """The undirected edges of triangles, each edge's faces and each face's edges.
+
+    Parameters
+    ----------
+    faces : (m, 3) int array
+        Vertex indices in ``0 .. n_vertices - 1``.
+    n_vertices : int
+
+    Returns
+    -------
+    edges : (k, 2) int array
+        Each edge's end vertices, the lower first, edges in the order of ``low * n_vertices + high``.
+    edge_faces : (k, 2) int array
+        Each edge's first and last face in face order (-1 in the second column for an edge of one
+        face, a boundary edge).
+    face_edges : (m, 3) int array
+        Each face's edges in face order: ``(0, 1), (1, 2), (2, 0)``.
+    counts : (k,) int array
+        Each edge's number of faces (above 2 where the mesh is not a 2-manifold).
+
+    Examples
+    --------
+    >>> e, ef, fe, n = edge_topology(np.array([[0, 1, 2], [2, 1, 3]]), 4)
+    >>> e.tolist(), ef.tolist()
+    ([[0, 1], [0, 2], [1, 2], [1, 3], [2, 3]], [[0, -1], [0, -1], [0, 1], [1, -1], [1, -1]])
+    >>> fe.tolist(), n.tolist()
+    ([[0, 2, 1], [2, 3, 4]], [1, 1, 2, 1, 1])
+    """
+    f = np.asarray(faces, np.int64).reshape(-1, 3)
+    if len(f) == 0:
+        none = np.zeros((0, 2), np.int64)
+        return none, none.copy(), np.zeros((0, 3), np.int64), np.zeros(0, np.int64)
+    a, b = f.ravel(), f[:, [1, 2, 0]].ravel()              # face i's edges (0 1), (1 2), (2 0) at 3i .. 3i + 2
+    # one integer key per undirected edge (low * n + high), its edges in key order by one stable argsort: the
+    # faces' edges come in runs of nearly sorted keys, which the stable sort takes in one pass (np.unique's
+    # quicksort does not); the same keys, inverse and counts as np.unique's
+    key = np.minimum(a, b) * np.int64(n_vertices) + np.maximum(a, b)
+    order = np.argsort(key, kind="stable")
+    ks = key[order]
+    first = np.flatnonzero(np.concatenate([[True], ks[1:] != ks[:-1]]))
+    keys = ks[first]
+    counts = np.diff(np.append(first, len(ks)))
+    inv = np.empty(len(ks), np.int64)
+    inv[order] = np.repeat(np.arange(len(keys), dtype=np.int64), counts)
+    edges = np.stack([keys // n_vertices, keys % n_vertices], axis=1).astype(np.int64)
+    face_of = np.repeat(np.arange(len(f), dtype=np.int64), 3)
+    ef = np.full((len(edges), 2), -1, np.int64)
+    ef[:, 0] = face_of[order[first]]
+    more = counts >= 2
+    ef[more, 1] = face_of[order[first[more] + counts[more] - 1]]
+    return edges, ef, inv.reshape(-1, 3), counts.astype(np.int64)
+
+
 def normalise(vertices: ArrayLike, faces: ArrayLike) -> SweepMesh:
     """Normalise a mesh ``(V, F)`` and build its edge topology.
 
@@ -129,31 +183,13 @@ def normalise(vertices: ArrayLike, faces: ArrayLike) -> SweepMesh:
         raise GeometryError("mesh has a zero-size bounding box: expected faces that span some space")
     centre = (lo + hi) / 2
     vn = (v - centre) / scale
-    a, b = f.ravel(), f[:, [1, 2, 0]].ravel()              # face i's edges (0 1), (1 2), (2 0) at 3i .. 3i + 2
-    # one integer key per undirected edge (low * n + high), its edges in key order by one stable argsort: the
-    # faces' edges come in runs of nearly sorted keys, which the stable sort takes in one pass (np.unique's
-    # quicksort does not); the same keys, inverse and counts as np.unique's
-    key = np.minimum(a, b) * np.int64(len(v)) + np.maximum(a, b)
-    order = np.argsort(key, kind="stable")
-    ks = key[order]
-    first = np.flatnonzero(np.concatenate([[True], ks[1:] != ks[:-1]]))
-    keys = ks[first]
-    counts = np.diff(np.append(first, len(ks)))
-    inv = np.empty(len(ks), np.int64)
-    inv[order] = np.repeat(np.arange(len(keys), dtype=np.int64), counts)
-    edges = np.stack([keys // len(v), keys % len(v)], axis=1)
+    edges, ef, fe, counts = edge_topology(f, len(v))
     if counts.max() > 2:
         e = int(np.argmax(counts))
         raise GeometryError(
             f"mesh edge {edges[e].tolist()} is shared by {counts[e]} faces: expected a 2-manifold "
             "(at most two faces per edge)")
-    face_of = np.repeat(np.arange(len(f)), 3)
-    ef = np.full((len(edges), 2), -1, np.int64)
-    ef[:, 0] = face_of[order[first]]
-    two = counts == 2
-    ef[two, 1] = face_of[order[first[two] + 1]]
-    return SweepMesh(vn, f, vertex_normals(vn, f), edges.astype(np.int64), ef, inv.reshape(-1, 3).astype(np.int64),
-                     centre, scale)
+    return SweepMesh(vn, f, vertex_normals(vn, f), edges, ef, fe, centre, scale)
 
 
 def face_components(mesh: SweepMesh) -> IntArray:

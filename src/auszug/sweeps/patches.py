@@ -52,7 +52,7 @@ from auszug.sweeps._kernels import (
 )
 from auszug.sweeps.cut import cut
 from auszug.sweeps.kinematic import KinematicAxis
-from auszug.sweeps.mesh import SweepMesh, vertex_normals
+from auszug.sweeps.mesh import SweepMesh, edge_topology, vertex_normals
 from auszug.sweeps.motion import Motion, screw_motion
 from auszug.sweeps.params import DEFAULT, SweepParams
 
@@ -334,14 +334,18 @@ class MeshTree:
         if not hasattr(self, "_bnd"):
             f = self.faces
             e = np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1)       # (m, 3, 2)
-            key = np.sort(e, axis=2)
-            flat = key.reshape(-1, 2)
-            _, inv, counts = np.unique(flat[:, 0] * np.int64(len(self.vertices)) + flat[:, 1], return_inverse=True,
-                                       return_counts=True)
-            single = (counts[inv] == 1).reshape(-1, 3)
+            single = self._edge_topology()[3][self._topology()[0]] == 1                # (m, 3)
             self._bnd = np.where(single[:, :, None], e, -1)
         out: IntArray = self._bnd
         return out
+
+    def _edge_topology(self) -> tuple[IntArray, IntArray, IntArray, IntArray]:
+        """:func:`~auszug.sweeps.mesh.edge_topology` of the tree's faces, once (the edge counts too)."""
+        got: tuple[IntArray, IntArray, IntArray, IntArray] | None = self.__dict__.get("_etopo")
+        if got is None:
+            got = edge_topology(self.faces, len(self.vertices))
+            self._etopo = got
+        return got
 
     def _topology(self) -> tuple[IntArray, IntArray]:
         """Each face's edges ``(m, 3)`` (in face order ``(0, 1), (1, 2), (2, 0)``) and each edge's faces ``(k, 2)``.
@@ -351,18 +355,8 @@ class MeshTree:
         """
         got: tuple[IntArray, IntArray] | None = self.__dict__.get("_topo")
         if got is None:
-            f = self.faces
-            und = np.sort(np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1).reshape(-1, 2), axis=1)
-            _, inv = np.unique(und[:, 0] * np.int64(len(self.vertices)) + und[:, 1], return_inverse=True)
-            inv = inv.reshape(-1)
-            owner = np.repeat(np.arange(len(f), dtype=np.int64), 3)
-            order = np.argsort(inv, kind="stable")
-            si = inv[order]
-            first = np.r_[True, si[1:] != si[:-1]] if len(si) else np.zeros(0, bool)
-            ef = np.full((int(si[-1]) + 1 if len(si) else 0, 2), -1, np.int64)
-            ef[si[first], 0] = owner[order[first]]
-            ef[si[~first], 1] = owner[order[~first]]
-            got = (inv.reshape(-1, 3).astype(np.int64), ef)
+            _, ef, fe, _ = self._edge_topology()
+            got = (fe, ef)
             self._topo = got
         return got
 
@@ -394,11 +388,7 @@ class MeshTree:
         """Each edge's end vertices ``(k, 2)`` (ids of :meth:`_topology`), the lower first (:attr:`SweepMesh.edges`)."""
         got: IntArray | None = self.__dict__.get("_ends")
         if got is None:
-            fe = self._topology()[0]
-            f = self.faces
-            sides = np.sort(np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], axis=1), axis=2)     # (m, 3, 2)
-            got = np.zeros((int(fe.max()) + 1 if fe.size else 0, 2), np.int64)
-            got[fe.reshape(-1)] = sides.reshape(-1, 2)
+            got = self._edge_topology()[0]
             self._ends = got
         return got
 

@@ -580,6 +580,32 @@ def test_mesh_tree_query_is_exact_near_and_far(hole):
 
 
 @pytest.mark.parametrize("hole", [False, True])
+def test_mesh_tree_query_within_is_its_query_within_the_bound(hole):
+    """``MeshTree.query_within`` (only the cells within the bound searched): where ``query``'s distance
+    is at most the bound, the same bits and a face at that distance; elsewhere inf and -1; for
+    bounds below, about and above the grid's cell, and on a tree of a few faces."""
+    mesh = _mesh(hole)
+    pts = _query_points(mesh, 6)
+    for faces in (mesh.faces, mesh.faces[::97]):
+        tree = MeshTree(mesh.vertices, faces)
+        d0 = tree.query(pts)[0]
+        h = tree.face_grid()[2]
+        for bound in (0.0, 1e-3, 0.5 * h, h, 3 * h, 0.3):
+            d, face, cp = tree.query_within(pts, bound)
+            near = d0 <= bound
+            assert np.array_equal(np.isfinite(d), near), bound
+            assert np.array_equal(d[near], d0[near]), bound
+            assert np.all(face[~near] == -1) and np.all(face[near] >= 0)
+            i = np.flatnonzero(near)
+            assert np.abs(np.linalg.norm(cp[i] - pts[i], axis=1) - d[i]).max(initial=0.0) <= 1e-14
+            for j in i[::7]:        # the closest point on the face returned
+                assert closest_distance(cp[j][None], mesh.vertices, faces[face[j]][None])[0][0] <= 1e-14
+        assert (d0 <= 3 * h).sum() > 100 and (d0 > 0.3).sum() > 100       # both kinds of points
+    d, face, _ = MeshTree(mesh.vertices, np.zeros((0, 3), np.int64)).query_within(pts[:5], 1.0)
+    assert np.all(np.isinf(d)) and np.all(face == -1)
+
+
+@pytest.mark.parametrize("hole", [False, True])
 def test_interior_max_is_the_largest_interior_distance(hole):
     """``MeshTree.interior_max`` (points certified by a face within the largest distance so far are
     not searched) is ``interior_distance(...).max()`` exactly, on rings of points around the mesh

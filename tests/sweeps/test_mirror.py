@@ -94,6 +94,66 @@ def test_a_box_has_its_three_mirror_planes_and_a_random_hull_none():
     assert mirror_planes(normalise(pts, hull.simplices)) == []
 
 
+def _mirror_planes_reference(mesh, params):
+    """The plane search as first written: every face's image tested for every candidate normal."""
+    from auszug.sweeps.patches import MeshTree, face_areas
+    from auszug.sweeps.planes import geodesic_sphere
+
+    tree = MeshTree(mesh.vertices, mesh.faces)
+    areas = face_areas(mesh.vertices, mesh.faces)
+    c = mesh.vertices[mesh.faces].mean(axis=1)
+    w = areas / areas.sum()
+    centroid = w @ c
+    y = c - centroid
+    _, axes = np.linalg.eigh((y * w[:, None]).T @ y)
+    sphere = geodesic_sphere(params.sphere_frequency)
+    found = []
+    for n in np.vstack([axes.T, sphere[sphere @ np.array([0.3, 0.5, 0.8]) > 0]]):
+        n = n / np.linalg.norm(n)
+        if any(abs(float(n @ m)) > np.cos(np.radians(5.0)) for m, _, _ in found):
+            continue
+        h = float(n @ centroid)
+        d = tree.query(c - 2.0 * ((c @ n) - h)[:, None] * n)[0]
+        share = float(w[d <= params.eps_prox].sum())
+        if share >= params.mirror_share:
+            found.append((n, h, share))
+    found.sort(key=lambda x: -x[2])
+    return found[:params.mirror_planes]
+
+
+@pytest.mark.parametrize("case", ["extruded", "hole", "bumps", "box"])
+def test_mirror_planes_give_up_early_and_find_what_testing_every_face_finds(case):
+    """A plane is given up once the area off the mesh exceeds ``1 - mirror_share`` (chunks of faces in
+    a shuffled order): the same planes, offsets and shares (to round-off of the summing order) as
+    testing every face's image, on meshes with three, one and no mirror planes; on the extrusion
+    with a hole (a plane with 0.9976 of the area mirrored on the mesh) also at a ``mirror_share``
+    just below and just above that share."""
+    from auszug.sweeps import fixtures
+
+    if case == "box":
+        v, f = _box((1.0, 2.0, 3.0))
+    else:
+        fx = {"extruded": lambda: fixtures.extruded(n_profile=60, n_path=60),
+              "hole": lambda: fixtures.with_hole(fixtures.extruded(n_profile=60, n_path=60)),
+              "bumps": lambda: fixtures.bumps(n=60)}[case]()
+        v, f = fx.vertices, fx.faces
+    m = normalise(v, f)
+    settings = [DEFAULT.with_(mirror_planes=3), DEFAULT.with_(mirror_planes=3, mirror_share=0.5)]
+    if case == "hole":
+        share = _mirror_planes_reference(m, settings[1])[0][2]
+        assert 0.99 < share < 0.999
+        settings += [DEFAULT.with_(mirror_planes=3, mirror_share=share - 1e-9),
+                     DEFAULT.with_(mirror_planes=3, mirror_share=share + 1e-9)]
+    counts = []
+    for params in settings:
+        got, want = mirror_planes(m, params), _mirror_planes_reference(m, params)
+        assert len(got) == len(want), case
+        for (n1, h1, s1), (n2, h2, s2) in zip(got, want, strict=True):
+            assert np.array_equal(n1, n2) and h1 == h2 and s1 == pytest.approx(s2, abs=1e-12)
+        counts.append(len(got))
+    assert counts == {"box": [3, 3], "extruded": [1, 1], "hole": [1, 1, 1, 0], "bumps": [0, 0]}[case]
+
+
 def test_mirror_candidates_are_fitted_against_the_mesh():
     """On the box, a translation patch along one wall's edge mirrored in the plane across the wall:
     the image lies on the opposite wall and fits (error 0, its faces that wall's two triangles); a

@@ -2383,6 +2383,33 @@ def mesh_closest(v, faces, lo, dims, h, start, entries, fbox, clo, cdims, ch, cs
     return dist, face, cp
 
 
+@njit(cache=True)
+def mesh_closest_within(v, faces, lo, dims, h, start, entries, fbox, points, bound):  # pragma: no cover - compiled
+    """Closest points on the mesh within ``bound`` (exact there): :func:`mesh_closest` pruned from the start.
+
+    Only the fine grid's cells within ``bound`` of a point are searched (the previous point's face
+    first), so a point far from the mesh costs a few cells. A point whose distance, computed as
+    :func:`mesh_closest` computes it, is at most ``bound`` gets the same distance and a face at
+    it; any other point gets inf, -1 and zeros.
+    """
+    q = len(points)
+    dist = np.full(q, np.inf)
+    face = np.full(q, -1, np.int64)
+    cp = np.zeros((q, 3))
+    last = -1
+    r2 = bound * bound * (1.0 + 1e-12)      # a margin over the squared bound's round-off; cut below
+    for p in range(q):
+        px, py, pz = points[p, 0], points[p, 1], points[p, 2]
+        d2, f, x, y, z, _ = _grid_nearest(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, r2, last, -1)
+        if f >= 0:
+            last = f
+            d = np.sqrt(d2)
+            if d <= bound:
+                dist[p], face[p] = d, f
+                cp[p, 0], cp[p, 1], cp[p, 2] = x, y, z
+    return dist, face, cp
+
+
 @njit(cache=True, inline="always")
 def _on_boundary(v, bnd, f, cx, cy, cz):  # pragma: no cover - compiled
     """Whether the closest point ``c`` on face ``f`` lies on one of its boundary edges (``bnd (m, 3, 2)``, -1 inner).
@@ -2852,3 +2879,47 @@ def closest_on_planes(targets, pts, curve_start, curve_plane, curve_closed):  # 
         cp[i] = c
         at_end[i] = e
     return dist, cp, at_end
+
+
+# ------------------------------------------------------------------------------ kinematic parts
+
+
+@njit(cache=True)
+def fitting_block(ok, pos, min_width, starts):  # pragma: no cover - compiled
+    """The largest all-True block of ``ok (k, n)`` by rows x summed column widths, first columns ``starts``.
+
+    ``pos (n,)`` are the columns' places (the cumulated widths); a block of columns ``c0..c1`` is
+    ``pos[c1] - pos[c0]`` wide and counts 0 below ``min_width``. Per first column, the columns
+    after it are added one by one (the rows all True so far kept), the longest run of such rows
+    (its first end) times the width is the block's area, and the columns stop where no row is
+    left. The block of the largest area (the first of equal ones, columns then rows) is returned
+    as ``r0, r1, c0, c1`` (inclusive), or -1s when every area is 0:
+    :func:`~auszug.sweeps.parts.fitting_block`'s answer.
+    """
+    k, n = ok.shape
+    acc = np.empty(k, np.bool_)
+    best = 0.0
+    out = (-1, -1, -1, -1)
+    for s in range(len(starts)):
+        c0 = starts[s]
+        any_row = False
+        for r in range(k):
+            acc[r] = ok[r, c0]
+            any_row = any_row or acc[r]
+        if not any_row:
+            continue
+        for c1 in range(c0 + 1, n):
+            run, top, end = 0, 0, -1
+            for r in range(k):
+                acc[r] = acc[r] and ok[r, c1]
+                run = run + 1 if acc[r] else 0
+                if run > top:
+                    top, end = run, r
+            if top == 0:
+                break
+            width = pos[c1] - pos[c0]
+            area = top * width if width >= min_width else 0.0
+            if area > best:
+                best = area
+                out = (end - top + 1, end, c0, c1)
+    return out

@@ -44,6 +44,7 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import NDArray
 
+from auszug.sweeps._kernels import fitting_block as block_of
 from auszug.sweeps._kernels import glide_shares
 from auszug.sweeps.cut import Cuts
 from auszug.sweeps.kinematic import KinematicAxis, motion_of
@@ -277,21 +278,9 @@ def fitting_block(ok: NDArray[np.bool_], widths: Array, min_width: float = 0.0,
     if n < 2 or k == 0:
         return None
     pos = np.concatenate([[0.0], np.cumsum(widths)])
-    rows = np.arange(k)[:, None]
-    best: tuple[float, tuple[int, int, int, int] | None] = (0.0, None)
-    for c0 in np.unique(np.linspace(0, n - 2, min(n - 1, max_starts)).astype(int)):
-        acc = np.logical_and.accumulate(ok[:, c0:], axis=1)[:, 1:]      # (k, n - c0 - 1): columns c0..c1
-        last_bad = np.maximum.accumulate(np.where(acc, -1, rows), axis=0)
-        run = rows - last_bad                                           # consecutive good rows ending here
-        end = np.argmax(run, axis=0)
-        length = run[end, np.arange(run.shape[1])]
-        width = pos[c0 + 1:] - pos[c0]
-        area = np.where(width >= min_width, length * width, 0.0)
-        j = int(np.argmax(area))
-        if area[j] > best[0]:
-            r1 = int(end[j])
-            best = (float(area[j]), (r1 - int(length[j]) + 1, r1, int(c0), int(c0) + 1 + j))
-    return best[1]
+    starts = np.unique(np.linspace(0, n - 2, min(n - 1, max_starts)).astype(np.int64))
+    r0, r1, c0, c1 = block_of(np.ascontiguousarray(ok, dtype=np.bool_), pos, float(min_width), starts)
+    return None if r0 < 0 else (int(r0), int(r1), int(c0), int(c1))
 
 
 def _trimmed(mesh: SweepMesh, tree: MeshTree, axis: KinematicAxis, p: SweepPatch, params: SweepParams,
@@ -320,7 +309,7 @@ def _trimmed(mesh: SweepMesh, tree: MeshTree, axis: KinematicAxis, p: SweepPatch
     ts = np.linspace(lo, hi, k)
     rot, tr = screw_motion(axis.direction, axis.point, pitch, ts)
     rings = np.einsum("kij,nj->kni", rot, p.profile) + tr[:, None, :]
-    d = tree.query(rings.reshape(-1, 3))[0].reshape(k, -1)
+    d = tree.query_within(rings.reshape(-1, 3), params.eps_prox)[0].reshape(k, -1)     # inf beyond eps_prox
     ok = d <= params.eps_prox
     closed = p.closed and bool(ok.all())
     n = len(p.profile)

@@ -44,6 +44,7 @@ from auszug.sweeps._kernels import (
     improve_sums,
     interior_max,
     mesh_closest,
+    mesh_closest_within,
     ring_grid_boxes,
     ring_grid_nearest,
     ring_grid_within,
@@ -297,6 +298,29 @@ class MeshTree:
         out = mesh_closest(self.vertices, self.faces, lo, dims, h, start, entries, fbox, *coarse, p,
                            float(FINE_REACH * h))
         self._last = (p.copy(), out[0].copy(), out[1].copy(), out[2].copy())
+        return out
+
+    def query_within(self, points: ArrayLike, bound: float) -> tuple[Array, IntArray, Array]:
+        """:meth:`query` for the points within ``bound`` of the mesh; inf, -1 and zeros for the others.
+
+        Where the distance is at most ``bound`` the answer is :meth:`query`'s distance (the same
+        bits) and a face at it; the search visits only the cells within ``bound``, so points far
+        from the mesh (a swept profile beyond a part, a mirror image off a mesh that has no such
+        symmetry) cost little (:func:`~auszug.sweeps._kernels.mesh_closest_within`).
+
+        Examples
+        --------
+        >>> t = MeshTree(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0.0]]), np.array([[0, 1, 2]]))
+        >>> d, f, c = t.query_within([[0.2, 0.2, 0.5], [0.2, 0.2, 2.0]], 1.0)
+        >>> d.tolist(), f.tolist()
+        ([0.5, inf], [0, -1])
+        """
+        p = np.ascontiguousarray(np.asarray(points, float).reshape(-1, 3))
+        if len(p) == 0:
+            return np.zeros(0), np.zeros(0, np.int64), np.zeros((0, 3))
+        lo, dims, h, start, entries, fbox = self.face_grid()
+        out: tuple[Array, IntArray, Array] = mesh_closest_within(self.vertices, self.faces, lo, dims, h, start,
+                                                                 entries, fbox, p, float(bound))
         return out
 
     def face_grid(self) -> tuple[Array, IntArray, float, IntArray, IntArray, Array]:

@@ -2923,3 +2923,66 @@ def fitting_block(ok, pos, min_width, starts):  # pragma: no cover - compiled
                 best = area
                 out = (end - top + 1, end, c0, c1)
     return out
+
+
+# ------------------------------------------------------------------------------ edge lines
+
+
+@njit(cache=True)
+def straightest_next(dst, u, order, first, rev, cos_turn):  # pragma: no cover - compiled
+    """Per directed edge ``i`` the edge out of its end that turns least from it (-1: none within the turn).
+
+    ``dst (2k,)`` are the edges' ends, ``u (2k, 3)`` their unit directions, ``order`` the edges
+    grouped by their start (``first (n + 1,)`` delimits each vertex's), ``rev`` each edge's reverse
+    (never its own continuation). The largest cosine wins, the first in ``order`` of equal ones;
+    it counts when at least ``cos_turn``. :func:`~auszug.sweeps.arcs.edge_lines`' first step.
+    """
+    n2 = len(dst)
+    nxt = np.full(n2, -1, np.int64)
+    for i in range(n2):
+        b = dst[i]
+        best_c = -np.inf
+        best_j = -1
+        for t in range(first[b], first[b + 1]):
+            j = order[t]
+            if j == rev[i]:
+                continue
+            # summed as numpy's einsum sums three products here, (x + z) + y: the numpy version's ties
+            c = (u[i, 0] * u[j, 0] + u[i, 2] * u[j, 2]) + u[i, 1] * u[j, 1]
+            if c > best_c:
+                best_c, best_j = c, j
+        if best_j >= 0 and best_c >= cos_turn:
+            nxt[i] = best_j
+    return nxt
+
+
+@njit(cache=True)
+def walk_lines(src, dst, nxt, rev, prev):  # pragma: no cover - compiled
+    """The lines of the mutual continuations ``nxt``: vertices ``(v,)`` and each line's first entry ``(l + 1,)``.
+
+    Lines start at the edges with no predecessor (``prev < 0``) in index order, then at every edge
+    not yet on a line (the cycles); a line follows ``nxt`` until it ends or meets an edge seen, and
+    an edge and its reverse are seen together. :func:`~auszug.sweeps.arcs.edge_lines`' second step.
+    """
+    n2 = len(src)
+    seen = np.zeros(n2, np.bool_)
+    verts = np.empty(n2 + 1, np.int64)
+    offs = np.empty(n2 + 1, np.int64)
+    nv, nl = 0, 0
+    offs[0] = 0
+    for stage in range(2):
+        for s0 in range(n2):
+            if seen[s0] or (stage == 0 and prev[s0] >= 0):
+                continue
+            verts[nv] = src[s0]
+            nv += 1
+            x = s0
+            while x >= 0 and not seen[x]:
+                seen[x] = True
+                seen[rev[x]] = True
+                verts[nv] = dst[x]
+                nv += 1
+                x = nxt[x]
+            nl += 1
+            offs[nl] = nv
+    return verts[:nv], offs[:nl + 1]

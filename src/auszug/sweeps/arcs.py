@@ -48,7 +48,8 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
-from auszug.sweeps.mesh import SweepMesh
+from auszug.sweeps._kernels import straightest_next, walk_lines
+from auszug.sweeps.mesh import SweepMesh, edge_topology
 from auszug.sweeps.motion import Motion
 from auszug.sweeps.params import DEFAULT, SweepParams
 from auszug.sweeps.parts import _axis, _part_patches, _trimmed
@@ -474,7 +475,7 @@ def edge_lines(mesh: SweepMesh, free: NDArray[np.bool_] | None = None, turn: flo
     faces = mesh.faces if free is None else mesh.faces[np.asarray(free, bool)]
     if len(faces) == 0:
         return []
-    e = np.unique(np.sort(np.vstack([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
+    e = edge_topology(faces, len(mesh.vertices))[0]                # the open faces' edges, in (low, high) order
     k = len(e)
     src, dst = np.r_[e[:, 0], e[:, 1]], np.r_[e[:, 1], e[:, 0]]      # directed; the reverse of i is (i + k) % 2k
     u = mesh.vertices[dst] - mesh.vertices[src]
@@ -482,38 +483,16 @@ def edge_lines(mesh: SweepMesh, free: NDArray[np.bool_] | None = None, turn: flo
     rev = (np.arange(2 * k) + k) % (2 * k)
     order = np.argsort(src, kind="stable")                          # outgoing edges grouped by their start
     first = np.searchsorted(src[order], np.arange(len(mesh.vertices) + 1))
-    n_out = first[dst + 1] - first[dst]                             # per directed edge i: the edges out of its end
-    i = np.repeat(np.arange(2 * k), n_out)
-    j = order[np.repeat(first[dst] - np.r_[0, np.cumsum(n_out)[:-1]], n_out) + np.arange(len(i))]
-    ok = j != rev[i]
-    i, j = i[ok], j[ok]
-    c = np.einsum("ij,ij->i", u[i], u[j])
-    best = np.lexsort((-c, i))
-    i, j, c = i[best], j[best], c[best]
-    head = np.r_[True, i[1:] != i[:-1]]
-    nxt = np.full(2 * k, -1, np.int64)
-    take = head & (c >= np.cos(np.radians(turn)))
-    nxt[i[take]] = j[take]
+    # per directed edge the straightest continuation at its end (one compiled pass), kept where mutual
+    nxt = straightest_next(dst, u, order, first, rev, float(np.cos(np.radians(turn))))
     has = nxt >= 0
     mutual = np.zeros(2 * k, bool)
     mutual[has] = nxt[rev[nxt[has]]] == rev[np.flatnonzero(has)]
     nxt[~mutual] = -1
     prev = np.full(2 * k, -1, np.int64)
     prev[nxt[nxt >= 0]] = np.flatnonzero(nxt >= 0)
-    seen = np.zeros(2 * k, bool)
-    out: list[IntArray] = []
-    starts = [*np.flatnonzero(prev < 0).tolist(), *range(2 * k)]    # open lines first, then cycles
-    for s0 in starts:
-        if seen[s0]:
-            continue
-        path = [int(src[s0])]
-        x = s0
-        while x >= 0 and not seen[x]:
-            seen[x] = seen[rev[x]] = True
-            path.append(int(dst[x]))
-            x = int(nxt[x])
-        out.append(np.asarray(path, np.int64))
-    return out
+    verts, offs = walk_lines(src, dst, nxt, rev, prev)             # open lines first, then cycles
+    return [verts[offs[i]:offs[i + 1]] for i in range(len(offs) - 1)]
 
 
 def _ring_pieces(p: Array, tol: float) -> list[tuple[int, int]]:

@@ -41,8 +41,9 @@ __all__ = ["mirror_planes", "mirrored", "mirror_candidates"]
 
 Array = NDArray[np.float64]
 
-#: Faces whose mirror images :func:`mirror_planes` tests at a time before it checks whether the
-#: plane can still reach ``mirror_share`` (a plane is given up after the first chunk that shows it cannot).
+#: Faces whose mirror images :func:`mirror_planes` tests at a time (at least this many, fewer than twice
+#: as many: the faces split evenly) before it checks whether the plane can still reach ``mirror_share``
+#: (a plane is given up after the first chunk that shows it cannot).
 MIRROR_CHUNK = 2048
 
 

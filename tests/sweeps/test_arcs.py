@@ -302,12 +302,13 @@ def _edge_lines_reference(mesh, free, turn):
     nxt = np.full(2 * k, -1, np.int64)
     take = head & (c >= np.cos(np.radians(turn)))
     nxt[i[take]] = j[take]
-    has = nxt >= 0
-    mutual = np.zeros(2 * k, bool)
-    mutual[has] = nxt[rev[nxt[has]]] == rev[np.flatnonzero(has)]
-    nxt[~mutual] = -1
+    # kept where mutual: the continuation of x's reverse is the reverse of x's (a plain loop)
+    keep = [x >= 0 and nxt[rev[x]] == rev[i] for i, x in enumerate(nxt.tolist())]
+    nxt = np.where(keep, nxt, -1)
     prev = np.full(2 * k, -1, np.int64)
-    prev[nxt[nxt >= 0]] = np.flatnonzero(nxt >= 0)
+    for i, x in enumerate(nxt.tolist()):
+        if x >= 0:
+            prev[x] = i
     seen = np.zeros(2 * k, bool)
     out = []
     for s0 in [*np.flatnonzero(prev < 0).tolist(), *range(2 * k)]:

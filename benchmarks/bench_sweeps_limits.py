@@ -33,11 +33,12 @@ import subprocess
 import sys
 import time
 
-CASES = {
-    "bumps120": ("bumps(n=120)", "66 s CPU"),
-    "bumps250": ("bumps(n=250)", "270-290 s CPU, 539 MB"),
-    "bumps707": ("bumps(n=707)", "70 s / 798 MB (2 Dec); > 600 s (5 Dec)"),
-    "revolved": ("revolved(n_profile=1000, n_path=501, sigma=2e-4)", "39.7 s / 803 MB (2 Dec); 7.5 s / 949 MB (5 Dec)"),
+CASES = {    # name: (the fixture as printed, its keyword arguments, the figures before)
+    "bumps120": ("bumps(n=120)", {"n": 120}, "66 s CPU"),
+    "bumps250": ("bumps(n=250)", {"n": 250}, "270-290 s CPU, 539 MB"),
+    "bumps707": ("bumps(n=707)", {"n": 707}, "70 s / 798 MB (2 Dec); > 600 s (5 Dec)"),
+    "revolved": ("revolved(n_profile=1000, n_path=501, sigma=2e-4)", {"n_profile": 1000, "n_path": 501, "sigma": 2e-4},
+                 "39.7 s / 803 MB (2 Dec); 7.5 s / 949 MB (5 Dec)"),
 }
 
 
@@ -45,7 +46,8 @@ def one(name: str) -> dict:
     """Run one case in this process; the figures as a dict."""
     from auszug.sweeps import detect, fixtures
 
-    fx = eval("fixtures." + CASES[name][0], {"fixtures": fixtures})
+    label, kwargs, _ = CASES[name]
+    fx = getattr(fixtures, label.split("(")[0])(**kwargs)
     c0, w0 = time.process_time(), time.perf_counter()
     r = detect((fx.vertices, fx.faces))
     wall, cpu = time.perf_counter() - w0, time.process_time() - c0
@@ -74,7 +76,7 @@ def main(argv=None):
         top = sorted(got["stages"].items(), key=lambda kv: -kv[1])[:4]
         print(f"| {CASES[name][0]} | {got['faces']} | {got['patches']}, {got['coverage']:.3f} | "
               f"{got['wall']:.1f} / {got['cpu']:.1f} s | {got['rss_mb']:.0f} MB | "
-              f"{', '.join(f'{k} {v:.1f}' for k, v in top)} | {CASES[name][1]} |", flush=True)
+              f"{', '.join(f'{k} {v:.1f}' for k, v in top)} | {CASES[name][2]} |", flush=True)
     print(f"\nload {os.getloadavg()[0]:.2f} at the end")
 
 

@@ -539,15 +539,15 @@ def _query_points(mesh, seed):
 
 @pytest.mark.parametrize("hole", [False, True])
 def test_face_grid_nearest_is_libigls_closest_points_within_the_bound(hole):
-    """The face grid's exact search (the motion's refinement): libigl's distances (its brute
-    ``point_mesh_squared_distance``, not the code under test), a closest point on the face returned,
-    and nothing farther than the bound; the same from points far off the grid."""
+    """The face grid's exact search within a bound (``MeshTree.query_within``'s kernel): libigl's
+    distances (its brute ``point_mesh_squared_distance``, not the code under test), a closest point on
+    the face returned, and nothing farther than the bound; the same from points far off the grid."""
     mesh = _mesh(hole)
     tree = MeshTree.of(mesh)
     pts = _query_points(mesh, 5)
     d0 = closest_distance(pts, mesh.vertices, mesh.faces)[0]
     bound = 0.02
-    d, face, cp = _kernels.grid_nearest(tree.vertices, tree.faces, *tree.face_grid(), pts, bound)
+    d, face, cp = _kernels.mesh_closest_within(tree.vertices, tree.faces, *tree.face_grid(), pts, bound)
     inside = d0 <= bound
     assert inside[:400].mean() > 0.9 and (~inside).sum() > 50          # both kinds tested
     assert np.all(np.isinf(d[~inside]) & (face[~inside] == -1))

@@ -2332,28 +2332,6 @@ def _grid_nearest(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, best,
 
 
 @njit(cache=True)
-def grid_nearest(v, faces, lo, dims, h, start, entries, fbox, points, bound):  # pragma: no cover - compiled
-    """Closest points on the mesh of :func:`face_grid` within ``bound``: distances (inf beyond), faces (-1), points.
-
-    Exact (every face within the distance found is tested); each point first tries the previous
-    point's face.
-    """
-    q = len(points)
-    dist = np.full(q, np.inf)
-    face = np.full(q, -1, np.int64)
-    cp = np.zeros((q, 3))
-    last = -1
-    for p in range(q):
-        d2, f, x, y, z, _ = _grid_nearest(points[p, 0], points[p, 1], points[p, 2], v, faces, lo, dims, h, start,
-                                          entries, fbox, bound * bound, last, -1)
-        if f >= 0:
-            dist[p], face[p] = np.sqrt(d2), f
-            cp[p, 0], cp[p, 1], cp[p, 2] = x, y, z
-            last = f
-    return dist, face, cp
-
-
-@njit(cache=True)
 def mesh_closest(v, faces, lo, dims, h, start, entries, fbox, clo, cdims, ch, cstart, centries, cfbox, points,
                  reach):  # pragma: no cover - compiled
     """Closest points on the mesh (exact): distances, faces and points, ``MeshTree.query``'s search.

@@ -2421,6 +2421,22 @@ def _at_boundary_vertex(v, faces, bvert, f, cx, cy, cz):  # pragma: no cover - c
 
 
 @njit(cache=True, inline="always")
+def _cells_near(px, py, pz, r, lo, dims, h):  # pragma: no cover - compiled
+    """The cells of a uniform grid (origin ``lo``, cell ``h``, ``dims`` cells) the box ``p +- r`` meets, clamped.
+
+    Returns ``i0, i1, j0, j1, k0, k1`` (inclusive). A coordinate more than 1e9 cells off the grid is
+    taken as 1e9 cells off before it is turned into an index.
+    """
+    i0 = min(max(int(np.floor(max(min((px - r - lo[0]) / h, 1e9), -1e9))), 0), dims[0] - 1)
+    i1 = min(max(int(np.floor(max(min((px + r - lo[0]) / h, 1e9), -1e9))), 0), dims[0] - 1)
+    j0 = min(max(int(np.floor(max(min((py - r - lo[1]) / h, 1e9), -1e9))), 0), dims[1] - 1)
+    j1 = min(max(int(np.floor(max(min((py + r - lo[1]) / h, 1e9), -1e9))), 0), dims[1] - 1)
+    k0 = min(max(int(np.floor(max(min((pz - r - lo[2]) / h, 1e9), -1e9))), 0), dims[2] - 1)
+    k1 = min(max(int(np.floor(max(min((pz + r - lo[2]) / h, 1e9), -1e9))), 0), dims[2] - 1)
+    return i0, i1, j0, j1, k0, k1
+
+
+@njit(cache=True, inline="always")
 def _grid_within(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, r2, warm):  # pragma: no cover - compiled
     """Whether some face of the grid of :func:`face_grid` lies within squared distance ``r2`` of p (``warm`` first).
 
@@ -2432,13 +2448,7 @@ def _grid_within(px, py, pz, v, faces, lo, dims, h, start, entries, fbox, r2, wa
                                         v[c, 0], v[c, 1], v[c, 2])
         if d2 <= r2:
             return warm
-    r = np.sqrt(r2)
-    i0 = min(max(int(np.floor(max(min((px - r - lo[0]) / h, 1e9), -1e9))), 0), dims[0] - 1)
-    i1 = min(max(int(np.floor(max(min((px + r - lo[0]) / h, 1e9), -1e9))), 0), dims[0] - 1)
-    j0 = min(max(int(np.floor(max(min((py - r - lo[1]) / h, 1e9), -1e9))), 0), dims[1] - 1)
-    j1 = min(max(int(np.floor(max(min((py + r - lo[1]) / h, 1e9), -1e9))), 0), dims[1] - 1)
-    k0 = min(max(int(np.floor(max(min((pz - r - lo[2]) / h, 1e9), -1e9))), 0), dims[2] - 1)
-    k1 = min(max(int(np.floor(max(min((pz + r - lo[2]) / h, 1e9), -1e9))), 0), dims[2] - 1)
+    i0, i1, j0, j1, k0, k1 = _cells_near(px, py, pz, np.sqrt(r2), lo, dims, h)
     for i in range(i0, i1 + 1):
         for j in range(j0, j1 + 1):
             for k in range(k0, k1 + 1):
@@ -2668,12 +2678,7 @@ def _flags_within(px, py, pz, r, v, faces, lo, dims, h, start, entries, fbox, fl
     distance is over those whose box is within that (inf if none).
     """
     rc = r * (1 + 1e-9) + 1e-12         # the cells: a margin more (a face's cells are found by the same floors)
-    i0 = min(max(int(np.floor((px - rc - lo[0]) / h)), 0), dims[0] - 1)
-    i1 = min(max(int(np.floor((px + rc - lo[0]) / h)), 0), dims[0] - 1)
-    j0 = min(max(int(np.floor((py - rc - lo[1]) / h)), 0), dims[1] - 1)
-    j1 = min(max(int(np.floor((py + rc - lo[1]) / h)), 0), dims[1] - 1)
-    k0 = min(max(int(np.floor((pz - rc - lo[2]) / h)), 0), dims[2] - 1)
-    k1 = min(max(int(np.floor((pz + rc - lo[2]) / h)), 0), dims[2] - 1)
+    i0, i1, j0, j1, k0, k1 = _cells_near(px, py, pz, rc, lo, dims, h)
     r2 = rc * rc
     best = np.inf
     seen_on, seen_off = False, False

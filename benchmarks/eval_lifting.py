@@ -20,6 +20,7 @@ Usage (from the repository root)::
     python -m benchmarks.eval_lifting views [--truths a,b] [--cues none|default] [--tilts 45,55,65]
     python -m benchmarks.eval_lifting signs [--cues none|default] [--tilts 45,55,65]
     python -m benchmarks.eval_lifting energy [--truths a,b]
+    python -m benchmarks.eval_lifting hand [--seeds 0,1,2,3,4,5] [--params k=v,...]
 
 ``--params k=v,...`` lifts with those :class:`~auszug.lifting.LiftParams` fields (noise, views and signs modes),
 e.g. ``--params parallel_robust_deg=5,w_depth_anchor=10`` (branch lift-energy, docs/lifting.md; with
@@ -30,6 +31,11 @@ e.g. ``--params parallel_robust_deg=5,w_depth_anchor=10`` (branch lift-energy, d
 
 ``signs``: the depth-sign grid of docs/lifting.md (the bundled examples' objects, the box and the revolve; 3 tilts
 x 4 turns, no view rejected), wrong signs and depth RMSE per object.
+
+``hand``: the bundled examples' objects (vase, ogee roof, arches) drawn by hand
+(``make_sketches.hand_drawn``, seed 0 is the shipped drawing; a seed whose hand lost or made a crossing is
+refused), depth RMSE and sign of the baseline and of the default cues against each drawing's truth (docs/lifting.md,
+"The example sketches lifted").
 
 ``energy`` (branch lift-acc): the baseline energy term by term (accuracy, minimal variation,
 foreshortening, soft parallelism) at the truth, at the baseline lift, and at the minimum of the
@@ -233,16 +239,61 @@ def energy_table(names: list[str], out) -> None:
                   file=out, flush=True)
 
 
+HAND_OBJECTS = ("vase", "ogee-roof", "arches")
+
+
+def hand_table(seeds: tuple[int, ...], out, params: LiftParams = DEFAULT) -> None:
+    """Depth RMSE (%) of the hand-drawn examples, baseline and default cues, one column per seed of the hand."""
+    from auszug.lifting import Marker, Sketch, Stroke
+    from tests.lifting import make_sketches as ms
+
+    print("| example | cues | " + " | ".join(f"seed {k}" for k in seeds) + " |", file=out)
+    print("|---|---|" + "---|" * len(seeds), file=out)
+    for name in HAND_OBJECTS:
+        chains = {"vase": ms.vase, "ogee-roof": ms.ogee_roof, "arches": ms.arches}[name]()
+        R = ms.VIEWS[name]
+        view = [c @ R.T for c in chains]
+        cells: dict[str, list[str]] = {"none": [], "default": []}
+        for k in seeds:
+            s2, s3 = ms.hand_drawn(chains, R, k)
+            try:
+                marks = ms.hand_occlusions(view, s3)
+            except ValueError as e:
+                print(f"# {name} seed {k}: refused: {e}", file=sys.stderr, flush=True)
+                for v in cells.values():
+                    v.append("-")
+                continue
+            sk = Sketch(tuple(Stroke(c, f"c{i}") for i, c in enumerate(s2)),
+                        tuple(Marker("occlusion", m, f"o{i}") for i, m in enumerate(marks)))
+            tr = T.Truth(sk, tuple(s3))
+            for label, classes in (("none", ()), ("default", DEFAULT_CLASSES)):
+                r = lift(sk, params=params, classes=classes)
+                err, sign = T.depth_rmse(tr, r)
+                e = {"err": err, "sign": sign, "converged": r.converged}
+                cells[label].append(_fmt_err(e))
+                print(f"# {name} seed {k} {label}: {_fmt_err(e)} %", file=sys.stderr, flush=True)
+        for label, v in cells.items():
+            print(f"| {name} | {label} | " + " | ".join(f"{x} %" if x != "-" else x for x in v) + " |",
+                  file=out, flush=True)
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("mode", choices=("noise", "views", "signs", "energy"))
+    ap.add_argument("mode", choices=("noise", "views", "signs", "energy", "hand"))
     ap.add_argument("--truths", default=",".join(T.TRUTHS))
     ap.add_argument("--cues", default="default", choices=("default", "none"))
     ap.add_argument("--params", default="", help="LiftParams fields, e.g. parallel_robust_deg=5,w_depth_anchor=10")
     ap.add_argument("--tilts", default="",
                     help="views and signs modes: the tilts from above (deg, in [0, 90)), e.g. 45,55,65 "
                          "(default: 15,20,25,30,35 for views, 15,25,35 for signs)")
+    ap.add_argument("--seeds", default="0,1,2,3,4,5", help="hand mode: the seeds of the hand, e.g. 0,1,2")
     a = ap.parse_args(argv)
+    try:
+        seeds = tuple(int(k) for k in a.seeds.split(","))
+    except ValueError:
+        ap.error(f"--seeds: not a list of whole numbers: {a.seeds!r}")
+    if not seeds or not all(0 <= k < 2**32 for k in seeds):
+        ap.error(f"--seeds: each seed must lie in [0, 2**32): {a.seeds!r}")
     try:
         tilts = tuple(float(t) for t in a.tilts.split(",")) if a.tilts else ()
     except ValueError:
@@ -255,6 +306,8 @@ def main(argv: list[str] | None = None) -> int:
     print(f"cues: {a.cues}; params: {a.params or 'default'}; load {os.getloadavg()[0]:.1f} at start", file=sys.stdout)
     if a.mode == "energy":
         energy_table(names, sys.stdout)
+    elif a.mode == "hand":
+        hand_table(seeds, sys.stdout, params)
     elif a.mode == "signs":
         signs_table(classes, sys.stdout, params, tilts or SIGN_TILTS)
     elif a.mode == "views":

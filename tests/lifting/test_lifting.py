@@ -33,6 +33,25 @@ def test_graph_splits_strokes_at_the_crossing_and_shares_the_point():
     assert g.joint_g1.all()
 
 
+@pytest.mark.parametrize("dx", [0.0, 1e-12, 3e-7, 2e-6, 1e-5])
+def test_a_crossing_at_a_knot_is_not_split_into_a_point(dx):
+    """A stroke crossing another within the merge distance (1e-6 of the diagonal) of its knot meets it at
+    the knot: no zero-length piece (once a split at t = 1 - 1e-7 left a segment shrunk to a point and a
+    zero handle, and the lift stopped with "Factor is exactly singular"); beyond it, a split there."""
+    a = np.array([[[-1.0, 0.2], [-0.6, 0.1], [-0.3, 0.0], [0.0, 0.0]],
+                  [[0.0, 0.0], [0.3, 0.0], [0.6, 0.1], [1.0, 0.2]]])           # G1 at its knot (0, 0)
+    b = np.array([[[dx - 0.1, -1.0], [dx - 0.05, -0.4], [dx, -0.2], [dx, 0.0]],
+                  [[dx, 0.0], [dx, 0.2], [dx + 0.05, 0.4], [dx + 0.1, 1.0]]])  # crosses it there, G1 too
+    g = sketch_graph(Sketch((Stroke(a, "a"), Stroke(b, "b"))))
+    P = g.points
+    ends = np.linalg.norm(P[g.segments[:, 3]] - P[g.segments[:, 0]], axis=1)
+    handles = np.linalg.norm(P[g.segments[:, [1, 2]]] - P[g.segments[:, [0, 3]]], axis=2)
+    assert ends.min() > 1e-6 and handles.min() > 3e-7          # graph units: the diagonal is 1
+    assert len(g.crossings) == 1 and g.crossings[0].smooth
+    # at the knot (within the merge distance) both strokes keep their two segments; beyond it, a is split
+    assert len(g.segments) == (4 if dx < 1e-6 * g.scale else 5)       # dx = 1e-5: 3.5e-6 of the diagonal
+
+
 def test_occlusion_marker_removes_the_crossing():
     p = sketch_graph(Sketch((H, V))).points[sketch_graph(Sketch((H, V))).crossings[0].point]
     g = sketch_graph(Sketch((H, V)))

@@ -344,9 +344,16 @@ def sketch_graph(sketch: Sketch, params: LiftParams = DEFAULT, require_markers: 
     for si, c in enumerate(strokes_c):
         ids = []
         for k in range(len(c)):
-            ts = sorted(t for t in splits.get((si, k), []) if 1e-9 < t < 1 - 1e-9)
-            bounds = [0.0, *ts, 1.0]
             b = CubicBezier.from_array(c[k])
+            # a crossing within the merge distance of the segment's end (or of the split before it) is
+            # there, not a split: its tiny piece would shrink to a point when the ends merge below
+            ts, last = [], c[k][0]
+            for t in sorted(t for t in splits.get((si, k), []) if 1e-9 < t < 1 - 1e-9):
+                q = b.point(t)
+                if min(np.linalg.norm(q - last), np.linalg.norm(q - c[k][3])) > params.merge * 10:
+                    ts.append(t)
+                    last = q
+            bounds = [0.0, *ts, 1.0]
             for t0, t1 in zip(bounds[:-1], bounds[1:], strict=True):
                 if t1 - t0 < 1e-9:
                     continue

@@ -448,11 +448,15 @@ def _grid_svg(rows: int, cols: int) -> str:
 
 
 def _long_strokes_svg(n: int) -> str:
-    """Two straight strokes crossing once, each a polyline of ``n`` segments."""
-    a = " ".join(f"{100 * i / n:.5f} 0" for i in range(n + 1))
-    b = " ".join(f"50 {-50 + 100 * i / n:.5f}" for i in range(n + 1))
+    """Two straight strokes crossing once, each ``n`` cubic segments (``C`` commands with their handles at
+    thirds: not line commands, so the reader does not refit them as one sampled curve)."""
+    def d(p0: tuple[float, float], p1: tuple[float, float]) -> str:
+        pts = [(p0[0] + (p1[0] - p0[0]) * i / (3 * n), p0[1] + (p1[1] - p0[1]) * i / (3 * n)) for i in range(3 * n + 1)]
+        return f"M {pts[0][0]:.6f} {pts[0][1]:.6f} " + " ".join(
+            "C " + " ".join(f"{x:.6f} {y:.6f}" for x, y in pts[3 * k + 1:3 * k + 4]) for k in range(n))
     return ('<svg xmlns="http://www.w3.org/2000/svg" viewBox="-10 -60 120 120"><g fill="none" stroke="black">'
-            f'<path id="a" d="M {a}"/><path id="b" d="M {b}"/></g></svg>')
+            f'<path id="a" d="{d((0.0, 0.0), (100.0, 0.0))}"/><path id="b" d="{d((50.0, -50.0), (50.0, 50.0))}"/>'
+            '</g></svg>')
 
 
 @pytest.mark.skipif(not hasattr(resource, "RLIMIT_AS") or sys.platform != "linux", reason="Linux address limit")

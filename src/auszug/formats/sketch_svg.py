@@ -4,7 +4,12 @@ Read with svgelements (MIT). Every shape (``path``, ``line``, ``polyline``,
 ``polygon``, ``rect``, ``circle``, ``ellipse``) is a stroke, one per subpath;
 its segments of any kind become cubic Beziers (lines with handles at thirds,
 quadratics degree-elevated, elliptical arcs by svgelements' cubic
-approximation, six cubics for half a circle). Every ``transform`` and the root's
+approximation, six cubics for half a circle). A sampled curve, a run of at
+least :data:`FIT_MIN_LINES` straight segments each turning from the last by
+less than :data:`FIT_TURN_DEG` (a tablet's or a tracing tool's polyline), is
+refitted by least squares as a G1 cubic chain within :data:`FIT_TOL` of the
+sketch's diagonal of its vertices (:func:`auszug.geometry.fit.fit_polyline`;
+its end points kept, corners between runs kept). Every ``transform`` and the root's
 ``viewBox`` are applied (coordinates are CSS px of the page, which are the
 user units when there is no viewBox), and y is flipped to point up:
 ``y = -y_svg``.
@@ -45,11 +50,13 @@ from numpy.typing import NDArray
 
 from auszug.errors import FormatError, GeometryError
 from auszug.formats._registry import FileFormat, register
+from auszug.limits import LIMITS
 
 if TYPE_CHECKING:
     from auszug.lifting import Sketch, Stroke
 
-__all__ = ["read_sketch_svg", "MARKER_CLASSES", "SYMMETRY_CLASS"]
+__all__ = ["read_sketch_svg", "MARKER_CLASSES", "SYMMETRY_CLASS", "FIT_MIN_LINES", "FIT_TURN_DEG", "FIT_TOL",
+           "FIT_MAX_SPANS"]
 
 Array = NDArray[np.float64]
 
@@ -57,6 +64,14 @@ Array = NDArray[np.float64]
 MARKER_CLASSES = ("occlusion", "flip")
 #: ``class`` name of the global symmetry path.
 SYMMETRY_CLASS = "symmetry"
+#: A run of at least this many straight segments of one stroke is a sampled curve (fewer: a polygon's sides).
+FIT_MIN_LINES = 4
+#: ... each turning from the one before by less than this (degrees): larger turns are corners.
+FIT_TURN_DEG = 30.0
+#: A sampled curve's fit keeps its vertices within this share of the sketch's diagonal.
+FIT_TOL = 2e-3
+#: The most cubics of one sampled curve's fit (a run it cannot fit with these stays straight segments).
+FIT_MAX_SPANS = 256
 
 _INKSCAPE = "{http://www.inkscape.org/namespaces/inkscape}"
 _GEOMETRY_ATTRS = ("d", "points", "x", "y", "x1", "y1", "x2", "y2", "cx", "cy", "r", "rx", "ry", "width", "height",
@@ -101,29 +116,61 @@ def _cubic(seg: Any) -> list[Array]:
     return []
 
 
-def _subpaths(path: Any) -> list[Array]:
-    """The subpaths of an svgelements Path as (m, 4, 2) cubic chains.
+def _subpaths(path: Any) -> list[tuple[Array, NDArray[np.bool_]]]:
+    """The subpaths of an svgelements Path as (m, 4, 2) cubic chains and (m,) masks of straight segments.
 
-    Zero-length pieces are dropped; a subpath of nothing but zero-length
-    pieces gives an empty (0, 4, 2) chain, a bare move none.
+    A segment is straight when drawn by a ``Line`` or ``Close`` command. Zero-length pieces are
+    dropped; a subpath of nothing but zero-length pieces gives an empty (0, 4, 2) chain, a bare
+    move none.
     """
     import svgelements as se
 
     out: list[list[Array]] = []
+    lines: list[list[bool]] = []
     drawn: list[bool] = []
     for seg in path:
         if isinstance(seg, se.Move):
             out.append([])
+            lines.append([])
             drawn.append(False)
             continue
         if not out:
             out.append([])
+            lines.append([])
             drawn.append(False)
         for c in _cubic(seg):
             drawn[-1] = True
             if np.ptp(c, axis=0).max() > 0 or not np.all(np.isfinite(c)):
                 out[-1].append(c)
-    return [np.array(s).reshape(-1, 4, 2) for s, d in zip(out, drawn, strict=True) if d]
+                lines[-1].append(isinstance(seg, (se.Line, se.Close)))
+    return [(np.array(s).reshape(-1, 4, 2), np.array(k, dtype=bool))
+            for s, k, d in zip(out, lines, drawn, strict=True) if d]
+
+
+def _fit_sampled(c: Array, straight: NDArray[np.bool_], tol: float) -> Array:
+    """The chain ``c`` (m, 4, 2) with each run of straight segments that samples a curve refitted.
+
+    A run: at least :data:`FIT_MIN_LINES` consecutive straight segments, each turning from the one
+    before by less than :data:`FIT_TURN_DEG`; refitted within ``tol`` of its vertices by
+    :func:`~auszug.geometry.fit.fit_polyline` (at most :data:`FIT_MAX_SPANS` cubics, else left as it is).
+    """
+    from auszug.geometry.fit import fit_polyline
+
+    d = c[:, 3] - c[:, 0]
+    cos_turn = np.einsum("ij,ij->i", d[:-1], d[1:]) / (np.linalg.norm(d[:-1], axis=1) * np.linalg.norm(d[1:], axis=1))
+    joined = straight[:-1] & straight[1:] & (cos_turn > np.cos(np.radians(FIT_TURN_DEG)))
+    pieces: list[Array] = []
+    i = 0
+    while i < len(c):
+        j = i
+        while j + 1 < len(c) and joined[j]:
+            j += 1
+        fit = None
+        if straight[i] and j - i + 1 >= FIT_MIN_LINES:
+            fit = fit_polyline(np.r_[c[i:j + 1, 0], c[j:j + 1, 3]], tol, min(FIT_MAX_SPANS, (j - i + 1) // 2))
+        pieces.append(c[i:j + 1] if fit is None else fit)
+        i = j + 1
+    return np.concatenate(pieces)
 
 
 def _own(e: Any) -> dict[str, str]:
@@ -170,6 +217,7 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
         raise _fail(f"not a readable SVG file: {e}", name) from None
 
     strokes: list[tuple[Any, Stroke]] = []     # (layer key, stroke)
+    straights: list[NDArray[np.bool_]] = []    # per stroke: which of its segments are straight (as drawn)
     markers: list[Marker] = []
     symmetry: list[tuple[Any, Stroke]] = []   # (layer key, stroke)
     layer_names: dict[Any, str] = {}
@@ -216,7 +264,7 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
             subs = _subpaths(path)
             if not subs:
                 raise _fail(f"{where}: an empty shape (no segments); expected a drawn stroke", name)
-            for k, c in enumerate(subs):
+            for k, (c, straight) in enumerate(subs):
                 sid = where if len(subs) == 1 else f"{where} subpath {k + 1}"
                 if not len(c) or not np.all(np.isfinite(c)):
                     raise _fail(f"{sid}: {'zero-length stroke' if not len(c) else 'coordinates are not finite'}",
@@ -227,10 +275,19 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
                     symmetry.append((layer, Stroke(c, sid)))
                 else:
                     strokes.append((layer, Stroke(c, sid)))
+                    straights.append(straight)
 
     visit(doc, None)
     if not strokes:
         raise _fail("no strokes: the SVG has no path or shape to lift (besides markers)", name)
+    n_drawn = sum(len(s.controls) for _, s in strokes)
+    if n_drawn > LIMITS.sketch_segments:      # as drawn, before the sampled curves' fit: bounds its cost
+        raise _fail(f"the sketch has {n_drawn} Bezier segments: more than the limit of {LIMITS.sketch_segments} "
+                    "(auszug.limits.LIMITS.sketch_segments)", name)
+    pts = np.concatenate([s.controls.reshape(-1, 2) for _, s in strokes])
+    tol = FIT_TOL * float(np.linalg.norm(np.ptp(pts, axis=0)))
+    strokes = [(k, Stroke(_fit_sampled(s.controls, b, tol), s.id) if b.sum() >= FIT_MIN_LINES else s)
+               for (k, s), b in zip(strokes, straights, strict=True)]
     if len(symmetry) > 1:
         raise _fail(f"{symmetry[1][1].id}: a second symmetry path; a sketch has at most one", name)
     order = list(dict.fromkeys(k for k, _ in strokes))   # layers back to front, in document order

@@ -8,7 +8,7 @@ approximation, six cubics for half a circle). A sampled curve, a run of at
 least :data:`FIT_MIN_LINES` straight segments each turning from the last by
 less than :data:`FIT_TURN_DEG` (a tablet's or a tracing tool's polyline), is
 refitted by least squares as a G1 cubic chain within :data:`FIT_TOL` of the
-sketch's diagonal of its vertices (:func:`auszug.geometry.fit.fit_polyline`;
+sketch's diagonal of its vertices (:func:`auszug.lifting.fit.fit_polyline`;
 its end points kept, corners between runs kept). Every ``transform`` and the root's
 ``viewBox`` are applied (coordinates are CSS px of the page, which are the
 user units when there is no viewBox), and y is flipped to point up:
@@ -152,9 +152,9 @@ def _fit_sampled(c: Array, straight: NDArray[np.bool_], tol: float) -> Array:
 
     A run: at least :data:`FIT_MIN_LINES` consecutive straight segments, each turning from the one
     before by less than :data:`FIT_TURN_DEG`; refitted within ``tol`` of its vertices by
-    :func:`~auszug.geometry.fit.fit_polyline` (at most :data:`FIT_MAX_SPANS` cubics, else left as it is).
+    :func:`~auszug.lifting.fit.fit_polyline` (at most :data:`FIT_MAX_SPANS` cubics, else left as it is).
     """
-    from auszug.geometry.fit import fit_polyline
+    from auszug.lifting.fit import fit_polyline
 
     d = c[:, 3] - c[:, 0]
     cos_turn = np.einsum("ij,ij->i", d[:-1], d[1:]) / (np.linalg.norm(d[:-1], axis=1) * np.linalg.norm(d[1:], axis=1))

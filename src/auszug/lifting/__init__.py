@@ -9,6 +9,7 @@ I/O (SVG sketches are read by :mod:`auszug.formats.sketch_svg`). See
 docs/lifting.md.
 """
 
+from auszug.lifting.fit import fit_polyline
 from auszug.lifting.params import DEFAULT, LiftParams
 from auszug.lifting.reconstruct import (
     CLASSES,
@@ -45,4 +46,5 @@ __all__ = [
     "SketchGraph",
     "Stroke",
     "sketch_graph",
+    "fit_polyline",
 ]

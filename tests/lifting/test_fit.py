@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from auszug.geometry import CubicBezier
-from auszug.geometry.fit import fit_polyline
+from auszug.lifting.fit import fit_polyline
 
 
 def _distances(chain: np.ndarray, points: np.ndarray) -> np.ndarray:

@@ -231,7 +231,8 @@ def _traced_revolve(step: float) -> tuple[str, object]:
 def test_a_traced_sketch_lifts_like_the_drawing(monkeypatch):
     """The revolve traced as 672 polyline vertices (1 % of the diagonal apart): refitted, 25 cubics (58 in the
     drawing), it lifts (the baseline) to 2.40 % of the diagonal from its truth, the drawing itself to 1.78 %
-    (docs/lifting.md). As 662 line segments, without the fit, the same lift does not converge (69 %)."""
+    (docs/formats.md, "Sampled curves"). As 662 line segments, without the fit, the same lift does not
+    converge (69 %)."""
     from auszug.lifting import lift
     from tests.lifting.truth import Truth, depth_rmse
 

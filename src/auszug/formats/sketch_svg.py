@@ -156,8 +156,9 @@ def _fit_sampled(c: Array, straight: NDArray[np.bool_], tol: float) -> Array:
     """
     from auszug.lifting.fit import fit_polyline
 
-    d = c[:, 3] - c[:, 0]
-    cos_turn = np.einsum("ij,ij->i", d[:-1], d[1:]) / (np.linalg.norm(d[:-1], axis=1) * np.linalg.norm(d[1:], axis=1))
+    d = c[:, 3] - c[:, 0]                       # chords (a closed curved segment's is zero: never joined)
+    n = np.linalg.norm(d, axis=1)
+    cos_turn = np.einsum("ij,ij->i", d[:-1], d[1:]) / np.maximum(n[:-1] * n[1:], 1e-300)
     joined = straight[:-1] & straight[1:] & (cos_turn > np.cos(np.radians(FIT_TURN_DEG)))
     pieces: list[Array] = []
     i = 0

@@ -140,7 +140,7 @@ def hand_drawn(chains: list[np.ndarray], R: np.ndarray, seed: int, wobble: float
     cubic per ``span`` of the diagonal, knots where the pen put them, not at the crossings; a straight
     stroke ruled between its displaced ends. The depth of each drawn point is the truth's at the point
     it was drawn for, so the 3D truth of a drawn stroke is its 2D stroke lifted by the object's depth
-    (within the hand's displacement: at a 3D intersection the two drawn strokes cross up to about 2.6 %
+    (within the hand's displacement: at a 3D intersection the two drawn strokes cross up to 2.4 %
     of the diagonal apart in the truth's depth, the ogee roof's ruled generators).
     """
     view = [c @ R.T for c in chains]

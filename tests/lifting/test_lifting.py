@@ -323,9 +323,10 @@ def test_shipped_example_svgs_lift_with_the_true_depth_sign(name, bound):
 def test_hand_drawn_sketch_is_drawn_by_a_hand():
     """make_sketches.hand_drawn: the strokes are the object's within the hand's reach, not its projection.
 
-    Each drawn point lies within 2.5 % of the diagonal of the exact projection (the wobble's standard
-    deviation is 0.4 %, the tremor's 0.1 %), the pen's knots are its own (a curved stroke has one cubic
-    per fifth of the diagonal, so the vase's strokes are not split at its crossings), corners stay
+    Each drawn point lies within 1.5 % of the diagonal of the exact projection (measured 0.78-1.14 %;
+    the wobble's standard deviation is 0.4 %, the tremor's 0.1 %), the pen's knots are its own (a
+    curved stroke has one cubic per fifth of the diagonal, so the vase's strokes are not split at its
+    crossings), corners stay
     corners (the ogee roof's ridges), straight strokes stay straight, the drawn depth is the truth's
     at the drawn point's origin (linear in the 3D stroke), and the same seed draws the same sketch.
     """
@@ -353,7 +354,7 @@ def test_hand_drawn_sketch_is_drawn_by_a_hand():
                 u = (b - a) / np.linalg.norm(b - a)
                 assert np.abs((c2[0] - a) @ [-u[1], u[0]]).max() <= 1e-12 * diag
         moved = np.array(moved)
-        assert 1e-3 * diag <= moved.max() <= 0.025 * diag, (name, moved.max() / diag)
+        assert 1e-3 * diag <= moved.max() <= 0.015 * diag, (name, moved.max() / diag)
         assert all(np.array_equal(a, b) for a, b in zip(s2, again, strict=True))
         assert any(not np.array_equal(a, b) for a, b in zip(s2, other, strict=True))
     # the vase's meridians: 4 cubics each in the truth (knots at the parallels), 3-4 by the pen, knots elsewhere

@@ -250,14 +250,10 @@ def hand_table(seeds: tuple[int, ...], out, params: LiftParams = DEFAULT) -> Non
     print("| example | cues | " + " | ".join(f"seed {k}" for k in seeds) + " |", file=out)
     print("|---|---|" + "---|" * len(seeds), file=out)
     for name in HAND_OBJECTS:
-        chains = {"vase": ms.vase, "ogee-roof": ms.ogee_roof, "arches": ms.arches}[name]()
-        R = ms.VIEWS[name]
-        view = [c @ R.T for c in chains]
         cells: dict[str, list[str]] = {"none": [], "default": []}
         for k in seeds:
-            s2, s3 = ms.hand_drawn(chains, R, k)
             try:
-                marks = ms.hand_occlusions(view, s3)
+                s2, s3, marks = ms.drawn(name, k)
             except ValueError as e:
                 print(f"# {name} seed {k}: refused: {e}", file=sys.stderr, flush=True)
                 for v in cells.values():

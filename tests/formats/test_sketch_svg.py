@@ -14,6 +14,7 @@ from auszug.formats import kind_of, load, save
 from auszug.formats.sketch_json import dumps, loads
 from auszug.formats.sketch_svg import read_sketch_svg
 from auszug.geometry import CubicBezier
+from tests.lifting.test_fit import _distances, _turns_deg
 
 NS = 'xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape"'
 CROSS = '<path id="h" d="M 0 50 C 30 40 70 40 100 50"/><path id="v" d="M 45 0 C 50 30 50 70 55 100"/>'
@@ -148,17 +149,6 @@ def _polyline(pid: str, pts: np.ndarray, tag: str = "polyline") -> str:
     return f'<polyline id="{pid}" points="' + " ".join(f"{x!r},{y!r}" for x, y in pts.tolist()) + '"/>'
 
 
-def _knot_turns(c: np.ndarray) -> np.ndarray:
-    a, b = c[:-1, 3] - c[:-1, 2], c[1:, 1] - c[1:, 0]
-    cos = np.einsum("ij,ij->i", a, b) / (np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1))
-    return np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))
-
-
-def _dist(c: np.ndarray, pts: np.ndarray) -> np.ndarray:
-    curves = [CubicBezier.from_array(k) for k in c]
-    return np.array([min(float(np.linalg.norm(b.point(b.project(p)) - p)) for b in curves) for p in pts])
-
-
 @pytest.mark.parametrize("tag", ["polyline", "path"])
 def test_a_sampled_curve_is_refitted_within_the_tolerance(tag):
     from auszug.formats.sketch_svg import FIT_TOL
@@ -174,8 +164,8 @@ def test_a_sampled_curve_is_refitted_within_the_tolerance(tag):
     assert 1 <= len(c) <= 8
     assert np.array_equal(c[0, 0], pts[0]) and np.array_equal(c[-1, 3], pts[-1])
     assert np.array_equal(c[1:, 0], c[:-1, 3])
-    assert len(c) == 1 or _knot_turns(c).max() < 1e-6
-    assert _dist(c, pts).max() <= FIT_TOL * diag
+    assert len(c) == 1 or _turns_deg(c).max() < 1e-6
+    assert _distances(c, pts).max() <= FIT_TOL * diag
     # the single straight stroke is as drawn (handles at thirds)
     assert np.allclose(s.strokes[1].controls, [[[48, -5], [148 / 3, -35], [152 / 3, -65], [52, -95]]])
 
@@ -202,7 +192,7 @@ def test_a_corner_between_two_sampled_curves_is_kept():
     pts = np.r_[left, right]
     s = read_sketch_svg(svg(_polyline("ogee", pts) + '<path id="cut" d="M 0 70 L 100 70"/>'))
     c = s.strokes[0].controls
-    turns = _knot_turns(c)
+    turns = _turns_deg(c)
     # the apex (a 90 deg turn of the tangent) is a knot of the chain, every other knot is G1
     apex = [i for i in range(1, len(c)) if np.allclose(c[i, 0], [50, -50])]
     assert len(apex) == 1 and abs(turns[apex[0] - 1] - 90.0) < 3.0

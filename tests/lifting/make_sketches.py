@@ -20,7 +20,15 @@ import numpy as np
 from scipy.interpolate import make_lsq_spline
 
 from auszug.geometry import CubicBezier
-from tests.lifting.truth import barrel_chains, crossings2d, hermite_chain, occlusions, revolve, rotation
+from tests.lifting.truth import (
+    barrel_chains,
+    crossings2d,
+    hermite_chain,
+    occlusions,
+    revolve,
+    rotation,
+    wave_field,
+)
 
 JITTER = 0.0
 HAND = {"vase": 0, "ogee-roof": 0, "arches": 0}     # the seed of each hand-drawn example (see hand_drawn)
@@ -132,30 +140,22 @@ def hand_drawn(chains: list[np.ndarray], R: np.ndarray, seed: int, wobble: float
                tremor: float = 0.001, span: float = 0.2) -> tuple[list[np.ndarray], list[np.ndarray]]:
     """The object seen along z after R, drawn by a hand: (2D strokes, their 3D truth), Bezier chains.
 
-    The hand: a smooth displacement of the whole page (8 plane waves of wavelengths 1/4-1/2 of the
-    diagonal, each coordinate's standard deviation ``wobble`` of the diagonal, as the noise of
-    tests/lifting/truth.py), and along each curved stroke a tremor of its own (3 waves along its arc
-    length, wavelengths 1/10-1/5 of the diagonal, standard deviation ``tremor``) normal to it. The pen:
-    each curved stroke's smooth runs (split at its corners, kept) refitted by least squares with one
-    cubic per ``span`` of the diagonal, knots where the pen put them, not at the crossings; a straight
-    stroke ruled between its displaced ends. The depth of each drawn point is the truth's at the point
-    it was drawn for, so the 3D truth of a drawn stroke is its 2D stroke lifted by the object's depth
-    (within the hand's displacement: at a 3D intersection the two drawn strokes cross up to 2.4 %
-    of the diagonal apart in the truth's depth, the ogee roof's ruled generators).
+    The hand: a smooth displacement of the whole page (``truth.wave_field``, each coordinate's standard
+    deviation ``wobble`` of the diagonal, as the noise of tests/lifting/truth.py), and along each curved
+    stroke a tremor of its own (3 waves along its arc length, wavelengths 1/10-1/5 of the diagonal,
+    standard deviation ``tremor``) normal to it. The pen: each curved stroke's smooth runs (split at its
+    corners, kept) refitted by least squares with one cubic per ``span`` of the diagonal, knots where
+    the pen put them, not at the crossings; a straight stroke ruled between its displaced ends. The
+    depth of each drawn point is the truth's at the point it was drawn for, so the 3D truth of a drawn
+    stroke is its 2D stroke lifted by the object's depth (within the hand's displacement: at a 3D
+    intersection the two drawn strokes cross up to 2.4 % of the diagonal apart in the truth's depth, the
+    ogee roof's ruled generators).
     """
     view = [c @ R.T for c in chains]
     flat = np.concatenate([v.reshape(-1, 3) for v in view])[:, :2]
     diag = float(np.linalg.norm(np.ptp(flat, axis=0)))
     rng = np.random.default_rng(seed)
-    k = 8
-    ang = rng.uniform(0, 2 * np.pi, k)
-    wave = np.stack([np.cos(ang), np.sin(ang)], 1) * (2 * np.pi / (diag * rng.uniform(0.25, 0.5, k)))[:, None]
-    phase = rng.uniform(0, 2 * np.pi, (k, 2))
-    amp = rng.normal(0, 1, (k, 2)) * wobble * diag * np.sqrt(2.0 / k)
-
-    def field(xy: np.ndarray) -> np.ndarray:
-        return np.einsum("...kc,kc->...c", np.sin((xy @ wave.T)[..., None] + phase), amp)
-
+    field = wave_field(rng, diag, wobble)
     out2, out3 = [], []
     for v in view:
         chord, inner = v[0, 3, :2] - v[0, 0, :2], v[0, 1:3, :2] - v[0, 0, :2]
@@ -214,10 +214,13 @@ def hand_occlusions(view: list[np.ndarray], drawn3d: list[np.ndarray]) -> list[n
     return marks
 
 
-def drawn(name: str) -> tuple[list[np.ndarray], list[np.ndarray], list[np.ndarray]]:
-    """The shipped hand-drawn example ``name``: (2D strokes, their 3D truth, occlusion markers)."""
+def drawn(name: str, seed: int | None = None) -> tuple[list[np.ndarray], list[np.ndarray], list[np.ndarray]]:
+    """The hand-drawn example ``name``: (2D strokes, their 3D truth, occlusion markers).
+
+    ``seed``: the hand's (default :data:`HAND`'s, the shipped drawing); raises ValueError where that hand
+    lost or made a crossing (:func:`hand_occlusions`)."""
     chains = {"vase": vase, "ogee-roof": ogee_roof, "arches": arches}[name]()
-    s2, s3 = hand_drawn(chains, VIEWS[name], HAND[name])
+    s2, s3 = hand_drawn(chains, VIEWS[name], HAND[name] if seed is None else seed)
     view = [c @ VIEWS[name].T for c in chains]
     return s2, s3, hand_occlusions(view, s3)
 

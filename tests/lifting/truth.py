@@ -160,6 +160,25 @@ def crossings2d(view, strokes2d=None) -> list[tuple[np.ndarray, float]]:
     return out
 
 
+def wave_field(rng: np.random.Generator, diagonal: float, sd: float):
+    """A wobbly hand: a smooth random 2D displacement field over a sketch of this diagonal.
+
+    The sum of 8 plane waves of wavelengths diagonal/4 .. diagonal/2, each coordinate's standard deviation
+    ``sd * diagonal``; returns the field as a function of points (..., 2) -> displacements (..., 2).
+    """
+    k = 8
+    ang = rng.uniform(0, 2 * np.pi, k)
+    freq = 2 * np.pi / (diagonal * rng.uniform(0.25, 0.5, k))
+    wave = np.stack([np.cos(ang), np.sin(ang)], 1) * freq[:, None]      # (k, 2)
+    phase = rng.uniform(0, 2 * np.pi, (k, 2))
+    amp = rng.normal(0, 1, (k, 2)) * sd * diagonal * np.sqrt(2.0 / k)   # E[sin^2] = 1/2
+
+    def field(xy: np.ndarray) -> np.ndarray:
+        return np.einsum("...kc,kc->...c", np.sin((xy @ wave.T)[..., None] + phase), amp)
+
+    return field
+
+
 def _project(chains, R, noise: float, seed: int) -> Truth:
     view = tuple(c @ R.T for c in chains)
     strokes0 = tuple(Stroke(c[:, :, :2].copy(), f"c{i}") for i, c in enumerate(view))
@@ -167,22 +186,9 @@ def _project(chains, R, noise: float, seed: int) -> Truth:
     marks = tuple(Marker("occlusion", p, f"occlusion-{i + 1}") for i, p in enumerate(occlusions(view, 1e-6 * d0)))
     sk = Sketch(strokes0, marks)
     if noise:
-        rng = np.random.default_rng(seed)
         d = sk.diagonal()
-        # a wobbly hand: a smooth random displacement field over the sketch (sum of 8 plane waves of
-        # wavelengths diagonal/4 .. diagonal/2, each coordinate's standard deviation noise * diagonal)
         # applied to every control point, so shared points stay shared and tangents stay continuous
-        k = 8
-        ang = rng.uniform(0, 2 * np.pi, k)
-        freq = 2 * np.pi / (d * rng.uniform(0.25, 0.5, k))
-        wave = np.stack([np.cos(ang), np.sin(ang)], 1) * freq[:, None]      # (k, 2)
-        phase = rng.uniform(0, 2 * np.pi, (k, 2))
-        amp = rng.normal(0, 1, (k, 2)) * noise * d * np.sqrt(2.0 / k)        # E[sin^2] = 1/2
-
-        def field(xy: np.ndarray) -> np.ndarray:
-            arg = xy @ wave.T                                                  # (..., k)
-            return np.einsum("...kc,kc->...c", np.sin(arg[..., None] + phase), amp)
-
+        field = wave_field(np.random.default_rng(seed), d, noise)
         strokes = [Stroke(s.controls + field(s.controls), s.id) for s in sk.strokes]
         # the markers of the drawn (noisy) strokes: a near-tangent 2D crossing of the clean projection
         # can vanish under the noise (its marker would have no crossing) or one appear. Each noisy

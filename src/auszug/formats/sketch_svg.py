@@ -285,8 +285,7 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
     if n_drawn > LIMITS.sketch_segments:      # as drawn, before the sampled curves' fit: bounds its cost
         raise _fail(f"the sketch has {n_drawn} Bezier segments: more than the limit of {LIMITS.sketch_segments} "
                     "(auszug.limits.LIMITS.sketch_segments)", name)
-    pts = np.concatenate([s.controls.reshape(-1, 2) for _, s in strokes])
-    tol = FIT_TOL * float(np.linalg.norm(np.ptp(pts, axis=0)))
+    tol = FIT_TOL * Sketch(tuple(s for _, s in strokes)).diagonal()
     strokes = [(k, Stroke(_fit_sampled(s.controls, b, tol), s.id) if b.sum() >= FIT_MIN_LINES else s)
                for (k, s), b in zip(strokes, straights, strict=True)]
     if len(symmetry) > 1:

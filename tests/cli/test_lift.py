@@ -142,3 +142,34 @@ def test_set_refuses_bad_parameters_before_any_work(cli, tmp_path, item, message
     r = cli("lift", examples.path("sketches/arches.svg"), "-o", out, "--set", item)
     assert r.code == 2 and r.err.startswith(f"auszug: {message}"), r.err
     assert "Traceback" not in r.err and files_in(tmp_path) == []
+
+
+def test_a_lift_that_shrinks_a_segment_to_a_point_is_an_error_naming_the_stroke(cli, tmp_path, monkeypatch):
+    # found by fuzzing (nine random strokes, 253 segments, no solve converged): the unconverged lift shrank
+    # three segments to points in the sketch's plane and the network's Bezier check stopped the run with
+    # "control points all coincide at [x, y]", naming no stroke; the lift is forced astray here the same way
+    from auszug.lifting import reconstruct
+
+    svg = tmp_path / "cross.svg"
+    svg.write_text('<svg xmlns="http://www.w3.org/2000/svg">'
+                   '<path id="h" d="M -100 0 C -40 -25 40 -25 100 0"/>'
+                   '<path id="v" d="M 30 100 C 10 30 -10 -30 -30 -100"/></svg>')
+    out = tmp_path / "cross.network.json"
+    assert cli("lift", svg, "-o", out).code == 0 and out.exists()   # as drawn it lifts
+    out.unlink()
+    real = reconstruct.lift_graph
+
+    def astray(g, *args, **kw):
+        X, *rest = real(g, *args, **kw)
+        X = X.copy()
+        seg = g.segments[g.chains[1][1]]           # the second piece of stroke "v"
+        X[seg[1:], :2] = X[seg[0], :2]             # its handles and end onto its start, in x and y
+        return (X, *rest)
+
+    monkeypatch.setattr(reconstruct, "lift_graph", astray)
+    r = cli("lift", svg, "-o", out)
+    assert r.code == 2 and "Traceback" not in r.err
+    assert r.err.strip().splitlines()[-1] == (
+        f"auszug: {svg}: stroke v: the lift shrank its segment 2 of 2 (split at the crossings) to a point in the "
+        "sketch's plane (every solve converged): the solve went astray, the result is no lift of the drawing")
+    assert files_in(tmp_path) == ["cross.svg"]

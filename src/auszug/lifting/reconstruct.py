@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from auszug.errors import GeometryError
-from auszug.geometry import CubicBezier, SymmetryGroup
+from auszug.geometry import TOL, CubicBezier, SymmetryGroup
 from auszug.geometry.heights import SideCoordinate
 from auszug.geometry.network import CurveNetwork, Piece
 from auszug.lifting import cues as cu
@@ -1198,7 +1198,7 @@ def lift(sketch: Sketch, params: LiftParams = DEFAULT, progress: Progress | None
     if sym_at is not None:   # the plane in sketch units, after the layers' depth shifts
         lay, k, nrm, on = sym_at
         mirror = (lay, nrm, float(np.mean(pts[k][on] @ nrm)))
-    net = _network(sketch, graphs, pts, results)
+    net = _network(sketch, graphs, pts, results, bool(ok))
     if mirror is not None:
         net = replace(net, meta={**net.meta, "lifting": {**net.meta["lifting"], "symmetry_plane": {
             "layer": mirror[0], "normal": mirror[1].tolist(), "offset": mirror[2]}}})
@@ -1450,8 +1450,14 @@ def _stack(graphs: list[SketchGraph], pts: list[Array]) -> None:
             front[c] = max(front.get(c, -np.inf), float(z))
 
 
-def _network(sketch: Sketch, graphs: list[SketchGraph], pts: list[Array], results: list[CueResult]) -> CurveNetwork:
-    """One exact 3D Bezier piece per segment; one basic curve per stroke."""
+def _network(sketch: Sketch, graphs: list[SketchGraph], pts: list[Array], results: list[CueResult],
+             converged: bool = True) -> CurveNetwork:
+    """One exact 3D Bezier piece per segment; one basic curve per stroke.
+
+    Raises GeometryError, naming the stroke, where the lift shrank a segment to
+    a point in the sketch's plane (seen along z it would no longer be a curve):
+    a solve that went astray, not a lift of the drawing.
+    """
     pieces: list[Piece] = []
     groups: list[SymmetryGroup] = []
     layers: list[int] = []
@@ -1463,6 +1469,13 @@ def _network(sketch: Sketch, graphs: list[SketchGraph], pts: list[Array], result
             stroke = g.strokes[int(g.seg_stroke[chain[0]])]
             for k, s in enumerate(chain):
                 c = X[g.segments[s]]
+                spread = float(np.ptp(c[:, :2], axis=0).max())
+                if not spread > TOL.zero:     # what the Bezier below would refuse, without the stroke's name
+                    why = "not every solve converged" if not converged else "every solve converged"
+                    raise GeometryError(
+                        f"stroke {stroke.id or '(no id)'}: the lift shrank its segment {k + 1} of {len(chain)} "
+                        f"(split at the crossings) to a point in the sketch's plane ({why}): the solve went "
+                        f"astray, the result is no lift of the drawing")
                 top = CubicBezier.from_array(c[:, :2])
                 pieces.append(Piece(basic, k, "sketch", top, None, rule, c[[0, 3]].copy(), depth=c[:, 2].copy()))
                 size = max(size, float(np.abs(c[:, :2]).max()))

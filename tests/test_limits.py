@@ -498,3 +498,21 @@ def test_a_sketch_at_the_segment_limit_passes_the_check():
     sk = read_sketch_svg(_long_strokes_svg(LIMITS.sketch_segments // 2), "long.svg")
     assert sum(len(s.controls) for s in sk.strokes) == LIMITS.sketch_segments == 4096
     assert len(sketch_graph(sk).crossings) == 1
+
+
+@pytest.mark.parametrize("far, ok", [(1e6, True), (2e6, False)])
+def test_sketch_coordinates_are_within_the_coordinate_limit(cli, tmp_path, far, ok):
+    """A sketch's coordinates are held to LIMITS.coordinate like a drawing's (its network is exported as
+    float32 meshes too); found by fuzzing the sketch reader: 1e308 overflowed the diagonal's norm."""
+    src = tmp_path / "far.svg"
+    src.write_text('<svg xmlns="http://www.w3.org/2000/svg">'
+                   f'<path id="a" d="M {-far:.0f} 0 C -1 -3 1 -3 {far:.0f} 0"/>'
+                   '<path id="b" d="M 1 -5 C 0.5 -1 -0.5 1 -1 5"/></svg>')
+    out = tmp_path / "far.network.json"
+    r = cli("lift", src, "-o", out, "--quiet", "--cues", "none")
+    if ok:
+        assert r.code == 0 and out.exists(), r.err
+    else:
+        assert r.code == 2 and r.err == (f"auszug: {src}: a: coordinate 2e+06 is beyond the limit of +-1e+06 "
+                                         "(auszug.limits.LIMITS.coordinate)\n")
+        assert not out.exists()

@@ -82,6 +82,11 @@ def test_an_occlusion_marker_makes_a_crossing_no_intersection():
     ("", "empty file"),
     ("hello, no svg here", "not an SVG file"),
     ("<html><body/></html>", "root element is <html>"),
+    (svg(CROSS).replace("http://www.w3.org/2000/svg", "http://www.w3.org/2000/svgx"),      # was a TypeError
+     "its <svg> is in the namespace 'http://www.w3.org/2000/svgx'"),
+    (svg('<path id="far" d="M 0 0 L 2e6 3"/>' + CROSS), r"far: coordinate 2e\+06 is beyond the limit of \+-1e\+06"),
+    (svg(CROSS + '<circle class="flip" id="m" cx="1e7" cy="1" r="1"/>'),
+     r"m: the marker's centre \[10000000.0, -1.0\] is not finite or beyond"),
     (svg('<path id="p" d="M 0 0 L nan 3"/>' + CROSS), "p: NaN or infinity"),
     (svg('<path d="M 0 0 L 1 inf"/>' + CROSS), r"<path> #1: NaN or infinity"),
     (svg(CROSS + '<path id="z" d="M 5 5 L 5 5"/>'), "z: zero-length stroke"),

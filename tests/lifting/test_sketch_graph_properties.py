@@ -8,8 +8,8 @@ or end, some drawn twice as far apart as the merge distance) either are refused 
 - each stroke's pieces, in chain order, join end to start and run from the stroke's start to its end,
   and their lengths add up to the stroke's;
 - every piece lies on its stroke;
-- every crossing of two strokes (the geometry kernel's, away from both strokes' ends) is one point of the
-  graph shared by both strokes' chains.
+- every crossing of two strokes (the geometry kernel's, away from both strokes' ends, not tangential) is
+  one point of the graph shared by both strokes' chains.
 """
 
 from __future__ import annotations
@@ -114,6 +114,9 @@ def test_the_graph_is_the_strokes_cut_where_they_cross(cs):
                          (cs[sb][[0], 0] - g.offset) / g.scale, (cs[sb][[-1], 3] - g.offset) / g.scale]
             if np.linalg.norm(ends - h.point, axis=1).min() <= 1e-3:
                 continue
+            ta, tb = curves[a].derivative(h.t1), curves[b].derivative(h.t2)
+            if abs(ta[0] * tb[1] - ta[1] * tb[0]) <= 1e-3 * np.linalg.norm(ta) * np.linalg.norm(tb):
+                continue      # a touching or an overlap (strokes drawn over each other), not a crossing
             on_a = np.unique(g.segments[g.chains[sa]][:, [0, 3]])
             on_b = np.unique(g.segments[g.chains[sb]][:, [0, 3]])
             shared = np.intersect1d(on_a, on_b)

@@ -73,6 +73,7 @@ FIT_TOL = 2e-3
 #: The most cubics of one sampled curve's fit (a run it cannot fit with these stays straight segments).
 FIT_MAX_SPANS = 256
 
+_SVG_NS = "http://www.w3.org/2000/svg"
 _INKSCAPE = "{http://www.inkscape.org/namespaces/inkscape}"
 _GEOMETRY_ATTRS = ("d", "points", "x", "y", "x1", "y1", "x2", "y2", "cx", "cy", "r", "rx", "ry", "width", "height",
                    "transform")
@@ -94,6 +95,9 @@ def _check_xml(text: str, name: str) -> None:
     tag = root.tag.rsplit("}", 1)[-1]
     if tag != "svg":
         raise _fail(f"not an SVG file: the root element is <{tag}>, expected <svg>", name)
+    space = root.tag[1:].split("}", 1)[0] if root.tag.startswith("{") else ""
+    if space not in ("", _SVG_NS):
+        raise _fail(f"not an SVG file: its <svg> is in the namespace {space!r}, expected {_SVG_NS!r}", name)
 
 
 def _cubic(seg: Any) -> list[Array]:
@@ -216,6 +220,8 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
         doc = se.SVG.parse(io.StringIO(text), reify=True)
     except Exception as e:  # svgelements raises plain exceptions on odd input
         raise _fail(f"not a readable SVG file: {e}", name) from None
+    if not isinstance(doc, se.SVG):    # svgelements's own reading of the root: no SVG document
+        raise _fail("not a readable SVG file: no <svg> document element", name)
 
     strokes: list[tuple[Any, Stroke]] = []     # (layer key, stroke)
     straights: list[NDArray[np.bool_]] = []    # per stroke: which of its segments are straight (as drawn)
@@ -257,8 +263,9 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
                 if box is None:
                     raise _fail(f"{where}: a marker circle without extent", name)
                 c = np.array([(box[0] + box[2]) / 2, -(box[1] + box[3]) / 2], dtype=float)
-                if not np.all(np.isfinite(c)):
-                    raise _fail(f"{where}: the marker's centre is not finite", name)
+                if not np.all(np.isfinite(c)) or np.abs(c).max() > LIMITS.coordinate:
+                    raise _fail(f"{where}: the marker's centre {c.tolist()} is not finite or beyond the limit of "
+                                f"+-{LIMITS.coordinate:g} (auszug.limits.LIMITS.coordinate)", name)
                 markers.append(Marker(kinds[0], c, where))
                 continue
             path = e if isinstance(e, se.Path) else se.Path(e)
@@ -270,6 +277,9 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
                 if not len(c) or not np.all(np.isfinite(c)):
                     raise _fail(f"{sid}: {'zero-length stroke' if not len(c) else 'coordinates are not finite'}",
                                 name)
+                if np.abs(c).max() > LIMITS.coordinate:
+                    raise _fail(f"{sid}: coordinate {float(np.abs(c).max()):g} is beyond the limit of "
+                                f"+-{LIMITS.coordinate:g} (auszug.limits.LIMITS.coordinate)", name)
                 c = c.copy()
                 c[..., 1] *= -1.0
                 if SYMMETRY_CLASS in classes:

@@ -241,3 +241,27 @@ def test_a_traced_sketch_lifts_like_the_drawing(monkeypatch):
     raw = read_sketch_svg(text, "traced.svg")
     assert sum(len(st.controls) for st in raw.strokes) == 662
     assert not lift(raw, classes=()).converged
+
+
+def test_clones_are_read_and_hidden_shapes_are_not():
+    # an Inkscape clone (<use>, Alt+D) is visible, so it is a stroke: the element it shows, moved by its x, y and
+    # transform, named by the clone; hidden shapes (display:none, visibility:hidden, inherited or not) and <defs>
+    # are not drawn, so they are not strokes (a visible child of a hidden group is drawn: CSS)
+    body = (CROSS
+            + '<path id="s1" d="M 0 90 L 100 95" style="visibility:hidden"/>'
+            + '<g visibility="hidden"><path id="s2" d="M 0 80 L 100 85"/></g>'
+            + '<g style="display:none"><path id="s3" d="M 0 70 L 100 75"/></g>'
+            + '<path id="s4" d="M 0 60 L 100 65" style="display:none"/>'
+            + '<g visibility="hidden"><path id="s5" d="M 0 20 L 100 25" visibility="visible"/></g>'
+            + '<defs><path id="s6" d="M 0 10 L 100 15"/></defs>'
+            + '<use xlink:href="#v" transform="translate(-20 0)"/>'
+            + '<use href="#v" x="10" id="u2"/>')
+    text = svg(body).replace("<svg ", '<svg xmlns:xlink="http://www.w3.org/1999/xlink" ', 1)
+    sk = read_sketch_svg(text, "clones.svg")
+    v = next(s for s in sk.strokes if s.id == "v").controls
+    assert [s.id for s in sk.strokes] == ["h", "v", "s5", "<use> #4: v", "u2: v"]
+    assert np.array_equal(sk.strokes[3].controls, v + [-20.0, 0.0])
+    assert np.array_equal(sk.strokes[4].controls, v + [10.0, 0.0])
+    # a clone on its original is a duplicate stroke, named by the clone
+    with pytest.raises(FormatError, match=r"<use> #3: v: duplicate of v"):
+        read_sketch_svg(svg(CROSS + '<use href="#v"/>'), "dup.svg")

@@ -14,6 +14,10 @@ its end points kept, corners between runs kept). Every ``transform`` and the roo
 user units when there is no viewBox), and y is flipped to point up:
 ``y = -y_svg``.
 
+A clone (``<use>``, Inkscape's Alt+D) is read as the element it shows, transformed, its
+strokes named ``"<use id>: <element id>"``; hidden shapes (``display:none``, also of a
+hidden layer, and ``visibility:hidden``) are not read, nor ``<defs>``.
+
 Layers (``<g inkscape:groupmode="layer">``, the innermost one counts) are
 independent parts, back to front in document order (shapes outside every
 layer form one more part, placed by where its first shape comes). Annotations,
@@ -233,22 +237,27 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
     def label(e: Any, tag: str, index: int) -> str:
         return str(_own(e).get("id") or f"<{tag}> #{index}")
 
-    def visit(group: Any, layer: Any) -> None:
+    def visit(group: Any, layer: Any, clone: str = "") -> None:
         for e in group:
             own = _own(e)
             tag = str(own.get("tag") or type(e).__name__.lower())
+            if isinstance(e, se.Use):         # a clone (Inkscape's Alt+D): its element, transformed, named by it
+                visit(e, layer, f"{clone}{label(e, tag, counter[0] + 1)}: ")
+                continue
             if isinstance(e, se.Group):
                 here = layer
                 if own.get(f"{_INKSCAPE}groupmode") == "layer":
                     here = id(e)
                     layer_names[here] = str(own.get(f"{_INKSCAPE}label") or own.get("id") or
                                             f"layer {len(layer_names) + 1}")
-                visit(e, here)
+                visit(e, here, clone)
                 continue
             if not isinstance(e, se.Shape):
                 continue
+            if str(e.values.get("visibility", "")).strip() in ("hidden", "collapse"):
+                continue                      # not drawn (``display:none`` svgelements leaves out itself)
             counter[0] += 1
-            where = label(e, tag, counter[0])
+            where = clone + label(e, tag, counter[0])
             for attr in _GEOMETRY_ATTRS:
                 if _NONFINITE.search(str(own.get(attr, ""))):
                     raise _fail(f"{where}: NaN or infinity in its {attr!r} attribute", name)

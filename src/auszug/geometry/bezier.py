@@ -487,6 +487,25 @@ class CubicBezier(Curve):
             d = math.hypot(x - px, y - py)
             if d < best_d:
                 best_t, best_d = t, d
+        lo, hi = max(0.0, best_t - 2.0 / (n - 1)), min(1.0, best_t + 2.0 / (n - 1))
+        if best_d > _tolerance.TOL.zero and _folds(c8, lo, hi):
+            # a near-cusp folds back within a sample step, and the closest point may sit on the fold the
+            # samples passed over (5 in 100 000 points of random loops, up to 1e-4 of the curve's size): the
+            # two sample steps on either side of the best parameter are sampled 16 times finer where the
+            # curve turns back there; a point found there wins only by more than the zero length
+            fine = np.linspace(lo, hi, 65)
+            m = 1.0 - fine
+            q = (np.outer(m * m * m, self.p0) + np.outer(3.0 * m * m * fine, self.p1)
+                 + np.outer(3.0 * m * fine * fine, self.p2) + np.outer(fine * fine * fine, self.p3) - p)
+            f2 = np.einsum("ij,ij->i", q, q)
+            fpad = np.concatenate([[np.inf], f2, [np.inf]])
+            for j in np.nonzero((fpad[1:-1] <= fpad[:-2]) & (fpad[1:-1] <= fpad[2:]))[0].tolist():
+                a, b = float(fine[max(j - 1, 0)]), float(fine[min(j + 1, 64)])
+                t = _closest_newton(c8, px, py, float(fine[j]) if 0 < j < 64 else 0.5 * (a + b), a, b)
+                x, y, _, _, _, _ = _eval_floats(c8, t)
+                d = math.hypot(x - px, y - py)
+                if d < best_d - _tolerance.TOL.zero:
+                    best_t, best_d = t, d
         return best_t
 
     @cached_property
@@ -518,6 +537,16 @@ def _eval_floats(c: tuple[float, ...], t: float) -> tuple[float, float, float, f
         6.0 * (m * (bx - ax) + t * (cx - bx)),
         6.0 * (m * (by - ay) + t * (cy - by)),
     )
+
+
+def _folds(c: tuple[float, ...], lo: float, hi: float) -> bool:
+    """Whether the Bezier ``c`` (8 floats) turns back on [lo, hi].
+
+    There its chord is below 0.9 of the length of its polygon through 5 equally spaced points.
+    """
+    pts = [_eval_floats(c, lo + (hi - lo) * k / 4.0)[:2] for k in range(5)]
+    arc = sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(pts[:-1], pts[1:], strict=True))
+    return math.hypot(pts[4][0] - pts[0][0], pts[4][1] - pts[0][1]) < 0.9 * arc
 
 
 def _closest_newton(c: tuple[float, ...], px: float, py: float, t: float, lo: float,

@@ -16,7 +16,7 @@ import pytest
 from auszug import examples
 from auszug.formats import load
 from auszug.formats.sketch_json import dumps
-from auszug.lifting import Sketch, Stroke
+from auszug.lifting import Marker, Sketch, Stroke
 
 SCALE = int(os.environ.get("AUSZUG_FUZZ_SCALE", "1"))
 NAMES = ["vase", "ogee-roof", "arches", "barrel-half"]
@@ -50,12 +50,13 @@ def _damaged(rng: np.random.Generator) -> str:
     sk = load(examples.path(f"sketches/{rng.choice(NAMES)}.svg"), kind="sketch")
     strokes = [s.controls.copy() for s in sk.strokes]
     layers = [s.layer for s in sk.strokes]
+    ids = [s.id for s in sk.strokes]
     diag = sk.diagonal()
     if rng.random() < 0.5:
         for _ in range(int(rng.integers(1, 3))):
             if len(strokes) > 1:
                 i = int(rng.integers(len(strokes)))
-                del strokes[i], layers[i]
+                del strokes[i], layers[i], ids[i]
     if rng.random() < 0.4:
         strokes = [c + rng.normal(0, float(rng.choice([0.001, 0.01, 0.03])) * diag, c.shape) for c in strokes]
     shift = np.array([float(rng.choice([0.0, 1e4, 9e5])), 0.0])
@@ -65,14 +66,14 @@ def _damaged(rng: np.random.Generator) -> str:
     if rng.random() < 0.2:
         i = int(rng.integers(len(strokes)))
         strokes[i][:, [1, 2]] = strokes[i][:, [0, 3]]
-    markers = tuple(m.__class__(m.kind, np.asarray(m.point) @ R.T + shift, m.id) for m in sk.markers) \
+    markers = tuple(Marker(m.kind, np.asarray(m.point) @ R.T + shift, m.id) for m in sk.markers) \
         if rng.random() < 0.8 else ()
     if rng.random() < 0.2:
         layers = [0] * len(layers)
     sym = None
     if sk.symmetry is not None and rng.random() < 0.8:
         sym = Stroke(sk.symmetry.controls @ R.T + shift, sk.symmetry.id, sk.symmetry.layer)
-    out = Sketch(tuple(Stroke(c, s.id, lay) for c, s, lay in zip(strokes, sk.strokes, layers, strict=False)),
+    out = Sketch(tuple(Stroke(c, i, lay) for c, i, lay in zip(strokes, ids, layers, strict=True)),
                  markers, sym, sk.name, sk.layers)
     return dumps(out)
 

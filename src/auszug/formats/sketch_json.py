@@ -27,6 +27,7 @@ import numpy as np
 from auszug.errors import FormatError
 from auszug.formats._registry import FileFormat, register
 from auszug.formats.sketch_svg import MARKER_CLASSES, check
+from auszug.limits import LIMITS
 
 if TYPE_CHECKING:
     from auszug.lifting import Sketch, Stroke
@@ -80,6 +81,9 @@ def _controls(v: Any, where: str, name: str) -> np.ndarray:
                           f"got shape {list(c.shape)}", name)
     if not np.all(np.isfinite(c)):
         raise FormatError(f"{where}: coordinates are not finite (NaN or infinity)", name)
+    if np.abs(c).max() > LIMITS.coordinate:
+        raise FormatError(f"{where}: coordinate {float(np.abs(c).max()):g} is beyond the limit of "
+                          f"+-{LIMITS.coordinate:g} (auszug.limits.LIMITS.coordinate)", name)
     return c
 
 
@@ -119,6 +123,9 @@ def from_dict(d: Any, name: str = "<string>") -> Sketch:
                                                             not isinstance(x, bool) and math.isfinite(x)
                                                             for x in p)):
             raise FormatError(f"{mid}: point must be [x, y] with finite numbers, got {p!r}", name)
+        if max(abs(float(x)) for x in p) > LIMITS.coordinate:
+            raise FormatError(f"{mid}: point {p!r} is beyond the limit of +-{LIMITS.coordinate:g} "
+                              "(auszug.limits.LIMITS.coordinate)", name)
         markers.append(Marker(str(m["kind"]), np.array(p, dtype=float), str(m.get("id", ""))))
     sym = d.get("symmetry")
     symmetry = None

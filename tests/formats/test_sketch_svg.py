@@ -132,6 +132,10 @@ def test_sketch_json_round_trip_is_lossless(tmp_path, name):
     ('{"format": "auszug.sketch", "version": 1, "strokes": [{"id": "a", "controls": [[1, 2]]}]}', "a: controls"),
     ('{"format": "auszug.sketch", "version": 1, "strokes": [], "markers": [{"kind": "x"}]}', "marker #0: kind"),
     ('{"format": "auszug.sketch", "version": 1, "strokes": []}', "no strokes"),
+    ('{"format": "auszug.sketch", "version": 1, "strokes": [{"id": "a", "controls": [[[0, 0], [1, 0], [2, 0], '
+     '[3e6, 0]]]}]}', r"a: coordinate 3e\+06 is beyond the limit of \+-1e\+06"),
+    ('{"format": "auszug.sketch", "version": 1, "strokes": [], "markers": [{"kind": "flip", "id": "m", '
+     '"point": [1e308, 0]}]}', r"m: point \[1e\+308, 0\] is beyond the limit"),     # overflowed the snap
 ])
 def test_bad_sketch_json(text, message):
     with pytest.raises(FormatError, match=message):

@@ -22,6 +22,7 @@ from auszug.errors import GeometryError
 from auszug.geometry import CubicBezier, intersect_many
 from auszug.lifting.params import DEFAULT
 from auszug.lifting.sketch import Sketch, Stroke, sketch_graph
+from tests.lifting.test_fit import _distances
 
 coord = st.floats(-1.0, 1.0, allow_nan=False).map(lambda v: round(v, 3))
 point = st.tuples(coord, coord)
@@ -54,12 +55,10 @@ def _length(c: np.ndarray) -> float:
     return sum(CubicBezier.from_array(s).length() for s in c)
 
 
-def _dist_to_stroke(p: np.ndarray, c: np.ndarray) -> float:
-    best = np.inf
-    for s in c:
-        b = CubicBezier.from_array(s)
-        best = min(best, float(np.linalg.norm(b.point(b.project(p)) - p)))
-    return best
+def _samples(chain: np.ndarray, n: int) -> np.ndarray:
+    """``n`` points of each segment of a chain (m, 4, 2) of cubics (point-sized segments left out)."""
+    t = np.linspace(0.0, 1.0, n)
+    return np.concatenate([CubicBezier.from_array(s).point(t) for s in chain if np.ptp(s, axis=0).max() > 0])
 
 
 @settings(max_examples=150)
@@ -98,13 +97,10 @@ def test_the_graph_is_the_strokes_cut_where_they_cross(cs):
             moved.add(si)
         if not retracted:
             assert abs(_length(g.points[seg]) - _length(cn)) <= 2 * near * len(seg)
-        for piece in g.points[seg]:                                # every piece on its stroke
-            for q in CubicBezier.from_array(piece).point(np.linspace(0.0, 1.0, 9)):
-                assert _dist_to_stroke(q, cn) <= tol
-        for s in cn:                                               # and the stroke on its pieces
-            if np.ptp(s, axis=0).max() > merge:
-                for q in CubicBezier.from_array(s).point(np.linspace(0.0, 1.0, 9)):
-                    assert _dist_to_stroke(q, g.points[seg]) <= tol
+        assert _distances(cn, _samples(g.points[seg], 9)).max() <= tol          # every piece on its stroke
+        drawn = np.array([s for s in cn if np.ptp(s, axis=0).max() > merge])
+        if len(drawn):
+            assert _distances(g.points[seg], _samples(drawn, 9)).max() <= tol   # and the stroke on its pieces
     # every crossing away from the strokes' ends is a point both chains pass through (the drawn strokes'
     # crossings: not where a retracted handle moved a stroke a little, which moves its crossings too)
     curves, flat = [], []
@@ -132,8 +128,7 @@ def test_the_graph_is_the_strokes_cut_where_they_cross(cs):
 
 def _far(a: np.ndarray, b: np.ndarray) -> float:
     """Largest distance from 33 points of each segment of chain ``a`` to chain ``b``."""
-    t = np.linspace(0.0, 1.0, 33)
-    return max(_dist_to_stroke(q, b) for s in a for q in CubicBezier.from_array(s).point(t))
+    return float(_distances(b, _samples(a, 33)).max())
 
 
 def test_a_retracted_handle_keeps_the_drawn_curve():

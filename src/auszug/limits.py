@@ -29,7 +29,7 @@ from dataclasses import dataclass, fields
 from typing import Any
 
 __all__ = ["Limits", "LIMITS", "shown", "clip", "check_file_size", "check_text_size", "check_number",
-           "check_count", "table"]
+           "beyond_coordinate", "check_count", "table"]
 
 
 @dataclass(frozen=True)
@@ -292,6 +292,21 @@ def check_number(what: str, value: float, limit: float | None = None) -> float:
     if abs(v) > lim:
         raise DrawingError(f"{what} {shown(v)} is beyond the limit of +-{lim:g} (auszug.limits.LIMITS.coordinate)")
     return v
+
+
+def beyond_coordinate(largest: float) -> str | None:
+    """The problem with a coordinate of magnitude ``largest``; None within :attr:`Limits.coordinate`.
+
+    Examples
+    --------
+    >>> beyond_coordinate(2e6)
+    'coordinate 2e+06 is beyond the limit of +-1e+06 (auszug.limits.LIMITS.coordinate)'
+    >>> beyond_coordinate(1e6) is None
+    True
+    """
+    if largest <= LIMITS.coordinate:
+        return None
+    return f"coordinate {largest:g} is beyond the limit of +-{LIMITS.coordinate:g} (auszug.limits.LIMITS.coordinate)"
 
 
 def check_count(what: str, n: int, name: str) -> None:

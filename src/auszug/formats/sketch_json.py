@@ -27,7 +27,7 @@ import numpy as np
 from auszug.errors import FormatError
 from auszug.formats._registry import FileFormat, register
 from auszug.formats.sketch_svg import MARKER_CLASSES, check
-from auszug.limits import LIMITS
+from auszug.limits import LIMITS, beyond_coordinate
 
 if TYPE_CHECKING:
     from auszug.lifting import Sketch, Stroke
@@ -81,9 +81,8 @@ def _controls(v: Any, where: str, name: str) -> np.ndarray:
                           f"got shape {list(c.shape)}", name)
     if not np.all(np.isfinite(c)):
         raise FormatError(f"{where}: coordinates are not finite (NaN or infinity)", name)
-    if np.abs(c).max() > LIMITS.coordinate:
-        raise FormatError(f"{where}: coordinate {float(np.abs(c).max()):g} is beyond the limit of "
-                          f"+-{LIMITS.coordinate:g} (auszug.limits.LIMITS.coordinate)", name)
+    if (far := beyond_coordinate(float(np.abs(c).max()))) is not None:
+        raise FormatError(f"{where}: {far}", name)
     return c
 
 

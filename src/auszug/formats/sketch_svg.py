@@ -54,7 +54,7 @@ from numpy.typing import NDArray
 
 from auszug.errors import FormatError, GeometryError
 from auszug.formats._registry import FileFormat, register
-from auszug.limits import LIMITS
+from auszug.limits import LIMITS, beyond_coordinate
 
 if TYPE_CHECKING:
     from auszug.lifting import Sketch, Stroke
@@ -286,9 +286,8 @@ def read_sketch_svg(text: str | bytes, name: str = "<string>") -> Sketch:
                 if not len(c) or not np.all(np.isfinite(c)):
                     raise _fail(f"{sid}: {'zero-length stroke' if not len(c) else 'coordinates are not finite'}",
                                 name)
-                if np.abs(c).max() > LIMITS.coordinate:
-                    raise _fail(f"{sid}: coordinate {float(np.abs(c).max()):g} is beyond the limit of "
-                                f"+-{LIMITS.coordinate:g} (auszug.limits.LIMITS.coordinate)", name)
+                if (far := beyond_coordinate(float(np.abs(c).max()))) is not None:
+                    raise _fail(f"{sid}: {far}", name)
                 c = c.copy()
                 c[..., 1] *= -1.0
                 if SYMMETRY_CLASS in classes:

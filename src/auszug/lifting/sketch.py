@@ -20,7 +20,7 @@ from scipy.spatial import cKDTree
 from auszug.errors import GeometryError
 from auszug.geometry import CubicBezier, intersect_many
 from auszug.lifting.params import DEFAULT, LiftParams
-from auszug.limits import LIMITS
+from auszug.limits import LIMITS, beyond_coordinate
 
 __all__ = ["Stroke", "Marker", "Sketch", "Crossing", "SketchGraph", "sketch_graph"]
 
@@ -207,9 +207,8 @@ def _validate(sketch: Sketch, params: LiftParams) -> float:
             raise GeometryError(f"{name}: expected Bezier controls of shape (m, 4, 2), got {c.shape}")
         if not np.all(np.isfinite(c)):
             raise GeometryError(f"{name}: coordinates are not finite (NaN or infinity)")
-        if np.abs(c).max() > LIMITS.coordinate:
-            raise GeometryError(f"{name}: coordinate {float(np.abs(c).max()):g} is beyond the limit of "
-                                f"+-{LIMITS.coordinate:g} (auszug.limits.LIMITS.coordinate)")
+        if (far := beyond_coordinate(float(np.abs(c).max()))) is not None:
+            raise GeometryError(f"{name}: {far}")
     n_segments = sum(len(s.controls) for s in sketch.strokes)
     if n_segments > LIMITS.sketch_segments:
         raise GeometryError(f"the sketch has {n_segments} Bezier segments: more than the limit of "

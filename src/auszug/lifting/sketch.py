@@ -250,14 +250,18 @@ def _fix_handles(c: Array, tiny: float) -> Array:
     whole segment, as before 2026-12-05, moved the drawn curve by up to 4/27 of it, 15 %). A segment too
     small for the cut (the short piece within 100 merge distances) has its handle moved without it.
 
+    Point-sized segments (all four control points within ``tiny``: a node drawn twice) are left out.
+
     Returns
     -------
     (m', 4, 2) ndarray
-        The stroke's segments, m <= m' <= 2m.
+        The stroke's segments, m' <= 2m.
     """
     c = np.asarray(c, dtype=float)
     out: list[Array] = []
     for seg in c:
+        if np.ptp(seg, axis=0).max() <= tiny and len(c) > 1:
+            continue        # a point-sized segment (a doubled node): the drawn curve is the same without it
         r0 = np.linalg.norm(seg[1] - seg[0]) <= tiny
         r1 = np.linalg.norm(seg[2] - seg[3]) <= tiny
         if r0 != r1:

@@ -98,10 +98,9 @@ def test_the_graph_is_the_strokes_cut_where_they_cross(cs):
             moved.add(si)
         if not retracted:
             assert abs(_length(g.points[seg]) - _length(cn)) <= 2 * near * len(seg)
-        assert _distances(cn, _samples(g.points[seg], 9)).max() <= tol          # every piece on its stroke
-        drawn = np.array([s for s in cn if np.ptp(s, axis=0).max() > merge])
-        if len(drawn):
-            assert _distances(g.points[seg], _samples(drawn, 9)).max() <= tol   # and the stroke on its pieces
+        drawn = np.array([s for s in cn if np.ptp(s, axis=0).max() > merge])      # point-sized ones left out
+        assert _distances(drawn, _samples(g.points[seg], 9)).max() <= tol       # every piece on its stroke
+        assert _distances(g.points[seg], _samples(drawn, 9)).max() <= tol       # and the stroke on its pieces
     # every crossing away from the strokes' ends is a point both chains pass through (the drawn strokes'
     # crossings: not where a retracted handle moved a stroke a little, which moves its crossings too)
     curves, flat = [], []

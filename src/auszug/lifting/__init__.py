@@ -10,7 +10,7 @@ docs/lifting.md.
 """
 
 from auszug.lifting.fit import fit_polyline
-from auszug.lifting.params import DEFAULT, LiftParams
+from auszug.lifting.params import CLOSE_GAPS_MAX, DEFAULT, LiftParams
 from auszug.lifting.reconstruct import (
     CLASSES,
     DEFAULT_CLASSES,
@@ -24,7 +24,7 @@ from auszug.lifting.reconstruct import (
     lift_graph,
     vertical_planes,
 )
-from auszug.lifting.sketch import Crossing, Marker, Sketch, SketchGraph, Stroke, sketch_graph
+from auszug.lifting.sketch import Crossing, Gap, Marker, Sketch, SketchGraph, Stroke, sketch_graph
 
 __all__ = [
     "CLASSES",
@@ -39,8 +39,10 @@ __all__ = [
     "lift_graph",
     "vertical_planes",
     "DEFAULT",
+    "CLOSE_GAPS_MAX",
     "LiftParams",
     "Crossing",
+    "Gap",
     "Marker",
     "Sketch",
     "SketchGraph",

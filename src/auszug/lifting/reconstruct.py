@@ -8,6 +8,7 @@ the viewer), the cues found and every stage's energy and timing.
 
 from __future__ import annotations
 
+import math
 import time
 import weakref
 from dataclasses import dataclass, fields, replace
@@ -22,8 +23,8 @@ from auszug.geometry.heights import SideCoordinate
 from auszug.geometry.network import CurveNetwork, Piece
 from auszug.lifting import cues as cu
 from auszug.lifting.family import extent_member
-from auszug.lifting.params import DEFAULT, LiftParams
-from auszug.lifting.sketch import Sketch, SketchGraph, Stroke, sketch_graph
+from auszug.lifting.params import CLOSE_GAPS_MAX, DEFAULT, LiftParams
+from auszug.lifting.sketch import Sketch, SketchGraph, Stroke, nearest_end_gap, sketch_graph
 from auszug.lifting.solver import Orderings, Poly2, SolveResult, solve
 from auszug.lifting.terms import fidelity, structure
 
@@ -1405,7 +1406,8 @@ def layer_graphs(sketch: Sketch, params: LiftParams = DEFAULT) -> tuple[tuple[in
             main = np.bincount(comp).argmax()
             lone = [strokes[i].id or f"stroke #{i}" for i in np.nonzero(comp != main)[0]]
             raise GeometryError(f"{', '.join(lone[:3])}{' ...' if len(lone) > 3 else ''}: not joined to the rest "
-                                f"of layer {layer} by any intersection; put independent parts in their own layers")
+                                f"of layer {layer} by any intersection; put independent parts in their own layers"
+                                + _gap_hint(g, comp, int(main), params))
         out.append((layer, g))
     if sketch.symmetry is not None and sketch.symmetry.layer not in {lay for lay, _ in out}:
         raise GeometryError(f"symmetry path {sketch.symmetry.id or '(no id)'}: its layer "
@@ -1418,6 +1420,20 @@ def layer_graphs(sketch: Sketch, params: LiftParams = DEFAULT) -> tuple[tuple[in
     res = tuple((lay, _read_only(g)) for lay, g in out)
     _GRAPHS[sketch] = (fp, params, res)
     return res
+
+
+def _gap_hint(g: SketchGraph, comp: NDArray[np.intp], main: int, params: LiftParams) -> str:
+    """For the error of a layer in parts: how far the nearest end misses the main part, if within reach."""
+    rest = set(np.nonzero(comp != main)[0].tolist())
+    part = set(np.nonzero(comp == main)[0].tolist())
+    d, si, sj = min(nearest_end_gap(g, rest, part), nearest_end_gap(g, part, rest))
+    if not params.close_gaps < d <= CLOSE_GAPS_MAX:
+        return ""
+    name = g.strokes[si].id or f"stroke #{si}"
+    other = g.strokes[sj].id or f"stroke #{sj}"
+    want = math.ceil(d * 1.01 * 1e4) / 1e4
+    return (f"; or, if they were meant to meet, an end of {name} misses {other} by {d:.2%} of the diagonal: "
+            f"close_gaps={want:g} joins it (auszug lift --set close_gaps={want:g}; LiftParams.close_gaps)")
 
 
 def _graph_with_markers(sub: Sketch, params: LiftParams) -> tuple[SketchGraph, set[int]]:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import hashlib
 import math
+import threading
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -18,11 +19,11 @@ from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
 from auszug.errors import GeometryError
-from auszug.geometry import CubicBezier, intersect_many
+from auszug.geometry import CubicBezier, Line, intersect, intersect_many
 from auszug.lifting.params import DEFAULT, LiftParams
 from auszug.limits import LIMITS, beyond_coordinate
 
-__all__ = ["Stroke", "Marker", "Sketch", "Crossing", "SketchGraph", "sketch_graph"]
+__all__ = ["Stroke", "Marker", "Sketch", "Crossing", "Gap", "SketchGraph", "sketch_graph", "nearest_end_gap"]
 
 Array = NDArray[np.float64]
 
@@ -140,6 +141,33 @@ class Crossing:
     flipped: bool = False
 
 
+@dataclass(frozen=True)
+class Gap:
+    """A stroke end joined by ``LiftParams.close_gaps`` (off by default).
+
+    Attributes
+    ----------
+    stroke : int
+        Index of the stroke in the graph's ``strokes``.
+    end : int
+        0: its start, 1: its end.
+    kind : str
+        ``"trim"``: the piece beyond its last crossing cut off; ``"extend"``: moved onto the inside of
+        stroke ``to``; ``"end"``: moved onto an end of stroke ``to``; ``"close"``: moved onto its own
+        other end (the stroke becomes a loop).
+    to : int
+        The stroke it was joined to (-1 for a trim).
+    distance : float
+        The piece cut off (arc length) or the gap bridged, relative to the diagonal.
+    """
+
+    stroke: int
+    end: int
+    kind: str
+    to: int
+    distance: float
+
+
 @dataclass(frozen=True, eq=False)
 class SketchGraph:
     """Strokes split at crossings, with shared control points.
@@ -172,6 +200,8 @@ class SketchGraph:
         The input strokes.
     marked : tuple of int
         Indices of the sketch's markers that snapped to a crossing of this graph.
+    gaps : tuple of Gap
+        The stroke ends ``LiftParams.close_gaps`` joined (none by default).
     """
 
     points: Array
@@ -187,6 +217,7 @@ class SketchGraph:
     scale: float
     strokes: tuple[Stroke, ...]
     marked: tuple[int, ...] = ()
+    gaps: tuple[Gap, ...] = ()
 
     def tangent(self, seg: int, end: int) -> Array:
         """2D tangent handle of a half-edge: from its end point to the next control point."""
@@ -321,22 +352,14 @@ def sketch_graph(sketch: Sketch, params: LiftParams = DEFAULT, require_markers: 
     tiny = params.merge
     strokes_c = [_fix_handles((np.asarray(s.controls, float) - offset) / scale, tiny) for s in sketch.strokes]
 
-    # every segment as a Bezier; crossings between segments of different strokes
-    flat: list[tuple[int, int]] = []
-    curves: list[CubicBezier] = []
-    for si, c in enumerate(strokes_c):
-        for k in range(len(c)):
-            flat.append((si, k))
-            curves.append(CubicBezier.from_array(c[k]))
-    hits = intersect_many(curves)
-    raw: list[tuple[int, int, float, int, int, float, Array]] = []
-    for (a, b), hs in hits.items():
-        sa, ka = flat[a]
-        sb, kb = flat[b]
-        if sa == sb:
-            continue
-        for h in hs:
-            raw.append((sa, ka, h.t1, sb, kb, h.t2, h.point))
+    # crossings between segments of different strokes
+    raw = _raw_crossings(strokes_c)
+    gaps: tuple[Gap, ...] = ()
+    if params.close_gaps > 0:
+        occl_pts = [(np.asarray(m.point, float) - offset) / scale for m in sketch.markers if m.kind == "occlusion"]
+        strokes_c, gaps = _close_gaps(strokes_c, raw, params, np.array(occl_pts).reshape(-1, 2))
+        if gaps:
+            raw = _raw_crossings(strokes_c)
     # cluster crossing points (one crossing can be found on two segments at a joint)
     if raw:
         cpts = np.array([r[6] for r in raw])
@@ -494,7 +517,497 @@ def sketch_graph(sketch: Sketch, params: LiftParams = DEFAULT, require_markers: 
                             "(strokes must cross or touch; occlusion markers remove crossings)")
     occl = centres[sorted(occluded_c)] if occluded_c else np.zeros((0, 2))
     return SketchGraph(points, segments, seg_stroke_a, tuple(chains), closed, J, g1, tuple(crossings), occl,
-                       offset, float(scale), tuple(sketch.strokes), tuple(marked))
+                       offset, float(scale), tuple(sketch.strokes), tuple(marked), gaps)
+
+
+_Raw = tuple[int, int, float, int, int, float, Array]
+
+
+def _raw_crossings(strokes_c: list[Array], only: set[int] | None = None) -> list[_Raw]:
+    """Every crossing of two strokes: (stroke a, segment of a, t on it, stroke b, segment of b, t, point).
+
+    With ``only``, the crossings of those strokes with the others (each once).
+    """
+    flat: list[tuple[int, int]] = []
+    curves: list[CubicBezier] = []
+    for si, c in enumerate(strokes_c):
+        for k in range(len(c)):
+            flat.append((si, k))
+            curves.append(CubicBezier.from_array(c[k]))
+    if only is None:
+        pairs = list(intersect_many(curves).items())
+    else:
+        mine = [i for i, (si, _) in enumerate(flat) if si in only]
+        rest = [i for i, (si, _) in enumerate(flat) if si not in only]
+        mc = [curves[m] for m in mine]
+        pairs = [((mine[i], mine[j]), hs) for (i, j), hs in intersect_many(mc).items()]
+        pairs += [((mine[i], rest[j]), hs) for (i, j), hs in intersect_many(mc, [curves[r] for r in rest]).items()]
+    raw: list[_Raw] = []
+    for (a, b), hs in pairs:
+        sa, ka = flat[a]
+        sb, kb = flat[b]
+        if sa == sb:
+            continue
+        for h in hs:
+            raw.append((sa, ka, h.t1, sb, kb, h.t2, h.point))
+    return raw
+
+
+def _close_gaps(strokes_c: list[Array], raw: list[_Raw], params: LiftParams,
+                occlusions: Array) -> tuple[list[Array], tuple[Gap, ...]]:
+    """Free stroke ends within ``params.close_gaps`` of the diagonal joined (see :class:`Gap`).
+
+    Coordinates are normalised (diagonal 1). First every end whose piece beyond its last crossing is
+    at most that long is cut at the crossing ("trim"); then every end still free whose nearest point on
+    another stroke of the layer, or on its own stroke's other end, is at most that far is moved there
+    with its handle ("extend", "end", "close"); then the trim once more, for the stubs the extensions
+    left (a stroke reached just inside its end). Where an end then lies on another stroke's inside, that
+    stroke is cut there (:func:`_split_at`), so that the graph's merge of near points joins them without
+    a second intersection test (which may miss a curve that only touches another with its end). Ends
+    whose joint would lie within ``params.snap`` of an occlusion marker are left as drawn.
+    """
+    try:
+        return _close_gaps_in(strokes_c, raw, params, occlusions)
+    finally:
+        _BOXES.index = None
+
+
+def _close_gaps_in(strokes_c: list[Array], raw: list[_Raw], params: LiftParams,
+                   occlusions: Array) -> tuple[list[Array], tuple[Gap, ...]]:
+    out = [c.copy() for c in strokes_c]
+    gaps = _trim(out, raw, params, occlusions, set())
+    gaps += _meet(out, params, occlusions)
+    moved = _extend(out, raw, params, occlusions, {(g.stroke, g.end) for g in gaps})
+    gaps += moved
+    if moved:
+        gaps += _trim(out, _raw_crossings(out, {g.stroke for g in moved}), params, occlusions,
+                      {(g.stroke, g.end) for g in gaps})
+    # an end joined to a stroke's inside leaves it when a later move of that stroke's end bends the
+    # segment it lies on (by at most that move): put back onto the stroke, a few times over (a put-back
+    # bends its own stroke's end segment in turn)
+    last = {(g.stroke, g.end): g for g in gaps}
+    for _ in range(4):
+        again = False
+        for (si, end), g in last.items():
+            if g.kind not in ("trim", "extend"):
+                continue
+            q = out[si][0, 0] if end == 0 else out[si][-1, 3]
+            if _reaches(out, g, params):
+                continue
+            x = _closest_on(out[g.to], q)[0]
+            for e2 in (0, 1):           # two ends joined to each other's inside chase each other: one point
+                h = last.get((g.to, e2))
+                xe = out[g.to][0, 0] if e2 == 0 else out[g.to][-1, 3]
+                if h is not None and h.to == si and float(np.linalg.norm(xe - q)) <= params.close_gaps:
+                    x = xe
+            if float(np.linalg.norm(x - q)) <= params.close_gaps:
+                _move_end(out, si, end, x)
+                again = True
+        if not again:
+            break
+    # what is still not joined (ends chasing each other in a tangle): its strokes as drawn, repeated
+    # for the ends joined to those
+    while bad := {si for (si, end) in last if not _joined(out, si, end, params)}:
+        for si in bad:
+            out[si] = strokes_c[si].copy()
+        gaps = [g for g in gaps if g.stroke not in bad]
+        last = {(g.stroke, g.end): g for g in gaps}
+    # the strokes an end now lies on (inside): cut there, once every end is where it stays
+    for si, end in last:
+        q = out[si][0, 0] if end == 0 else out[si][-1, 3]
+        sj = _on_stroke(q, out, si, params)
+        if sj >= 0:
+            _split_at(out, sj, q, params)
+    return out, tuple(gaps)
+
+
+def _joined(out: list[Array], si: int, end: int, params: LiftParams) -> bool:
+    """Whether stroke ``si``'s start (``end`` 0) or end (1) lies on another stroke or on its own other end."""
+    c = out[si]
+    q = c[0, 0] if end == 0 else c[-1, 3]
+    return float(np.linalg.norm(q - (c[-1, 3] if end == 0 else c[0, 0]))) <= 10.0 * params.merge or not _free(
+        out, si, end, params)
+
+
+def _free(out: list[Array], si: int, end: int, params: LiftParams) -> bool:
+    """Whether stroke ``si``'s start (``end`` 0) or end (1) meets no other stroke (its inside or an end)."""
+    near = 10.0 * params.merge
+    c = out[si]
+    q = c[0, 0] if end == 0 else c[-1, 3]
+    for sj, _ in _near(out, q, near):
+        cj = out[sj]
+        if sj != si and min(float(np.linalg.norm(q - cj[0, 0])), float(np.linalg.norm(q - cj[-1, 3]))) <= near:
+            return False
+    return _on_stroke(q, out, si, params) < 0
+
+
+def _move_end(out: list[Array], si: int, end: int, target: Array) -> None:
+    """Move, in place, stroke ``si``'s start (``end`` 0) or end (1) to ``target`` with its handle."""
+    c = out[si].copy()
+    if end == 0:
+        c[0, :2] += target - c[0, 0]
+    else:
+        c[-1, 2:] += target - c[-1, 3]
+    out[si] = c
+
+
+def _along(raw: list[_Raw], n: int) -> list[list[tuple[int, float, Array, int]]]:
+    """Per stroke, its crossings as (segment, t, point, other stroke), in order along it."""
+    along: list[list[tuple[int, float, Array, int]]] = [[] for _ in range(n)]
+    for sa, ka, ta, sb, kb, tb, pt in raw:
+        along[sa].append((ka, ta, pt, sb))
+        along[sb].append((kb, tb, pt, sa))
+    return [sorted(x, key=lambda h: (h[0], h[1])) for x in along]
+
+
+def _is_loop(c: Array, params: LiftParams) -> bool:
+    return bool(np.linalg.norm(c[0, 0] - c[-1, 3]) <= 10.0 * params.merge)
+
+
+def _near_occlusion(q: Array, occlusions: Array, params: LiftParams) -> bool:
+    return bool(len(occlusions)) and float(np.linalg.norm(occlusions - q, axis=1).min()) <= params.snap
+
+
+def _trim(out: list[Array], raw: list[_Raw], params: LiftParams, occlusions: Array,
+          skip: set[tuple[int, int]]) -> list[Gap]:
+    """Cut, in place, the pieces of at most ``close_gaps`` beyond a stroke's first or last crossing.
+
+    A cut whose crossing's other stroke is cut before reaching it (two overshoots past each other) is
+    not made, nor one that would leave no more of the stroke than it cuts off.
+    """
+    tol, near = params.close_gaps, 10.0 * params.merge
+    plan: dict[tuple[int, int], tuple[int, float, Gap]] = {}     # (stroke, end) -> segment, t, record
+    for si, xs in enumerate(_along(raw, len(out))):
+        c = out[si]
+        if _is_loop(c, params) or not xs:
+            continue
+        (k0, t0, p0, o0), (k1, t1, p1, o1) = xs[0], xs[-1]
+        # the arc is at least the chord: only a crossing within tol of the end is measured along the stroke
+        d0 = _arc_to(c, k0, t0, from_start=True) if float(np.linalg.norm(p0 - c[0, 0])) <= tol else math.inf
+        d1 = _arc_to(c, k1, t1, from_start=False) if float(np.linalg.norm(p1 - c[-1, 3])) <= tol else math.inf
+        cut0 = (si, 0) not in skip and near < d0 <= tol and not _near_occlusion(p0, occlusions, params)
+        cut1 = (si, 1) not in skip and near < d1 <= tol and not _near_occlusion(p1, occlusions, params)
+        cut = (d0 if cut0 else 0.0) + (d1 if cut1 else 0.0)
+        if (cut0 or cut1) and _arc_to(c, 0, 0.0, from_start=False) - cut <= max(d0 * cut0, d1 * cut1):
+            continue            # what would remain is no longer than a cut piece: the stroke is the stub
+        if cut0:
+            plan[(si, 0)] = (k0, t0, Gap(si, 0, "trim", o0, d0))
+        if cut1:
+            plan[(si, 1)] = (k1, t1, Gap(si, 1, "trim", o1, d1))
+    orig = list(out)
+    while True:
+        for si in {si for si, _ in plan}:
+            c = orig[si]
+            if (si, 1) in plan:
+                k1, t1, _ = plan[(si, 1)]
+                keep = [CubicBezier.from_array(c[k1]).segment(0.0, t1).controls[None]] if t1 > 1e-9 else []
+                c = np.concatenate([c[:k1], *keep])
+            if (si, 0) in plan:
+                k0, t0, _ = plan[(si, 0)]
+                keep = [CubicBezier.from_array(c[k0]).segment(t0, 1.0).controls[None]] if t0 < 1 - 1e-9 else []
+                c = np.concatenate([*keep, c[k0 + 1:]])
+            out[si] = c
+        lost = [key for key, (_, _, gp) in plan.items() if not _reaches(out, gp, params)]
+        if not lost:
+            break
+        for key in lost:
+            del plan[key]
+        for si in {si for si, _ in lost}:
+            out[si] = orig[si]
+    return [gp for _, _, gp in plan.values()]
+
+
+def _reaches(out: list[Array], gp: Gap, params: LiftParams) -> bool:
+    """Whether the end ``gp`` records lies on stroke ``gp.to`` (its inside or an end, within 10 merge distances)."""
+    near = 10.0 * params.merge
+    c, cj = out[gp.stroke], out[gp.to]
+    q = c[0, 0] if gp.end == 0 else c[-1, 3]
+    if min(float(np.linalg.norm(q - cj[0, 0])), float(np.linalg.norm(q - cj[-1, 3]))) <= near:
+        return True
+    for seg in cj:
+        if float(np.linalg.norm(np.clip(q, seg.min(0), seg.max(0)) - q)) <= near:
+            b = CubicBezier.from_array(seg)
+            if float(np.linalg.norm(b.point(b.project(q)) - q)) <= near:
+                return True
+    return False
+
+
+def _split_at(out: list[Array], sj: int, q: Array, params: LiftParams) -> None:
+    """Cut, in place, stroke ``sj``'s segment that passes within 10 merge distances of ``q`` at ``q``'s projection.
+
+    Nothing happens where that point is within 10 merge distances of a knot or end of the stroke (the
+    graph's merge of near points joins ``q`` there) or no segment passes that near.
+    """
+    near = 10.0 * params.merge
+    cj = out[sj]
+    for k, seg in enumerate(cj):
+        if float(np.linalg.norm(np.clip(q, seg.min(0), seg.max(0)) - q)) > near:
+            continue
+        b = CubicBezier.from_array(seg)
+        t = b.project(q)
+        x = b.point(t)
+        if float(np.linalg.norm(x - q)) > near:
+            continue
+        if min(float(np.linalg.norm(x - seg[0])), float(np.linalg.norm(x - seg[3]))) > near:
+            out[sj] = np.concatenate([cj[:k], b.segment(0.0, t).controls[None], b.segment(t, 1.0).controls[None],
+                                      cj[k + 1:]])
+        return
+
+
+#: Per thread, the segment boxes of the strokes :func:`_near` last indexed, with those strokes (compared by
+#: identity: every change to a stroke during gap closing puts a new array in its place); emptied when
+#: :func:`_close_gaps` returns.
+_BOXES = threading.local()
+
+
+def _near(out: list[Array], p: Array, r: float) -> list[tuple[int, int]]:
+    """(stroke, segment) of every segment of ``out`` whose control-point box is within ``r`` of ``p``.
+
+    The box holds the segment, so a segment farther than ``r`` from ``p`` may be listed but none nearer
+    is left out. One vectorised test instead of a Python loop over all segments.
+    """
+    cached = getattr(_BOXES, "index", None)
+    if not (cached and len(cached[0]) == len(out) and all(a is b for a, b in zip(cached[0], out, strict=True))):
+        allc = np.concatenate(out)
+        stroke = np.repeat(np.arange(len(out)), [len(c) for c in out])
+        k = np.concatenate([np.arange(len(c)) for c in out])
+        cached = _BOXES.index = (tuple(out), allc.min(1), allc.max(1), stroke, k)
+    _, lo, hi, stroke, k = cached
+    d = np.linalg.norm(np.clip(p, lo, hi) - p, axis=1)
+    hit = np.nonzero(d <= r)[0]
+    return list(zip(stroke[hit].tolist(), k[hit].tolist(), strict=True))
+
+
+def _on_stroke(p: Array, out: list[Array], si: int, params: LiftParams) -> int:
+    """The stroke other than ``si`` on whose inside ``p`` lies (within 10 merge distances), or -1."""
+    near = 10.0 * params.merge
+    for sj, k in _near(out, p, near):
+        if sj == si:
+            continue
+        cj = out[sj]
+        b = CubicBezier.from_array(cj[k])
+        if float(np.linalg.norm(b.point(b.project(p)) - p)) <= near and (
+                _is_loop(cj, params)
+                or min(float(np.linalg.norm(p - cj[0, 0])), float(np.linalg.norm(p - cj[-1, 3]))) > near):
+            return sj
+    return -1
+
+
+def _end_dir(c: Array, end: int) -> Array:
+    """Unit tangent at a stroke's start (``end`` 0) or end (1), pointing out of the stroke."""
+    v = c[0, 0] - c[0, 1] if end == 0 else c[-1, 3] - c[-1, 2]
+    n = float(np.linalg.norm(v))
+    return v / n if n > 0 else v
+
+
+def _closest_on(c: Array, q: Array) -> tuple[Array, Array]:
+    """The point of the stroke ``c`` (m, 4, 2) closest to ``q``, and its unit tangent there."""
+    best: tuple[float, Array, Array] = (math.inf, q, np.zeros(2))
+    for seg in c:
+        b = CubicBezier.from_array(seg)
+        t = b.project(q)
+        x = b.point(t)
+        d = float(np.linalg.norm(x - q))
+        if d < best[0]:
+            best = (d, x, b.tangent(t))
+    return best[1], best[2]
+
+
+def _meeting_point(p: Array, u: Array, params: LiftParams) -> Array:
+    """The point nearest (least squares) to the lines through ``p`` (k, 2) along ``u`` (k, 2, unit).
+
+    Where the lines cross at less than ``params.smooth_joint_deg`` (the ends continue each other, or
+    a stroke closes smoothly), the mean of ``p`` instead. Ends drawn short of a corner along straight
+    strokes meet at the corner exactly.
+    """
+    A = np.zeros((2, 2))
+    r = np.zeros(2)
+    for pi, ui in zip(p, u, strict=True):
+        m = np.eye(2) - np.outer(ui, ui)
+        A += m
+        r += m @ pi
+    if float(np.linalg.eigvalsh(A / len(p))[0]) < 0.5 * (1.0 - math.cos(math.radians(params.smooth_joint_deg))):
+        return np.asarray(p.mean(0))
+    return np.asarray(np.linalg.solve(A, r))
+
+
+def _meet(out: list[Array], params: LiftParams, occlusions: Array) -> list[Gap]:
+    """Move, in place, stroke ends within ``close_gaps`` of each other onto one point.
+
+    Ends are grouped by single linkage at ``close_gaps``; a group of ends of two or more strokes (or of
+    one stroke's two ends) meets where the ends' tangent lines meet (:func:`_meeting_point`); where an
+    end lies on another stroke's inside (a crossing the others reach), that stroke's tangent line there
+    is one of the lines, and the point is moved onto that stroke (its closest point). Ends
+    already at that point stay, and so do ends farther than ``close_gaps`` from it (single linkage can
+    chain ends much farther apart).
+    """
+    tol, near = params.close_gaps, 10.0 * params.merge
+    ends = [(si, e) for si, c in enumerate(out) if not _is_loop(c, params) for e in (0, 1)]
+    if len(ends) < 2:
+        return []
+    pts = np.array([out[si][0, 0] if e == 0 else out[si][-1, 3] for si, e in ends])
+    groups: dict[int, list[int]] = {}
+    parent = list(range(len(ends)))
+
+    def find(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for i, j in cKDTree(pts).query_pairs(tol):
+        parent[max(find(i), find(j))] = min(find(i), find(j))
+    for i in range(len(ends)):
+        groups.setdefault(find(i), []).append(i)
+    gaps: list[Gap] = []
+    for members in groups.values():
+        if len(members) < 2:
+            continue
+        on = {i: _on_stroke(pts[i], out, ends[i][0], params) for i in members}
+        # an end on a stroke that itself ends in the group is no anchor: that stroke's end moves too
+        anchored = [i for i in members if on[i] >= 0 and all(ends[j][0] != on[i] for j in members)]
+        lp = [pts[i] for i in members]
+        lu = [_end_dir(out[ends[i][0]], ends[i][1]) for i in members]
+        for i in anchored:                          # the stroke an end lies on is one of the lines
+            lp.append(pts[i])
+            lu.append(_closest_on(out[on[i]], pts[i])[1])
+        target = _meeting_point(np.array(lp), np.array(lu), params)
+        if anchored:                                # and the ends stay on it
+            target = _closest_on(out[on[anchored[0]]], target)[0]
+        if _near_occlusion(target, occlusions, params):
+            continue
+        # a long chain of the single linkage: its ends farther than tol from the target stay
+        reach = [i for i in members if float(np.linalg.norm(pts[i] - target)) <= tol]
+        if len(reach) < 2:
+            continue
+        for i in reach:
+            d = float(np.linalg.norm(pts[i] - target))
+            if d <= near:
+                continue
+            si, e = ends[i]
+            _move_end(out, si, e, target)
+            others = [ends[j][0] for j in reach if j != i]
+            if anchored:
+                gaps.append(Gap(si, e, "extend", on[anchored[0]], d))
+            else:
+                gaps.append(Gap(si, e, "close" if others == [si] else "end", others[0], d))
+    return gaps
+
+
+def _ray_hit(out: list[Array], si: int, end: int, skip: int, tol: float) -> tuple[float, int, Array, bool] | None:
+    """Where stroke ``si``'s end, continued straight along its tangent for ``tol``, first meets another stroke.
+
+    Returns (distance, stroke, point, False), or None; stroke ``skip`` is not met. A stroke drawn short of
+    another along its own direction is extended exactly so (a straight stroke stays on its line).
+    """
+    c = out[si]
+    p = c[0, 0] if end == 0 else c[-1, 3]
+    u = _end_dir(c, end)
+    if not float(np.linalg.norm(u)) > 0:
+        return None
+    line = Line(p, p + tol * u)
+    lo, hi = np.minimum(p, p + tol * u), np.maximum(p, p + tol * u)
+    best: tuple[float, int, Array, bool] | None = None
+    for sj, k in _near(out, p, tol):
+        seg = out[sj][k]
+        if sj in (si, skip) or np.any(seg.min(0) > hi) or np.any(seg.max(0) < lo):
+            continue
+        for h in intersect(line, CubicBezier.from_array(seg)):
+            d = h.t1 * tol
+            if d > 0 and (best is None or d < best[0]):
+                best = (d, sj, np.asarray(h.point, float), False)
+    return best
+
+
+def _extend(out: list[Array], raw: list[_Raw], params: LiftParams, occlusions: Array,
+            skip: set[tuple[int, int]]) -> list[Gap]:
+    """Move, in place, the free ends within ``close_gaps`` of another stroke (or their own other end) onto it."""
+    tol, near = params.close_gaps, 10.0 * params.merge
+    # the stroke an end's piece crosses first: an end is not moved back onto it (a dangling piece
+    # longer than the tolerance that curls back is a drawn free end, not a gap)
+    first: dict[tuple[int, int], int] = {}
+    for si, xs in enumerate(_along(raw, len(out))):
+        if xs:
+            first[(si, 0)], first[(si, 1)] = xs[0][3], xs[-1][3]
+    gaps: list[Gap] = []
+    for si in range(len(out)):
+        for end in (0, 1):
+            c = out[si]
+            if (si, end) in skip or _is_loop(c, params):
+                continue
+            p = c[0, 0] if end == 0 else c[-1, 3]
+            if not _free(out, si, end, params):
+                continue                                # it meets another stroke already
+            best: tuple[float, int, Array, bool] = (np.inf, -1, p, False)   # distance, stroke, point, at its end
+            ray = _ray_hit(out, si, end, first.get((si, end), -1), tol)
+            if ray is None and len(c) > 1 and first.get((si, end)) != si:
+                q = c[-1, 3] if end == 0 else c[0, 0]            # its own other end: the loop closes
+                best = (float(np.linalg.norm(q - p)), si, q, True)
+            for sj, k in _near(out, p, tol) if ray is None else ():
+                cj = out[sj]
+                if first.get((si, end)) == sj or sj == si:
+                    continue
+                b = CubicBezier.from_array(cj[k])
+                q = b.point(b.project(p))
+                d = float(np.linalg.norm(q - p))
+                if d < best[0]:
+                    at_end = False
+                    if not _is_loop(cj, params):
+                        for e in (cj[0, 0], cj[-1, 3]):
+                            if np.linalg.norm(q - e) <= near:
+                                q, at_end = e, True
+                    best = (d, sj, q, at_end)
+            d, sj, q, at_end = best if ray is None else ray
+            if not near < d <= tol or _near_occlusion(q, occlusions, params):
+                continue
+            _move_end(out, si, end, q)
+            gaps.append(Gap(si, end, "close" if sj == si else ("end" if at_end else "extend"), sj, d))
+    return gaps
+
+
+def nearest_end_gap(g: SketchGraph, ends_of: set[int], to: set[int]) -> tuple[float, int, int]:
+    """The smallest distance from an end of a stroke in ``ends_of`` to a stroke in ``to``.
+
+    For error messages: how far a stroke not joined to the rest misses it.
+
+    Parameters
+    ----------
+    g : SketchGraph
+    ends_of, to : set of int
+        Stroke indices (into ``g.chains``); open strokes of ``ends_of`` are measured.
+
+    Returns
+    -------
+    distance : float
+        Relative to the sketch's diagonal (inf if no stroke of ``ends_of`` has an end).
+    stroke, other : int
+        The stroke whose end it is, and the stroke it misses (-1, -1 for inf).
+    """
+    best = (math.inf, -1, -1)
+    for si in sorted(ends_of):
+        ch = g.chains[si]
+        if g.closed[si] or not len(ch):
+            continue
+        for p in (g.points[g.segments[ch[0], 0]], g.points[g.segments[ch[-1], 3]]):
+            for sj in sorted(to):
+                for seg in g.points[g.segments[g.chains[sj]]]:
+                    if float(np.linalg.norm(np.clip(p, seg.min(0), seg.max(0)) - p)) >= best[0]:
+                        continue
+                    b = CubicBezier.from_array(seg)
+                    d = float(np.linalg.norm(b.point(b.project(p)) - p))
+                    if d < best[0]:
+                        best = (d, si, sj)
+    return best
+
+
+def _arc_to(c: Array, k: int, t: float, from_start: bool) -> float:
+    """Arc length along a stroke's segments ``c`` from its start (or end) to parameter ``t`` of segment ``k``."""
+    b = CubicBezier.from_array(c[k])
+    if from_start:
+        return sum(CubicBezier.from_array(c[i]).length() for i in range(k)) \
+            + (b.segment(0.0, t).length() if t > 1e-9 else 0.0)
+    return sum(CubicBezier.from_array(c[i]).length() for i in range(k + 1, len(c))) \
+        + (b.segment(t, 1.0).length() if t < 1 - 1e-9 else 0.0)
 
 
 def _tangent(points: Array, segments: NDArray[np.intp], half: tuple[int, int]) -> Array:

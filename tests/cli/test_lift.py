@@ -173,3 +173,24 @@ def test_a_lift_that_shrinks_a_segment_to_a_point_is_an_error_naming_the_stroke(
         f"auszug: {svg}: stroke v: the lift shrank its segment 2 of 2 (split at the crossings) to a point in the "
         "sketch's plane (every solve converged): the solve went astray, the result is no lift of the drawing")
     assert files_in(tmp_path) == ["cross.svg"]
+
+
+def test_a_stroke_drawn_short_of_another_is_refused_with_the_close_gaps_that_joins_it(cli, tmp_path):
+    """The refusal names the gap and the ``--set close_gaps`` that closes it; with it, the lift reports the gap."""
+    src = tmp_path / "t.svg"
+    src.write_text('<svg xmlns="http://www.w3.org/2000/svg" viewBox="-120 -120 240 240">'
+                   '<path id="bar" d="M -100 0 C -30 -30 30 -30 100 0"/><path id="post" d="M -60 80 L -60 -100"/>'
+                   '<path id="s0" d="M 40 -100 L 40 -23"/></svg>')
+    out = tmp_path / "t.network.json"
+    r = cli("lift", src, "-o", out, "--quiet")
+    assert r.code == 2 and files_in(tmp_path) == ["t.svg"]
+    assert r.err.startswith(f"auszug: {src}: s0: not joined to the rest of layer 0 by any intersection;"), r.err
+    assert "an end of s0 misses bar by 1.56% of the diagonal: close_gaps=0.0158 joins it" in r.err
+    r = cli("lift", src, "-o", out, "--quiet", "--report", "--set", "close_gaps=0.0158")
+    assert r.code == 0, r.err
+    assert "gap closed: s0 end moved 1.555% of the diagonal onto bar" in r.out.splitlines()
+    doc = load(out, kind="network")
+    pieces = {b: [np.asarray(c["points"], float) for c in doc["curves"] if c["basic"] == b] for b in (0, 1, 2)}
+    assert [len(pieces[b]) for b in (0, 1, 2)] == [3, 2, 1]           # the bar cut at the post and at s0's end
+    # in 3D too, s0 ends where two of the bar's pieces meet
+    assert np.array_equal(pieces[2][0][-1], pieces[0][1][-1]) and np.array_equal(pieces[0][1][-1], pieces[0][2][0])

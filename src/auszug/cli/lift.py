@@ -169,6 +169,9 @@ def run(args: argparse.Namespace) -> int:
         f"{max(s.layer for s in sketch.strokes) + 1} layer(s) in {time.perf_counter() - t0:.2f} s")
     with _common.about(src):
         result = lift(sketch, params=params, progress=say, classes=classes)
+    n_gaps = sum(len(g.gaps) for g in result.graphs)
+    if n_gaps:
+        say(f"closed {n_gaps} gap(s) of at most {params.close_gaps:.2%} of the diagonal (close_gaps; see --report)")
     if not result.converged:
         say("warning: not every solve converged; the hard cues may be violated (see --report)")
     with _common.about(out):
@@ -212,6 +215,17 @@ def _report(result: "LiftResult", classes: tuple[str, ...]) -> None:
         print("not tried (--cues): " + ", ".join(f"{n} {k}" for k, n in sorted(skipped.items())))
     worst = max((c.angle for c in applied), default=0.0)
     print(f"largest angle of an applied cue: {worst:.3f} deg")
+    for g in result.graphs:
+        layer = g.strokes[0].layer
+        for gap in g.gaps:
+            name = g.strokes[gap.stroke].id or f"stroke #{gap.stroke}"
+            other = g.strokes[gap.to].id or f"stroke #{gap.to}" if gap.to >= 0 else ""
+            what = {"trim": f"cut {gap.distance:.3%} of the diagonal beyond its crossing with {other}",
+                    "extend": f"moved {gap.distance:.3%} of the diagonal onto {other}",
+                    "end": f"moved {gap.distance:.3%} of the diagonal to meet {other}'s end",
+                    "close": f"moved {gap.distance:.3%} of the diagonal onto its start (closed)"}[gap.kind]
+            print(f"gap closed: {name} {'start' if gap.end == 0 else 'end'} {what}"
+                  + (f"  (layer {layer})" if layer else ""))
     if result.mirror is not None:
         layer, n, d = result.mirror
         print(f"global symmetry: layer {layer} mirrored across the plane "

@@ -46,6 +46,7 @@ from __future__ import annotations
 import io
 import re
 import xml.etree.ElementTree as ET
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -348,15 +349,25 @@ def _overlapping_layer(sym: Stroke, strokes: tuple[Stroke, ...]) -> int | None:
 
 
 def check(sketch: Sketch, name: str) -> None:
-    """Refuse a sketch :func:`auszug.lifting.lift` cannot lift, as a FormatError naming the file."""
-    from auszug.lifting import (
-        layer_graphs,  # lazy: reading a sketch, not registering the format, needs lifting (and scipy.spatial)
+    """Refuse a sketch :func:`auszug.lifting.lift` cannot lift, as a FormatError naming the file.
+
+    A sketch refused with the default parameters but accepted with gaps closed up to the limit
+    (``LiftParams.close_gaps``, a lifting parameter the reader does not know) is read: the lift
+    refuses it, with the same message, unless it is asked to close those gaps.
+    """
+    from auszug.lifting import (  # lazy: reading a sketch, not registering the format, needs lifting
+        CLOSE_GAPS_MAX,
+        DEFAULT,
+        layer_graphs,
     )
 
     try:
         layer_graphs(sketch)
     except GeometryError as e:
-        raise FormatError(str(e), name) from None
+        try:
+            layer_graphs(sketch, replace(DEFAULT, close_gaps=CLOSE_GAPS_MAX))
+        except GeometryError:
+            raise FormatError(str(e), name) from None
 
 
 register(FileFormat("sketch_svg", (".svg",), "sketch", reader=read_sketch_svg))

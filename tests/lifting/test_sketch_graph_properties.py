@@ -15,7 +15,7 @@ or end, some drawn twice as far apart as the merge distance) either are refused 
 from __future__ import annotations
 
 import numpy as np
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from auszug.errors import GeometryError
@@ -63,6 +63,9 @@ def _samples(chain: np.ndarray, n: int) -> np.ndarray:
 
 @settings(max_examples=150)
 @given(strokes())
+@example([np.array([[[0.0, 0.5], [0.0, 1 / 3], [0.0, 1 / 6], [0.0, 0.0]]]),      # found by make test, 2026-12-05:
+          np.array([[[0.0, 1.0], [0.0, 2 / 3], [0.0, 1 / 3], [0.0, 0.0]]]),      # a point-sized last segment
+          np.array([[[0.0, 1.5], [0.0, 7 / 6], [0.0, 5 / 6], [0.0, 0.5]], [[0.0, 0.5]] * 4])])
 def test_the_graph_is_the_strokes_cut_where_they_cross(cs):
     try:
         sk = Sketch(tuple(Stroke(c, f"s{i}") for i, c in enumerate(cs)))
@@ -106,8 +109,9 @@ def test_the_graph_is_the_strokes_cut_where_they_cross(cs):
     curves, flat = [], []
     for si, c in enumerate(cs):
         for k, s in enumerate((c - g.offset) / g.scale):
-            curves.append(CubicBezier.from_array(s))
-            flat.append((si, k))
+            if np.ptp(s, axis=0).max() > merge:                     # a point-sized segment is no curve
+                curves.append(CubicBezier.from_array(s))
+                flat.append((si, k))
     for (a, b), hits in intersect_many(curves).items():
         sa, sb = flat[a][0], flat[b][0]
         if sa == sb or sa in moved or sb in moved:

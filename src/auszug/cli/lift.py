@@ -219,7 +219,7 @@ def _report(result: "LiftResult", classes: tuple[str, ...]) -> None:
         layer = g.strokes[0].layer
         for gap in g.gaps:
             name = g.strokes[gap.stroke].id or f"stroke #{gap.stroke}"
-            other = g.strokes[gap.to].id or f"stroke #{gap.to}" if gap.to >= 0 else ""
+            other = g.strokes[gap.to].id or f"stroke #{gap.to}"
             what = {"trim": f"cut {gap.distance:.3%} of the diagonal beyond its crossing with {other}",
                     "extend": f"moved {gap.distance:.3%} of the diagonal onto {other}",
                     "end": f"moved {gap.distance:.3%} of the diagonal to meet {other}'s end",

@@ -152,11 +152,12 @@ class Gap:
     end : int
         0: its start, 1: its end.
     kind : str
-        ``"trim"``: the piece beyond its last crossing cut off; ``"extend"``: moved onto the inside of
-        stroke ``to``; ``"end"``: moved onto an end of stroke ``to``; ``"close"``: moved onto its own
-        other end (the stroke becomes a loop).
+        ``"trim"``: the piece beyond its last crossing (with stroke ``to``) cut off; ``"extend"``: moved
+        onto the inside of stroke ``to``; ``"end"``: moved to meet the end of stroke ``to`` (and of any
+        other stroke ending there); ``"close"``: moved to meet its own other end (the stroke becomes a
+        loop).
     to : int
-        The stroke it was joined to (-1 for a trim).
+        The stroke it was joined to (itself for ``"close"``).
     distance : float
         The piece cut off (arc length) or the gap bridged, relative to the diagonal.
     """
@@ -557,14 +558,23 @@ def _close_gaps(strokes_c: list[Array], raw: list[_Raw], params: LiftParams,
                 occlusions: Array) -> tuple[list[Array], tuple[Gap, ...]]:
     """Free stroke ends within ``params.close_gaps`` of the diagonal joined (see :class:`Gap`).
 
-    Coordinates are normalised (diagonal 1). First every end whose piece beyond its last crossing is
-    at most that long is cut at the crossing ("trim"); then every end still free whose nearest point on
-    another stroke of the layer, or on its own stroke's other end, is at most that far is moved there
-    with its handle ("extend", "end", "close"); then the trim once more, for the stubs the extensions
-    left (a stroke reached just inside its end). Where an end then lies on another stroke's inside, that
-    stroke is cut there (:func:`_split_at`), so that the graph's merge of near points joins them without
-    a second intersection test (which may miss a curve that only touches another with its end). Ends
-    whose joint would lie within ``params.snap`` of an occlusion marker are left as drawn.
+    Coordinates are normalised (diagonal 1). In order (docs/lifting.md, "Closing gaps"):
+
+    1. :func:`_trim`: a piece of at most that length beyond a stroke's first or last crossing is cut off
+       at the crossing ("trim").
+    2. :func:`_meet`: free ends within that distance of each other meet at one point ("end", "close";
+       "extend" where the point is on another stroke's inside).
+    3. :func:`_extend`: an end still free is moved onto the stroke it points at, or the nearest stroke
+       or its own other end ("extend", "end", "close"); then the trim once more, for the stubs the
+       moves left (a stroke reached just inside its end).
+    4. Ends joined to a stroke's inside that a later move of that stroke bent away are put back; a
+       stroke with an end still not joined is left as drawn (its records dropped).
+    5. Where an end lies on another stroke's inside, that stroke is cut there (:func:`_split_at`), so
+       that the graph's merge of near points joins them without a second intersection test (which may
+       miss a curve that only touches another with its end).
+
+    Moves translate an end with its handle (:func:`_move_end`), by at most ``close_gaps``. Ends whose
+    joint would lie within ``params.snap`` of an occlusion marker are left as drawn.
     """
     try:
         return _close_gaps_in(strokes_c, raw, params, occlusions)
@@ -940,7 +950,7 @@ def _extend(out: list[Array], raw: list[_Raw], params: LiftParams, occlusions: A
                 continue                                # it meets another stroke already
             best: tuple[float, int, Array, bool] = (np.inf, -1, p, False)   # distance, stroke, point, at its end
             ray = _ray_hit(out, si, end, first.get((si, end), -1), tol)
-            if ray is None and len(c) > 1 and first.get((si, end)) != si:
+            if ray is None and len(c) > 1:
                 q = c[-1, 3] if end == 0 else c[0, 0]            # its own other end: the loop closes
                 best = (float(np.linalg.norm(q - p)), si, q, True)
             for sj, k in _near(out, p, tol) if ray is None else ():

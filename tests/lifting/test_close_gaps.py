@@ -99,6 +99,19 @@ def test_a_corner_drawn_short_on_both_strokes_meets_where_their_lines_cross():
     assert any(sorted(set(c.strokes)) == [2, 3] for c in g.crossings)
 
 
+def test_a_joint_drawn_exactly_stays_and_a_near_end_comes_to_it():
+    hit = _bar_at(0.4)
+    exact = _line((0.4, 1.2), hit)                                # drawn onto the bar
+    near = _line((0.9, 1.1), hit + (0.002, 0.001))                # a stroke ending 0.2 % of the diagonal beside it
+    sk = _sketch(exact, near)
+    g = sketch_graph(sk, LiftParams(close_gaps=0.005))
+    assert [(gp.stroke, gp.end, gp.kind, gp.to) for gp in g.gaps] == [(3, 1, "extend", 0)]
+    assert np.array_equal(_end_point(g, 2, 1), _end_point(g, 3, 1))
+    assert np.linalg.norm(_end_point(g, 2, 1) - hit) < 1e-12      # where it was drawn
+    (x,) = [c for c in g.crossings if 3 in c.strokes]
+    assert sorted(x.strokes) == [0, 0, 2, 3]
+
+
 def test_a_loop_left_open_is_closed():
     t = np.linspace(0.0, 2 * np.pi, 5)
     r = 0.3

@@ -586,7 +586,7 @@ def _close_gaps_in(strokes_c: list[Array], raw: list[_Raw], params: LiftParams,
                    occlusions: Array) -> tuple[list[Array], tuple[Gap, ...]]:
     out = [c.copy() for c in strokes_c]
     gaps = _trim(out, raw, params, occlusions, set())
-    gaps += _meet(out, params, occlusions)
+    gaps += _meet(out, params, occlusions, {(g.stroke, g.end) for g in gaps})
     moved = _extend(out, raw, params, occlusions, {(g.stroke, g.end) for g in gaps})
     gaps += moved
     if moved:
@@ -841,7 +841,7 @@ def _meeting_point(p: Array, u: Array, params: LiftParams) -> Array:
     return np.asarray(np.linalg.solve(A, r))
 
 
-def _meet(out: list[Array], params: LiftParams, occlusions: Array) -> list[Gap]:
+def _meet(out: list[Array], params: LiftParams, occlusions: Array, trimmed: set[tuple[int, int]]) -> list[Gap]:
     """Move, in place, stroke ends within ``close_gaps`` of each other onto one point.
 
     Ends are grouped by single linkage at ``close_gaps``; a group of ends of two or more strokes (or of
@@ -849,7 +849,8 @@ def _meet(out: list[Array], params: LiftParams, occlusions: Array) -> list[Gap]:
     end lies on another stroke's inside (a crossing the others reach), that stroke's tangent line there
     is one of the lines, and the point is moved onto that stroke (its closest point). Ends
     already at that point stay, and so do ends farther than ``close_gaps`` from it (single linkage can
-    chain ends much farther apart).
+    chain ends much farther apart). A joint the drawing already has (ends of two strokes at one point, or
+    an end on another stroke's inside that ``trimmed`` does not list) is the point, as drawn.
     """
     tol, near = params.close_gaps, 10.0 * params.merge
     ends = [(si, e) for si, c in enumerate(out) if not _is_loop(c, params) for e in (0, 1)]
@@ -884,6 +885,13 @@ def _meet(out: list[Array], params: LiftParams, occlusions: Array) -> list[Gap]:
         target = _meeting_point(np.array(lp), np.array(lu), params)
         if anchored:                                # and the ends stay on it
             target = _closest_on(out[on[anchored[0]]], target)[0]
+        # a joint the drawing already has stays where it is drawn: ends of two strokes at one point, or an
+        # end drawn onto another stroke (not cut there by the trim)
+        fixed = [i for i in anchored if ends[i] not in trimmed]
+        fixed += [i for i in members for j in members
+                  if ends[i][0] != ends[j][0] and float(np.linalg.norm(pts[i] - pts[j])) <= near]
+        if fixed:
+            target = pts[fixed[0]]
         if _near_occlusion(target, occlusions, params):
             continue
         # a long chain of the single linkage: its ends farther than tol from the target stay

@@ -586,6 +586,8 @@ def _close_gaps_in(strokes_c: list[Array], raw: list[_Raw], params: LiftParams,
                    occlusions: Array) -> tuple[list[Array], tuple[Gap, ...]]:
     out = [c.copy() for c in strokes_c]
     gaps = _trim(out, raw, params, occlusions, set())
+    # every end as drawn (or cut): no end moves farther than close_gaps from it
+    ref = {(si, e): (c[0, 0] if e == 0 else c[-1, 3]).copy() for si, c in enumerate(out) for e in (0, 1)}
     gaps += _meet(out, params, occlusions, {(g.stroke, g.end) for g in gaps})
     moved = _extend(out, raw, params, occlusions, {(g.stroke, g.end) for g in gaps})
     gaps += moved
@@ -610,7 +612,7 @@ def _close_gaps_in(strokes_c: list[Array], raw: list[_Raw], params: LiftParams,
                 xe = out[g.to][0, 0] if e2 == 0 else out[g.to][-1, 3]
                 if h is not None and h.to == si and float(np.linalg.norm(xe - q)) <= params.close_gaps:
                     x = xe
-            if float(np.linalg.norm(x - q)) <= params.close_gaps:
+            if float(np.linalg.norm(x - ref[(si, end)])) <= params.close_gaps:
                 _move_end(out, si, end, x)
                 again = True
         if not again:

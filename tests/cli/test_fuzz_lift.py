@@ -78,9 +78,9 @@ def _damaged(rng: np.random.Generator) -> str:
     return dumps(out)
 
 
-def _check(cli, tmp_path, src, seen) -> None:
+def _check(cli, tmp_path, src, seen, *extra: str) -> None:
     out = tmp_path / "out.network.json"
-    r = cli("lift", src, "-o", out, "--quiet")
+    r = cli("lift", src, "-o", out, "--quiet", *extra)
     assert r.code in (0, 2) and "Traceback" not in r.err, r.err
     if r.code == 2:
         seen["refused"] += 1
@@ -97,12 +97,14 @@ def _check(cli, tmp_path, src, seen) -> None:
     out.unlink()
 
 
-@pytest.mark.parametrize("kind", ["random", "damaged"])
+@pytest.mark.parametrize("kind", ["random", "damaged", "closed"])
 def test_lift_keeps_its_contract_on_odd_sketches(cli, tmp_path, kind):
-    rng = np.random.default_rng(20261205 + (kind == "damaged"))
+    """``closed``: the damaged examples again, lifted with gaps closed (``--set close_gaps``, 0.2-5 %)."""
+    rng = np.random.default_rng(20261205 + ("random", "damaged", "closed").index(kind))
     seen = {"ok": 0, "refused": 0}
     for i in range(24 * SCALE):
         src = tmp_path / (f"r{i}.svg" if kind == "random" else f"d{i}.sketch.json")
         src.write_text(_random_svg(rng) if kind == "random" else _damaged(rng))
-        _check(cli, tmp_path, src, seen)
+        extra = ("--set", f"close_gaps={rng.choice([0.002, 0.01, 0.05])}") if kind == "closed" else ()
+        _check(cli, tmp_path, src, seen, *extra)
     assert seen["ok"] and seen["refused"], seen     # the fuzzer reaches both ends of the contract

@@ -16,6 +16,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from auszug.errors import GeometryError
@@ -859,19 +861,12 @@ def _meet(out: list[Array], params: LiftParams, occlusions: Array, trimmed: set[
     if len(ends) < 2:
         return []
     pts = np.array([out[si][0, 0] if e == 0 else out[si][-1, 3] for si, e in ends])
+    pairs = cKDTree(pts).query_pairs(tol, output_type="ndarray")
+    link = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(ends), len(ends)))
+    _, label = connected_components(link, directed=False)          # single linkage at tol
     groups: dict[int, list[int]] = {}
-    parent = list(range(len(ends)))
-
-    def find(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for i, j in cKDTree(pts).query_pairs(tol):
-        parent[max(find(i), find(j))] = min(find(i), find(j))
-    for i in range(len(ends)):
-        groups.setdefault(find(i), []).append(i)
+    for i, lab in enumerate(label.tolist()):
+        groups.setdefault(lab, []).append(i)
     gaps: list[Gap] = []
     for members in groups.values():
         if len(members) < 2:

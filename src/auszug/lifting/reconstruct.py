@@ -1431,7 +1431,7 @@ def _gap_hint(g: SketchGraph, comp: NDArray[np.intp], main: int, params: LiftPar
         return ""
     name = g.strokes[si].id or f"stroke #{si}"
     other = g.strokes[sj].id or f"stroke #{sj}"
-    want = math.ceil(d * 1.01 * 1e4) / 1e4
+    want = min(CLOSE_GAPS_MAX, math.ceil(d * 1.01 * 1e4) / 1e4)
     return (f"; or, if they were meant to meet, an end of {name} misses {other} by {d:.2%} of the diagonal: "
             f"close_gaps={want:g} joins it (auszug lift --set close_gaps={want:g}; LiftParams.close_gaps)")
 

@@ -702,7 +702,8 @@ def _trim(out: list[Array], raw: list[_Raw], params: LiftParams, occlusions: Arr
         cut0 = (si, 0) not in skip and near < d0 <= tol and not _near_occlusion(p0, occlusions, params)
         cut1 = (si, 1) not in skip and near < d1 <= tol and not _near_occlusion(p1, occlusions, params)
         cut = (d0 if cut0 else 0.0) + (d1 if cut1 else 0.0)
-        if (cut0 or cut1) and _arc_to(c, 0, 0.0, from_start=False) - cut <= max(d0 * cut0, d1 * cut1):
+        if (cut0 or cut1) and _arc_to(c, 0, 0.0, from_start=False) - cut <= max(d0 if cut0 else 0.0,
+                                                                               d1 if cut1 else 0.0):
             continue            # what would remain is no longer than a cut piece: the stroke is the stub
         if cut0:
             plan[(si, 0)] = (k0, t0, Gap(si, 0, "trim", o0, d0))

@@ -739,12 +739,7 @@ def _reaches(out: list[Array], gp: Gap, params: LiftParams) -> bool:
     q = c[0, 0] if gp.end == 0 else c[-1, 3]
     if min(float(np.linalg.norm(q - cj[0, 0])), float(np.linalg.norm(q - cj[-1, 3]))) <= near:
         return True
-    for seg in cj:
-        if float(np.linalg.norm(np.clip(q, seg.min(0), seg.max(0)) - q)) <= near:
-            b = CubicBezier.from_array(seg)
-            if float(np.linalg.norm(b.point(b.project(q)) - q)) <= near:
-                return True
-    return False
+    return float(np.linalg.norm(_closest_on(cj, q)[0] - q)) <= near
 
 
 def _split_at(out: list[Array], sj: int, q: Array, params: LiftParams) -> None:

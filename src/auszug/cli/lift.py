@@ -18,6 +18,7 @@ examples:
   auszug lift vase.svg -o vase.glb --style tube --size 2
   auszug lift vase.svg --cues none        # the baseline: hard orthogonality at smooth crossings only
   auszug lift vase.svg --set family_prior=off --set w_f=0.01   # LiftParams fields (its docstring)
+  auszug lift drawn.svg --set close_gaps=0.005   # join stroke ends drawn up to 0.5 % of the diagonal apart
 """
 
 from __future__ import annotations

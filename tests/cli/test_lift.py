@@ -194,3 +194,37 @@ def test_a_stroke_drawn_short_of_another_is_refused_with_the_close_gaps_that_joi
     assert [len(pieces[b]) for b in (0, 1, 2)] == [3, 2, 1]           # the bar cut at the post and at s0's end
     # in 3D too, s0 ends where two of the bar's pieces meet
     assert np.array_equal(pieces[2][0][-1], pieces[0][1][-1]) and np.array_equal(pieces[0][1][-1], pieces[0][2][0])
+
+
+def test_strokes_drawn_near_one_point_get_a_note_and_close_gaps_makes_it_one(cli, tmp_path):
+    """Three lines meant to meet at one point drawn as a small triangle: the lift says which strokes and which
+    ``--set close_gaps`` joins them; with it, ``--report`` lists the junction and the network has one point
+    where all three lines' pieces meet."""
+    h, paths, ends = 0.5, [], []
+    for i in range(3):
+        a = 0.2 + i * 2 * np.pi / 3
+        u, n = np.array([np.cos(a), np.sin(a)]), np.array([-np.sin(a), np.cos(a)])
+        p, q = h * n - 100 * u, h * n + 100 * u
+        ends += [p, q]
+        paths.append(f'<path id="l{i}" d="M {float(p[0])!r} {float(-p[1])!r} L {float(q[0])!r} {float(-q[1])!r}"/>')
+    paths.append('<path id="bar" d="M -100 60 C -40 30 40 30 100 60"/>')       # crosses the lines far off
+    src = tmp_path / "star.svg"
+    src.write_text('<svg xmlns="http://www.w3.org/2000/svg">' + "".join(paths) + "</svg>")
+    pts = np.array(ends + [[-100, -60], [-40, -30], [40, -30], [100, -60]])
+    spread = 2 * np.sqrt(3) * h / float(np.linalg.norm(np.ptp(pts, axis=0)))
+    want = np.ceil(spread * 1.01 * 1e4) / 1e4
+    out = tmp_path / "star.network.json"
+    r = cli("lift", src, "-o", out)
+    assert r.code == 0, r.err
+    assert (f"lift: note: l0, l1, l2 cross within {spread:.2%} of the diagonal of one another, not at one point; "
+            f"if they meet at one point, --set close_gaps={want:g} makes it one intersection") in r.err.splitlines()
+    r = cli("lift", src, "-o", out, "--report", "--set", f"close_gaps={want:g}")
+    assert r.code == 0, r.err
+    assert "note:" not in r.err and "lift: made 1 group(s) of crossings drawn within" in r.err
+    (line,) = [x for x in r.out.splitlines() if x.startswith("crossings joined:")]
+    assert line == (f"crossings joined: l0, l1, l2 drawn within {spread:.3%} of the diagonal, made one point "
+                    f"(strokes moved at most {h / float(np.linalg.norm(np.ptp(pts, axis=0))):.3%})")
+    doc = load(out, kind="network")
+    meet = [np.asarray(c["points"], float)[e] for c in doc["curves"] if c["basic"] in (0, 1, 2) for e in (0, -1)]
+    centre = [p for p in meet if np.linalg.norm(p[:2]) < h]
+    assert len(centre) == 6 and all(np.array_equal(p, centre[0]) for p in centre)   # six pieces, one 3D point

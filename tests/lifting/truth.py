@@ -85,12 +85,14 @@ def _line(a: np.ndarray, b: np.ndarray, over: float = 0.0) -> np.ndarray:
 
 
 def box(size: tuple[float, float, float] = (2.0, 1.4, 1.0), tilt: float = 25.0, turn: float = 30.0,
-        noise: float = 0.0, seed: int = 0) -> Truth:
+        noise: float = 0.0, seed: int = 0, meet: bool = False) -> Truth:
     """A box of straight strokes: its 9 visible edges and two cross-sections through every visible face.
 
     Edges end at the corners (non-smooth intersections: orthogonal corners, three at the front
     corner); each section crosses the face's two opposite edges (overshooting them by 8 %) and the
-    face's other section: every crossing is a smooth crossing, orthogonal in 3D.
+    face's other section: every crossing is a smooth crossing, orthogonal in 3D. With ``meet``, the
+    sections of two faces cross the three edges from the front corner at one point (three strokes
+    there, pairwise orthogonal in 3D).
     """
     hx, hy, hz = (0.5 * np.asarray(size, float)).tolist()
     R = rotation(tilt, turn)
@@ -115,6 +117,8 @@ def box(size: tuple[float, float, float] = (2.0, 1.4, 1.0), tilt: float = 25.0, 
     # section positions (share of the half extent) on the face normal to f, per other axis; two faces
     # sharing an edge cut it at different places, so no three strokes cross at one point
     pos = {0: {1: 0.2, 2: -0.3}, 1: {0: 0.35, 2: 0.15}, 2: {0: -0.2, 1: -0.1}}
+    if meet:
+        pos = {0: {1: 0.2, 2: -0.3}, 1: {0: 0.35, 2: -0.3}, 2: {0: 0.35, 1: 0.2}}
     for f in range(3):                              # sections of the face normal to axis f
         u, w = [a for a in range(3) if a != f]
         for along, across in ((u, w), (w, u)):
@@ -126,6 +130,23 @@ def box(size: tuple[float, float, float] = (2.0, 1.4, 1.0), tilt: float = 25.0, 
             q[along] = ext[along]
             chains.append(_line(p, q, 0.08))
     return _project(chains, R, noise, seed)
+
+
+def shifted(truth: Truth, strokes: range, shift: float, seed: int) -> Truth:
+    """The truth with each of ``strokes`` drawn ``shift`` (share of the diagonal) off, in a random direction.
+
+    A hand's slip: strokes meant to pass through one point then cross in a small triangle. The 3D truth
+    is kept (the depth at a drawn point is the truth's at its nearest 2D point, :func:`depth_rmse`).
+    """
+    rng = np.random.default_rng(seed)
+    d = truth.diagonal()
+    out = []
+    for i, s in enumerate(truth.sketch.strokes):
+        if i in strokes:
+            a = rng.uniform(0.0, 2.0 * np.pi)
+            s = Stroke(s.controls + shift * d * np.array([np.cos(a), np.sin(a)]), s.id)
+        out.append(s)
+    return Truth(Sketch(tuple(out), truth.sketch.markers), truth.chains3d)
 
 
 def occlusions(view, tol: float, strokes2d=None) -> list[np.ndarray]:

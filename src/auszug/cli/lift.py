@@ -24,6 +24,7 @@ examples:
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -173,6 +174,12 @@ def run(args: argparse.Namespace) -> int:
     n_gaps = sum(len(g.gaps) for g in result.graphs)
     if n_gaps:
         say(f"closed {n_gaps} gap(s) of at most {params.close_gaps:.2%} of the diagonal (close_gaps; see --report)")
+    n_junctions = sum(len(g.junctions) for g in result.graphs)
+    if n_junctions:
+        say(f"made {n_junctions} group(s) of crossings drawn within {params.close_gaps:.2%} of the diagonal one "
+            "point each (close_gaps; see --report)")
+    for line in _junction_hints(result, params):
+        say(line)
     if not result.converged:
         say("warning: not every solve converged; the hard cues may be violated (see --report)")
     with _common.about(out):
@@ -196,6 +203,22 @@ def run(args: argparse.Namespace) -> int:
     say(f"done in {time.perf_counter() - t0:.2f} s")
     print(f"wrote {out}" + (f" and {args.render}" if args.render else ""))
     return 0
+
+
+def _junction_hints(result: "LiftResult", params: "LiftParams") -> list[str]:
+    """A note per group of crossings of three or more strokes drawn within 1 % of the diagonal, not joined."""
+    from auszug.lifting import CLOSE_GAPS_MAX, near_junctions
+
+    lines = []
+    for g in result.graphs:
+        for spread, strokes in near_junctions(g, params.snap):
+            want = min(CLOSE_GAPS_MAX, math.ceil(spread * 1.01 * 1e4) / 1e4)
+            if spread > CLOSE_GAPS_MAX or want <= params.close_gaps:
+                continue
+            names = ", ".join(g.strokes[s].id or f"stroke #{s}" for s in strokes)
+            lines.append(f"note: {names} cross within {spread:.2%} of the diagonal of one another, not at one point; "
+                         f"if they meet at one point, --set close_gaps={want:g} makes it one intersection")
+    return lines
 
 
 def _report(result: "LiftResult", classes: tuple[str, ...]) -> None:
@@ -227,6 +250,10 @@ def _report(result: "LiftResult", classes: tuple[str, ...]) -> None:
                     "close": f"moved {gap.distance:.3%} of the diagonal onto its start (closed)"}[gap.kind]
             print(f"gap closed: {name} {'start' if gap.end == 0 else 'end'} {what}"
                   + (f"  (layer {layer})" if layer else ""))
+        for j in g.junctions:
+            names = ", ".join(g.strokes[s].id or f"stroke #{s}" for s in j.strokes)
+            print(f"crossings joined: {names} drawn within {j.spread:.3%} of the diagonal, made one point "
+                  f"(strokes moved at most {j.distance:.3%})" + (f"  (layer {layer})" if layer else ""))
     if result.mirror is not None:
         layer, n, d = result.mirror
         print(f"global symmetry: layer {layer} mirrored across the plane "

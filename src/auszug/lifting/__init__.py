@@ -24,7 +24,17 @@ from auszug.lifting.reconstruct import (
     lift_graph,
     vertical_planes,
 )
-from auszug.lifting.sketch import Crossing, Gap, Marker, Sketch, SketchGraph, Stroke, sketch_graph
+from auszug.lifting.sketch import (
+    Crossing,
+    Gap,
+    Junction,
+    Marker,
+    Sketch,
+    SketchGraph,
+    Stroke,
+    near_junctions,
+    sketch_graph,
+)
 
 __all__ = [
     "CLASSES",
@@ -43,10 +53,12 @@ __all__ = [
     "LiftParams",
     "Crossing",
     "Gap",
+    "Junction",
     "Marker",
     "Sketch",
     "SketchGraph",
     "Stroke",
     "sketch_graph",
+    "near_junctions",
     "fit_polyline",
 ]

@@ -143,7 +143,10 @@ class LiftParams:
         at most this long beyond a stroke's last crossing is cut off, so
         that near misses and overshoots meet where they were meant to
         (:class:`auszug.lifting.sketch.Gap`; ends at an occlusion marker
-        stay as drawn). Off by default: the bundled examples' intended free
+        stay as drawn). Before that, crossings of three or more strokes
+        drawn within this distance of one point (a small triangle where
+        they were meant to meet) are made one point
+        (:class:`auszug.lifting.sketch.Junction`). Off by default: the bundled examples' intended free
         ends lie 0.08-0.9 % of the diagonal from other strokes, so no one
         tolerance tells a near miss from a free end (docs/lifting.md,
         "Closing gaps").

@@ -25,7 +25,8 @@ from auszug.geometry import CubicBezier, Line, intersect, intersect_many
 from auszug.lifting.params import DEFAULT, LiftParams
 from auszug.limits import LIMITS, beyond_coordinate
 
-__all__ = ["Stroke", "Marker", "Sketch", "Crossing", "Gap", "SketchGraph", "sketch_graph", "nearest_end_gap"]
+__all__ = ["Stroke", "Marker", "Sketch", "Crossing", "Gap", "Junction", "SketchGraph", "sketch_graph",
+           "nearest_end_gap", "near_junctions"]
 
 Array = NDArray[np.float64]
 
@@ -171,6 +172,33 @@ class Gap:
     distance: float
 
 
+@dataclass(frozen=True)
+class Junction:
+    """Crossings of three or more strokes drawn near one point, made one by ``LiftParams.close_gaps``.
+
+    A hand drawing of strokes meant to pass through one point (a box's edge and the sections of its two
+    faces, the ribs at a vault's boss) draws a small triangle of crossings instead. Left so, every pair
+    crossing smoothly is a hard orthogonality at its own point, which the 3D object cannot meet.
+
+    Attributes
+    ----------
+    strokes : tuple of int
+        The strokes (indices into the graph's ``strokes``) now passing through (or ending at) one point.
+    point : (2,) ndarray
+        That point (normalised, as the graph's ``points``).
+    spread : float
+        The largest distance between two of the drawn crossings (and stroke ends) joined, relative to the
+        diagonal.
+    distance : float
+        The largest move of a stroke, relative to the diagonal (at most ``close_gaps``).
+    """
+
+    strokes: tuple[int, ...]
+    point: Array
+    spread: float
+    distance: float
+
+
 @dataclass(frozen=True, eq=False)
 class SketchGraph:
     """Strokes split at crossings, with shared control points.
@@ -205,6 +233,8 @@ class SketchGraph:
         Indices of the sketch's markers that snapped to a crossing of this graph.
     gaps : tuple of Gap
         The stroke ends ``LiftParams.close_gaps`` joined (none by default).
+    junctions : tuple of Junction
+        The crossings drawn near one point that ``LiftParams.close_gaps`` made one (none by default).
     """
 
     points: Array
@@ -221,6 +251,7 @@ class SketchGraph:
     strokes: tuple[Stroke, ...]
     marked: tuple[int, ...] = ()
     gaps: tuple[Gap, ...] = ()
+    junctions: tuple[Junction, ...] = ()
 
     def tangent(self, seg: int, end: int) -> Array:
         """2D tangent handle of a half-edge: from its end point to the next control point."""
@@ -358,10 +389,11 @@ def sketch_graph(sketch: Sketch, params: LiftParams = DEFAULT, require_markers: 
     # crossings between segments of different strokes
     raw = _raw_crossings(strokes_c)
     gaps: tuple[Gap, ...] = ()
+    junctions: tuple[Junction, ...] = ()
     if params.close_gaps > 0:
         occl_pts = [(np.asarray(m.point, float) - offset) / scale for m in sketch.markers if m.kind == "occlusion"]
-        strokes_c, gaps = _close_gaps(strokes_c, raw, params, np.array(occl_pts).reshape(-1, 2))
-        if gaps:
+        strokes_c, gaps, junctions = _close_gaps(strokes_c, raw, params, np.array(occl_pts).reshape(-1, 2))
+        if gaps or junctions:
             raw = _raw_crossings(strokes_c)
     # cluster crossing points (one crossing can be found on two segments at a joint)
     if raw:
@@ -520,7 +552,7 @@ def sketch_graph(sketch: Sketch, params: LiftParams = DEFAULT, require_markers: 
                             "(strokes must cross or touch; occlusion markers remove crossings)")
     occl = centres[sorted(occluded_c)] if occluded_c else np.zeros((0, 2))
     return SketchGraph(points, segments, seg_stroke_a, tuple(chains), closed, J, g1, tuple(crossings), occl,
-                       offset, float(scale), tuple(sketch.strokes), tuple(marked), gaps)
+                       offset, float(scale), tuple(sketch.strokes), tuple(marked), gaps, junctions)
 
 
 _Raw = tuple[int, int, float, int, int, float, Array]
@@ -557,11 +589,14 @@ def _raw_crossings(strokes_c: list[Array], only: set[int] | None = None) -> list
 
 
 def _close_gaps(strokes_c: list[Array], raw: list[_Raw], params: LiftParams,
-                occlusions: Array) -> tuple[list[Array], tuple[Gap, ...]]:
+                occlusions: Array) -> tuple[list[Array], tuple[Gap, ...], tuple[Junction, ...]]:
     """Free stroke ends within ``params.close_gaps`` of the diagonal joined (see :class:`Gap`).
 
     Coordinates are normalised (diagonal 1). In order (docs/lifting.md, "Closing gaps"):
 
+    0. :func:`_join_crossings`: crossings of three or more strokes within that distance of one point
+       are made one (:class:`Junction`), before any end moves (a trim would cut a stroke's overshoot
+       at one of the crossings instead).
     1. :func:`_trim`: a piece of at most that length beyond a stroke's first or last crossing is cut off
        at the crossing ("trim").
     2. :func:`_meet`: free ends within that distance of each other meet at one point ("end", "close";
@@ -579,7 +614,10 @@ def _close_gaps(strokes_c: list[Array], raw: list[_Raw], params: LiftParams,
     joint would lie within ``params.snap`` of an occlusion marker are left as drawn.
     """
     try:
-        return _close_gaps_in(strokes_c, raw, params, occlusions)
+        out = [c.copy() for c in strokes_c]
+        junctions = _join_crossings(out, params, occlusions)
+        out, gaps = _close_gaps_in(out, _raw_crossings(out) if junctions else raw, params, occlusions)
+        return out, gaps, junctions
     finally:
         _BOXES.index = None
 
@@ -762,6 +800,131 @@ def _split_at(out: list[Array], sj: int, q: Array, params: LiftParams) -> None:
             out[sj] = np.concatenate([cj[:k], b.segment(0.0, t).controls[None], b.segment(t, 1.0).controls[None],
                                       cj[k + 1:]])
         return
+
+
+def _join_crossings(out: list[Array], params: LiftParams, occlusions: Array) -> tuple[Junction, ...]:
+    """Make, in place, crossings of three or more strokes drawn within ``close_gaps`` of one point one point.
+
+    Crossings are grouped by single linkage at ``close_gaps``. A group of three or more strokes, every two
+    of them crossing once in it (:func:`_every_pair_once`), gets a point: the one nearest (least squares,
+    :func:`_meeting_point`) to the strokes' tangent lines at their points closest to the group's centre.
+    Strokes with an end within ``close_gaps`` of that point (drawn to end there) join the group. When
+    every crossing and every stroke is within ``close_gaps`` of the point, each stroke is moved through
+    it (:func:`_through`). A group within ``params.snap`` of an occlusion marker stays as drawn, and so
+    does one whose strokes afterwards do not all pass through the point or cross each other again within
+    twice ``close_gaps`` of it.
+    """
+    tol, near = params.close_gaps, 10.0 * params.merge
+    raw = _raw_crossings(out)
+    if len(raw) < 2:
+        return ()
+    pts = np.array([r[6] for r in raw])
+    pairs = cKDTree(pts).query_pairs(tol, output_type="ndarray")
+    link = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(raw), len(raw)))
+    n_groups, label = connected_components(link, directed=False)
+    found: list[Junction] = []
+    for lab in range(n_groups):
+        members = np.nonzero(label == lab)[0]
+        strokes = {raw[i][0] for i in members} | {raw[i][3] for i in members}
+        if len(members) < 2 or not _every_pair_once([(raw[i][0], raw[i][3]) for i in members]):
+            continue
+        centre = pts[members].mean(0)
+        lines = [_closest_on(out[si], centre) for si in sorted(strokes)]
+        q = _meeting_point(np.array([x for x, _ in lines]), np.array([u for _, u in lines]), params)
+        ends = [(si, e) for si, c in enumerate(out) if si not in strokes and not _is_loop(c, params)
+                for e in (0, 1) if float(np.linalg.norm((c[0, 0] if e == 0 else c[-1, 3]) - q)) <= tol]
+        group = sorted(strokes | {si for si, _ in ends})
+        spots = np.concatenate([pts[members], np.reshape([out[si][0, 0] if e == 0 else out[si][-1, 3]
+                                                          for si, e in ends], (-1, 2))])
+        spread = float(np.max(np.linalg.norm(spots[:, None] - spots[None], axis=-1)))
+        if spread <= near or float(np.linalg.norm(spots - q, axis=1).max()) > tol \
+                or _near_occlusion(q, occlusions, params):
+            continue
+        if max(float(np.linalg.norm(_closest_on(out[si], q)[0] - q)) for si in group) > tol:
+            continue
+        before = {si: out[si] for si in group}
+        moves = [_through(out, si, q, params) for si in group]
+        # every stroke through the point, and no two of them crossing once more near it (bent ends can)
+        again = [r for r in _raw_crossings(out, set(group)) if r[0] in before and r[3] in before
+                 and near < float(np.linalg.norm(r[6] - q)) <= 2.0 * tol]
+        if again or max(float(np.linalg.norm(_closest_on(out[si], q)[0] - q)) for si in group) > near:
+            for si, c in before.items():
+                out[si] = c
+            continue
+        found.append(Junction(tuple(group), q.copy(), spread, max(moves)))
+    return tuple(found)
+
+
+def _every_pair_once(crossings: list[tuple[int, ...]]) -> bool:
+    """Whether crossings (each the strokes meeting there) are of three or more strokes, every two crossing once.
+
+    What strokes meant to meet at one point draw: a triangle of three, six crossings of four. Crossings of
+    strokes that do not all cross each other there (two near-parallel pairs crossing in a small
+    quadrilateral) or of one pair twice (a near touch) are not such a point.
+    """
+    pairs = [(a, b) for st in crossings for a in sorted(set(st)) for b in sorted(set(st)) if a < b]
+    strokes = {s for st in crossings for s in st}
+    return len(strokes) >= 3 and len(set(pairs)) == len(pairs) == len(strokes) * (len(strokes) - 1) // 2
+
+
+def _through(out: list[Array], si: int, q: Array, params: LiftParams) -> float:
+    """Move, in place, stroke ``si`` through ``q``; the distance it moved there (relative to the diagonal).
+
+    The stroke's point closest to ``q`` is made a knot (cut there) and moved to ``q`` with its two handles,
+    so the stroke's tangent direction there is kept; only the two segments at the knot change, each cut
+    first at its crossing with another stroke nearest the knot and farther than ``close_gaps`` from
+    ``q``, so that no other crossing moves. Where the closest point is an end, the end moves with its
+    handle (:func:`_move_end`).
+    """
+    near = 10.0 * params.merge
+    c = out[si]
+    dist, k, t = math.inf, 0, 0.0
+    for kk, seg in enumerate(c):
+        b = CubicBezier.from_array(seg)
+        tt = b.project(q)
+        dd = float(np.linalg.norm(b.point(tt) - q))
+        if dd < dist:
+            dist, k, t = dd, kk, tt
+    x = CubicBezier.from_array(c[k]).point(t)
+    loop = _is_loop(c, params)
+    if dist <= 1e-12:
+        _split_at(out, si, q, params)
+        return dist
+    if float(np.linalg.norm(x - c[k][0])) <= near:
+        j = k
+    elif float(np.linalg.norm(x - c[k][3])) <= near:
+        j = k + 1
+    else:
+        b = CubicBezier.from_array(c[k])
+        c = np.concatenate([c[:k], b.segment(0.0, t).controls[None], b.segment(t, 1.0).controls[None], c[k + 1:]])
+        j = k + 1
+    if not loop and j in (0, len(c)):
+        _move_end(out, si, 0 if j == 0 else 1, q)
+        return dist
+    j %= len(c)
+    out[si] = c
+    tol = params.close_gaps
+    cut: dict[int, float] = {}               # segment -> where it is cut: its crossing nearest the knot
+    for sa, ka, ta, _, kb, tb, pt in _raw_crossings(out, {si}):
+        kk, tt = (ka, ta) if sa == si else (kb, tb)
+        if float(np.linalg.norm(pt - q)) <= tol or not 1e-9 < tt < 1 - 1e-9:
+            continue
+        if kk == j and tt < cut.get(kk, 1.0):
+            cut[kk] = tt
+        elif kk == (j - 1) % len(c) and tt > cut.get(kk, 0.0):
+            cut[kk] = tt
+    for kk in sorted(cut, reverse=True):
+        b = CubicBezier.from_array(c[kk])
+        c = np.concatenate([c[:kk], b.segment(0.0, cut[kk]).controls[None], b.segment(cut[kk], 1.0).controls[None],
+                            c[kk + 1:]])
+        if kk < j:
+            j += 1
+    c = c.copy()
+    delta = q - c[j][0]
+    c[j][:2] += delta                           # the handles move along: the tangent direction is kept
+    c[j - 1][2:] += delta
+    out[si] = c
+    return dist
 
 
 #: Per thread, the segment boxes of the strokes :func:`_near` last indexed, with those strokes (compared by
@@ -1009,6 +1172,43 @@ def nearest_end_gap(g: SketchGraph, ends_of: set[int], to: set[int]) -> tuple[fl
                     if d < best[0]:
                         best = (d, si, sj)
     return best
+
+
+def near_junctions(g: SketchGraph, within: float) -> list[tuple[float, tuple[int, ...]]]:
+    """Crossings of three or more strokes drawn near one point but not at it: where ``close_gaps`` would help.
+
+    For hints: a hand drawing of strokes meant to meet at one point draws a small triangle (or polygon)
+    of crossings instead, which the lift reads as separate intersections (see :class:`Junction`).
+
+    Parameters
+    ----------
+    g : SketchGraph
+    within : float
+        Crossings closer than this (relative to the diagonal) are grouped (single linkage).
+
+    Returns
+    -------
+    list of (spread, strokes)
+        Per group of two or more crossings of three or more strokes, every two crossing once in it (a
+        crossing of several strokes counts for each pair), the largest distance between two of
+        its crossings (relative to the diagonal; ``close_gaps`` of about this joins a group of straight
+        strokes) and the strokes, sorted by spread.
+    """
+    if len(g.crossings) < 2:
+        return []
+    pts = np.array([g.points[c.point] for c in g.crossings])
+    pairs = cKDTree(pts).query_pairs(within, output_type="ndarray")
+    link = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(pts), len(pts)))
+    n_groups, label = connected_components(link, directed=False)
+    found = []
+    for lab in range(n_groups):
+        members = np.nonzero(label == lab)[0]
+        strokes = sorted({s for i in members for s in g.crossings[i].strokes})
+        if len(members) < 2 or not _every_pair_once([g.crossings[i].strokes for i in members]):
+            continue
+        p = pts[members]
+        found.append((float(np.max(np.linalg.norm(p[:, None] - p[None], axis=-1))), tuple(strokes)))
+    return sorted(found)
 
 
 def _arc_to(c: Array, k: int, t: float, from_start: bool) -> float:

@@ -216,14 +216,15 @@ def test_strokes_drawn_near_one_point_get_a_note_and_close_gaps_makes_it_one(cli
     out = tmp_path / "star.network.json"
     r = cli("lift", src, "-o", out)
     assert r.code == 0, r.err
-    assert (f"lift: note: l0, l1, l2 cross within {spread:.2%} of the diagonal of one another, not at one point; "
-            f"if they meet at one point, --set close_gaps={want:g} makes it one intersection") in r.err.splitlines()
+    note = (f"lift: note: l0, l1, l2 cross within {100 * spread:.2g}% of the diagonal of one another, not at one "
+            f"point; if they meet at one point, --set close_gaps={want:g} makes it one intersection")
+    assert note in r.err.splitlines()
     r = cli("lift", src, "-o", out, "--report", "--set", f"close_gaps={want:g}")
     assert r.code == 0, r.err
     assert "note:" not in r.err and "lift: made 1 group(s) of crossings drawn within" in r.err
     (line,) = [x for x in r.out.splitlines() if x.startswith("crossings joined:")]
-    assert line == (f"crossings joined: l0, l1, l2 drawn within {spread:.3%} of the diagonal, made one point "
-                    f"(strokes moved at most {h / float(np.linalg.norm(np.ptp(pts, axis=0))):.3%})")
+    assert line == (f"crossings joined: l0, l1, l2 drawn within {100 * spread:.3g}% of the diagonal, made one point "
+                    f"(strokes moved at most {100 * h / float(np.linalg.norm(np.ptp(pts, axis=0))):.3g}%)")
     doc = load(out, kind="network")
     meet = [np.asarray(c["points"], float)[e] for c in doc["curves"] if c["basic"] in (0, 1, 2) for e in (0, -1)]
     centre = [p for p in meet if np.linalg.norm(p[:2]) < h]

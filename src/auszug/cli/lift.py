@@ -18,7 +18,8 @@ examples:
   auszug lift vase.svg -o vase.glb --style tube --size 2
   auszug lift vase.svg --cues none        # the baseline: hard orthogonality at smooth crossings only
   auszug lift vase.svg --set family_prior=off --set w_f=0.01   # LiftParams fields (its docstring)
-  auszug lift drawn.svg --set close_gaps=0.005   # join stroke ends drawn up to 0.5 % of the diagonal apart
+  auszug lift drawn.svg --set close_gaps=0.005   # join stroke ends drawn up to 0.5 % of the diagonal apart,
+                                                # and crossings drawn that near one point
 """
 
 from __future__ import annotations
@@ -216,8 +217,8 @@ def _junction_hints(result: "LiftResult", params: "LiftParams") -> list[str]:
             if spread > CLOSE_GAPS_MAX or want <= params.close_gaps:
                 continue
             names = ", ".join(g.strokes[s].id or f"stroke #{s}" for s in strokes)
-            lines.append(f"note: {names} cross within {spread:.2%} of the diagonal of one another, not at one point; "
-                         f"if they meet at one point, --set close_gaps={want:g} makes it one intersection")
+            lines.append(f"note: {names} cross within {100 * spread:.2g}% of the diagonal of one another, not at "
+                         f"one point; if they meet at one point, --set close_gaps={want:g} makes it one intersection")
     return lines
 
 
@@ -252,8 +253,8 @@ def _report(result: "LiftResult", classes: tuple[str, ...]) -> None:
                   + (f"  (layer {layer})" if layer else ""))
         for j in g.junctions:
             names = ", ".join(g.strokes[s].id or f"stroke #{s}" for s in j.strokes)
-            print(f"crossings joined: {names} drawn within {j.spread:.3%} of the diagonal, made one point "
-                  f"(strokes moved at most {j.distance:.3%})" + (f"  (layer {layer})" if layer else ""))
+            print(f"crossings joined: {names} drawn within {100 * j.spread:.3g}% of the diagonal, made one point "
+                  f"(strokes moved at most {100 * j.distance:.3g}%)" + (f"  (layer {layer})" if layer else ""))
     if result.mirror is not None:
         layer, n, d = result.mirror
         print(f"global symmetry: layer {layer} mirrored across the plane "

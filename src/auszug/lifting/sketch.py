@@ -615,7 +615,7 @@ def _close_gaps(strokes_c: list[Array], raw: list[_Raw], params: LiftParams,
     """
     try:
         out = [c.copy() for c in strokes_c]
-        junctions = _join_crossings(out, params, occlusions)
+        junctions = _join_crossings(out, raw, params, occlusions)
         out, gaps = _close_gaps_in(out, _raw_crossings(out) if junctions else raw, params, occlusions)
         return out, gaps, junctions
     finally:
@@ -802,20 +802,20 @@ def _split_at(out: list[Array], sj: int, q: Array, params: LiftParams) -> None:
         return
 
 
-def _join_crossings(out: list[Array], params: LiftParams, occlusions: Array) -> tuple[Junction, ...]:
+def _join_crossings(out: list[Array], raw: list[_Raw], params: LiftParams,
+                    occlusions: Array) -> tuple[Junction, ...]:
     """Make, in place, crossings of three or more strokes drawn within ``close_gaps`` of one point one point.
 
-    Crossings are grouped by single linkage at ``close_gaps``. A group of three or more strokes, every two
-    of them crossing once in it (:func:`_every_pair_once`), gets a point: the one nearest (least squares,
-    :func:`_meeting_point`) to the strokes' tangent lines at their points closest to the group's centre.
-    Strokes with an end within ``close_gaps`` of that point (drawn to end there) join the group. When
-    every crossing and every stroke is within ``close_gaps`` of the point, each stroke is moved through
-    it (:func:`_through`). A group within ``params.snap`` of an occlusion marker stays as drawn, and so
-    does one whose strokes afterwards do not all pass through the point or cross each other again within
-    twice ``close_gaps`` of it.
+    ``raw`` are the crossings of ``out`` as given (:func:`_raw_crossings`). Crossings are grouped by single
+    linkage at ``close_gaps``. A group of three or more strokes, every two of them crossing once in it
+    (:func:`_every_pair_once`), gets a point: the one nearest (least squares, :func:`_meeting_point`) to the
+    strokes' tangent lines at their points closest to the group's centre. Strokes with an end within
+    ``close_gaps`` of that point (drawn to end there) join the group. When every crossing and every stroke is
+    within ``close_gaps`` of the point, each stroke is moved through it (:func:`_through`). A group within
+    ``params.snap`` of an occlusion marker stays as drawn, and so does one whose strokes afterwards do not all
+    pass through the point or cross each other again within twice ``close_gaps`` of it.
     """
     tol, near = params.close_gaps, 10.0 * params.merge
-    raw = _raw_crossings(out)
     if len(raw) < 2:
         return ()
     pts = np.array([r[6] for r in raw])

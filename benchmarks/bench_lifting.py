@@ -95,7 +95,8 @@ def main() -> None:
     t0 = time.perf_counter()
     (_, gc), = layer_graphs(dataclasses.replace(sketch), LiftParams(close_gaps=CLOSE_GAPS))
     rows.append((f"curve graph, close_gaps {CLOSE_GAPS:g} (opt-in)", time.perf_counter() - t0,
-                 f"{len(gc.gaps)} gaps closed, {len(gc.crossings)} crossings (off by default: not in the lift)"))
+                 f"{len(gc.gaps)} gaps closed, {len(gc.junctions)} crossings joined, {len(gc.crossings)} crossings "
+                 "(off by default: not in the lift)"))
     t0 = time.perf_counter()
     t_start = time.perf_counter()
 

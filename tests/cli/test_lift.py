@@ -229,3 +229,21 @@ def test_strokes_drawn_near_one_point_get_a_note_and_close_gaps_makes_it_one(cli
     meet = [np.asarray(c["points"], float)[e] for c in doc["curves"] if c["basic"] in (0, 1, 2) for e in (0, -1)]
     centre = [p for p in meet if np.linalg.norm(p[:2]) < h]
     assert len(centre) == 6 and all(np.array_equal(p, centre[0]) for p in centre)   # six pieces, one 3D point
+
+
+def test_a_lift_that_collapses_is_refused_naming_the_crossings_drawn_near_one_point(cli, tmp_path):
+    """The box with its sections drawn 0.2 % off the points where they meet its edges: as drawn, the solve
+    collapses the network to a point; the lift refuses it (exit 2, no output), naming what joins the
+    crossings; with that value it lifts."""
+    from auszug.formats import save
+    from tests.lifting import truth as T
+
+    src = tmp_path / "box.sketch.json"
+    save(T.shifted(T.box(meet=True), range(9, 15), 0.002, 0).sketch, src, kind="sketch")
+    out = tmp_path / "box.network.json"
+    r = cli("lift", src, "-o", out, "--quiet")
+    assert r.code == 2 and "Traceback" not in r.err and files_in(tmp_path) == ["box.sketch.json"]
+    (line,) = r.err.strip().splitlines()
+    assert line.startswith(f"auszug: {src}: layer 0: the lift collapsed: its curves span ")
+    assert "(auszug lift --set close_gaps=0.005; LiftParams.close_gaps)" in line
+    assert cli("lift", src, "-o", out, "--quiet", "--set", "close_gaps=0.005").code == 0 and out.exists()

@@ -23,8 +23,8 @@ from auszug.geometry.heights import SideCoordinate
 from auszug.geometry.network import CurveNetwork, Piece
 from auszug.lifting import cues as cu
 from auszug.lifting.family import extent_member
-from auszug.lifting.params import CLOSE_GAPS_MAX, DEFAULT, LiftParams
-from auszug.lifting.sketch import Sketch, SketchGraph, Stroke, nearest_end_gap, sketch_graph
+from auszug.lifting.params import CLOSE_GAPS_MAX, COLLAPSED, DEFAULT, LiftParams
+from auszug.lifting.sketch import Sketch, SketchGraph, Stroke, near_junctions, nearest_end_gap, sketch_graph
 from auszug.lifting.solver import Orderings, Poly2, SolveResult, solve
 from auszug.lifting.terms import fidelity, structure
 
@@ -1199,7 +1199,7 @@ def lift(sketch: Sketch, params: LiftParams = DEFAULT, progress: Progress | None
     if sym_at is not None:   # the plane in sketch units, after the layers' depth shifts
         lay, k, nrm, on = sym_at
         mirror = (lay, nrm, float(np.mean(pts[k][on] @ nrm)))
-    net = _network(sketch, graphs, pts, results, bool(ok))
+    net = _network(sketch, graphs, pts, results, bool(ok), params)
     if mirror is not None:
         net = replace(net, meta={**net.meta, "lifting": {**net.meta["lifting"], "symmetry_plane": {
             "layer": mirror[0], "normal": mirror[1].tolist(), "offset": mirror[2]}}})
@@ -1436,6 +1436,26 @@ def _gap_hint(g: SketchGraph, comp: NDArray[np.intp], main: int, params: LiftPar
             f"close_gaps={want:g} joins it (auszug lift --set close_gaps={want:g}; LiftParams.close_gaps)")
 
 
+def _junction_hint(g: SketchGraph, params: LiftParams) -> str:
+    """For a lift that went astray: the groups of crossings of three or more strokes drawn near one point."""
+    def want(spread: float) -> float:
+        return min(CLOSE_GAPS_MAX, math.ceil(spread * 1.01 * 1e4) / 1e4)
+
+    found = [(spread, strokes) for spread, strokes in near_junctions(g, params.snap)
+             if spread <= CLOSE_GAPS_MAX and want(spread) > params.close_gaps]
+    if not found:
+        return ""
+    spread, strokes = found[-1]
+    names = ", ".join(g.strokes[s].id or f"stroke #{s}" for s in strokes)
+    how = f"(auszug lift --set close_gaps={want(spread):g}; LiftParams.close_gaps)"
+    if len(found) == 1:
+        return (f"; {names} cross within {100 * spread:.2g}% of the diagonal of one another, not at one point: if "
+                f"they meet at one point, close_gaps={want(spread):g} makes it one intersection {how}")
+    return (f"; {len(found)} groups of strokes cross near one point each, not at it (the widest: {names}, within "
+            f"{100 * spread:.2g}% of the diagonal): if each meets at one point, close_gaps={want(spread):g} makes "
+            f"each one intersection {how}")
+
+
 def _graph_with_markers(sub: Sketch, params: LiftParams) -> tuple[SketchGraph, set[int]]:
     """The layer's graph with the markers that snap to one of its crossings (the others belong elsewhere)."""
     g = sketch_graph(sub, params, require_markers=False)
@@ -1467,19 +1487,28 @@ def _stack(graphs: list[SketchGraph], pts: list[Array]) -> None:
 
 
 def _network(sketch: Sketch, graphs: list[SketchGraph], pts: list[Array], results: list[CueResult],
-             converged: bool = True) -> CurveNetwork:
+             converged: bool = True, params: LiftParams = DEFAULT) -> CurveNetwork:
     """One exact 3D Bezier piece per segment; one basic curve per stroke.
 
     Raises GeometryError, naming the stroke, where the lift shrank a segment to
-    a point in the sketch's plane (seen along z it would no longer be a curve):
-    a solve that went astray, not a lift of the drawing.
+    a point in the sketch's plane (seen along z it would no longer be a curve),
+    and, naming the layer, where it shrank a layer to less than
+    ``COLLAPSED`` of its drawn extent there: a solve that went astray, not a
+    lift of the drawing (the fidelity term keeps x, y near the drawing).
     """
     pieces: list[Piece] = []
     groups: list[SymmetryGroup] = []
     layers: list[int] = []
     size = 1e-9
     rule = SideCoordinate("u")
+    why = "not every solve converged" if not converged else "every solve converged"
     for g, X in zip(graphs, pts, strict=True):
+        drawn = float(np.linalg.norm(np.ptp(g.points, axis=0))) * g.scale
+        ratio = float(np.linalg.norm(np.ptp(X[:, :2], axis=0))) / drawn
+        if ratio < COLLAPSED:
+            raise GeometryError(f"layer {g.strokes[0].layer}: the lift collapsed: its curves span {ratio:.2g} of the "
+                                f"drawing's extent in the sketch's plane ({why}): the solve went astray, the result "
+                                f"is no lift of the drawing" + _junction_hint(g, params))
         for chain in g.chains:
             basic = len(groups)
             stroke = g.strokes[int(g.seg_stroke[chain[0]])]
@@ -1487,7 +1516,6 @@ def _network(sketch: Sketch, graphs: list[SketchGraph], pts: list[Array], result
                 c = X[g.segments[s]]
                 spread = float(np.ptp(c[:, :2], axis=0).max())
                 if not spread > TOL.zero:     # what the Bezier below would refuse, without the stroke's name
-                    why = "not every solve converged" if not converged else "every solve converged"
                     raise GeometryError(
                         f"stroke {stroke.id or '(no id)'}: the lift shrank its segment {k + 1} of {len(chain)} "
                         f"(split at the crossings) to a point in the sketch's plane ({why}): the solve went "

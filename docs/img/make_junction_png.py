@@ -1,5 +1,6 @@
 """Make docs/img/lift-junction.png: the box whose sections meet its edges, drawn with a slip, lifted as
-drawn and with ``close_gaps`` (docs/lifting.md, "Crossings drawn near one point").
+drawn (refused: the solve collapses it) and with ``close_gaps`` (docs/lifting.md, "Crossings drawn near one
+point").
 
 Run from the repository's root: ``python docs/img/make_junction_png.py`` (it uses the test truths).
 """
@@ -7,6 +8,7 @@ Run from the repository's root: ``python docs/img/make_junction_png.py`` (it use
 from __future__ import annotations
 
 import sys
+import textwrap
 from pathlib import Path
 
 import matplotlib
@@ -18,6 +20,7 @@ import numpy as np  # noqa: E402
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
+from auszug.errors import GeometryError  # noqa: E402
 from auszug.lifting import LiftParams, lift, sketch_graph  # noqa: E402
 from tests.lifting import truth as T  # noqa: E402
 
@@ -52,12 +55,21 @@ def main() -> None:
     # (b, c) the lifts seen from the side: depth against x, the truth dashed
     z0 = tr.chains3d[0][0, 0, 2]
     for k, (params, name) in enumerate(((LiftParams(), "as drawn"), (LiftParams(close_gaps=TOL), f"close_gaps {TOL}"))):
-        res = lift(tr.sketch, params=params)
-        err, sign = T.depth_rmse(tr, res)
         a = ax[k + 1]
         for c in tr.chains3d:
             p = _curve(c)
             a.plot(p[:, 0], p[:, 2] - z0, "--", color="0.6", lw=1)
+        a.set_aspect("equal")
+        a.set_xlabel("x (sketch units)")
+        a.set_ylabel("depth (truth dashed)")
+        try:
+            res = lift(tr.sketch, params=params)
+        except GeometryError as e:          # the lift refuses a network that collapsed
+            a.set_title(f"lifted {name}: refused", fontsize=9)
+            why = str(e).split(":")[1].strip() + ": " + str(e).split(":")[2].split("(")[0].strip()
+            a.text(0.5, 0.05, textwrap.fill(why, 48), transform=a.transAxes, ha="center", fontsize=8, color="tab:red")
+            continue
+        err, sign = T.depth_rmse(tr, res)
         pts = np.concatenate([piece.point_t(np.linspace(0, 1, 24)) for piece in res.network.pieces])
         zt = np.concatenate([_curve(c)[:, 2] for c in tr.chains3d]) - z0
         off = float(np.mean(zt) - sign * np.mean(pts[:, 2]))
@@ -67,12 +79,7 @@ def main() -> None:
         extent = float(np.ptp(pts, axis=0).max()) / tr.diagonal()
         if extent < 1e-3:
             a.plot(pts[:, 0].mean(), off, "o", color="tab:blue", ms=5)
-            a.text(0.5, 0.06, f"the network collapses to a point ({extent:.0e} of the diagonal)",
-                   transform=a.transAxes, ha="center", fontsize=8, color="tab:blue")
-        a.set_aspect("equal")
         a.set_title(f"lifted {name}: depth RMSE {err:.2%}" + ("" if res.converged else ", not converged"), fontsize=9)
-        a.set_xlabel("x (sketch units)")
-        a.set_ylabel("depth (truth dashed)")
     fig.tight_layout()
     out = ROOT / "docs" / "img" / "lift-junction.png"
     fig.savefig(out, dpi=90)

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 from auszug.errors import GeometryError
 from auszug.geometry import CubicBezier
-from auszug.lifting import LiftParams, lift, near_junctions
+from auszug.lifting import LiftParams, junction_hints, lift, near_junctions
 from auszug.lifting.sketch import Marker, Sketch, Stroke, sketch_graph
 from tests.lifting import truth as T
 from tests.lifting.test_fit import _distances
@@ -70,6 +70,8 @@ def test_three_lines_drawn_as_a_small_triangle_meet_at_the_point_nearest_them():
         assert _distances(s.controls, pts).max() <= h + 1e-12          # nothing moved farther than the knot
     # the close_gaps the hint names joins it; a smaller one does not
     want = np.ceil(spread * 1.01 * 1e4) / 1e4
+    assert junction_hints(g0) == [(spread, (0, 1, 2), want)]
+    assert junction_hints(g0, LiftParams(close_gaps=want)) == []       # asked for: no hint
     assert len(sketch_graph(sk, LiftParams(close_gaps=want)).junctions) == 1
     assert len(sketch_graph(sk, LiftParams(close_gaps=0.5 * h / g0.scale)).crossings) == 3
 

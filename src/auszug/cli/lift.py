@@ -25,7 +25,6 @@ examples:
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -208,14 +207,11 @@ def run(args: argparse.Namespace) -> int:
 
 def _junction_hints(result: "LiftResult", params: "LiftParams") -> list[str]:
     """A note per group of crossings of three or more strokes drawn within 1 % of the diagonal, not joined."""
-    from auszug.lifting import CLOSE_GAPS_MAX, near_junctions
+    from auszug.lifting import junction_hints
 
     lines = []
     for g in result.graphs:
-        for spread, strokes in near_junctions(g, params.snap):
-            want = min(CLOSE_GAPS_MAX, math.ceil(spread * 1.01 * 1e4) / 1e4)
-            if spread > CLOSE_GAPS_MAX or want <= params.close_gaps:
-                continue
+        for spread, strokes, want in junction_hints(g, params):
             names = ", ".join(g.strokes[s].id or f"stroke #{s}" for s in strokes)
             lines.append(f"note: {names} cross within {100 * spread:.2g}% of the diagonal of one another, not at "
                          f"one point; if they meet at one point, --set close_gaps={want:g} makes it one intersection")

@@ -14,10 +14,18 @@ from dataclasses import dataclass, fields
 from auszug.errors import GeometryError
 from auszug.limits import LIMITS
 
-__all__ = ["LiftParams", "DEFAULT", "CLOSE_GAPS_MAX", "COLLAPSED"]
+__all__ = ["LiftParams", "DEFAULT", "CLOSE_GAPS_MAX", "COLLAPSED", "close_gaps_for"]
 
 #: The largest ``LiftParams.close_gaps``: 5 % of the diagonal (a gap wider than that is a drawn free end).
 CLOSE_GAPS_MAX = 0.05
+def close_gaps_for(distance: float) -> float:
+    """The ``close_gaps`` a message names to join what is drawn ``distance`` apart (shares of the diagonal).
+
+    1 % more than ``distance``, rounded up to 1e-4, at most :data:`CLOSE_GAPS_MAX`.
+    """
+    return min(CLOSE_GAPS_MAX, math.ceil(distance * 1.01 * 1e4) / 1e4)
+
+
 #: A lifted layer whose curves span (bounding-box diagonal in x, y) less than this share of the drawn
 #: layer's is refused as collapsed: the fidelity term keeps x, y near the drawing, so only a solve gone
 #: astray shrinks it (measured 2026-12-06: 0.94-1.001 over the bundled examples and the six truths at noise 0

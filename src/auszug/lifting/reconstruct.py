@@ -8,7 +8,6 @@ the viewer), the cues found and every stage's energy and timing.
 
 from __future__ import annotations
 
-import math
 import time
 import weakref
 from dataclasses import dataclass, fields, replace
@@ -23,7 +22,7 @@ from auszug.geometry.heights import SideCoordinate
 from auszug.geometry.network import CurveNetwork, Piece
 from auszug.lifting import cues as cu
 from auszug.lifting.family import extent_member
-from auszug.lifting.params import CLOSE_GAPS_MAX, COLLAPSED, DEFAULT, LiftParams
+from auszug.lifting.params import CLOSE_GAPS_MAX, COLLAPSED, DEFAULT, LiftParams, close_gaps_for
 from auszug.lifting.sketch import Sketch, SketchGraph, Stroke, near_junctions, nearest_end_gap, sketch_graph
 from auszug.lifting.solver import Orderings, Poly2, SolveResult, solve
 from auszug.lifting.terms import fidelity, structure
@@ -1431,28 +1430,40 @@ def _gap_hint(g: SketchGraph, comp: NDArray[np.intp], main: int, params: LiftPar
         return ""
     name = g.strokes[si].id or f"stroke #{si}"
     other = g.strokes[sj].id or f"stroke #{sj}"
-    want = min(CLOSE_GAPS_MAX, math.ceil(d * 1.01 * 1e4) / 1e4)
+    want = close_gaps_for(d)
     return (f"; or, if they were meant to meet, an end of {name} misses {other} by {d:.2%} of the diagonal: "
             f"close_gaps={want:g} joins it (auszug lift --set close_gaps={want:g}; LiftParams.close_gaps)")
 
 
+def junction_hints(g: SketchGraph, params: LiftParams = DEFAULT) -> list[tuple[float, tuple[int, ...], float]]:
+    """The groups of crossings of three or more strokes drawn near one point that ``params`` leaves apart.
+
+    For messages: :func:`auszug.lifting.sketch.near_junctions` within ``params.snap`` (1 % of the diagonal),
+    those that a ``close_gaps`` up to its limit, and above ``params.close_gaps``, would join.
+
+    Returns
+    -------
+    list of (spread, strokes, close_gaps)
+        The group's spread (share of the diagonal), its strokes (indices into ``g.strokes``) and the
+        ``close_gaps`` that joins it (:func:`~auszug.lifting.params.close_gaps_for`), by spread.
+    """
+    return [(spread, strokes, close_gaps_for(spread)) for spread, strokes in near_junctions(g, params.snap)
+            if spread <= CLOSE_GAPS_MAX and close_gaps_for(spread) > params.close_gaps]
+
+
 def _junction_hint(g: SketchGraph, params: LiftParams) -> str:
     """For a lift that went astray: the groups of crossings of three or more strokes drawn near one point."""
-    def want(spread: float) -> float:
-        return min(CLOSE_GAPS_MAX, math.ceil(spread * 1.01 * 1e4) / 1e4)
-
-    found = [(spread, strokes) for spread, strokes in near_junctions(g, params.snap)
-             if spread <= CLOSE_GAPS_MAX and want(spread) > params.close_gaps]
+    found = junction_hints(g, params)
     if not found:
         return ""
-    spread, strokes = found[-1]
+    spread, strokes, want = found[-1]
     names = ", ".join(g.strokes[s].id or f"stroke #{s}" for s in strokes)
-    how = f"(auszug lift --set close_gaps={want(spread):g}; LiftParams.close_gaps)"
+    how = f"(auszug lift --set close_gaps={want:g}; LiftParams.close_gaps)"
     if len(found) == 1:
         return (f"; {names} cross within {100 * spread:.2g}% of the diagonal of one another, not at one point: if "
-                f"they meet at one point, close_gaps={want(spread):g} makes it one intersection {how}")
+                f"they meet at one point, close_gaps={want:g} makes it one intersection {how}")
     return (f"; {len(found)} groups of strokes cross near one point each, not at it (the widest: {names}, within "
-            f"{100 * spread:.2g}% of the diagonal): if each meets at one point, close_gaps={want(spread):g} makes "
+            f"{100 * spread:.2g}% of the diagonal): if each meets at one point, close_gaps={want:g} makes "
             f"each one intersection {how}")
 
 

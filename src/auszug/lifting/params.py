@@ -159,11 +159,11 @@ class LiftParams:
         (:class:`auszug.lifting.sketch.Gap`; ends at an occlusion marker
         stay as drawn). Before that, crossings of three or more strokes
         drawn within this distance of one point (a small triangle where
-        they were meant to meet) are made one point
-        (:class:`auszug.lifting.sketch.Junction`). Off by default: the bundled examples' intended free
-        ends lie 0.08-0.9 % of the diagonal from other strokes, so no one
-        tolerance tells a near miss from a free end (docs/lifting.md,
-        "Closing gaps").
+        they were meant to meet) are joined into one point
+        (:class:`auszug.lifting.sketch.Junction`). Off by default: the
+        bundled examples' intended free ends lie 0.08-0.9 % of the
+        diagonal from other strokes, so no one tolerance tells a near miss
+        from a free end (docs/lifting.md, "Closing gaps").
     above_min : float
         The depth sign follows the "view from above" score
         (:func:`auszug.lifting.reconstruct.depth_sign_score`, in [-1, 1]:

@@ -804,7 +804,7 @@ def _split_at(out: list[Array], sj: int, q: Array, params: LiftParams) -> None:
 
 def _join_crossings(out: list[Array], raw: list[_Raw], params: LiftParams,
                     occlusions: Array) -> tuple[Junction, ...]:
-    """Make, in place, crossings of three or more strokes drawn within ``close_gaps`` of one point one point.
+    """Join, in place, crossings of three or more strokes drawn within ``close_gaps`` of one point into one.
 
     ``raw`` are the crossings of ``out`` as given (:func:`_raw_crossings`). Crossings are grouped by single
     linkage at ``close_gaps``. A group of three or more strokes, every two of them crossing once in it

@@ -212,7 +212,7 @@ def _junction_hints(result: "LiftResult", params: "LiftParams") -> list[str]:
     lines = []
     for g in result.graphs:
         for spread, strokes, want in junction_hints(g, params):
-            names = ", ".join(g.strokes[s].id or f"stroke #{s}" for s in strokes)
+            names = ", ".join(g.stroke_name(s) for s in strokes)
             lines.append(f"note: {names} cross within {100 * spread:.2g}% of the diagonal of one another, not at "
                          f"one point; if they meet at one point, --set close_gaps={want:g} makes it one intersection")
     return lines
@@ -239,8 +239,7 @@ def _report(result: "LiftResult", classes: tuple[str, ...]) -> None:
     for g in result.graphs:
         layer = g.strokes[0].layer
         for gap in g.gaps:
-            name = g.strokes[gap.stroke].id or f"stroke #{gap.stroke}"
-            other = g.strokes[gap.to].id or f"stroke #{gap.to}"
+            name, other = g.stroke_name(gap.stroke), g.stroke_name(gap.to)
             what = {"trim": f"cut {gap.distance:.3%} of the diagonal beyond its crossing with {other}",
                     "extend": f"moved {gap.distance:.3%} of the diagonal onto {other}",
                     "end": f"moved {gap.distance:.3%} of the diagonal to meet {other}'s end",
@@ -248,7 +247,7 @@ def _report(result: "LiftResult", classes: tuple[str, ...]) -> None:
             print(f"gap closed: {name} {'start' if gap.end == 0 else 'end'} {what}"
                   + (f"  (layer {layer})" if layer else ""))
         for j in g.junctions:
-            names = ", ".join(g.strokes[s].id or f"stroke #{s}" for s in j.strokes)
+            names = ", ".join(g.stroke_name(s) for s in j.strokes)
             print(f"crossings joined: {names} drawn within {100 * j.spread:.3g}% of the diagonal, made one point "
                   f"(strokes moved at most {100 * j.distance:.3g}%)" + (f"  (layer {layer})" if layer else ""))
     if result.mirror is not None:

@@ -1428,8 +1428,7 @@ def _gap_hint(g: SketchGraph, comp: NDArray[np.intp], main: int, params: LiftPar
     d, si, sj = min(nearest_end_gap(g, rest, part), nearest_end_gap(g, part, rest))
     if not params.close_gaps < d <= CLOSE_GAPS_MAX:
         return ""
-    name = g.strokes[si].id or f"stroke #{si}"
-    other = g.strokes[sj].id or f"stroke #{sj}"
+    name, other = g.stroke_name(si), g.stroke_name(sj)
     want = close_gaps_for(d)
     return (f"; or, if they were meant to meet, an end of {name} misses {other} by {d:.2%} of the diagonal: "
             f"close_gaps={want:g} joins it (auszug lift --set close_gaps={want:g}; LiftParams.close_gaps)")
@@ -1457,7 +1456,7 @@ def _junction_hint(g: SketchGraph, params: LiftParams) -> str:
     if not found:
         return ""
     spread, strokes, want = found[-1]
-    names = ", ".join(g.strokes[s].id or f"stroke #{s}" for s in strokes)
+    names = ", ".join(g.stroke_name(s) for s in strokes)
     how = f"(auszug lift --set close_gaps={want:g}; LiftParams.close_gaps)"
     if len(found) == 1:
         return (f"; {names} cross within {100 * spread:.2g}% of the diagonal of one another, not at one point: if "

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
+from scipy.spatial.distance import pdist
 
 from auszug.errors import GeometryError
 from auszug.geometry import CubicBezier, Line, intersect, intersect_many
@@ -252,6 +253,10 @@ class SketchGraph:
     marked: tuple[int, ...] = ()
     gaps: tuple[Gap, ...] = ()
     junctions: tuple[Junction, ...] = ()
+
+    def stroke_name(self, i: int) -> str:
+        """Stroke ``i``'s id, or ``stroke #i`` where it has none (for messages)."""
+        return self.strokes[i].id or f"stroke #{i}"
 
     def tangent(self, seg: int, end: int) -> Array:
         """2D tangent handle of a half-edge: from its end point to the next control point."""
@@ -802,6 +807,18 @@ def _split_at(out: list[Array], sj: int, q: Array, params: LiftParams) -> None:
         return
 
 
+def _link_groups(pts: Array, r: float) -> list[NDArray[np.intp]]:
+    """Single-linkage groups of ``pts`` (n, 2) at distance ``r``: per group its indices, ascending.
+
+    Groups (singletons too) come in the order of their first index.
+    """
+    pairs = cKDTree(pts).query_pairs(r, output_type="ndarray")
+    link = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(pts), len(pts)))
+    n, label = connected_components(link, directed=False)
+    order = np.argsort(label, kind="stable")
+    return np.split(order, np.cumsum(np.bincount(label, minlength=n))[:-1])
+
+
 def _join_crossings(out: list[Array], raw: list[_Raw], params: LiftParams,
                     occlusions: Array) -> tuple[Junction, ...]:
     """Join, in place, crossings of three or more strokes drawn within ``close_gaps`` of one point into one.
@@ -819,12 +836,8 @@ def _join_crossings(out: list[Array], raw: list[_Raw], params: LiftParams,
     if len(raw) < 2:
         return ()
     pts = np.array([r[6] for r in raw])
-    pairs = cKDTree(pts).query_pairs(tol, output_type="ndarray")
-    link = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(raw), len(raw)))
-    n_groups, label = connected_components(link, directed=False)
     found: list[Junction] = []
-    for lab in range(n_groups):
-        members = np.nonzero(label == lab)[0]
+    for members in _link_groups(pts, tol):
         strokes = {raw[i][0] for i in members} | {raw[i][3] for i in members}
         if len(members) < 2 or not _every_pair_once([(raw[i][0], raw[i][3]) for i in members]):
             continue
@@ -836,7 +849,7 @@ def _join_crossings(out: list[Array], raw: list[_Raw], params: LiftParams,
         group = sorted(strokes | {si for si, _ in ends})
         spots = np.concatenate([pts[members], np.reshape([out[si][0, 0] if e == 0 else out[si][-1, 3]
                                                           for si, e in ends], (-1, 2))])
-        spread = float(np.max(np.linalg.norm(spots[:, None] - spots[None], axis=-1)))
+        spread = float(pdist(spots).max())
         if spread <= near or float(np.linalg.norm(spots - q, axis=1).max()) > tol \
                 or _near_occlusion(q, occlusions, params):
             continue
@@ -878,13 +891,7 @@ def _through(out: list[Array], si: int, q: Array, params: LiftParams) -> float:
     """
     near = 10.0 * params.merge
     c = out[si]
-    dist, k, t = math.inf, 0, 0.0
-    for kk, seg in enumerate(c):
-        b = CubicBezier.from_array(seg)
-        tt = b.project(q)
-        dd = float(np.linalg.norm(b.point(tt) - q))
-        if dd < dist:
-            dist, k, t = dd, kk, tt
+    dist, k, t = _nearest_on(c, q)
     x = CubicBezier.from_array(c[k]).point(t)
     loop = _is_loop(c, params)
     if dist <= 1e-12:
@@ -973,17 +980,23 @@ def _end_dir(c: Array, end: int) -> Array:
     return v / n if n > 0 else v
 
 
-def _closest_on(c: Array, q: Array) -> tuple[Array, Array]:
-    """The point of the stroke ``c`` (m, 4, 2) closest to ``q``, and its unit tangent there."""
-    best: tuple[float, Array, Array] = (math.inf, q, np.zeros(2))
-    for seg in c:
+def _nearest_on(c: Array, q: Array) -> tuple[float, int, float]:
+    """Where the stroke ``c`` (m, 4, 2) comes closest to ``q``: (distance, segment, t)."""
+    best = (math.inf, 0, 0.0)
+    for k, seg in enumerate(c):
         b = CubicBezier.from_array(seg)
         t = b.project(q)
-        x = b.point(t)
-        d = float(np.linalg.norm(x - q))
+        d = float(np.linalg.norm(b.point(t) - q))
         if d < best[0]:
-            best = (d, x, b.tangent(t))
-    return best[1], best[2]
+            best = (d, k, t)
+    return best
+
+
+def _closest_on(c: Array, q: Array) -> tuple[Array, Array]:
+    """The point of the stroke ``c`` (m, 4, 2) closest to ``q``, and its unit tangent there."""
+    _, k, t = _nearest_on(c, q)
+    b = CubicBezier.from_array(c[k])
+    return b.point(t), b.tangent(t)
 
 
 def _meeting_point(p: Array, u: Array, params: LiftParams) -> Array:
@@ -1020,14 +1033,9 @@ def _meet(out: list[Array], params: LiftParams, occlusions: Array, trimmed: set[
     if len(ends) < 2:
         return []
     pts = np.array([out[si][0, 0] if e == 0 else out[si][-1, 3] for si, e in ends])
-    pairs = cKDTree(pts).query_pairs(tol, output_type="ndarray")
-    link = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(ends), len(ends)))
-    _, label = connected_components(link, directed=False)          # single linkage at tol
-    groups: dict[int, list[int]] = {}
-    for i, lab in enumerate(label.tolist()):
-        groups.setdefault(lab, []).append(i)
     gaps: list[Gap] = []
-    for members in groups.values():
+    for group in _link_groups(pts, tol):
+        members = group.tolist()
         if len(members) < 2:
             continue
         on = {i: _on_stroke(pts[i], out, ends[i][0], params) for i in members}
@@ -1197,17 +1205,12 @@ def near_junctions(g: SketchGraph, within: float) -> list[tuple[float, tuple[int
     if len(g.crossings) < 2:
         return []
     pts = np.array([g.points[c.point] for c in g.crossings])
-    pairs = cKDTree(pts).query_pairs(within, output_type="ndarray")
-    link = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(pts), len(pts)))
-    n_groups, label = connected_components(link, directed=False)
     found = []
-    for lab in range(n_groups):
-        members = np.nonzero(label == lab)[0]
+    for members in _link_groups(pts, within):
         strokes = sorted({s for i in members for s in g.crossings[i].strokes})
         if len(members) < 2 or not _every_pair_once([g.crossings[i].strokes for i in members]):
             continue
-        p = pts[members]
-        found.append((float(np.max(np.linalg.norm(p[:, None] - p[None], axis=-1))), tuple(strokes)))
+        found.append((float(pdist(pts[members]).max()), tuple(strokes)))
     return sorted(found)
 
 

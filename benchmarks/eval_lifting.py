@@ -21,6 +21,7 @@ Usage (from the repository root)::
     python -m benchmarks.eval_lifting signs [--cues none|default] [--tilts 45,55,65]
     python -m benchmarks.eval_lifting energy [--truths a,b]
     python -m benchmarks.eval_lifting hand [--seeds 0,1,2,3,4,5] [--params k=v,...]
+    python -m benchmarks.eval_lifting bay [--bays tn-3,tn-4] [--params k=v,...]
 
 ``--params k=v,...`` lifts with those :class:`~auszug.lifting.LiftParams` fields (noise, views and signs modes),
 e.g. ``--params parallel_robust_deg=5,w_depth_anchor=10`` (branch lift-energy, docs/lifting.md; with
@@ -36,6 +37,12 @@ x 4 turns, no view rejected), wrong signs and depth RMSE per object.
 (``make_sketches.hand_drawn``, seed 0 is the shipped drawing; a seed whose hand lost or made a crossing is
 refused), depth RMSE and sign of the baseline and of the default cues against each drawing's truth (docs/lifting.md,
 "The example sketches lifted").
+
+``bay``: the negative case of the project's own square bays (``truth.bay_chains``: the microarchitecture network
+of a teaching-sheet drawing, whose ribs cross at equal heights at 40-55 deg, not orthogonally as the method assumes
+of a smooth crossing) over the views grid, views rejected for any reason but that one; depth RMSE and wrong signs of
+the default cues and of the baseline, the crossings' 3D angle in the truth and the largest deviation from 90 deg of
+the lifted smooth crossings.
 
 ``energy`` (branch lift-acc): the baseline energy term by term (accuracy, minimal variation,
 foreshortening, soft parallelism) at the truth, at the baseline lift, and at the minimum of the
@@ -273,15 +280,53 @@ def hand_table(seeds: tuple[int, ...], out, params: LiftParams = DEFAULT) -> Non
                   file=out, flush=True)
 
 
+def bay_table(bays: list[str], out, params: LiftParams = DEFAULT, tilts: tuple[float, ...] = TILTS) -> None:
+    """The square bays of the microarchitecture package over the views grid: how far the lift is off where the
+    method's orthogonality at smooth crossings is false (default cues and baseline)."""
+    print("| bay | crossings in 3D (deg) | views lifted (rejected) | "
+          "default cues: depth RMSE median / max, wrong sign | baseline: median / max, wrong sign | "
+          "lifted crossings, largest from 90 deg | not converged |", file=out)
+    print("|---|---|---|---|---|---|---|", file=out)
+    for name in bays:
+        rows: dict[str, list[dict]] = {"default": [], "none": []}
+        rejected, crossing = 0, ""
+        for tilt in tilts:
+            for turn in TURNS:
+                tr = T.make_bay(name, tilt, turn)
+                why = [w for w in T.accidental(tr) if w != T.NOT_ORTHOGONAL]
+                if why:
+                    rejected += 1
+                    print(f"# {name} {tilt:g} {turn:g}: rejected: {'; '.join(why)}", file=sys.stderr, flush=True)
+                    continue
+                ang = 90.0 - T.labels(tr)["smooth-orthogonal-angle"]
+                crossing = f"{ang.min():.2f}-{ang.max():.2f}" if np.ptp(ang) > 0.005 else f"{ang[0]:.2f}"
+                for label, classes in (("default", DEFAULT_CLASSES), ("none", ())):
+                    e = evaluate(tr, classes, params)
+                    rows[label].append(e)
+                    print(f"# {name} {tilt:g} {turn:g} {label}: {_fmt_err(e)} %", file=sys.stderr, flush=True)
+        cells = []
+        for label in ("default", "none"):
+            ok = [e for e in rows[label] if "refused" not in e]
+            errs = np.array([e["err"] for e in ok] or [np.nan])
+            ref = len(rows[label]) - len(ok)
+            cells.append(f"{100 * np.median(errs):.2f} / {100 * errs.max():.2f} %, {sum(e['sign'] != 1 for e in ok)}"
+                         f"{f' ({ref} refused)' if ref else ''}")
+        ok = [e for e in rows["default"] if "refused" not in e]
+        print(f"| {name} | {crossing} | {len(rows['default'])} ({rejected}) | {cells[0]} | {cells[1]} | "
+              f"{max((e['worst']['smooth-orthogonal'] for e in ok), default=0.0):.2g} | "
+              f"{sum(not e['converged'] for e in ok)} |", file=out, flush=True)
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("mode", choices=("noise", "views", "signs", "energy", "hand"))
+    ap.add_argument("mode", choices=("noise", "views", "signs", "energy", "hand", "bay"))
     ap.add_argument("--truths", default=",".join(T.TRUTHS))
     ap.add_argument("--cues", default="default", choices=("default", "none"))
     ap.add_argument("--params", default="", help="LiftParams fields, e.g. parallel_robust_deg=5,w_depth_anchor=10")
     ap.add_argument("--tilts", default="",
                     help="views and signs modes: the tilts from above (deg, in [0, 90)), e.g. 45,55,65 "
                          "(default: 15,20,25,30,35 for views, 15,25,35 for signs)")
+    ap.add_argument("--bays", default="tn-3,tn-4", help="bay mode: teaching-sheet drawings, e.g. tn-3")
     ap.add_argument("--seeds", default="0,1,2,3,4,5", help="hand mode: the seeds of the hand, e.g. 0,1,2")
     a = ap.parse_args(argv)
     try:
@@ -304,6 +349,8 @@ def main(argv: list[str] | None = None) -> int:
         energy_table(names, sys.stdout)
     elif a.mode == "hand":
         hand_table(seeds, sys.stdout, params)
+    elif a.mode == "bay":
+        bay_table(a.bays.split(","), sys.stdout, params, tilts or TILTS)
     elif a.mode == "signs":
         signs_table(classes, sys.stdout, params, tilts or SIGN_TILTS)
     elif a.mode == "views":

@@ -7,7 +7,9 @@ exactly representable and its crossings are exactly what the method assumes.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -511,6 +513,72 @@ def turret_chains(height: float = 1.4) -> list[np.ndarray]:
     return chains
 
 
+@functools.lru_cache(maxsize=8)
+def bay_chains(name: str = "tn-3", segments: int = 8, samples: int = 400) -> tuple[np.ndarray, ...]:
+    """A square bay of the project's own microarchitecture: the negative case its ogee ribs make.
+
+    The curve network ``microarch.build`` reconstructs from the teaching sheet's drawing ``name``
+    (``samples`` points per curve), stood upright (plan x, y -> x, -z; height -> y). Each curve becomes
+    a Hermite chain of a cubic spline through its samples by arc length: knots at ``segments`` equal
+    steps and at the curve's 3D crossings with the others (found on the splines; a step knot within
+    half a step of a crossing gives way), the crossing's point shared by both chains. Unlike every
+    truth in :data:`TRUTHS`, its smooth crossings are *not* orthogonal in 3D (two ribs rising from
+    different posts cross at equal heights at whatever angle their ogees give): the method's hard
+    assumption fails there, and the lift measures what that costs.
+    """
+    from importlib.resources import files
+
+    from scipy.interpolate import CubicSpline
+    from scipy.optimize import minimize
+    from scipy.spatial import cKDTree
+
+    from auszug.formats import load
+    from auszug.microarch import build
+
+    net = build(load(Path(str(files("auszug.examples"))) / "teaching-sheet" / f"{name}.uc"), samples=samples)
+    up = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+    P = [c.points @ up for c in net.to_curve_network().curves()]
+    size = float(np.ptp(np.vstack(P), axis=0).max())
+    splines = []
+    for p in P:
+        s = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))]
+        splines.append(CubicSpline(s / s[-1], p))
+    knots: list[dict[float, np.ndarray | None]] = [dict.fromkeys(np.linspace(0, 1, segments + 1)) for _ in P]
+    for i in range(len(P)):
+        for j in range(i + 1, len(P)):
+            d, k = cKDTree(P[j]).query(P[i])
+            m = int(d.argmin())
+            a0, b0 = m / (len(P[i]) - 1), int(k[m]) / (len(P[j]) - 1)
+            if d[m] > 2e-3 * size or (min(a0, 1 - a0) < 0.02 and min(b0, 1 - b0) < 0.02):
+                continue                       # apart, or ends shared (at a post or the apex)
+            si, sj = splines[i], splines[j]
+            r = minimize(lambda x, si=si, sj=sj: float(np.sum((si(x[0]) - sj(x[1])) ** 2)), [a0, b0],
+                         method="Nelder-Mead", options={"xatol": 1e-13, "fatol": 1e-30, "maxiter": 4000})
+            a, b = (float(v) for v in np.clip(r.x, 0.0, 1.0))
+            point = (si(a) + sj(b)) / 2
+            for kk, t in ((i, a), (j, b)):
+                for u in [u for u, q in knots[kk].items() if q is None and 0 < u < 1 and abs(u - t) < 0.5 / segments]:
+                    del knots[kk][u]
+                knots[kk][t] = point
+    chains = []
+    for sp, kn in zip(splines, knots, strict=True):
+        ts = np.array(sorted(kn))
+        p, dp = sp(ts), sp(ts, 1)
+        for n, t in enumerate(ts):
+            if kn[float(t)] is not None:
+                p[n] = kn[float(t)]
+        dt = np.diff(ts)[:, None]
+        chain = np.stack([p[:-1], p[:-1] + dp[:-1] * dt / 3, p[1:] - dp[1:] * dt / 3, p[1:]], axis=1)
+        chain.flags.writeable = False          # shared by the cache
+        chains.append(chain)
+    return tuple(chains)
+
+
+def make_bay(name: str = "tn-3", tilt: float = 20.0, turn: float = 20.0, noise: float = 0.0, seed: int = 0) -> Truth:
+    """:func:`bay_chains` seen from (tilt, turn), with 2D noise (as :func:`make`)."""
+    return _project(bay_chains(name), rotation(tilt, turn), noise, seed)
+
+
 #: The truths of the evaluation (benchmarks/eval_lifting.py) by name: their chains in object
 #: coordinates (the revolve's are built inside :func:`revolve`); :func:`make` projects them.
 TRUTHS = {"revolve": None, "spiral": spiral_chains, "saddle": saddle_chains, "wrinkle": wrinkle_chains,
@@ -575,6 +643,10 @@ def labels(truth: Truth, params=None) -> dict[str, np.ndarray]:
     return out
 
 
+#: :func:`accidental`'s reason for a truth that breaks the method's assumption (the bays of :func:`bay_chains`).
+NOT_ORTHOGONAL = "a smooth crossing is not orthogonal in 3D"
+
+
 def accidental(truth: Truth, params=None) -> list[str]:
     """Why a noise-free projection is an accidental view (empty: generic).
 
@@ -613,7 +685,7 @@ def accidental(truth: Truth, params=None) -> list[str]:
     if bad.any():
         why.append(f"{int(bad.sum())} non-parallel tangent pairs within 1 deg in 2D")
     if len(lab["smooth-orthogonal-angle"]) and lab["smooth-orthogonal-angle"].max() > 1e-6:
-        why.append("a smooth crossing is not orthogonal in 3D")
+        why.append(NOT_ORTHOGONAL)
     for k, c in enumerate(truth.chains3d[:len(truth.sketch.strokes)]):
         P = c.reshape(-1, 3)
         sv = np.linalg.svd(P - P.mean(0), full_matrices=True)

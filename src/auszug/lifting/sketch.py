@@ -473,24 +473,10 @@ def sketch_graph(sketch: Sketch, params: LiftParams = DEFAULT, require_markers: 
     S = len(ctrl)
     # number the control points: segment ends shared when they coincide, handles own
     ends = np.concatenate([ctrl[:, 0], ctrl[:, 3]])
-    tree = cKDTree(ends)
-    parent = np.arange(2 * S)
-
-    def find(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return int(i)
-
-    for i, j in tree.query_pairs(params.merge * 10):
-        ri, rj = find(i), find(j)
-        if ri != rj:
-            parent[max(ri, rj)] = min(ri, rj)
-    roots = np.array([find(i) for i in range(2 * S)])
-    # an occluded crossing must not join strokes that happen to end there: keep ends of
-    # different strokes apart when they sit on an occlusion
-    uroots, end_pt = np.unique(roots, return_inverse=True)
-    npts = len(uroots)
+    groups = _link_groups(ends, params.merge * 10)        # numbered in the order of their first end
+    npts = len(groups)
+    end_pt = np.empty(2 * S, dtype=np.intp)
+    end_pt[np.concatenate(groups)] = np.repeat(np.arange(npts), [len(m) for m in groups])
     points = np.zeros((npts + 2 * S, 2))
     cnt = np.zeros(npts)
     np.add.at(points[:npts], end_pt, ends)

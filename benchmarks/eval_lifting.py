@@ -39,7 +39,7 @@ refused), depth RMSE and sign of the baseline and of the default cues against ea
 "The example sketches lifted").
 
 ``bay``: the negative case of the project's own square bays (``truth.bay_chains``: the microarchitecture network
-of a teaching-sheet drawing, whose ribs cross at equal heights at 40-55 deg, not orthogonally as the method assumes
+of a teaching-sheet drawing, whose ribs cross at equal heights at 39-53 deg, not orthogonally as the method assumes
 of a smooth crossing) over the views grid, views rejected for any reason but that one; depth RMSE and wrong signs of
 the default cues and of the baseline, the crossings' 3D angle in the truth and the largest deviation from 90 deg of
 the lifted smooth crossings.

@@ -10,23 +10,11 @@ bay``).
 
 from __future__ import annotations
 
-from importlib.resources import files
-from pathlib import Path
-
 import numpy as np
 from scipy.spatial import cKDTree
 
-from auszug.formats import load
 from auszug.lifting import lift
-from auszug.microarch import build
 from tests.lifting import truth as T
-
-UP = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])     # bay_chains' plan x, y -> x, -z
-
-
-def _microarch_curves(name: str, samples: int) -> list[np.ndarray]:
-    drawing = load(Path(str(files("auszug.examples"))) / "teaching-sheet" / f"{name}.uc")
-    return [c.points @ UP for c in build(drawing, samples=samples).to_curve_network().curves()]
 
 
 def _bezier_points(chain: np.ndarray, n: int = 4000) -> np.ndarray:
@@ -37,9 +25,9 @@ def _bezier_points(chain: np.ndarray, n: int = 4000) -> np.ndarray:
 
 def test_the_bay_is_the_microarchitecture_network():
     """Every sample of the microarchitecture network (an independent build, 1000 per curve) lies within 1e-4 of
-    the bay's size of its chain (measured 7.5e-5), the chains start and end at the curves' ends, and the
+    the bay's size of its chain (measured 6.2e-5), the chains start and end at the curves' ends, and the
     crossings are four, each a knot that two chains share exactly."""
-    curves = _microarch_curves("tn-3", 1000)
+    curves = T.bay_curves("tn-3", 1000)
     chains = T.bay_chains("tn-3")
     size = np.ptp(np.vstack(curves), axis=0).max()
     assert len(chains) == len(curves) == 8
@@ -56,7 +44,7 @@ def test_the_bays_ribs_cross_at_their_ogees_angle():
     at the nearest samples of two curves: 52.85, 52.84, 52.82 deg at 2000, 4000, 10 000 samples per curve), is
     the truth's within 0.1 deg: 52.87 deg, 37.13 deg from the orthogonality the method assumes; a view of the
     bay is generic but for that (``truth.accidental``)."""
-    curves = _microarch_curves("tn-3", 4000)
+    curves = T.bay_curves("tn-3", 4000)
     angles = []
     for i in range(len(curves)):
         for j in range(i + 1, len(curves)):

@@ -33,8 +33,9 @@ def rotation(tilt_deg: float, turn_deg: float) -> np.ndarray:
     return rx @ ry
 
 
-def hermite_chain(p: np.ndarray, dp: np.ndarray, dt: float) -> np.ndarray:
-    """Bezier chain (k-1, 4, 3) through knots p (k, 3) with derivatives dp (k, 3) per unit parameter step dt."""
+def hermite_chain(p: np.ndarray, dp: np.ndarray, dt: float | np.ndarray) -> np.ndarray:
+    """Bezier chain (k-1, 4, 3) through knots p (k, 3) with derivatives dp (k, 3) per unit parameter step dt
+    (one step, or each segment's: (k-1, 1))."""
     c0, c3 = p[:-1], p[1:]
     c1 = c0 + dp[:-1] * dt / 3
     c2 = c3 - dp[1:] * dt / 3
@@ -513,12 +514,24 @@ def turret_chains(height: float = 1.4) -> list[np.ndarray]:
     return chains
 
 
+def bay_curves(name: str, samples: int) -> list[np.ndarray]:
+    """The curves (n, 3) of the network ``microarch.build`` reconstructs from the teaching sheet's drawing
+    ``name`` with ``samples`` points per curve, stood upright: plan x, y -> x, -z; height -> y."""
+    from importlib.resources import files
+
+    from auszug.formats import load
+    from auszug.microarch import build
+
+    net = build(load(Path(str(files("auszug.examples"))) / "teaching-sheet" / f"{name}.uc"), samples=samples)
+    up = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+    return [c.points @ up for c in net.to_curve_network().curves()]
+
+
 @functools.lru_cache(maxsize=8)
 def bay_chains(name: str = "tn-3", segments: int = 8, samples: int = 400) -> tuple[np.ndarray, ...]:
     """A square bay of the project's own microarchitecture: the negative case its ogee ribs make.
 
-    The curve network ``microarch.build`` reconstructs from the teaching sheet's drawing ``name``
-    (``samples`` points per curve), stood upright (plan x, y -> x, -z; height -> y). Each curve becomes
+    The curves of :func:`bay_curves` (``samples`` points each). Each curve becomes
     a Hermite chain of a cubic spline through its samples by arc length: knots at ``segments`` equal
     steps and at the curve's 3D crossings with the others (found on the splines; a step knot within
     half a step of a crossing gives way), the crossing's point shared by both chains. Unlike every
@@ -526,18 +539,11 @@ def bay_chains(name: str = "tn-3", segments: int = 8, samples: int = 400) -> tup
     different posts cross at equal heights at whatever angle their ogees give): the method's hard
     assumption fails there, and the lift measures what that costs.
     """
-    from importlib.resources import files
-
     from scipy.interpolate import CubicSpline
     from scipy.optimize import minimize
     from scipy.spatial import cKDTree
 
-    from auszug.formats import load
-    from auszug.microarch import build
-
-    net = build(load(Path(str(files("auszug.examples"))) / "teaching-sheet" / f"{name}.uc"), samples=samples)
-    up = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
-    P = [c.points @ up for c in net.to_curve_network().curves()]
+    P = bay_curves(name, samples)
     size = float(np.ptp(np.vstack(P), axis=0).max())
     splines = []
     for p in P:
@@ -567,8 +573,7 @@ def bay_chains(name: str = "tn-3", segments: int = 8, samples: int = 400) -> tup
         for n, t in enumerate(ts):
             if kn[float(t)] is not None:
                 p[n] = kn[float(t)]
-        dt = np.diff(ts)[:, None]
-        chain = np.stack([p[:-1], p[:-1] + dp[:-1] * dt / 3, p[1:] - dp[1:] * dt / 3, p[1:]], axis=1)
+        chain = hermite_chain(p, dp, np.diff(ts)[:, None])
         chain.flags.writeable = False          # shared by the cache
         chains.append(chain)
     return tuple(chains)

@@ -18,6 +18,8 @@ __all__ = ["LiftParams", "DEFAULT", "CLOSE_GAPS_MAX", "COLLAPSED", "close_gaps_f
 
 #: The largest ``LiftParams.close_gaps``: 5 % of the diagonal (a gap wider than that is a drawn free end).
 CLOSE_GAPS_MAX = 0.05
+
+
 def close_gaps_for(distance: float) -> float:
     """The ``close_gaps`` a message names to join what is drawn ``distance`` apart (shares of the diagonal).
 
